@@ -1,0 +1,62 @@
+#pragma once
+// The cell YAML: program, scan settings, retentive ranges, named signals and the
+// simulated cell's input signals. docs/cell-config.md describes every key.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/memory.h"
+
+namespace plc_cell {
+
+class Plc;
+class SimulatedCell;
+
+struct SimInputDef {
+  std::string name;  // signal name or address as written
+  uint32_t x = 0;
+  enum class Kind { Pulse, Steps, Follow } kind = Kind::Pulse;
+  uint64_t period_us = 0, width_us = 0, delay_us = 0;  // Pulse
+  std::vector<std::pair<uint64_t, bool>> steps;        // Steps
+  Address source{};                                     // Follow
+  uint64_t on_delay_us = 0, off_delay_us = 0;
+  bool invert = false;
+};
+
+struct TimerBaseRange {
+  uint32_t first, last, base_us;
+};
+
+struct CellConfig {
+  std::string file;  // where it was read from ("" for text)
+  std::string name = "cell";
+  std::string program;  // absolute or relative to the config's folder, as resolved
+  uint64_t scan_period_us = 1000;
+  uint64_t watchdog_us = 200000;
+  std::vector<AreaRange> retentive = default_retentive();
+  std::vector<TimerBaseRange> timer_bases;
+  std::vector<std::pair<std::string, Address>> signals;  // in file order
+  std::vector<SimInputDef> sim_inputs;
+  YAML::Node document;  // the whole file, for subsystems that read their own sections
+
+  static std::vector<AreaRange> default_retentive();
+  // Looks a name up among the signals, or parses it as an address.
+  Address resolve(const std::string& name_or_address) const;
+};
+
+// Throw SourceError naming file:line:column and the key.
+CellConfig load_cell_config(const std::string& path);
+CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file);
+
+// Applies scan settings and retentive ranges to the engine and installs the input
+// signals in sim. Does not load the program.
+void apply_cell_config(const CellConfig& cfg, Plc& plc, SimulatedCell& sim);
+
+// "1.5s", "250ms", "100us", "2" (seconds); throws Error.
+uint64_t parse_duration_us(const std::string& text);
+
+}  // namespace plc_cell

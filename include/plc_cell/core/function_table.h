@@ -1,0 +1,71 @@
+#pragma once
+// The FUN instruction registry. The core registers move, arithmetic, compare,
+// logic, shift and code conversion; later subsystems (motion, counters, PID,
+// communication) register theirs the same way.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/program.h"
+
+namespace plc_cell {
+
+class Memory;
+class ExecContext;
+
+enum class OperandRole : uint8_t {
+  Source,   // constant or register (W/DW views allowed)
+  Dest,     // register or W/DW view
+  BitOut,   // a discrete output (flags such as EQ, CY, ERR)
+  BitIn,    // a discrete read
+  Const,    // a constant only
+  Register, // a register base address (tables, working areas); no constant
+};
+
+struct OperandSpec {
+  std::string name;
+  OperandRole role;
+  bool optional = false;
+  uint8_t span = 1;  // elements of the instruction's width it covers (MUL's D holds 2)
+};
+
+// Bound operand: resolved pointers into one Memory.
+struct BoundOperand {
+  Operand::Kind kind = Operand::Kind::Const;
+  int64_t k = 0;
+  uint16_t* w = nullptr;
+  uint8_t* b = nullptr;
+  Address addr{};
+  bool present = false;
+};
+
+using FunctionHandler = std::function<void(ExecContext&, const BoundOperand* ops)>;
+
+struct FunctionSpec {
+  uint16_t number = 0;
+  std::string mnemonic;
+  std::vector<std::string> inputs{"EN"};  // first is EN; more come from the LD stack
+  std::vector<OperandSpec> operands;
+  bool allow_32 = true;
+  bool allow_pulse = true;
+  bool always_runs = false;  // called with EN off too (instructions that track their input)
+  FunctionHandler handler;
+};
+
+class FunctionTable {
+ public:
+  // A table with the core functions already registered.
+  static FunctionTable with_core_functions();
+
+  void add(FunctionSpec spec);  // throws if the number or mnemonic is taken
+  const FunctionSpec* find(uint16_t number) const;
+  const FunctionSpec* find(const std::string& mnemonic) const;  // case-insensitive
+  const std::vector<FunctionSpec>& all() const { return specs_; }
+
+ private:
+  std::vector<FunctionSpec> specs_;
+  std::vector<int> by_number_ = std::vector<int>(1024, -1);
+};
+
+}  // namespace plc_cell

@@ -1,0 +1,95 @@
+#pragma once
+// Executes a Program against a Memory. Single-threaded; the scan engine owns it.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/function_table.h"
+#include "plc_cell/core/memory.h"
+#include "plc_cell/core/program.h"
+
+namespace plc_cell {
+
+class ScanEngine;
+
+// What a FUN handler sees of the instruction being executed.
+class ExecContext {
+ public:
+  Memory& mem;
+  ScanEngine* engine = nullptr;  // null when the interpreter runs on its own (tests)
+  bool en = false;               // the first input
+  std::array<bool, 4> inputs{};  // every input, in the spec's order
+  bool is32 = false;
+  uint64_t now_us = 0;           // virtual time at the start of this scan
+  uint32_t dt_us = 0;            // time since the previous scan
+  uint32_t instance = 0;         // index of this instruction: a key for per-instruction state
+
+  explicit ExecContext(Memory& m) : mem(m) {}
+
+  // Values are signed as on the FBs: 16-bit operands read as int16, 32-bit as int32.
+  int64_t get(const BoundOperand& o) const;
+  uint32_t get_raw(const BoundOperand& o) const;  // unsigned bit pattern
+  void put(const BoundOperand& o, int64_t v) const;  // truncates to the operand width
+  void flag(const BoundOperand& o, bool v) const;    // no-op if the optional operand is absent
+};
+
+class Interpreter {
+ public:
+  static constexpr int kMaxCallDepth = 16;
+  static constexpr int kMaxForDepth = 5;
+  static constexpr int kMaxStack = 32;
+
+  Interpreter(Memory& mem, const FunctionTable& functions);
+
+  // Binds the program to memory. Edge memories and timer remainders start fresh.
+  void load(const Program& program);
+  bool loaded() const { return !code_.empty(); }
+  const Program& program() const { return program_; }
+
+  // Time base of each timer in microseconds (FBs default: T0-49 10 ms, T50-199 100 ms, T200-255 1 s).
+  void set_timer_base(uint32_t timer, uint32_t base_us) { timer_base_us_[timer] = base_us; }
+  uint32_t timer_base(uint32_t timer) const { return timer_base_us_[timer]; }
+  // Backward jumps and loops allowed per scan before the watchdog trips.
+  void set_loop_budget(uint64_t n) { loop_budget_ = n; }
+
+  // Runs the main program once. Returns false on a runtime fault (see fault()).
+  bool run_main(uint64_t now_us, uint32_t dt_us, ScanEngine* engine);
+  // Runs the routine that starts at label (an interrupt service routine ends with RTI).
+  bool run_routine(const std::string& label, uint64_t now_us, ScanEngine* engine);
+  const std::string& fault() const { return fault_; }
+
+  // Forget edge memories and timer remainders (on STOP -> RUN).
+  void reset_state();
+
+ private:
+  struct Bound {
+    Op op;
+    bool is32;
+    bool pulse;
+    uint8_t n_inputs;
+    uint32_t edge;
+    uint32_t target;
+    uint32_t index;  // timer/counter number, or first bound operand
+    uint16_t n_ops;
+    uint8_t* bit;
+    const FunctionSpec* fn;
+  };
+
+  bool execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
+  void set_fault(const Bound& b, const std::string& why);
+
+  Memory& mem_;
+  const FunctionTable& functions_;
+  Program program_;
+  std::vector<Bound> code_;
+  std::vector<BoundOperand> ops_;
+  std::vector<uint8_t> edges_;
+  std::array<uint32_t, 256> timer_base_us_{};
+  std::array<uint64_t, 256> timer_rem_us_{};
+  std::array<uint8_t, 256> timer_running_{};
+  uint64_t loop_budget_ = 1000000;
+  std::string fault_;
+};
+
+}  // namespace plc_cell

@@ -1,0 +1,66 @@
+#pragma once
+// The soft PLC as servers and nodes see it: memory, engine and program behind one
+// mutex, so that every request is atomic with respect to the scan.
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/function_table.h"
+#include "plc_cell/core/memory.h"
+#include "plc_cell/core/scan_engine.h"
+
+namespace plc_cell {
+
+enum class ForceAction : uint8_t { Disable, Enable, Set, Reset };  // FATEK command 42 order
+
+class Plc {
+ public:
+  explicit Plc(FunctionTable functions = FunctionTable::with_core_functions());
+  Plc(const Plc&) = delete;
+  Plc& operator=(const Plc&) = delete;
+
+  // Parses and swaps in a program; on a parse error throws SourceError and keeps the old one.
+  void load_program_text(const std::string& text, const std::string& file);
+  void load_program_file(const std::string& path);
+  void load_program(const Program& program);
+
+  // Whole-request access: validated first, then applied under the lock, or nothing changes.
+  std::vector<uint32_t> read(const Address& start, uint32_t count) const;
+  void write(const Address& start, const std::vector<uint32_t>& values);
+  void force(const Address& bit, ForceAction action);
+  bool set_mode(RunMode m);
+  RunMode mode() const;
+
+  // Presents a level on an input terminal X (what a sensor or the simulation drives).
+  void set_input(uint32_t x, bool v);
+
+  // One scan at time now_us.
+  void scan(uint64_t now_us);
+
+  // Runs fn with the lock held; for anything that must see one consistent state.
+  template <typename F>
+  auto locked(F&& fn) -> decltype(fn(std::declval<ScanEngine&>(), std::declval<Memory&>())) {
+    std::lock_guard<std::mutex> lk(mu_);
+    return fn(engine_, memory_);
+  }
+  template <typename F>
+  auto locked(F&& fn) const -> decltype(fn(std::declval<const ScanEngine&>(), std::declval<const Memory&>())) {
+    std::lock_guard<std::mutex> lk(mu_);
+    return fn(engine_, memory_);
+  }
+
+  const FunctionTable& functions() const { return functions_; }
+
+ private:
+  void write_unlocked(const Address& a, uint32_t v);
+
+  mutable std::mutex mu_;
+  FunctionTable functions_;
+  Memory memory_;
+  ScanEngine engine_;
+};
+
+}  // namespace plc_cell

@@ -1,0 +1,84 @@
+#pragma once
+// The scan cycle: input image -> program -> output image, with special relays,
+// timers, RUN/STOP and the watchdog. Not thread-safe; the Plc facade locks around it.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/interpreter.h"
+#include "plc_cell/core/memory.h"
+#include "plc_cell/core/scan_stats.h"
+
+namespace plc_cell {
+
+enum class RunMode : uint8_t { Stop, Run };
+
+// Hooks for subsystems that live beside the program (high-speed I/O, motion, simulation).
+class ScanHook {
+ public:
+  virtual ~ScanHook() = default;
+  virtual void before_inputs(uint64_t /*now_us*/) {}   // drive input terminals (simulation)
+  virtual void before_program(uint64_t /*now_us*/) {}  // after the input image is taken
+  virtual void after_program(uint64_t /*now_us*/) {}   // before the output image is given
+  virtual void on_stop() {}
+};
+
+class ScanEngine {
+ public:
+  ScanEngine(Memory& mem, const FunctionTable& functions);
+
+  void load(const Program& program);
+  const Program& program() const { return interp_.program(); }
+  Interpreter& interpreter() { return interp_; }
+
+  void set_retentive(std::vector<AreaRange> ranges) { retentive_ = std::move(ranges); }
+  const std::vector<AreaRange>& retentive() const { return retentive_; }
+  void set_watchdog_us(uint64_t us) { watchdog_us_ = us; }
+  uint64_t watchdog_us() const { return watchdog_us_; }
+
+  RunMode mode() const { return mode_; }
+  // STOP -> RUN clears non-retentive memory and starts with the first-scan pulse.
+  // Returns false (and stays in STOP) if there is no program.
+  bool set_mode(RunMode m);
+
+  // The input terminals: what the cell or its simulation presents on X0..X255.
+  void set_input(uint32_t x, bool v) { inputs_[x] = v; }
+  bool input(uint32_t x) const { return inputs_[x]; }
+
+  // One scan at time now_us (microseconds on the engine's clock, virtual or steady).
+  void scan(uint64_t now_us);
+  uint64_t now_us() const { return now_us_; }
+
+  // The real-time loop reports each scan's duration; past the watchdog the PLC stops.
+  void report_cycle(uint64_t exec_ns, uint64_t wake_latency_ns, uint64_t missed_periods);
+
+  const ScanStats& stats() const { return stats_; }
+  void reset_stats() { stats_ = {}; }
+  // Why the engine stopped by itself (runtime fault or watchdog); empty if it did not.
+  const std::string& fault() const { return fault_; }
+  bool watchdog_tripped() const { return watchdog_tripped_; }
+
+  void add_hook(ScanHook* h) { hooks_.push_back(h); }
+  void remove_hook(ScanHook* h);
+
+ private:
+  void update_special_relays();
+  void fault_stop(const std::string& why);
+
+  Memory& mem_;
+  Interpreter interp_;
+  std::vector<AreaRange> retentive_;
+  std::vector<ScanHook*> hooks_;
+  std::vector<bool> inputs_ = std::vector<bool>(256, false);
+  RunMode mode_ = RunMode::Stop;
+  bool first_scan_ = false;
+  bool have_time_ = false;
+  uint64_t now_us_ = 0;
+  uint64_t watchdog_us_ = 200000;
+  ScanStats stats_;
+  std::string fault_;
+  bool watchdog_tripped_ = false;
+};
+
+}  // namespace plc_cell

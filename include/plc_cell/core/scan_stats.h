@@ -1,0 +1,31 @@
+#pragma once
+// Scan statistics: cycle (execution) time and, in real time, wake latency and overruns.
+#include <cstdint>
+
+namespace plc_cell {
+
+struct DurationStats {
+  uint64_t count = 0;
+  uint64_t last_ns = 0;
+  uint64_t min_ns = 0;
+  uint64_t max_ns = 0;
+  double sum_ns = 0;
+
+  void add(uint64_t ns) {
+    if (count == 0 || ns < min_ns) min_ns = ns;
+    if (ns > max_ns) max_ns = ns;
+    last_ns = ns;
+    sum_ns += double(ns);
+    ++count;
+  }
+  double avg_ns() const { return count ? sum_ns / double(count) : 0.0; }
+};
+
+struct ScanStats {
+  uint64_t scans = 0;
+  DurationStats cycle;         // time spent in one scan (real-time loop only)
+  DurationStats wake_latency;  // how late the loop woke after its deadline
+  uint64_t overruns = 0;       // periods missed because a scan ran past its deadline
+};
+
+}  // namespace plc_cell

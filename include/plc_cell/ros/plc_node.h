@@ -1,0 +1,72 @@
+#pragma once
+// plc_node: the soft PLC on ROS. A thin layer: SoftCell does the work, this class
+// maps it to topics, services and /diagnostics.
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+#include <std_msgs/Bool.h>
+#include <std_srvs/SetBool.h>
+
+#include "plc_cell/ForceDiscrete.h"
+#include "plc_cell/LoadProgram.h"
+#include "plc_cell/ReadMemory.h"
+#include "plc_cell/WriteMemory.h"
+#include "plc_cell/core/realtime_loop.h"
+#include "plc_cell/sim/soft_cell.h"
+
+namespace plc_cell {
+
+class PlcNode {
+ public:
+  // Reads ~program, ~cell, ~scan_period, ~io_rate, ~autostart; throws on bad input.
+  PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+  ~PlcNode();
+
+ private:
+  struct Snapshot {
+    bool run = false;
+    std::vector<uint8_t> x, y, signals;
+    bool operator==(const Snapshot& o) const {
+      return run == o.run && x == o.x && y == o.y && signals == o.signals;
+    }
+  };
+
+  Snapshot take_snapshot();
+  void after_scan();
+  void publisher_loop();
+  void publish(const Snapshot& s, bool all_signals);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  bool on_read(ReadMemory::Request& req, ReadMemory::Response& res);
+  bool on_write(WriteMemory::Request& req, WriteMemory::Response& res);
+  bool on_force(ForceDiscrete::Request& req, ForceDiscrete::Response& res);
+  bool on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
+  bool on_load(LoadProgram::Request& req, LoadProgram::Response& res);
+
+  std::unique_ptr<SoftCell> cell_;
+  std::unique_ptr<RealTimeLoop> loop_;
+  std::string program_path_;
+
+  ros::Publisher io_pub_;
+  std::vector<ros::Publisher> signal_pubs_;
+  std::vector<ros::Subscriber> input_subs_;
+  std::vector<ros::ServiceServer> services_;
+  ros::Timer io_timer_, diag_timer_;
+  diagnostic_updater::Updater updater_;
+
+  std::mutex snap_mu_;
+  std::condition_variable snap_cv_;
+  Snapshot last_scan_, last_published_;
+  bool dirty_ = false;
+  bool published_once_ = false;
+  bool stopping_ = false;
+  std::thread publisher_;
+};
+
+}  // namespace plc_cell

@@ -1,0 +1,33 @@
+#pragma once
+// A soft PLC with its cell config and simulated inputs: what `plc_cell sim/run`
+// and plc_node both start from.
+#include <memory>
+#include <string>
+
+#include "plc_cell/config/cell_config.h"
+#include "plc_cell/core/plc.h"
+#include "plc_cell/sim/simulated_cell.h"
+
+namespace plc_cell {
+
+class SoftCell {
+ public:
+  // config_path may be empty (no signals, no simulation); program_path overrides the
+  // config's cell.program. Throws SourceError/Error with file and line on bad input.
+  SoftCell(const std::string& config_path, const std::string& program_path);
+  ~SoftCell();
+
+  Plc& plc() { return plc_; }
+  // Only touch it under plc().locked(): the scan calls into it.
+  SimulatedCell& simulation() { return *sim_; }
+  const CellConfig& config() const { return config_; }
+  const std::string& program_path() const { return program_path_; }
+
+ private:
+  CellConfig config_;
+  std::string program_path_;
+  Plc plc_;
+  std::unique_ptr<SimulatedCell> sim_;
+};
+
+}  // namespace plc_cell

@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Runs every test of the package (gtest and rostest, through catkin's run_tests
+target) and totals the test cases from the JUnit XML files.
+
+The last line is "N passed, N failed"; the exit status is non-zero on any failure,
+and a test target that produced no results counts as a failure (a crash)."""
+import argparse
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def expected_results():
+    """Result files catkin writes for the tests that CMakeLists.txt declares."""
+    text = open(os.path.join(ROOT, "CMakeLists.txt")).read()
+    names = ["gtest-%s.xml" % n for n in re.findall(r"catkin_add_gtest\((\w+)", text)]
+    for path in re.findall(r"add_rostest\(([\w/.]+)", text):
+        names.append("rostest-%s.xml" % os.path.splitext(path)[0].replace("/", "_"))
+    return names
+
+
+def count(xml_path):
+    passed, failed, names = 0, 0, []
+    root = ET.parse(xml_path).getroot()
+    for case in root.iter("testcase"):
+        bad = case.find("failure") is not None or case.find("error") is not None
+        skipped = case.find("skipped") is not None
+        if bad or skipped:  # a skipped check is a defect here, not a pass
+            failed += 1
+            names.append(case.get("classname", "") + "." + case.get("name", ""))
+        else:
+            passed += 1
+    return passed, failed, names
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--workspace", required=True)
+    ap.add_argument("--jobs", default="2")
+    args = ap.parse_args()
+    ws = os.path.abspath(args.workspace)
+    results = os.path.join(ws, "build", "test_results", "plc_cell")
+    shutil.rmtree(results, ignore_errors=True)
+    cmd = ("source %s/devel/setup.bash && cd %s && catkin_make -j1 run_tests"
+           % (ws, ws))
+    env = dict(os.environ, ROS_HOME=os.path.join(ws, "ros_home"), PYTHONUNBUFFERED="1")
+    rc = subprocess.call(["bash", "-c", cmd], env=env, stdin=subprocess.DEVNULL)
+
+    passed = failed = 0
+    broken = []
+    for name in expected_results():
+        path = os.path.join(results, name)
+        if not os.path.exists(path):
+            failed += 1
+            broken.append("%s: no results (the test crashed or did not run)" % name)
+    for path in sorted(glob.glob(os.path.join(results, "*.xml"))):
+        try:
+            p, f, names = count(path)
+        except ET.ParseError as e:
+            failed += 1
+            broken.append("%s: unreadable results (%s)" % (os.path.basename(path), e))
+            continue
+        passed += p
+        failed += f
+        broken += ["%s: %s" % (os.path.basename(path), n) for n in names]
+    if rc != 0:
+        broken.append("catkin_make run_tests exited with %d" % rc)
+    print("")
+    for b in broken:
+        print("FAILED " + b)
+    print("%d passed, %d failed" % (passed, failed))
+    return 1 if (failed or rc != 0 or passed == 0) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,51 @@
+// plc_cell: the soft PLC from the command line, no ROS master needed.
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "args.h"
+#include "commands.h"
+#include "plc_cell/core/error.h"
+
+namespace {
+
+const char* kUsage =
+    "usage: plc_cell COMMAND [options]\n"
+    "\n"
+    "commands:\n"
+    "  sim    --program FILE [--config FILE] --duration 2.5s [--scan 1ms]\n"
+    "         [--set ADDR=VALUE ...] [--watch ADDR,...] [--trace FILE.csv]\n"
+    "         run the program in virtual time and print the watched values\n"
+    "  run    --program FILE [--config FILE] [--scan 1ms] [--duration T]\n"
+    "         run the soft PLC in real time until interrupted\n"
+    "  check  --program FILE   parse a program and report every error\n"
+    "\n"
+    "exit status: 0 ok, 1 program/config/runtime error, 2 usage error\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
+    std::cout << kUsage;
+    return args.empty() ? 2 : 0;
+  }
+  const std::string cmd = args[0];
+  args.erase(args.begin());
+  try {
+    if (cmd == "sim") return plc_cell::cli::cmd_sim(args);
+    if (cmd == "run") return plc_cell::cli::cmd_run(args);
+    if (cmd == "check") return plc_cell::cli::cmd_check(args);
+    std::cerr << "plc_cell: unknown command '" << cmd << "'\n" << kUsage;
+    return 2;
+  } catch (const plc_cell::cli::UsageError& e) {
+    std::cerr << "plc_cell " << cmd << ": " << e.what() << "\n" << kUsage;
+    return 2;
+  } catch (const plc_cell::Error& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "plc_cell " << cmd << ": " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,281 @@
+#include "plc_cell/config/cell_config.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <set>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/core/plc.h"
+#include "plc_cell/sim/simulated_cell.h"
+
+namespace plc_cell {
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
+    const YAML::Mark m = n.Mark();
+    throw SourceError({{{file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0},
+                        "key '" + key + "': " + msg}});
+  }
+
+  void only(const YAML::Node& map, const std::string& key, std::set<std::string> allowed) const {
+    if (!map.IsMap()) fail(map, key, "expected a mapping");
+    for (const auto& kv : map) {
+      const std::string k = kv.first.as<std::string>();
+      if (!allowed.count(k)) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  std::string str(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) fail(n, key, "expected a single value");
+    return n.as<std::string>();
+  }
+
+  double number(const YAML::Node& n, const std::string& key, double lo, double hi) const {
+    double v;
+    try {
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(n, key, "expected a number");
+    }
+    if (!(v >= lo && v <= hi) || std::isnan(v))
+      fail(n, key, "value " + n.as<std::string>() + " out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
+    return v;
+  }
+
+  uint64_t seconds_us(const YAML::Node& n, const std::string& key, double lo_s, double hi_s) const {
+    return static_cast<uint64_t>(std::llround(number(n, key, lo_s, hi_s) * 1e6));
+  }
+
+  Address address(const YAML::Node& n, const std::string& key) const {
+    Address a;
+    std::string why;
+    if (!try_parse_address(str(n, key), &a, &why)) fail(n, key, "bad address " + why);
+    return a;
+  }
+
+  AreaRange range(const YAML::Node& n, const std::string& key) const {
+    const std::string s = str(n, key);
+    const auto dash = s.find('-');
+    Address a, b;
+    std::string why;
+    if (dash == std::string::npos) {
+      if (!try_parse_address(s, &a, &why)) fail(n, key, "bad range '" + s + "': " + why);
+      return {a.area, a.index, a.index};
+    }
+    if (!try_parse_address(s.substr(0, dash), &a, &why) || !try_parse_address(s.substr(dash + 1), &b, &why))
+      fail(n, key, "bad range '" + s + "': " + why);
+    if (a.area != b.area || a.width != b.width || b.index < a.index)
+      fail(n, key, "bad range '" + s + "': both ends must name the same area, low end first (e.g. M800-M1399)");
+    return {a.area, a.index, b.index};
+  }
+
+  static std::string fmt(double v) {
+    std::string s = std::to_string(v);
+    s.erase(s.find_last_not_of('0') + 1);
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    return s;
+  }
+
+ private:
+  std::string file_;
+};
+
+std::string folder_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+}  // namespace
+
+std::vector<AreaRange> CellConfig::default_retentive() {
+  return {{Area::M, 800, 1399}, {Area::S, 500, 999}, {Area::R, 0, 3839},
+          {Area::D, 0, 4095},   {Area::F, 0, 8191}};
+}
+
+Address CellConfig::resolve(const std::string& name_or_address) const {
+  for (const auto& s : signals)
+    if (s.first == name_or_address) return s.second;
+  Address a;
+  std::string why;
+  if (try_parse_address(name_or_address, &a, &why)) return a;
+  throw Error("'" + name_or_address + "' is neither a signal of cell " + name + " nor an address (" + why + ")");
+}
+
+CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file) {
+  Reader r(file);
+  CellConfig cfg;
+  cfg.file = file;
+  YAML::Node doc;
+  try {
+    doc = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw SourceError::at(file, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
+  }
+  cfg.document = doc;
+  if (doc.IsNull()) return cfg;
+  r.only(doc, "", {"cell", "plc", "signals", "simulation", "counters", "axes", "modules", "fatek", "modbus"});
+
+  if (const auto cell = doc["cell"]) {
+    r.only(cell, "cell", {"name", "program"});
+    if (cell["name"]) cfg.name = r.str(cell["name"], "cell.name");
+    if (cell["program"]) {
+      cfg.program = r.str(cell["program"], "cell.program");
+      if (!cfg.program.empty() && cfg.program[0] != '/') cfg.program = folder_of(file) + cfg.program;
+    }
+  }
+  if (const auto plc = doc["plc"]) {
+    r.only(plc, "plc", {"scan_period", "watchdog", "retentive", "timer_bases"});
+    if (plc["scan_period"]) cfg.scan_period_us = r.seconds_us(plc["scan_period"], "plc.scan_period", 0.0001, 1.0);
+    if (plc["watchdog"]) cfg.watchdog_us = r.seconds_us(plc["watchdog"], "plc.watchdog", 0.001, 10.0);
+    if (const auto ret = plc["retentive"]) {
+      if (!ret.IsSequence()) r.fail(ret, "plc.retentive", "expected a list of ranges such as [M800-M1399, D0-D99]");
+      cfg.retentive.clear();
+      for (size_t i = 0; i < ret.size(); ++i)
+        cfg.retentive.push_back(r.range(ret[i], "plc.retentive[" + std::to_string(i) + "]"));
+    }
+    if (const auto tb = plc["timer_bases"]) {
+      if (!tb.IsMap()) r.fail(tb, "plc.timer_bases", "expected a mapping such as {T0-T49: 0.01}");
+      for (const auto& kv : tb) {
+        const std::string key = "plc.timer_bases." + kv.first.as<std::string>();
+        const AreaRange rg = r.range(kv.first, key);
+        if (rg.area != Area::T) r.fail(kv.first, key, "timer base ranges name timers, e.g. T0-T49");
+        const double base = r.number(kv.second, key, 0.0, 10.0);
+        const uint64_t us = static_cast<uint64_t>(std::llround(base * 1e6));
+        if (us != 10000 && us != 100000 && us != 1000000) r.fail(kv.second, key, "a timer base is 0.01, 0.1 or 1 s");
+        cfg.timer_bases.push_back({rg.first, rg.last, static_cast<uint32_t>(us)});
+      }
+    }
+  }
+  if (const auto sig = doc["signals"]) {
+    if (!sig.IsMap()) r.fail(sig, "signals", "expected a mapping of names to addresses (part_present: X3)");
+    std::set<std::string> seen;
+    for (const auto& kv : sig) {
+      const std::string name = kv.first.as<std::string>();
+      const std::string key = "signals." + name;
+      bool ok = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
+      for (char c : name) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+      if (!ok) r.fail(kv.first, key, "a signal name is letters, digits and _ (it becomes a ROS topic name)");
+      if (!seen.insert(name).second) r.fail(kv.first, key, "signal defined twice");
+      const Address a = r.address(kv.second, key);
+      if (a.width != Width::Bit) r.fail(kv.second, key, "a signal is a single discrete (X, Y, M, S, T, C)");
+      cfg.signals.emplace_back(name, a);
+    }
+  }
+  if (const auto sim = doc["simulation"]) {
+    r.only(sim, "simulation", {"inputs"});
+    if (const auto inputs = sim["inputs"]) {
+      if (!inputs.IsMap()) r.fail(inputs, "simulation.inputs", "expected a mapping of inputs to signals");
+      for (const auto& kv : inputs) {
+        SimInputDef d;
+        d.name = kv.first.as<std::string>();
+        const std::string key = "simulation.inputs." + d.name;
+        Address a;
+        try {
+          a = cfg.resolve(d.name);
+        } catch (const Error& e) {
+          r.fail(kv.first, key, e.what());
+        }
+        if (a.area != Area::X || a.width != Width::Bit) r.fail(kv.first, key, "only inputs X0..X255 can be simulated");
+        d.x = a.index;
+        const YAML::Node spec = kv.second;
+        r.only(spec, key, {"pulse", "steps", "follow"});
+        if (spec.size() != 1) r.fail(spec, key, "give exactly one of pulse, steps, follow");
+        if (const auto p = spec["pulse"]) {
+          r.only(p, key + ".pulse", {"period", "width", "delay"});
+          d.kind = SimInputDef::Kind::Pulse;
+          if (!p["period"] || !p["width"]) r.fail(p, key + ".pulse", "needs period and width (seconds)");
+          d.period_us = r.seconds_us(p["period"], key + ".pulse.period", 0.0001, 1e6);
+          d.width_us = r.seconds_us(p["width"], key + ".pulse.width", 0.0, 1e6);
+          if (p["delay"]) d.delay_us = r.seconds_us(p["delay"], key + ".pulse.delay", 0.0, 1e6);
+          if (d.width_us > d.period_us) r.fail(p["width"], key + ".pulse.width", "longer than the period");
+        } else if (const auto s = spec["steps"]) {
+          d.kind = SimInputDef::Kind::Steps;
+          if (!s.IsSequence()) r.fail(s, key + ".steps", "expected a list of [time, level] pairs");
+          uint64_t last = 0;
+          for (size_t i = 0; i < s.size(); ++i) {
+            const std::string k = key + ".steps[" + std::to_string(i) + "]";
+            if (!s[i].IsSequence() || s[i].size() != 2) r.fail(s[i], k, "expected [time, level]");
+            const uint64_t t = r.seconds_us(s[i][0], k, 0.0, 1e6);
+            if (i > 0 && t < last) r.fail(s[i][0], k, "times must not decrease");
+            last = t;
+            d.steps.emplace_back(t, r.number(s[i][1], k, 0, 1) != 0);
+          }
+        } else if (const auto f = spec["follow"]) {
+          r.only(f, key + ".follow", {"source", "on_delay", "off_delay", "invert"});
+          d.kind = SimInputDef::Kind::Follow;
+          if (!f["source"]) r.fail(f, key + ".follow", "needs a source discrete (e.g. source: Y1)");
+          try {
+            d.source = cfg.resolve(r.str(f["source"], key + ".follow.source"));
+          } catch (const Error& e) {
+            r.fail(f["source"], key + ".follow.source", e.what());
+          }
+          if (d.source.width != Width::Bit) r.fail(f["source"], key + ".follow.source", "must be a single discrete");
+          if (f["on_delay"]) d.on_delay_us = r.seconds_us(f["on_delay"], key + ".follow.on_delay", 0.0, 1e6);
+          if (f["off_delay"]) d.off_delay_us = r.seconds_us(f["off_delay"], key + ".follow.off_delay", 0.0, 1e6);
+          if (f["invert"]) d.invert = f["invert"].as<bool>();
+        }
+        cfg.sim_inputs.push_back(std::move(d));
+      }
+    }
+  }
+  return cfg;
+}
+
+CellConfig load_cell_config(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw SourceError::at(path, 0, 0, "cannot open the cell config");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return parse_cell_config(ss.str(), path);
+}
+
+void apply_cell_config(const CellConfig& cfg, Plc& plc, SimulatedCell& sim) {
+  plc.locked([&](ScanEngine& e, Memory&) {
+    e.set_retentive(cfg.retentive);
+    e.set_watchdog_us(cfg.watchdog_us);
+    for (const auto& tb : cfg.timer_bases)
+      for (uint32_t t = tb.first; t <= tb.last; ++t) e.interpreter().set_timer_base(t, tb.base_us);
+    return 0;
+  });
+  for (const auto& d : cfg.sim_inputs) {
+    std::unique_ptr<InputSignal> s;
+    switch (d.kind) {
+      case SimInputDef::Kind::Pulse: s = std::make_unique<PulseSignal>(d.period_us, d.width_us, d.delay_us); break;
+      case SimInputDef::Kind::Steps: s = std::make_unique<StepSignal>(d.steps); break;
+      case SimInputDef::Kind::Follow:
+        s = std::make_unique<FollowSignal>(d.source, d.on_delay_us, d.off_delay_us, d.invert);
+        break;
+    }
+    sim.drive(d.x, std::move(s));
+  }
+}
+
+uint64_t parse_duration_us(const std::string& text) {
+  size_t pos = 0;
+  double v;
+  try {
+    v = std::stod(text, &pos);
+  } catch (const std::exception&) {
+    throw Error("bad duration '" + text + "' (examples: 2.5s, 100ms, 500us)");
+  }
+  const std::string unit = text.substr(pos);
+  double scale;
+  if (unit.empty() || unit == "s") scale = 1e6;
+  else if (unit == "ms") scale = 1e3;
+  else if (unit == "us") scale = 1;
+  else if (unit == "min") scale = 60e6;
+  else throw Error("bad duration '" + text + "': unit must be s, ms, us or min");
+  if (!(v >= 0) || v * scale > 1e15) throw Error("bad duration '" + text + "': out of range");
+  return static_cast<uint64_t>(std::llround(v * scale));
+}
+
+}  // namespace plc_cell

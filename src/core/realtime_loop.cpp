@@ -1,0 +1,65 @@
+#include "plc_cell/core/realtime_loop.h"
+
+#include <time.h>
+
+namespace plc_cell {
+
+namespace {
+uint64_t mono_ns() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return uint64_t(ts.tv_sec) * 1000000000ull + uint64_t(ts.tv_nsec);
+}
+void sleep_until_ns(uint64_t t) {
+  timespec ts;
+  ts.tv_sec = static_cast<time_t>(t / 1000000000ull);
+  ts.tv_nsec = static_cast<long>(t % 1000000000ull);
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) != 0) {
+  }
+}
+}  // namespace
+
+RealTimeLoop::RealTimeLoop(Plc& plc, std::chrono::nanoseconds period) : plc_(plc), period_(period) {}
+
+RealTimeLoop::~RealTimeLoop() { stop(); }
+
+void RealTimeLoop::start() {
+  if (running_) return;
+  running_ = true;
+  thread_ = std::thread([this] { run(); });
+}
+
+void RealTimeLoop::stop() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+}
+
+void RealTimeLoop::run() {
+  const uint64_t period = static_cast<uint64_t>(period_.count());
+  // Continue the engine's clock where it stopped, so timers do not jump.
+  const uint64_t base_us = plc_.locked([](ScanEngine& e, Memory&) { return e.now_us(); });
+  const uint64_t epoch = mono_ns();
+  uint64_t next = epoch + period;
+  while (running_) {
+    sleep_until_ns(next);
+    const uint64_t woke = mono_ns();
+    const uint64_t latency = woke > next ? woke - next : 0;
+    const uint64_t now_us = base_us + (woke - epoch) / 1000;
+    uint64_t exec = 0, missed = 0;
+    plc_.locked([&](ScanEngine& e, Memory&) {
+      e.scan(now_us);
+      exec = mono_ns() - woke;
+      next += period;
+      const uint64_t done = mono_ns();
+      if (done > next) {
+        missed = (done - next) / period + 1;
+        next += missed * period;
+      }
+      e.report_cycle(exec, latency, missed);
+    });
+    if (record_) latencies_.push_back(latency);
+    if (after_scan_) after_scan_();
+  }
+}
+
+}  // namespace plc_cell

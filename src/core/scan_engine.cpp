@@ -1,0 +1,81 @@
+#include "plc_cell/core/scan_engine.h"
+
+#include <algorithm>
+
+namespace plc_cell {
+
+ScanEngine::ScanEngine(Memory& mem, const FunctionTable& functions) : mem_(mem), interp_(mem, functions) {}
+
+void ScanEngine::load(const Program& program) {
+  interp_.load(program);
+  first_scan_ = true;  // a new program sees the first-scan pulse, as after a download
+}
+
+bool ScanEngine::set_mode(RunMode m) {
+  if (m == mode_) return true;
+  if (m == RunMode::Run) {
+    if (!interp_.loaded()) return false;
+    mem_.clear_non_retentive(retentive_);
+    interp_.reset_state();
+    fault_.clear();
+    watchdog_tripped_ = false;
+    first_scan_ = true;
+    mode_ = RunMode::Run;
+    return true;
+  }
+  mode_ = RunMode::Stop;
+  for (uint32_t y = 0; y < area_size(Area::Y); ++y) mem_.set_bit(Area::Y, y, false);
+  for (auto* h : hooks_) h->on_stop();
+  return true;
+}
+
+void ScanEngine::remove_hook(ScanHook* h) {
+  hooks_.erase(std::remove(hooks_.begin(), hooks_.end(), h), hooks_.end());
+}
+
+void ScanEngine::update_special_relays() {
+  // Clock pulses with 50 % duty: on for the second half of each period.
+  mem_.set_bit(Area::M, special::kClock10ms, (now_us_ % 10000) >= 5000);
+  mem_.set_bit(Area::M, special::kClock100ms, (now_us_ % 100000) >= 50000);
+  mem_.set_bit(Area::M, special::kClock1s, (now_us_ % 1000000) >= 500000);
+  mem_.set_bit(Area::M, special::kClock1min, (now_us_ % 60000000) >= 30000000);
+  mem_.set_bit(Area::M, special::kFirstScan, first_scan_);
+  mem_.set_bit(Area::M, special::kAlwaysOn, true);
+}
+
+void ScanEngine::fault_stop(const std::string& why) {
+  fault_ = why;
+  set_mode(RunMode::Stop);
+}
+
+void ScanEngine::scan(uint64_t now_us) {
+  const uint32_t dt = have_time_ && now_us > now_us_ ? static_cast<uint32_t>(std::min<uint64_t>(now_us - now_us_, UINT32_MAX)) : 0;
+  have_time_ = true;
+  now_us_ = now_us;
+  for (auto* h : hooks_) h->before_inputs(now_us);
+  for (uint32_t x = 0; x < 256; ++x) mem_.set_bit(Area::X, x, inputs_[x]);
+  ++stats_.scans;
+  if (mode_ != RunMode::Run) return;
+  update_special_relays();
+  for (auto* h : hooks_) h->before_program(now_us);
+  const bool ok = interp_.run_main(now_us, dt, this);
+  first_scan_ = false;
+  if (!ok) {
+    fault_stop(interp_.fault());
+    return;
+  }
+  for (auto* h : hooks_) h->after_program(now_us);
+}
+
+void ScanEngine::report_cycle(uint64_t exec_ns, uint64_t wake_latency_ns, uint64_t missed_periods) {
+  stats_.cycle.add(exec_ns);
+  stats_.wake_latency.add(wake_latency_ns);
+  stats_.overruns += missed_periods;
+  if (mode_ == RunMode::Run && watchdog_us_ > 0 && exec_ns > watchdog_us_ * 1000) {
+    watchdog_tripped_ = true;
+    fault_stop("watchdog: a scan took " + std::to_string(exec_ns / 1000) + " us, the limit is " +
+               std::to_string(watchdog_us_) + " us");
+  }
+}
+
+}  // namespace plc_cell

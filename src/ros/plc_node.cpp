@@ -1,0 +1,242 @@
+#include "plc_cell/ros/plc_node.h"
+
+#include <sstream>
+
+#include "plc_cell/IoState.h"
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+
+PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) {
+  std::string program, cell;
+  pnh.param<std::string>("program", program, "");
+  pnh.param<std::string>("cell", cell, "");
+  cell_ = std::make_unique<SoftCell>(cell, program);
+  program_path_ = cell_->program_path();
+  const CellConfig& cfg = cell_->config();
+
+  double scan_period = double(cfg.scan_period_us) / 1e6, io_rate = 10.0;
+  bool autostart = true;
+  pnh.param("scan_period", scan_period, scan_period);
+  pnh.param("io_rate", io_rate, io_rate);
+  pnh.param("autostart", autostart, autostart);
+  if (!(scan_period >= 0.0001 && scan_period <= 1.0))
+    throw Error("~scan_period " + std::to_string(scan_period) + " s out of range [0.0001, 1]");
+  if (!(io_rate > 0 && io_rate <= 1000)) throw Error("~io_rate must be in (0, 1000] Hz");
+
+  io_pub_ = pnh.advertise<IoState>("io", 10);
+  for (const auto& s : cfg.signals) {
+    signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s.first, 1, /*latch=*/true));
+    if (s.second.area != Area::X) continue;
+    const uint32_t x = s.second.index;
+    const std::string name = s.first;
+    input_subs_.push_back(pnh.subscribe<std_msgs::Bool>(
+        "inputs/" + name, 10, [this, x, name](const std_msgs::Bool::ConstPtr& m) {
+          cell_->plc().locked([&](ScanEngine& e, Memory&) {
+            cell_->simulation().release(x);  // the topic now plays this sensor
+            e.set_input(x, m->data);
+            return 0;
+          });
+        }));
+  }
+  services_.push_back(pnh.advertiseService("read", &PlcNode::on_read, this));
+  services_.push_back(pnh.advertiseService("write", &PlcNode::on_write, this));
+  services_.push_back(pnh.advertiseService("force", &PlcNode::on_force, this));
+  services_.push_back(pnh.advertiseService("set_run_mode", &PlcNode::on_run, this));
+  services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
+
+  updater_.setHardwareID("plc_cell/" + cfg.name);
+  updater_.add("scan", this, &PlcNode::diagnose);
+  diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
+  io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {
+    Snapshot s;
+    {
+      std::lock_guard<std::mutex> lk(snap_mu_);
+      if (!published_once_) return;
+      s = last_published_;
+    }
+    publish(s, false);
+  });
+
+  if (autostart && !cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program");
+  publisher_ = std::thread([this] { publisher_loop(); });
+  loop_ = std::make_unique<RealTimeLoop>(cell_->plc(),
+                                         std::chrono::nanoseconds(int64_t(scan_period * 1e9)));
+  loop_->set_after_scan([this] { after_scan(); });
+  loop_->start();
+  ROS_INFO("plc_node: cell '%s', program %s, scan %.3f ms, %s", cfg.name.c_str(), program_path_.c_str(),
+           scan_period * 1e3, autostart ? "RUN" : "STOP");
+}
+
+PlcNode::~PlcNode() {
+  if (loop_) loop_->stop();
+  {
+    std::lock_guard<std::mutex> lk(snap_mu_);
+    stopping_ = true;
+  }
+  snap_cv_.notify_all();
+  if (publisher_.joinable()) publisher_.join();
+}
+
+PlcNode::Snapshot PlcNode::take_snapshot() {
+  return cell_->plc().locked([&](ScanEngine& e, Memory& m) {
+    Snapshot s;
+    s.run = e.mode() == RunMode::Run;
+    s.x.resize(256);
+    s.y.resize(256);
+    for (uint32_t i = 0; i < 256; ++i) {
+      s.x[i] = m.bit(Area::X, i);
+      s.y[i] = m.bit(Area::Y, i);
+    }
+    for (const auto& sig : cell_->config().signals) s.signals.push_back(m.bit(sig.second.area, sig.second.index));
+    return s;
+  });
+}
+
+// Runs on the scan thread: compare, and hand changes to the publisher thread.
+void PlcNode::after_scan() {
+  Snapshot s = take_snapshot();
+  std::lock_guard<std::mutex> lk(snap_mu_);
+  if (published_once_ && s == last_scan_) return;
+  last_scan_ = std::move(s);
+  dirty_ = true;
+  snap_cv_.notify_one();
+}
+
+void PlcNode::publisher_loop() {
+  for (;;) {
+    Snapshot s;
+    bool first;
+    {
+      std::unique_lock<std::mutex> lk(snap_mu_);
+      snap_cv_.wait(lk, [this] { return dirty_ || stopping_; });
+      if (stopping_) return;
+      dirty_ = false;
+      s = last_scan_;
+      first = !published_once_;
+    }
+    publish(s, first);
+    std::lock_guard<std::mutex> lk(snap_mu_);
+    last_published_ = s;
+    published_once_ = true;
+  }
+}
+
+void PlcNode::publish(const Snapshot& s, bool all_signals) {
+  IoState msg;
+  msg.header.stamp = ros::Time::now();
+  msg.header.frame_id = cell_->config().name;
+  msg.run = s.run;
+  msg.x.assign(s.x.begin(), s.x.end());
+  msg.y.assign(s.y.begin(), s.y.end());
+  io_pub_.publish(msg);
+  Snapshot prev;
+  {
+    std::lock_guard<std::mutex> lk(snap_mu_);
+    prev = last_published_;
+  }
+  for (size_t i = 0; i < signal_pubs_.size() && i < s.signals.size(); ++i) {
+    if (!all_signals && i < prev.signals.size() && prev.signals[i] == s.signals[i]) continue;
+    std_msgs::Bool b;
+    b.data = s.signals[i];
+    signal_pubs_[i].publish(b);
+  }
+}
+
+void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  struct View {
+    ScanStats st;
+    RunMode mode;
+    std::string fault;
+  };
+  const View v = cell_->plc().locked([](ScanEngine& e, Memory&) { return View{e.stats(), e.mode(), e.fault()}; });
+  if (!v.fault.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "stopped: " + v.fault);
+  else if (v.mode == RunMode::Run) stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "RUN");
+  else stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "STOP");
+  stat.add("program", program_path_);
+  stat.add("scans", v.st.scans);
+  stat.add("cycle last (us)", v.st.cycle.last_ns / 1000.0);
+  stat.add("cycle min (us)", v.st.cycle.min_ns / 1000.0);
+  stat.add("cycle avg (us)", v.st.cycle.avg_ns() / 1000.0);
+  stat.add("cycle max (us)", v.st.cycle.max_ns / 1000.0);
+  stat.add("wake latency avg (us)", v.st.wake_latency.avg_ns() / 1000.0);
+  stat.add("wake latency max (us)", v.st.wake_latency.max_ns / 1000.0);
+  stat.add("overruns", v.st.overruns);
+}
+
+// ---- services: every failure is a reply with a message, never an exception ----
+
+bool PlcNode::on_read(ReadMemory::Request& req, ReadMemory::Response& res) {
+  try {
+    const Address a = cell_->config().resolve(req.address);
+    for (uint32_t v : cell_->plc().read(a, req.count == 0 ? 1 : req.count)) res.values.push_back(v);
+    res.success = true;
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+  }
+  return true;
+}
+
+bool PlcNode::on_write(WriteMemory::Request& req, WriteMemory::Response& res) {
+  try {
+    const Address a = cell_->config().resolve(req.address);
+    std::vector<uint32_t> values;
+    for (int64_t v : req.values) {
+      if (v < 0 || v > 0xFFFFFFFFll) throw Error("value " + std::to_string(v) + " is negative or wider than 32 bits");
+      values.push_back(static_cast<uint32_t>(v));
+    }
+    cell_->plc().write(a, values);
+    res.success = true;
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+  }
+  return true;
+}
+
+bool PlcNode::on_force(ForceDiscrete::Request& req, ForceDiscrete::Response& res) {
+  try {
+    const Address a = cell_->config().resolve(req.address);
+    ForceAction act;
+    if (req.action == "on" || req.action == "set") act = ForceAction::Set;
+    else if (req.action == "off" || req.action == "reset") act = ForceAction::Reset;
+    else if (req.action == "disable") act = ForceAction::Disable;
+    else if (req.action == "enable") act = ForceAction::Enable;
+    else throw Error("action '" + req.action + "': use on, off, enable or disable");
+    cell_->plc().force(a, act);
+    res.success = true;
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+  }
+  return true;
+}
+
+bool PlcNode::on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+  res.success = cell_->plc().set_mode(req.data ? RunMode::Run : RunMode::Stop);
+  res.message = res.success ? (req.data ? "RUN" : "STOP") : "cannot RUN: no program loaded";
+  return true;
+}
+
+bool PlcNode::on_load(LoadProgram::Request& req, LoadProgram::Response& res) {
+  try {
+    if (!req.text.empty()) {
+      cell_->plc().load_program_text(req.text, "<service>");
+    } else {
+      const std::string path = req.path.empty() ? program_path_ : req.path;
+      cell_->plc().load_program_file(path);
+      program_path_ = path;
+    }
+    res.instructions = cell_->plc().locked([](ScanEngine& e, Memory&) {
+      return static_cast<uint32_t>(e.program().code.size());
+    });
+    res.success = true;
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+  }
+  return true;
+}
+
+}  // namespace plc_cell

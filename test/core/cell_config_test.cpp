@@ -1,0 +1,158 @@
+#include <gtest/gtest.h>
+
+#include "plc_cell/config/cell_config.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/core/plc.h"
+#include "plc_cell/sim/simulated_cell.h"
+#include "plc_cell/sim/soft_cell.h"
+#include "plc_cell/sim/virtual_run.h"
+
+using namespace plc_cell;
+
+namespace {
+std::string error_of(const std::string& yaml) {
+  try {
+    parse_cell_config(yaml, "cell.yaml");
+  } catch (const SourceError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(CellConfig, ReadsEveryKey) {
+  const CellConfig c = parse_cell_config(
+      "cell: {name: line3, program: prog.il}\n"
+      "plc:\n"
+      "  scan_period: 0.002\n"
+      "  watchdog: 0.05\n"
+      "  retentive: [M800-M999, D0-D99, R7]\n"
+      "  timer_bases: {T0-T9: 1, T10-T19: 0.1}\n"
+      "signals:\n"
+      "  part_present: X3\n"
+      "  conveyor_run: Y0\n"
+      "simulation:\n"
+      "  inputs:\n"
+      "    part_present: {pulse: {period: 2, width: 0.5, delay: 1}}\n"
+      "    X5: {steps: [[0, 1], [1.5, 0]]}\n"
+      "    X6: {follow: {source: conveyor_run, on_delay: 0.2}}\n",
+      "/cells/line3.yaml");
+  EXPECT_EQ(c.name, "line3");
+  EXPECT_EQ(c.program, "/cells/prog.il");  // relative to the config's folder
+  EXPECT_EQ(c.scan_period_us, 2000u);
+  EXPECT_EQ(c.watchdog_us, 50000u);
+  ASSERT_EQ(c.retentive.size(), 3u);
+  EXPECT_EQ(c.retentive[1].area, Area::D);
+  EXPECT_EQ(c.retentive[1].last, 99u);
+  EXPECT_EQ(c.retentive[2].first, 7u);
+  ASSERT_EQ(c.timer_bases.size(), 2u);
+  EXPECT_EQ(c.timer_bases[0].base_us, 1000000u);
+  ASSERT_EQ(c.signals.size(), 2u);
+  EXPECT_EQ(c.resolve("part_present"), parse_address("X3"));
+  EXPECT_EQ(c.resolve("R5"), parse_address("R5"));
+  ASSERT_EQ(c.sim_inputs.size(), 3u);
+  EXPECT_EQ(c.sim_inputs[0].x, 3u);
+  EXPECT_EQ(c.sim_inputs[0].period_us, 2000000u);
+  EXPECT_EQ(c.sim_inputs[1].steps.size(), 2u);
+  EXPECT_EQ(c.sim_inputs[2].source, parse_address("Y0"));
+  EXPECT_EQ(c.sim_inputs[2].on_delay_us, 200000u);
+}
+
+TEST(CellConfig, ErrorsNameFileLineAndKey) {
+  EXPECT_EQ(error_of("plc:\n  scan_perod: 0.001\n"),
+            "cell.yaml:2:3: error: key 'plc.scan_perod': unknown key (expected one of: retentive, "
+            "scan_period, timer_bases, watchdog)");
+  EXPECT_NE(error_of("signals:\n  a: Q1\n").find("cell.yaml:2:6: error: key 'signals.a': bad address 'Q1'"),
+            std::string::npos);
+  EXPECT_NE(error_of("signals:\n  a: R1\n").find("a signal is a single discrete"), std::string::npos);
+  EXPECT_NE(error_of("signals:\n  my-signal: X1\n").find("becomes a ROS topic name"), std::string::npos);
+  EXPECT_NE(error_of("plc: {scan_period: 5}\n").find("out of range [0.0001, 1]"), std::string::npos);
+  EXPECT_NE(error_of("plc: {scan_period: fast}\n").find("expected a number"), std::string::npos);
+  EXPECT_NE(error_of("plc: {retentive: [M9-M1]}\n").find("low end first"), std::string::npos);
+  EXPECT_NE(error_of("plc: {retentive: [M1-D9]}\n").find("same area"), std::string::npos);
+  EXPECT_NE(error_of("plc: {timer_bases: {T0-T9: 0.5}}\n").find("0.01, 0.1 or 1 s"), std::string::npos);
+  EXPECT_NE(error_of("simulation: {inputs: {Y1: {pulse: {period: 1, width: 1}}}}\n").find("only inputs X0..X255"),
+            std::string::npos);
+  EXPECT_NE(error_of("simulation: {inputs: {nobody: {pulse: {period: 1, width: 1}}}}\n")
+                .find("'nobody' is neither a signal of cell cell nor an address"),
+            std::string::npos);
+  EXPECT_NE(error_of("simulation: {inputs: {X1: {pulse: {period: 1, width: 2}}}}\n").find("longer than the period"),
+            std::string::npos);
+  EXPECT_NE(error_of("simulation: {inputs: {X1: {steps: [[1, 1], [0.5, 0]]}}}\n").find("must not decrease"),
+            std::string::npos);
+  EXPECT_NE(error_of("cell: [1, 2\n").find("cell.yaml:"), std::string::npos);
+  EXPECT_NE(error_of("cell: [1, 2\n").find("YAML syntax"), std::string::npos);
+  EXPECT_NE(error_of("bogus: 1\n").find("key 'bogus': unknown key"), std::string::npos);
+}
+
+TEST(CellConfig, Durations) {
+  EXPECT_EQ(parse_duration_us("2.5s"), 2500000u);
+  EXPECT_EQ(parse_duration_us("100ms"), 100000u);
+  EXPECT_EQ(parse_duration_us("250us"), 250u);
+  EXPECT_EQ(parse_duration_us("3"), 3000000u);
+  EXPECT_EQ(parse_duration_us("1min"), 60000000u);
+  EXPECT_THROW(parse_duration_us("fast"), Error);
+  EXPECT_THROW(parse_duration_us("5h"), Error);
+  EXPECT_THROW(parse_duration_us("-1s"), Error);
+}
+
+TEST(SimulatedCell, SignalsDriveInputsInVirtualTime) {
+  Plc plc;
+  SimulatedCell sim(*plc.locked([](ScanEngine& e, Memory&) { return &e; }),
+                    *plc.locked([](ScanEngine&, Memory& m) { return &m; }));
+  const CellConfig c = parse_cell_config(
+      "simulation:\n  inputs:\n"
+      "    X0: {pulse: {period: 0.1, width: 0.03, delay: 0.05}}\n"
+      "    X1: {steps: [[0.2, 1], [0.25, 0]]}\n"
+      "    X2: {follow: {source: Y0, on_delay: 0.01, off_delay: 0.02}}\n",
+      "");
+  apply_cell_config(c, plc, sim);
+  plc.locked([&](ScanEngine& e, Memory&) {
+    e.add_hook(&sim);
+    return 0;
+  });
+  plc.load_program_text("ORG X1\nOUT Y0\nEND\n", "t.il");
+  plc.set_mode(RunMode::Run);
+  VirtualRun run(plc, 1000);
+  run.watch(parse_address("X0"));
+  run.watch(parse_address("X1"));
+  run.watch(parse_address("X2"));
+  std::vector<std::string> log;
+  run.run_for(400000, [&](const WatchChange& ch) {
+    log.push_back(std::to_string(ch.t_us / 1000) + ":X" + std::to_string(ch.watch) + "=" + std::to_string(ch.value));
+  });
+  // X0 on [50,80) [150,180) ...; X1 on [200,250); Y0 follows X1; X2 on 10 ms after Y0 was
+  // seen (scan 201) and off 20 ms after Y0 dropped (seen at 251).
+  const std::vector<std::string> want = {"0:X0=0",   "0:X1=0",   "0:X2=0",   "50:X0=1",  "80:X0=0",
+                                         "150:X0=1", "180:X0=0", "200:X1=1", "211:X2=1", "250:X0=1",
+                                         "250:X1=0", "271:X2=0", "280:X0=0", "350:X0=1", "380:X0=0"};
+  EXPECT_EQ(log, want);
+}
+
+TEST(SoftCell, TheDemoCellRuns) {
+  SoftCell cell(std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/conveyor.yaml", "");
+  Plc& plc = cell.plc();
+  ASSERT_TRUE(plc.set_mode(RunMode::Run));
+  VirtualRun run(plc, 1000);
+  run.watch(cell.config().resolve("conveyor_run"));
+  run.watch(parse_address("R0"));
+  std::vector<uint64_t> conveyor_changes;
+  run.run_for(11000000, [&](const WatchChange& ch) {
+    if (ch.watch == 0) conveyor_changes.push_back(ch.t_us);
+  });
+  // A part every 5 s from t = 1 s: the conveyor stops at 1 s, the robot has 1.5 s, the
+  // stopper lowers at 2.5 s and the conveyor restarts one scan later; again at 6 s.
+  const std::vector<uint64_t> want = {0, 1000000, 2501000, 6000000, 7501000};
+  EXPECT_EQ(conveyor_changes, want);
+  EXPECT_EQ(run.values()[1], 2u);  // two parts done
+}
+
+TEST(SoftCell, ErrorsComeWithTheFileName) {
+  try {
+    SoftCell cell("", "");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no program"), std::string::npos);
+  }
+  EXPECT_THROW(SoftCell("/nonexistent.yaml", ""), SourceError);
+}

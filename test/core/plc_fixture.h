@@ -1,0 +1,34 @@
+#pragma once
+// A soft PLC on a virtual clock: tests step N scans of T ms and read memory.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/plc.h"
+
+namespace plc_cell {
+
+class PlcFixture : public ::testing::Test {
+ protected:
+  void load(const std::string& text) {
+    plc.load_program_text(text, "test.il");
+    ASSERT_TRUE(plc.set_mode(RunMode::Run));
+  }
+  // Scans at now, now + period, ...; after it, now has advanced by n * period.
+  void scans(int n, uint64_t period_us = 1000) {
+    for (int i = 0; i < n; ++i) {
+      plc.scan(now_us);
+      now_us += period_us;
+    }
+  }
+  void input(uint32_t x, bool v) { plc.set_input(x, v); }
+  uint32_t get(const std::string& a) { return plc.read(parse_address(a), 1).at(0); }
+  int32_t sget(const std::string& a) { return static_cast<int16_t>(get(a)); }
+  void put(const std::string& a, uint32_t v) { plc.write(parse_address(a), {v}); }
+
+  Plc plc;
+  uint64_t now_us = 0;
+};
+
+}  // namespace plc_cell

@@ -1,0 +1,175 @@
+#!/usr/bin/env python3
+"""rostest for plc_node: topics in, program outputs observed on topics out, services."""
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray
+from std_msgs.msg import Bool
+from std_srvs.srv import SetBool
+
+from plc_cell.msg import IoState
+from plc_cell.srv import ForceDiscrete, LoadProgram, ReadMemory, WriteMemory
+
+NS = "/plc_node/"
+TIMEOUT = 10.0
+
+
+class Latest(object):
+    """Keeps the latest message of a topic and lets a test wait for a condition on it."""
+
+    def __init__(self, topic, msg_type):
+        self.msg = None
+        self.cond = threading.Condition()
+        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
+
+    def _cb(self, msg):
+        with self.cond:
+            self.msg = msg
+            self.cond.notify_all()
+
+    def wait_for(self, pred, timeout=TIMEOUT):
+        deadline = time.monotonic() + timeout
+        with self.cond:
+            while self.msg is None or not pred(self.msg):
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    return self.msg
+                self.cond.wait(left)
+            return self.msg
+
+
+class PlcNodeTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("plc_node_test", anonymous=True)
+        for s in ["read", "write", "force", "set_run_mode", "load_program"]:
+            rospy.wait_for_service(NS + s, timeout=30)
+        cls.read = rospy.ServiceProxy(NS + "read", ReadMemory)
+        cls.write = rospy.ServiceProxy(NS + "write", WriteMemory)
+        cls.force = rospy.ServiceProxy(NS + "force", ForceDiscrete)
+        cls.run_mode = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
+        cls.load = rospy.ServiceProxy(NS + "load_program", LoadProgram)
+        cls.start_pub = rospy.Publisher(NS + "inputs/start", Bool, queue_size=1, latch=True)
+        cls.io = Latest(NS + "io", IoState)
+        cls.motor = Latest(NS + "signals/motor", Bool)
+
+    def setUp(self):
+        self.assertTrue(self.run_mode(True).success)
+        self.assertTrue(self.force("Y0", "enable").success)
+
+    def read_until(self, address, expected, count=1):
+        deadline = time.monotonic() + TIMEOUT
+        while time.monotonic() < deadline:
+            r = self.read(address, count)
+            self.assertTrue(r.success, r.message)
+            if list(r.values) == expected:
+                return True
+            rospy.sleep(0.01)
+        return False
+
+    def test_topic_in_drives_output_topic_out(self):
+        self.start_pub.publish(Bool(True))
+        m = self.motor.wait_for(lambda m: m.data)
+        self.assertTrue(m.data, "Y0 (motor) did not follow X0 (start) on signals/motor")
+        io = self.io.wait_for(lambda m: m.y[0])
+        self.assertTrue(io.x[0] and io.y[0])
+        self.start_pub.publish(Bool(False))
+        self.assertFalse(self.motor.wait_for(lambda m: not m.data).data)
+
+    def test_io_message_shape(self):
+        io = self.io.wait_for(lambda m: True)
+        self.assertEqual(len(io.x), 256)
+        self.assertEqual(len(io.y), 256)
+        self.assertEqual(io.header.frame_id, "test_cell")
+        self.assertGreater(io.header.stamp.to_sec(), 0)
+        self.assertTrue(io.run)
+
+    def test_write_then_program_computes(self):
+        r = self.write("R11", [5, 7])
+        self.assertTrue(r.success, r.message)
+        self.assertTrue(self.read_until("R10", [12]), "R10 != R11 + R12")
+        self.assertEqual(list(self.read("R11", 2).values), [5, 7])
+
+    def test_named_signals_and_double_words(self):
+        self.assertTrue(self.write("DR100", [0x12345678]).success)
+        self.assertEqual(list(self.read("R100", 2).values), [0x5678, 0x1234])
+        self.write("part_present", [1])
+        self.assertTrue(self.read_until("part_seen", [1]))
+        self.write("M10", [1])
+        self.assertTrue(self.read_until("part_seen", [0]))
+        self.write("M10", [0])
+        self.write("part_present", [0])
+
+    def test_bad_requests_are_refused_and_change_nothing(self):
+        r = self.read("Q5", 1)
+        self.assertFalse(r.success)
+        self.assertIn("Q5", r.message)
+        self.assertIn("unknown prefix", r.message)
+        self.assertTrue(self.write("R8070", [1, 1]).success)
+        before = list(self.read("R8070", 2).values)
+        r = self.write("R8070", [9, 9, 9])  # runs past R8071
+        self.assertFalse(r.success)
+        self.assertIn("out of range", r.message)
+        self.assertEqual(list(self.read("R8070", 2).values), before)
+        r = self.write("R5", [70000])
+        self.assertFalse(r.success)
+        r = self.force("R5", "on")
+        self.assertFalse(r.success)
+        r = self.force("Y0", "sideways")
+        self.assertFalse(r.success)
+        self.assertIn("sideways", r.message)
+
+    def test_force_disable_holds_the_output(self):
+        self.start_pub.publish(Bool(False))
+        self.assertFalse(self.motor.wait_for(lambda m: not m.data).data)
+        self.assertTrue(self.force("Y0", "disable").success)
+        self.assertTrue(self.force("Y0", "on").success)
+        self.assertTrue(self.motor.wait_for(lambda m: m.data).data)
+        # The program writes Y0 = X0 = 0 every scan, but a disabled point keeps its state.
+        self.assertTrue(self.read_until("Y0", [1]))
+        rospy.sleep(0.05)
+        self.assertEqual(list(self.read("Y0", 1).values), [1])
+        self.assertTrue(self.force("Y0", "enable").success)
+        self.assertFalse(self.motor.wait_for(lambda m: not m.data).data)
+
+    def test_run_stop(self):
+        self.start_pub.publish(Bool(True))
+        self.assertTrue(self.motor.wait_for(lambda m: m.data).data)
+        self.assertTrue(self.run_mode(False).success)
+        io = self.io.wait_for(lambda m: not m.run)
+        self.assertFalse(io.run)
+        self.assertFalse(io.y[0], "outputs go off in STOP")
+        self.assertTrue(self.run_mode(True).success)
+        self.assertTrue(self.io.wait_for(lambda m: m.run and m.y[0]).y[0])
+        self.start_pub.publish(Bool(False))
+
+    def test_load_program_error_keeps_old_program(self):
+        r = self.load("", "ORG X0\nOUT Q9\nEND\n")
+        self.assertFalse(r.success)
+        self.assertIn("<service>:2:5", r.message)
+        self.start_pub.publish(Bool(True))
+        self.assertTrue(self.motor.wait_for(lambda m: m.data).data, "the old program stopped running")
+        self.start_pub.publish(Bool(False))
+        r = self.load("", "ORG X0\nOUT Y0\nORG M1925\nFUN 8 S=321 D=R20\nEND\n")
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(r.instructions, 5)
+        self.assertTrue(self.read_until("R20", [321]))
+        r = self.load("", "")  # reload the file named in the cell
+        self.assertTrue(r.success, r.message)
+
+    def test_diagnostics_report_the_scan(self):
+        diag = Latest("/diagnostics", DiagnosticArray)
+        msg = diag.wait_for(lambda m: any(s.name.endswith("scan") for s in m.status), timeout=15)
+        self.assertIsNotNone(msg)
+        st = [s for s in msg.status if s.name.endswith("scan")][0]
+        self.assertEqual(st.level, 0, st.message)
+        keys = dict((kv.key, kv.value) for kv in st.values)
+        self.assertGreater(int(keys["scans"]), 0)
+        self.assertIn("cycle max (us)", keys)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("plc_cell", "plc_node_test", PlcNodeTest)
