@@ -19,6 +19,8 @@ const char* kUsage =
     "  run    --program FILE [--config FILE] [--scan 1ms] [--duration T]\n"
     "         run the soft PLC in real time until interrupted\n"
     "  check  --program FILE   parse a program and report every error\n"
+    // @usage: subsystems add their commands' usage lines here
+
     "\n"
     "exit status: 0 ok, 1 program/config/runtime error, 2 usage error\n";
 
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
     if (cmd == "sim") return plc_cell::cli::cmd_sim(args);
     if (cmd == "run") return plc_cell::cli::cmd_run(args);
     if (cmd == "check") return plc_cell::cli::cmd_check(args);
+    // @commands: subsystems dispatch their commands here
     std::cerr << "plc_cell: unknown command '" << cmd << "'\n" << kUsage;
     return 2;
   } catch (const plc_cell::cli::UsageError& e) {

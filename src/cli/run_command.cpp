@@ -1,12 +1,14 @@
 // plc_cell run: the soft PLC headless in real time until SIGINT/SIGTERM.
 #include <csignal>
 #include <iostream>
+#include <memory>
 #include <thread>
 
 #include "args.h"
 #include "commands.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/realtime_loop.h"
+#include "plc_cell/io/server.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
@@ -16,12 +18,21 @@ static volatile std::sig_atomic_t g_stop = 0;
 static void on_signal(int) { g_stop = 1; }
 
 int cmd_run(const std::vector<std::string>& argv) {
-  Args args(argv, {"program", "config", "scan", "duration"});
+  std::vector<std::string> options = {"program", "config", "scan", "duration"};
+  // @run-options: subsystems append their option names (e.g. "fatek-tcp") here
+  Args args(argv, options);
   SoftCell cell(args.get("config"), args.get("program"));
   const uint64_t scan = args.has("scan") ? parse_duration_us(args.get("scan")) : cell.config().scan_period_us;
   if (scan == 0) throw UsageError("--scan must be positive");
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
   if (!cell.plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
+
+  std::vector<std::unique_ptr<Server>> servers;
+  // @run-servers: subsystems create their servers from args here (servers.push_back(...))
+  for (auto& s : servers) {
+    s->start();
+    std::cerr << "plc_cell run: serving " << s->describe() << "\n";
+  }
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
@@ -35,6 +46,7 @@ int cmd_run(const std::vector<std::string>& argv) {
     if (duration && std::chrono::steady_clock::now() - t0 >= std::chrono::microseconds(duration)) break;
   }
   loop.stop();
+  for (auto& s : servers) s->stop();
   const auto st = cell.plc().locked([](ScanEngine& e, Memory&) { return e.stats(); });
   const std::string fault = cell.plc().locked([](ScanEngine& e, Memory&) { return e.fault(); });
   std::cerr << "plc_cell run: " << st.scans << " scans, cycle avg " << st.cycle.avg_ns() / 1000.0

@@ -18,8 +18,8 @@ class Reader {
 
   [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
     const YAML::Mark m = n.Mark();
-    throw SourceError({{{file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0},
-                        "key '" + key + "': " + msg}});
+    throw SourceError::at(file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
+                          "key '" + key + "': " + msg);
   }
 
   void only(const YAML::Node& map, const std::string& key, std::set<std::string> allowed) const {

@@ -58,6 +58,12 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
     publish(s, false);
   });
 
+  // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
+  for (auto& s : servers_) {
+    s->start();
+    ROS_INFO("plc_node: serving %s", s->describe().c_str());
+  }
+
   if (autostart && !cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program");
   publisher_ = std::thread([this] { publisher_loop(); });
   loop_ = std::make_unique<RealTimeLoop>(cell_->plc(),
@@ -69,6 +75,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
 }
 
 PlcNode::~PlcNode() {
+  for (auto& s : servers_) s->stop();
   if (loop_) loop_->stop();
   {
     std::lock_guard<std::mutex> lk(snap_mu_);
@@ -153,7 +160,10 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   if (!v.fault.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "stopped: " + v.fault);
   else if (v.mode == RunMode::Run) stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "RUN");
   else stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "STOP");
-  stat.add("program", program_path_);
+  {
+    std::lock_guard<std::mutex> lk(path_mu_);
+    stat.add("program", program_path_);
+  }
   stat.add("scans", v.st.scans);
   stat.add("cycle last (us)", v.st.cycle.last_ns / 1000.0);
   stat.add("cycle min (us)", v.st.cycle.min_ns / 1000.0);
@@ -224,8 +234,13 @@ bool PlcNode::on_load(LoadProgram::Request& req, LoadProgram::Response& res) {
     if (!req.text.empty()) {
       cell_->plc().load_program_text(req.text, "<service>");
     } else {
-      const std::string path = req.path.empty() ? program_path_ : req.path;
+      std::string path;
+      {
+        std::lock_guard<std::mutex> lk(path_mu_);
+        path = req.path.empty() ? program_path_ : req.path;
+      }
       cell_->plc().load_program_file(path);
+      std::lock_guard<std::mutex> lk(path_mu_);
       program_path_ = path;
     }
     res.instructions = cell_->plc().locked([](ScanEngine& e, Memory&) {
