@@ -5,7 +5,7 @@
 SHELL := /bin/bash
 .SHELLFLAGS := -eo pipefail -c
 
-BUILD   ?= build
+BUILD   ?= .build
 WS      := $(BUILD)/ws
 JOBS    ?= 2
 PY      := /usr/bin/python3
@@ -38,6 +38,8 @@ deps:
 	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing < /dev/null; \
 	fi
 
+# The workspace lives inside the package, in a hidden folder: roslaunch and rosrun
+# skip hidden folders when they search the package, so they find each file once.
 $(WS)/src/plc_cell:
 	mkdir -p $(WS)/src
 	ln -sfn ../../.. $(WS)/src/plc_cell
