@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/interpreter.h"
 
 namespace plc_cell {
 namespace {
@@ -175,9 +176,8 @@ class Parser {
     Address a;
     if (!bit_address(toks[k], &a)) return;
     const int kind = m == "ORG" ? 0 : m == "LD" ? 1 : m == "AND" ? 2 : 3;
-    if (kind >= 2 && !need_network(head)) return;
-    if (kind == 1 && !need_network(head)) return;
-    if (kind == 1 && depth_ == Interpreter_kMaxStack - 1)
+    if (kind >= 1 && !need_network(head)) return;
+    if (kind == 1 && depth_ == Interpreter::kMaxStack - 1)
       return error(head.column, "too many nested LD blocks");
     static const Op plain[] = {Op::Org, Op::Ld, Op::And, Op::Or};
     static const Op negated[] = {Op::OrgNot, Op::LdNot, Op::AndNot, Op::OrNot};
@@ -542,7 +542,6 @@ class Parser {
     });
   }
 
-  static constexpr int Interpreter_kMaxStack = 32;
   struct Ref {
     size_t index;
     int column;
