@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""Runs the plc_cell benchmarks (make bench) and prints a summary table.
+
+  bench_scan      Google Benchmark: the 10,000-instruction ladder through the
+                  parser, the interpreter, a full Plc scan and the same ladder
+                  compiled to C++; repeated, medians reported.
+  bench_realtime  RealTimeLoop at 1 ms on the conveyor program: wake latency
+                  percentiles, cycle time, overruns.
+
+The targets checked are those of docs/performance.md. The exit status is 0 when
+both benchmarks ran, whatever the figures: the machine decides those.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+TARGET_NS_PER_INSTR = 5.0
+TARGET_SCAN_US = 50.0
+TARGET_P99_US = 200.0
+
+
+def find_binary(ws, name):
+    """catkin puts package executables in devel/lib/<package>/."""
+    for path in (os.path.join(ws, "devel", "lib", "plc_cell", name),
+                 os.path.join(ws, "build", "plc_cell", name),
+                 os.path.join(ws, "build", name)):
+        if os.path.isfile(path) and os.access(path, os.X_OK):
+            return path
+    sys.exit("run_bench: %s not found under %s (is libbenchmark-dev installed? "
+             "then rerun make build)" % (name, ws))
+
+
+def run_scan_bench(binary, repetitions, min_time):
+    """Runs bench_scan, returns {benchmark name: {field: median}}."""
+    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
+        out = f.name
+    try:
+        cmd = [binary,
+               "--benchmark_repetitions=%d" % repetitions,
+               "--benchmark_report_aggregates_only=true",
+               "--benchmark_min_time=%g" % min_time,
+               "--benchmark_out=%s" % out,
+               "--benchmark_out_format=json"]
+        print("$ " + " ".join(cmd), flush=True)
+        subprocess.check_call(cmd, stdin=subprocess.DEVNULL)
+        with open(out) as f:
+            data = json.load(f)
+    finally:
+        os.unlink(out)
+    medians, errors = {}, []
+    for b in data["benchmarks"]:
+        if b.get("error_occurred"):
+            errors.append("%s: %s" % (b["name"], b.get("error_message", "")))
+            continue
+        if b.get("aggregate_name") != "median":
+            continue
+        medians[b["run_name"]] = b
+    if errors:
+        sys.exit("run_bench: bench_scan failed:\n  " + "\n  ".join(errors))
+    return medians
+
+
+def to_us(b):
+    """Real time of one iteration in microseconds."""
+    scale = {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}[b.get("time_unit", "ns")]
+    return b["real_time"] * scale
+
+
+def cpu_us(b):
+    scale = {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}[b.get("time_unit", "ns")]
+    return b["cpu_time"] * scale
+
+
+def run_realtime_bench(binary, seconds):
+    cmd = [binary, str(seconds)]
+    print("$ " + " ".join(cmd), flush=True)
+    text = subprocess.run(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                          universal_newlines=True).stdout
+    sys.stdout.write(text)
+    figures = {}
+    for line in text.splitlines():
+        key, _, value = line.partition(" ")
+        figures[key] = value
+    return figures
+
+
+def verdict(ok):
+    return "met" if ok else "MISSED"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--workspace", required=True, help="catkin workspace, e.g. build/ws")
+    ap.add_argument("--repetitions", type=int, default=5)
+    ap.add_argument("--min-time", type=float, default=0.5, help="seconds per repetition")
+    ap.add_argument("--realtime-seconds", type=float, default=10)
+    args = ap.parse_args()
+    ws = os.path.abspath(args.workspace)
+
+    scan = run_scan_bench(find_binary(ws, "bench_scan"), args.repetitions, args.min_time)
+    print()
+    rt = run_realtime_bench(find_binary(ws, "bench_realtime"), args.realtime_seconds)
+
+    # per_instr is an inverted rate over CPU time: seconds per instruction.
+    interp_ns = scan["BM_Interpreter"]["per_instr"] * 1e9
+    plc_ns = scan["BM_PlcScan"]["per_instr"] * 1e9
+    compiled_ns = scan["BM_CompiledLadder"]["per_instr"] * 1e9
+    plc_us = cpu_us(scan["BM_PlcScan"])
+    p99 = float(rt.get("wake_latency_p99_us", "nan"))
+
+    rows = [
+        ("Plc::scan, 10,000-instr ladder", "%.1f us/scan" % plc_us,
+         "<= %g us: %s" % (TARGET_SCAN_US, verdict(plc_us <= TARGET_SCAN_US))),
+        ("  per instruction", "%.2f ns" % plc_ns,
+         "<= %g ns: %s" % (TARGET_NS_PER_INSTR, verdict(plc_ns <= TARGET_NS_PER_INSTR))),
+        ("Interpreter only, per instruction", "%.2f ns" % interp_ns,
+         "<= %g ns: %s" % (TARGET_NS_PER_INSTR, verdict(interp_ns <= TARGET_NS_PER_INSTR))),
+        ("Compiled C++ ladder, per instruction", "%.3f ns" % compiled_ns, "baseline"),
+        ("Interpreter / compiled ratio", "%.0fx" % (interp_ns / compiled_ns), ""),
+        ("Scan overhead (1-network program)", "%.2f us" % cpu_us(scan["BM_PlcScanOverhead"]), ""),
+        ("Parse 10,000-instr ladder", "%.2f ms" % (cpu_us(scan["BM_Parse"]) / 1e3),
+         "%.0f ns/instr" % (scan["BM_Parse"]["per_instr"] * 1e9)),
+        ("1 ms loop, wake latency p50/p90", "%s / %s us" % (rt.get("wake_latency_p50_us"),
+                                                             rt.get("wake_latency_p90_us")), ""),
+        ("  p99", "%s us" % rt.get("wake_latency_p99_us"),
+         "<= %g us: %s" % (TARGET_P99_US, verdict(p99 <= TARGET_P99_US))),
+        ("  p99.9 / max", "%s / %s us" % (rt.get("wake_latency_p99.9_us"),
+                                           rt.get("wake_latency_max_us")), ""),
+        ("  cycle time avg / max", "%s / %s us" % (rt.get("cycle_avg_us"), rt.get("cycle_max_us")), ""),
+        ("  scans / overruns", "%s / %s" % (rt.get("scans"), rt.get("overruns")),
+         rt.get("sched", "")),
+    ]
+    print()
+    print("== plc_cell benchmark summary (medians of %d repetitions; CPU time; %d CPUs)"
+          % (args.repetitions, os.cpu_count() or 0))
+    w0 = max(len(r[0]) for r in rows)
+    w1 = max(len(r[1]) for r in rows)
+    for name, value, note in rows:
+        print("  %-*s  %*s  %s" % (w0, name, w1, value, note))
+    try:
+        print("  load average at the end: %.2f %.2f %.2f" % os.getloadavg())
+    except OSError:
+        pass
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
