@@ -93,7 +93,7 @@ def verdict(ok):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--workspace", required=True, help="catkin workspace, e.g. build/ws")
+    ap.add_argument("--workspace", required=True, help="catkin workspace, e.g. .build/ws")
     ap.add_argument("--repetitions", type=int, default=5)
     ap.add_argument("--min-time", type=float, default=0.5, help="seconds per repetition")
     ap.add_argument("--realtime-seconds", type=float, default=10)

@@ -47,6 +47,23 @@ std::string Args::require(const std::string& name) const {
   return get(name);
 }
 
+long Args::get_int(const std::string& name, long fallback, long lo, long hi) const {
+  if (!has(name)) return fallback;
+  const std::string v = get(name);
+  size_t used = 0;
+  long n = 0;
+  try {
+    n = std::stol(v, &used, 0);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != v.size())
+    throw UsageError("--" + name + " takes a whole number, got '" + v + "'");
+  if (n < lo || n > hi)
+    throw UsageError("--" + name + " " + v + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
+  return n;
+}
+
 std::vector<std::string> Args::all(const std::string& name) const {
   auto it = values_.find(name);
   return it == values_.end() ? std::vector<std::string>{} : it->second;

@@ -22,6 +22,8 @@ class Args {
   bool has(const std::string& name) const { return values_.count(name) > 0; }
   std::string get(const std::string& name, const std::string& fallback = "") const;
   std::string require(const std::string& name) const;
+  // An integer option in [lo, hi]; UsageError names the option otherwise.
+  long get_int(const std::string& name, long fallback, long lo, long hi) const;
   std::vector<std::string> all(const std::string& name) const;
   const std::vector<std::string>& positional() const { return positional_; }
 

@@ -16,7 +16,7 @@ const char* kUsage =
     "  sim    --program FILE [--config FILE] --duration 2.5s [--scan 1ms]\n"
     "         [--set ADDR=VALUE ...] [--watch ADDR,...] [--trace FILE.csv]\n"
     "         run the program in virtual time and print the watched values\n"
-    "  run    --program FILE [--config FILE] [--scan 1ms] [--duration T]\n"
+    "  run    --program FILE [--config FILE] [--scan 1ms] [--duration T] [--rt-priority N]\n"
     "         run the soft PLC in real time until interrupted\n"
     "  check  --program FILE   parse a program and report every error\n"
     // @usage: subsystems add their commands' usage lines here

@@ -18,7 +18,7 @@ static volatile std::sig_atomic_t g_stop = 0;
 static void on_signal(int) { g_stop = 1; }
 
 int cmd_run(const std::vector<std::string>& argv) {
-  std::vector<std::string> options = {"program", "config", "scan", "duration"};
+  std::vector<std::string> options = {"program", "config", "scan", "duration", "rt-priority"};
   // @run-options: subsystems append their option names (e.g. "fatek-tcp") here
   Args args(argv, options);
   SoftCell cell(args.get("config"), args.get("program"));
@@ -37,6 +37,7 @@ int cmd_run(const std::vector<std::string>& argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RealTimeLoop loop(cell.plc(), std::chrono::microseconds(scan));
+  loop.set_priority(static_cast<int>(args.get_int("rt-priority", 0, 0, 99)));
   loop.start();
   std::cerr << "plc_cell run: " << cell.program_path() << " scanning every " << scan
             << " us; Ctrl-C to stop\n";
@@ -46,6 +47,7 @@ int cmd_run(const std::vector<std::string>& argv) {
     if (duration && std::chrono::steady_clock::now() - t0 >= std::chrono::microseconds(duration)) break;
   }
   loop.stop();
+  if (!loop.priority_error().empty()) std::cerr << "plc_cell run: " << loop.priority_error() << "\n";
   for (auto& s : servers) s->stop();
   const auto st = cell.plc().locked([](ScanEngine& e, Memory&) { return e.stats(); });
   const std::string fault = cell.plc().locked([](ScanEngine& e, Memory&) { return e.fault(); });

@@ -68,6 +68,7 @@ void ExecContext::flag(const BoundOperand& o, bool v) const {
 
 Interpreter::Interpreter(Memory& mem, const FunctionTable& functions)
     : mem_(mem), functions_(functions) {
+  execute(kInitDispatch, 0, 0, nullptr, false);
   for (uint32_t t = 0; t < 256; ++t) timer_base_us_[t] = t < 50 ? 10000 : t < 200 ? 100000 : 1000000;
 }
 
@@ -88,61 +89,78 @@ static BoundOperand bind_operand(Memory& mem, const Operand& o) {
 
 void Interpreter::load(const Program& program) {
   std::vector<Bound> code;
+  std::vector<Extra> extras;
   std::vector<BoundOperand> ops;
+  std::vector<int> extra_of(program.code.size(), -1);
   code.reserve(program.code.size() + 1);
   for (size_t i = 0; i < program.code.size(); ++i) {
     const Instruction& in = program.code[i];
     Bound b{};
-    b.op = in.op;
-    b.is32 = in.is32;
-    b.pulse = in.pulse;
-    b.n_inputs = 1;
-    b.edge = i < program.edge_slot_of.size() ? program.edge_slot_of[i] : ~0u;
-    b.target = in.target;
+    Op op = in.op;
+    const uint32_t edge = i < program.edge_slot_of.size() ? program.edge_slot_of[i] : ~0u;
+    Extra x{};
+    x.edge = edge;
+    x.is32 = in.is32;
+    x.pulse = in.pulse;
+    x.n_inputs = 1;
+    x.first_op = static_cast<uint32_t>(ops.size());
+    bool needs_extra = true;
     switch (in.op) {
       case Op::Jmp:
-      case Op::Call: b.target = program.labels.at(in.label); break;
+      case Op::Call:
+        b.arg = program.labels.at(in.label);
+        needs_extra = false;
+        break;
       case Op::RstReg:
-        b.index = static_cast<uint32_t>(ops.size());
+      case Op::For:
+        x.number = in.target;
         ops.push_back(bind_operand(mem_, in.operands.at(0)));
         break;
       case Op::Tmr:
       case Op::Ctr:
-        b.index = in.addr.index;
-        b.target = static_cast<uint32_t>(ops.size());
+        x.number = in.addr.index;
         ops.push_back(bind_operand(mem_, in.operands.at(0)));
         break;
-      case Op::For:
-        b.index = static_cast<uint32_t>(ops.size());
-        ops.push_back(bind_operand(mem_, in.operands.at(0)));
-        break;
-      case Op::Fun: {
-        b.fn = functions_.find(in.fun);
-        if (!b.fn) throw Error("FUN " + std::to_string(in.fun) + " is not available");
-        b.n_inputs = static_cast<uint8_t>(b.fn->inputs.size());
-        b.index = static_cast<uint32_t>(ops.size());
-        b.n_ops = static_cast<uint16_t>(in.operands.size());
+      case Op::Fun:
+        x.fn = functions_.find(in.fun);
+        if (!x.fn) throw Error("FUN " + std::to_string(in.fun) + " is not available");
+        x.n_inputs = static_cast<uint8_t>(x.fn->inputs.size());
+        x.n_ops = static_cast<uint16_t>(in.operands.size());
         for (const auto& o : in.operands) ops.push_back(bind_operand(mem_, o));
         break;
-      }
-      default:
-        if (in.op <= Op::Rst && in.op != Op::AndLd && in.op != Op::OrLd) {
-          b.bit = mem_.bits(in.addr.area) + in.addr.index;
-          if (in.op == Op::Rst && (in.addr.area == Area::T || in.addr.area == Area::C)) {
-            b.target = in.addr.area == Area::T ? 1 : 2;  // RST of a timer or counter clears its value
-            b.index = in.addr.index;
-          }
+      case Op::Rst:
+        if (in.addr.area == Area::T || in.addr.area == Area::C) {
+          x.clears = in.addr.area == Area::T ? 1 : 2;
+          x.number = in.addr.index;
+          op = Op::RstReg;  // a timer/counter reset runs the register path
+          ops.push_back(BoundOperand{});
+          ops.back().b = mem_.bits(in.addr.area) + in.addr.index;
+          break;
         }
+        [[fallthrough]];
+      default:
+        needs_extra = false;
+        b.arg = edge;
+        if (in.op <= Op::Rst && in.op != Op::AndLd && in.op != Op::OrLd)
+          b.bit = mem_.bits(in.addr.area) + in.addr.index;
         break;
     }
+    if (needs_extra) {
+      extra_of[i] = static_cast<int>(extras.size());
+      extras.push_back(x);
+    }
+    b.handler = handler_of_[static_cast<size_t>(op)];
     code.push_back(b);
   }
   Bound end{};
-  end.op = Op::End;
+  end.handler = handler_of_[static_cast<size_t>(Op::End)];
   code.push_back(end);  // a routine that runs off the end stops here with a fault
+  for (size_t i = 0; i < extra_of.size(); ++i)
+    if (extra_of[i] >= 0) code[i].extra = &extras[static_cast<size_t>(extra_of[i])];
 
   program_ = program;
   code_ = std::move(code);
+  extras_ = std::move(extras);  // moving a vector keeps its elements where they are
   ops_ = std::move(ops);
   reset_state();
 }
@@ -176,15 +194,33 @@ bool Interpreter::run_routine(const std::string& label, uint64_t now_us, ScanEng
 
 // ---- execution --------------------------------------------------------------
 
-bool Interpreter::execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine,
+// Threaded dispatch: every handler ends in its own indirect jump (GCC computed goto),
+// which the CPU predicts per instruction kind pair, and contacts are branch-free.
+bool Interpreter::execute(uint32_t start, uint64_t now_us, uint32_t dt_us, ScanEngine* engine,
                           bool routine) {
-  bool acc = false;
-  bool stack[kMaxStack];
+  static void* const kDispatch[] = {
+      &&op_org,      &&op_org_not, &&op_ld,      &&op_ld_not,   &&op_and,     &&op_and_not,
+      &&op_or,       &&op_or_not,  &&op_org_up,  &&op_org_down, &&op_ld_up,   &&op_ld_down,
+      &&op_and_up,   &&op_and_down, &&op_or_up,  &&op_or_down,  &&op_and_ld,  &&op_or_ld,
+      &&op_out,      &&op_out_not, &&op_set,     &&op_rst,      &&op_rst_reg, &&op_tmr,
+      &&op_ctr,      &&op_fun,     &&op_lbl,     &&op_jmp,      &&op_call,    &&op_rts,
+      &&op_rti,      &&op_for,     &&op_next,    &&op_end};
+  static_assert(sizeof kDispatch / sizeof kDispatch[0] == static_cast<size_t>(Op::End) + 1,
+                "one handler per opcode");
+  if (start == kInitDispatch) {  // load() stores each handler's offset in the instruction
+    for (size_t i = 0; i < handler_of_.size(); ++i)
+      handler_of_[i] = static_cast<int32_t>(static_cast<const char*>(kDispatch[i]) -
+                                            static_cast<const char*>(&&op_org));
+    return true;
+  }
+
+  unsigned acc = 0;
+  uint8_t stack[kMaxStack];
   int sp = 0;
-  uint32_t calls[kMaxCallDepth];
+  const Bound* calls[kMaxCallDepth];
   int csp = 0;
   struct ForFrame {
-    uint32_t body;
+    const Bound* body;
     int64_t remaining;
   } fors[kMaxForDepth * (kMaxCallDepth + 1)];
   int fsp = 0;
@@ -195,193 +231,193 @@ bool Interpreter::execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngi
   uint16_t* const rc = mem_.words(Area::RC);
   uint8_t* const edges = edges_.data();
   const Bound* const code = code_.data();
+  const Bound* ip = code + start;
   ExecContext ctx(mem_);
   ctx.engine = engine;
   ctx.now_us = now_us;
   ctx.dt_us = dt_us;
 
+  const char* const base = static_cast<const char*>(&&op_org);
+#define PLC_NEXT()                                      \
+  do {                                                  \
+    ++ip;                                               \
+    goto* static_cast<const void*>(base + ip->handler); \
+  } while (0)
+#define PLC_BIT(b) (*(b).bit & kBitState)
+
   auto coil = [](uint8_t& c, bool v) {
     if (!(c & kBitDisabled)) c = v ? kBitState : 0;
   };
-  auto edge_up = [&](const Bound& b, bool v) {
-    uint8_t& e = edges[b.edge];
-    const bool r = v && !e;
-    e = v;
+  auto edge_up = [&](uint32_t slot, unsigned v) -> unsigned {
+    uint8_t& e = edges[slot];
+    const unsigned r = v & ~e & 1u;
+    e = static_cast<uint8_t>(v);
     return r;
   };
-  auto edge_down = [&](const Bound& b, bool v) {
-    uint8_t& e = edges[b.edge];
-    const bool r = !v && e;
-    e = v;
+  auto edge_down = [&](uint32_t slot, unsigned v) -> unsigned {
+    uint8_t& e = edges[slot];
+    const unsigned r = ~v & e & 1u;
+    e = static_cast<uint8_t>(v);
     return r;
+  };
+  auto fault_at = [&](const Bound* b, const std::string& why) {
+    set_fault(*b, why);
+    return false;
   };
 
-  for (;;) {
-    const Bound& b = code[pc];
-    switch (b.op) {
-      case Op::Org: sp = 0; acc = *b.bit & kBitState; break;
-      case Op::OrgNot: sp = 0; acc = !(*b.bit & kBitState); break;
-      case Op::Ld: stack[sp++] = acc; acc = *b.bit & kBitState; break;
-      case Op::LdNot: stack[sp++] = acc; acc = !(*b.bit & kBitState); break;
-      case Op::And: acc = acc && (*b.bit & kBitState); break;
-      case Op::AndNot: acc = acc && !(*b.bit & kBitState); break;
-      case Op::Or: acc = acc || (*b.bit & kBitState); break;
-      case Op::OrNot: acc = acc || !(*b.bit & kBitState); break;
-      case Op::OrgUp: sp = 0; acc = edge_up(b, *b.bit & kBitState); break;
-      case Op::OrgDown: sp = 0; acc = edge_down(b, *b.bit & kBitState); break;
-      case Op::LdUp: stack[sp++] = acc; acc = edge_up(b, *b.bit & kBitState); break;
-      case Op::LdDown: stack[sp++] = acc; acc = edge_down(b, *b.bit & kBitState); break;
-      case Op::AndUp: { const bool e = edge_up(b, *b.bit & kBitState); acc = acc && e; break; }
-      case Op::AndDown: { const bool e = edge_down(b, *b.bit & kBitState); acc = acc && e; break; }
-      case Op::OrUp: { const bool e = edge_up(b, *b.bit & kBitState); acc = acc || e; break; }
-      case Op::OrDown: { const bool e = edge_down(b, *b.bit & kBitState); acc = acc || e; break; }
-      case Op::AndLd: acc = stack[--sp] && acc; break;
-      case Op::OrLd: acc = stack[--sp] || acc; break;
-      case Op::Out: coil(*b.bit, acc); break;
-      case Op::OutNot: coil(*b.bit, !acc); break;
-      case Op::Set: if (acc) coil(*b.bit, true); break;
-      case Op::Rst:
-        if (acc) {
-          coil(*b.bit, false);
-          if (b.target != 0) {
-            if (b.target == 1) {
-              rt[b.index] = 0;
-              timer_rem_us_[b.index] = 0;
-            } else {
-              uint16_t* w = rc + rc_word_index(b.index);
-              w[0] = 0;
-              if (b.index >= kFirst32BitCounter) w[1] = 0;
-            }
-          }
-        }
-        break;
-      case Op::RstReg:
-        if (acc) {
-          ctx.is32 = b.is32;
-          ctx.put(ops_[b.index], 0);
-        }
-        break;
-      case Op::Tmr: {
-        const uint32_t n = b.index;
-        ctx.is32 = false;
-        const int64_t preset = ctx.get(ops_[b.target]);
-        if (acc) {
-          if (!timer_running_[n]) {
-            timer_running_[n] = 1;
-            timer_rem_us_[n] = 0;
-            rt[n] = 0;
-          } else {
-            const uint64_t base = timer_base_us_[n];
-            timer_rem_us_[n] += dt_us;
-            const uint64_t inc = timer_rem_us_[n] / base;
-            timer_rem_us_[n] %= base;
-            const int64_t limit = std::max<int64_t>(preset, 0);
-            rt[n] = static_cast<uint16_t>(std::min<int64_t>(limit, int64_t(rt[n]) + int64_t(inc)));
-          }
-          coil(t_bits[n], int64_t(rt[n]) >= preset);
-        } else {
-          timer_running_[n] = 0;
-          timer_rem_us_[n] = 0;
-          rt[n] = 0;
-          coil(t_bits[n], false);
-        }
-        break;
-      }
-      case Op::Ctr: {
-        const uint32_t n = b.index;
-        const bool wide = n >= kFirst32BitCounter;
-        ctx.is32 = wide;
-        const int64_t preset = ctx.get(ops_[b.target]);
-        uint16_t* w = rc + rc_word_index(n);
-        int64_t v = wide ? int64_t(int32_t(uint32_t(w[0]) | (uint32_t(w[1]) << 16))) : int64_t(w[0]);
-        if (edge_up(b, acc) && v < preset) {
-          ++v;
-          w[0] = static_cast<uint16_t>(v);
-          if (wide) w[1] = static_cast<uint16_t>(uint64_t(v) >> 16);
-        }
-        coil(c_bits[n], v >= preset);
-        break;
-      }
-      case Op::Fun: {
-        const int n = b.n_inputs;
-        ctx.inputs[n - 1] = acc;
-        for (int k = n - 2; k >= 0; --k) ctx.inputs[k] = stack[--sp];
-        bool en = ctx.inputs[0];
-        acc = en;
-        if (b.pulse) en = edge_up(b, en);
-        if (en || b.fn->always_runs) {
-          ctx.en = en;
-          ctx.is32 = b.is32;
-          ctx.instance = pc;
-          b.fn->handler(ctx, ops_.data() + b.index);
-        }
-        break;
-      }
-      case Op::Lbl: break;
-      case Op::Jmp:
-        if (acc) {
-          if (b.target <= pc && ++loops > loop_budget_) {
-            set_fault(b, "watchdog: more than " + std::to_string(loop_budget_) +
-                             " backward jumps in one scan");
-            return false;
-          }
-          pc = b.target;
-          continue;
-        }
-        break;
-      case Op::Call:
-        if (acc) {
-          if (csp == kMaxCallDepth) {
-            set_fault(b, "CALL nested deeper than " + std::to_string(kMaxCallDepth));
-            return false;
-          }
-          calls[csp++] = pc + 1;
-          pc = b.target + 1;
-          continue;
-        }
-        break;
-      case Op::Rts:
-      case Op::Rti:
-        if (csp == 0) {
-          if (routine) return true;
-          set_fault(b, b.op == Op::Rts ? "RTS without CALL" : "RTI outside an interrupt");
-          return false;
-        }
-        pc = calls[--csp];
-        continue;
-      case Op::For: {
-        if (fsp == static_cast<int>(sizeof fors / sizeof fors[0])) {
-          set_fault(b, "FOR nested too deeply");
-          return false;
-        }
-        ctx.is32 = false;
-        const int64_t count = ctx.get(ops_[b.index]);
-        if (count <= 0) {
-          pc = b.target + 1;  // skip the body
-          continue;
-        }
-        fors[fsp++] = {pc + 1, count};
-        break;
-      }
-      case Op::Next:
-        if (fsp > 0 && --fors[fsp - 1].remaining > 0) {
-          if (++loops > loop_budget_) {
-            set_fault(b, "watchdog: more than " + std::to_string(loop_budget_) +
-                             " loop iterations in one scan");
-            return false;
-          }
-          pc = fors[fsp - 1].body;
-          continue;
-        }
-        if (fsp > 0) --fsp;
-        break;
-      case Op::End:
-        if (!routine) return true;
-        set_fault(b, "routine reached END without RTS/RTI");
-        return false;
+  goto* static_cast<const void*>(base + ip->handler);
+
+op_org: sp = 0; acc = PLC_BIT(*ip); PLC_NEXT();
+op_org_not: sp = 0; acc = PLC_BIT(*ip) ^ 1u; PLC_NEXT();
+op_ld: stack[sp++] = static_cast<uint8_t>(acc); acc = PLC_BIT(*ip); PLC_NEXT();
+op_ld_not: stack[sp++] = static_cast<uint8_t>(acc); acc = PLC_BIT(*ip) ^ 1u; PLC_NEXT();
+op_and: acc &= PLC_BIT(*ip); PLC_NEXT();
+op_and_not: acc &= PLC_BIT(*ip) ^ 1u; PLC_NEXT();
+op_or: acc |= PLC_BIT(*ip); PLC_NEXT();
+op_or_not: acc |= PLC_BIT(*ip) ^ 1u; PLC_NEXT();
+op_org_up: sp = 0; acc = edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_org_down: sp = 0; acc = edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_ld_up: stack[sp++] = static_cast<uint8_t>(acc); acc = edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_ld_down: stack[sp++] = static_cast<uint8_t>(acc); acc = edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_and_up: acc &= edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_and_down: acc &= edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_or_up: acc |= edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_or_down: acc |= edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_and_ld: acc &= stack[--sp]; PLC_NEXT();
+op_or_ld: acc |= stack[--sp]; PLC_NEXT();
+op_out: coil(*ip->bit, acc); PLC_NEXT();
+op_out_not: coil(*ip->bit, !acc); PLC_NEXT();
+op_set: if (acc) coil(*ip->bit, true); PLC_NEXT();
+op_rst: if (acc) coil(*ip->bit, false); PLC_NEXT();
+op_rst_reg: {
+  const Extra& x = *ip->extra;
+  if (acc) {
+    const BoundOperand& o = ops_[x.first_op];
+    if (x.clears == 1) {
+      coil(*o.b, false);
+      rt[x.number] = 0;
+      timer_rem_us_[x.number] = 0;
+    } else if (x.clears == 2) {
+      coil(*o.b, false);
+      uint16_t* w = rc + rc_word_index(x.number);
+      w[0] = 0;
+      if (x.number >= kFirst32BitCounter) w[1] = 0;
+    } else {
+      ctx.is32 = x.is32;
+      ctx.put(o, 0);
     }
-    ++pc;
   }
+  PLC_NEXT();
+}
+op_tmr: {
+  const Extra& x = *ip->extra;
+  const uint32_t n = x.number;
+  ctx.is32 = false;
+  const int64_t preset = ctx.get(ops_[x.first_op]);
+  if (acc) {
+    if (!timer_running_[n]) {
+      timer_running_[n] = 1;
+      timer_rem_us_[n] = 0;
+      rt[n] = 0;
+    } else {
+      const uint64_t base = timer_base_us_[n];
+      timer_rem_us_[n] += dt_us;
+      const uint64_t inc = timer_rem_us_[n] / base;
+      timer_rem_us_[n] %= base;
+      const int64_t limit = std::max<int64_t>(preset, 0);
+      rt[n] = static_cast<uint16_t>(std::min<int64_t>(limit, int64_t(rt[n]) + int64_t(inc)));
+    }
+    coil(t_bits[n], int64_t(rt[n]) >= preset);
+  } else {
+    timer_running_[n] = 0;
+    timer_rem_us_[n] = 0;
+    rt[n] = 0;
+    coil(t_bits[n], false);
+  }
+  PLC_NEXT();
+}
+op_ctr: {
+  const Extra& x = *ip->extra;
+  const uint32_t n = x.number;
+  const bool wide = n >= kFirst32BitCounter;
+  ctx.is32 = wide;
+  const int64_t preset = ctx.get(ops_[x.first_op]);
+  uint16_t* w = rc + rc_word_index(n);
+  int64_t v = wide ? int64_t(int32_t(uint32_t(w[0]) | (uint32_t(w[1]) << 16))) : int64_t(w[0]);
+  if (edge_up(x.edge, acc) && v < preset) {
+    ++v;
+    w[0] = static_cast<uint16_t>(v);
+    if (wide) w[1] = static_cast<uint16_t>(uint64_t(v) >> 16);
+  }
+  coil(c_bits[n], v >= preset);
+  PLC_NEXT();
+}
+op_fun: {
+  const Extra& x = *ip->extra;
+  const int n = x.n_inputs;
+  ctx.inputs[n - 1] = acc;
+  for (int k = n - 2; k >= 0; --k) ctx.inputs[k] = stack[--sp];
+  bool en = ctx.inputs[0];
+  acc = en;
+  if (x.pulse) en = edge_up(x.edge, en);
+  if (en || x.fn->always_runs) {
+    ctx.en = en;
+    ctx.is32 = x.is32;
+    ctx.instance = static_cast<uint32_t>(ip - code);
+    x.fn->handler(ctx, ops_.data() + x.first_op);
+  }
+  PLC_NEXT();
+}
+op_lbl: PLC_NEXT();
+op_jmp:
+  if (acc) {
+    const Bound* target = code + ip->arg;
+    if (target <= ip && ++loops > loop_budget_)
+      return fault_at(ip, "watchdog: more than " + std::to_string(loop_budget_) + " backward jumps in one scan");
+    ip = target;
+  }
+  PLC_NEXT();
+op_call:
+  if (acc) {
+    if (csp == kMaxCallDepth) return fault_at(ip, "CALL nested deeper than " + std::to_string(kMaxCallDepth));
+    calls[csp++] = ip;
+    ip = code + ip->arg;  // the LBL; PLC_NEXT steps past it
+  }
+  PLC_NEXT();
+op_rts:
+  if (csp == 0) return routine ? true : fault_at(ip, "RTS without CALL");
+  ip = calls[--csp];
+  PLC_NEXT();
+op_rti:
+  if (csp == 0) return routine ? true : fault_at(ip, "RTI outside an interrupt");
+  ip = calls[--csp];
+  PLC_NEXT();
+op_for: {
+  const Extra& x = *ip->extra;
+  if (fsp == static_cast<int>(sizeof fors / sizeof fors[0])) return fault_at(ip, "FOR nested too deeply");
+  ctx.is32 = false;
+  const int64_t count = ctx.get(ops_[x.first_op]);
+  if (count <= 0) {
+    ip = code + x.number;  // the matching NEXT; PLC_NEXT steps past it
+  } else {
+    fors[fsp++] = {ip, count};
+  }
+  PLC_NEXT();
+}
+op_next:
+  if (fsp > 0 && --fors[fsp - 1].remaining > 0) {
+    if (++loops > loop_budget_)
+      return fault_at(ip, "watchdog: more than " + std::to_string(loop_budget_) + " loop iterations in one scan");
+    ip = fors[fsp - 1].body;
+  } else if (fsp > 0) {
+    --fsp;
+  }
+  PLC_NEXT();
+op_end:
+  if (!routine) return true;
+  return fault_at(ip, "routine reached END without RTS/RTI");
+#undef PLC_NEXT
+#undef PLC_BIT
 }
 
 }  // namespace plc_cell

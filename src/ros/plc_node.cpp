@@ -17,7 +17,10 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
 
   double scan_period = double(cfg.scan_period_us) / 1e6, io_rate = 10.0;
   bool autostart = true;
+  int rt_priority = 0;
   pnh.param("scan_period", scan_period, scan_period);
+  pnh.param("rt_priority", rt_priority, rt_priority);
+  if (rt_priority < 0 || rt_priority > 99) throw Error("~rt_priority must be 0 (normal) or 1..99 (SCHED_FIFO)");
   pnh.param("io_rate", io_rate, io_rate);
   pnh.param("autostart", autostart, autostart);
   if (!(scan_period >= 0.0001 && scan_period <= 1.0))
@@ -69,6 +72,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   loop_ = std::make_unique<RealTimeLoop>(cell_->plc(),
                                          std::chrono::nanoseconds(int64_t(scan_period * 1e9)));
   loop_->set_after_scan([this] { after_scan(); });
+  loop_->set_priority(rt_priority);
   loop_->start();
   ROS_INFO("plc_node: cell '%s', program %s, scan %.3f ms, %s", cfg.name.c_str(), program_path_.c_str(),
            scan_period * 1e3, autostart ? "RUN" : "STOP");

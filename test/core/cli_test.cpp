@@ -99,3 +99,10 @@ TEST(Cli, RunStopsAfterItsDuration) {
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("scans, cycle avg"), std::string::npos) << r.out;
 }
+
+TEST(Cli, RunRejectsABadPriority) {
+  const Result r = tool("run --config " + kDemo + " --duration 10ms --rt-priority high");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--rt-priority takes a whole number, got 'high'"), std::string::npos) << r.out;
+  EXPECT_EQ(tool("run --config " + kDemo + " --duration 10ms --rt-priority 100").status, 2);
+}

@@ -63,26 +63,39 @@ class Interpreter {
   void reset_state();
 
  private:
-  struct Bound {
-    Op op;
+  // One bound instruction in 16 bytes, so a large ladder stays cache-friendly:
+  // contacts and coils carry their bit pointer; the rest point to an Extra.
+  struct Extra {
+    uint32_t edge;    // edge memory (CTR, pulse FUN)
+    uint32_t number;  // timer/counter number; FOR: matching NEXT
+    uint32_t first_op;
+    uint16_t n_ops;
+    uint8_t n_inputs;
     bool is32;
     bool pulse;
-    uint8_t n_inputs;
-    uint32_t edge;
-    uint32_t target;
-    uint32_t index;  // timer/counter number, or first bound operand
-    uint16_t n_ops;
-    uint8_t* bit;
+    uint8_t clears;   // RST of a timer (1) or counter (2) also clears its value
     const FunctionSpec* fn;
   };
+  struct Bound {
+    int32_t handler;  // offset of this opcode's handler from the first one (direct threading)
+    uint32_t arg;     // edge memory of a TU/TD contact, or the target of JMP/CALL
+    union {
+      uint8_t* bit;
+      Extra* extra;
+    };
+  };
+  static_assert(sizeof(Bound) == 16, "keep a bound instruction at 16 bytes");
 
+  static constexpr uint32_t kInitDispatch = ~0u;
   bool execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   void set_fault(const Bound& b, const std::string& why);
 
   Memory& mem_;
   const FunctionTable& functions_;
   Program program_;
+  std::array<int32_t, static_cast<size_t>(Op::End) + 1> handler_of_{};
   std::vector<Bound> code_;
+  std::vector<Extra> extras_;
   std::vector<BoundOperand> ops_;
   std::vector<uint8_t> edges_;
   std::array<uint32_t, 256> timer_base_us_{};

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -23,6 +24,11 @@ class RealTimeLoop {
   void record_latencies(bool on) { record_ = on; }
   std::vector<uint64_t> latencies() const { return latencies_; }
 
+  // SCHED_FIFO priority 1..99 for the loop thread (0: the normal scheduler). Needs
+  // CAP_SYS_NICE; if refused the loop runs normally and priority_error() says why.
+  void set_priority(int p) { priority_ = p; }
+  std::string priority_error() const { return priority_error_; }
+
   void start();
   void stop();
   bool running() const { return running_; }
@@ -36,6 +42,8 @@ class RealTimeLoop {
   std::atomic<bool> running_{false};
   std::thread thread_;
   bool record_ = false;
+  int priority_ = 0;
+  std::string priority_error_;
   std::vector<uint64_t> latencies_;
 };
 
