@@ -156,3 +156,12 @@ TEST(SoftCell, ErrorsComeWithTheFileName) {
   }
   EXPECT_THROW(SoftCell("/nonexistent.yaml", ""), SourceError);
 }
+
+TEST(CellConfig, TheTemplateParses) {
+  const CellConfig c = load_cell_config(std::string(PLC_CELL_SOURCE_DIR) + "/config/cell_template.yaml");
+  EXPECT_EQ(c.name, "my_cell");
+  EXPECT_EQ(c.signals.size(), 2u);
+  EXPECT_EQ(c.sim_inputs.size(), 3u);
+  EXPECT_EQ(c.retentive.size(), CellConfig::default_retentive().size());
+  EXPECT_EQ(c.timer_bases.size(), 3u);
+}
