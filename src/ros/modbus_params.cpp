@@ -1,0 +1,25 @@
+// plc_node's Modbus slave parameters: ~modbus_tcp (HOST:PORT), ~modbus_rtu
+// (DEVICE[:BAUD[:FORMAT]], default format 8E1), ~modbus_id, ~modbus_max_connections,
+// ~modbus_idle_timeout (s). Empty strings leave the server off.
+#include <memory>
+#include <vector>
+
+#include <ros/ros.h>
+
+#include "plc_cell/modbus/slave_servers.h"
+
+namespace plc_cell {
+
+std::vector<std::unique_ptr<Server>> modbus_servers_from_params(Plc& plc, ros::NodeHandle& pnh) {
+  modbus::SlaveOptions o;
+  double idle = o.idle_timeout_ms / 1000.0;
+  pnh.param<std::string>("modbus_tcp", o.tcp, "");
+  pnh.param<std::string>("modbus_rtu", o.rtu, "");
+  pnh.param("modbus_id", o.id, o.id);
+  pnh.param("modbus_max_connections", o.max_connections, o.max_connections);
+  pnh.param("modbus_idle_timeout", idle, idle);
+  o.idle_timeout_ms = int(idle * 1000);
+  return modbus::make_slave_servers(plc, o);
+}
+
+}  // namespace plc_cell
