@@ -36,3 +36,8 @@ target_include_directories(modbus_bridge PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(modbus_bridge plc_cell_modbus ${catkin_LIBRARIES})
 add_dependencies(modbus_bridge ${PROJECT_NAME}_generate_messages_cpp)
 install(TARGETS modbus_bridge RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/modbus/modbus_bridge.test DEPENDENCIES plc_node modbus_bridge)
+endif()
