@@ -20,7 +20,7 @@ static void on_signal(int) { g_stop = 1; }
 int cmd_run(const std::vector<std::string>& argv) {
   std::vector<std::string> options = {"program", "config", "scan", "duration"};
   // @run-options: subsystems append their option names (e.g. "fatek-tcp") here
-  options.insert(options.end(), {"modbus-tcp", "modbus-rtu", "modbus-id"});
+  options.insert(options.end(), {"modbus-tcp", "modbus-rtu", "modbus-id", "modbus-gateway", "modbus-gateway-wait", "modbus-gateway-retries"});
   Args args(argv, options);
   SoftCell cell(args.get("config"), args.get("program"));
   const uint64_t scan = args.has("scan") ? parse_duration_us(args.get("scan")) : cell.config().scan_period_us;

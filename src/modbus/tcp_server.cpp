@@ -8,6 +8,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -16,17 +17,24 @@
 #include <modbus/modbus.h>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/modbus/forwarder.h"
 #include "plc_cell/modbus/slave_handler.h"
 
 namespace plc_cell {
 namespace modbus {
+
+std::vector<uint8_t> tcp_exception(const std::vector<uint8_t>& f, uint8_t code) {
+  return {f[0], f[1], 0, 0, 0, 3, f[6], uint8_t(f[7] | 0x80), code};
+}
 
 namespace {
 using Clock = std::chrono::steady_clock;
 
 struct Conn {
   int fd;
+  uint64_t id;
   Clock::time_point last;
+  bool waiting = false;  // a forwarded request is out: read nothing more, keep order
 };
 
 enum class Frame { Partial, Ready, Closed, Bad };
@@ -89,11 +97,13 @@ void TcpServer::start() {
     std::lock_guard<std::mutex> lk(mu_);
     st_.running = true;
   }
+  stop_ = false;
   thread_ = std::thread([this] { run(); });
 }
 
 void TcpServer::stop() {
   if (!thread_.joinable()) return;
+  stop_ = true;
   const char c = 0;
   (void)!write(wake_[1], &c, 1);
   thread_.join();
@@ -117,31 +127,63 @@ ServerStatus TcpServer::status() const {
   return st_;
 }
 
+void TcpServer::complete(uint64_t conn, std::vector<uint8_t> reply) {
+  {
+    std::lock_guard<std::mutex> lk(done_mu_);
+    done_.emplace_back(conn, std::move(reply));
+  }
+  const char c = 1;
+  (void)!write(wake_[1], &c, 1);
+}
+
 void TcpServer::run() {
   std::vector<Conn> conns;
+  uint64_t next_id = 1;
   uint8_t req[MODBUS_TCP_MAX_ADU_LENGTH];
   const auto idle = std::chrono::milliseconds(opt_.idle_timeout_ms);
   const auto count = [&](bool ok, const std::string& err = {}) {
     std::lock_guard<std::mutex> lk(mu_);
     (ok ? st_.requests : st_.rejected)++;
     if (!err.empty()) st_.last_error = err;
-    st_.connections = conns.size();
   };
-  for (;;) {
+  const auto own = [&](uint8_t unit) {
+    return !opt_.forwarder || unit == opt_.own_unit || unit == 0 || unit == 255;
+  };
+  while (!stop_) {
     std::vector<pollfd> pfds{{wake_[0], POLLIN, 0}, {listen_fd_, POLLIN, 0}};
-    for (const auto& c : conns) pfds.push_back({c.fd, POLLIN, 0});
+    for (const auto& c : conns) pfds.push_back({c.fd, short(c.waiting ? 0 : POLLIN), 0});
     int timeout = -1;
     const auto now = Clock::now();
     for (const auto& c : conns) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(c.last + idle - now).count();
-      timeout = timeout < 0 ? int(std::max<long>(left, 0) + 1) : std::min(timeout, int(std::max<long>(left, 0) + 1));
+      if (c.waiting) continue;
+      const long left = std::max<long>(
+          std::chrono::duration_cast<std::chrono::milliseconds>(c.last + idle - now).count(), 0) + 1;
+      timeout = timeout < 0 ? int(left) : std::min(timeout, int(left));
     }
     if (poll(pfds.data(), pfds.size(), timeout) < 0 && errno != EINTR) break;
-    if (pfds[0].revents) break;  // stop()
+    if (pfds[0].revents) {
+      char buf[64];
+      while (read(wake_[0], buf, sizeof buf) > 0) {
+      }
+      if (stop_) break;
+      std::deque<std::pair<uint64_t, std::vector<uint8_t>>> done;
+      {
+        std::lock_guard<std::mutex> lk(done_mu_);
+        done.swap(done_);
+      }
+      for (auto& d : done)
+        for (auto& c : conns)
+          if (c.id == d.first) {  // gone meanwhile: the reply is dropped
+            (void)!send(c.fd, d.second.data(), d.second.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+            c.waiting = false;
+            c.last = Clock::now();
+          }
+    }
     std::vector<int> to_close;
     for (size_t i = 2; i < pfds.size(); ++i) {
       Conn& c = conns[i - 2];
-      if (!pfds[i].revents) {
+      if (c.waiting) continue;
+      if (!(pfds[i].revents & (POLLIN | POLLHUP | POLLERR))) {
         if (Clock::now() - c.last >= idle) to_close.push_back(c.fd);
         continue;
       }
@@ -155,6 +197,21 @@ void TcpServer::run() {
         continue;
       }
       modbus_set_socket(ctx_, c.fd);
+      if (!own(req[6])) {  // gateway: the RTU side answers, in its own time
+        std::vector<uint8_t> frame(req, req + frame_len);
+        drain(c.fd, frame_len);
+        c.waiting = true;
+        const uint64_t id = c.id;
+        if (!opt_.forwarder->submit(id, frame, [this](uint64_t conn, std::vector<uint8_t> r) { complete(conn, std::move(r)); })) {
+          const auto busy = tcp_exception(frame, MODBUS_EXCEPTION_SLAVE_OR_SERVER_BUSY);
+          (void)!send(c.fd, busy.data(), busy.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+          c.waiting = false;
+          count(false, "gateway busy");
+        } else {
+          count(true);
+        }
+        continue;
+      }
       // MBAP delimits the frame, so a bad PDU is consumed whole and answered with
       // an exception; the connection stays in step.
       const bool known = supported_function(req[7]);
@@ -180,11 +237,7 @@ void TcpServer::run() {
     }
     for (int fd : to_close) {
       close(fd);
-      for (size_t k = 0; k < conns.size(); ++k)
-        if (conns[k].fd == fd) {
-          conns.erase(conns.begin() + long(k));
-          break;
-        }
+      conns.erase(std::remove_if(conns.begin(), conns.end(), [fd](const Conn& c) { return c.fd == fd; }), conns.end());
     }
     if (pfds[1].revents & POLLIN) {
       const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
@@ -195,7 +248,7 @@ void TcpServer::run() {
         } else {
           const int one = 1;
           setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-          conns.push_back({fd, Clock::now()});
+          conns.push_back({fd, next_id++, Clock::now()});
         }
       }
     }

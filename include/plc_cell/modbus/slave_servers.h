@@ -18,6 +18,11 @@ struct SlaveOptions {
   int id = 1;       // RTU slave id (TCP answers every unit id)
   int max_connections = 16;
   int idle_timeout_ms = 60000;
+  // Gateway: with a line, the TCP server answers unit `id` (and 0, 255) itself and
+  // forwards other unit ids to RTU slaves on this line (needs `tcp`).
+  std::string gateway;  // DEVICE[:BAUD[:FORMAT]], "" = off
+  int gateway_wait_ms = 150;
+  int gateway_retries = 2;
 };
 
 // Throws plc_cell::Error on a bad option.
