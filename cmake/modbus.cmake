@@ -42,3 +42,11 @@ if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   add_rostest(test/modbus/modbus_bridge.test DEPENDENCIES plc_node modbus_bridge)
 endif()
+
+# ---- benchmarks -------------------------------------------------------------
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+  add_executable(bench_modbus bench/modbus_bench.cpp)
+  target_link_libraries(bench_modbus plc_cell_modbus)
+  target_compile_definitions(bench_modbus PRIVATE PLC_CELL_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/modbus_bench_tmp")
+endif()
