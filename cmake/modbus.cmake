@@ -25,7 +25,9 @@ if(CATKIN_ENABLE_TESTING)
   target_link_libraries(modbus_tests plc_cell_modbus)
   target_compile_definitions(modbus_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    PLC_CELL_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/modbus_test_tmp")
+    PLC_CELL_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/modbus_test_tmp"
+    PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+  add_dependencies(modbus_tests plc_cell_tool)
 endif()
 
 list(APPEND PLC_CELL_TOOL_SOURCES src/cli/modbus_options.cpp)

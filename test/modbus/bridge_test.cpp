@@ -121,6 +121,13 @@ devices:
   EXPECT_THROW(yaml("devices: [{name: x, rtu: /dev/a:9600, groups: []}, {name: y, rtu: /dev/a:19200, groups: []}]"), Error);
 }
 
+TEST(BridgeConfigYaml, TheShippedExampleLoads) {
+  const auto cfg = load_bridge_config(std::string(PLC_CELL_SOURCE_DIR) + "/examples/modbus/bridge_example.yaml");
+  ASSERT_EQ(cfg.devices.size(), 3u);
+  EXPECT_EQ(cfg.devices[0].line(), cfg.devices[1].line());  // meter and PLC share the RS-485 line
+  EXPECT_EQ(cfg.devices[1].groups[0].points[3].address, 9700u);  // 49701 = C200
+}
+
 TEST(Bridge, ReadsAndWritesOurSlave) {
   Plc plc;
   TcpServerOptions o;

@@ -14,6 +14,7 @@ namespace modbus {
 namespace {
 
 using test::run;
+const auto run_cmd = [](const std::string& c) { return test::run(c); };
 
 uint16_t reg(Plc& plc, Area a, uint32_t i) {
   return plc.locked([&](ScanEngine&, Memory& m) { return m.reg(a, i); });
@@ -133,6 +134,28 @@ TEST(ExternalClients, BandwidthClientOverRtu) {
   const auto o = run(bin + " rtu", 300);
   EXPECT_EQ(o.status, 0) << o.text;
   EXPECT_NE(o.text.find("WRITE AND READ REGISTERS"), std::string::npos) << o.text;
+}
+
+TEST(ExternalClients, PlcCellRunServesModbusTcp) {
+  const std::string dir = PLC_CELL_SOURCE_DIR;
+  test::Child run({PLC_CELL_TOOL, "run", "--config", dir + "/examples/conveyor/conveyor.yaml", "--modbus-tcp",
+                   "127.0.0.1:15040", "--duration", "60s"});
+  ASSERT_TRUE(run.wait_for("serving Modbus TCP 127.0.0.1:15040")) << run.seen();
+  auto o = run_cmd("mbpoll -m tcp -p 15040 -a 1 -1 -o 5 -t 4 -r 4001 127.0.0.1 4242");  // R4000
+  ASSERT_EQ(o.status, 0) << o.text;
+  o = run_cmd("mbpoll -m tcp -p 15040 -a 1 -1 -o 5 -t 4 -r 4001 127.0.0.1");
+  EXPECT_NE(o.text.find("[4001]: \t4242"), std::string::npos) << o.text;
+}
+
+TEST(ExternalClients, PlcCellRunRejectsBadModbusOptions) {
+  auto o = run_cmd(std::string(PLC_CELL_TOOL) + " run --config " + PLC_CELL_SOURCE_DIR +
+                   "/examples/conveyor/conveyor.yaml --modbus-rtu /dev/null:9600:9X1 --duration 1s");
+  EXPECT_NE(o.status, 0);
+  EXPECT_NE(o.text.find("9X1"), std::string::npos) << o.text;
+  o = run_cmd(std::string(PLC_CELL_TOOL) + " run --config " + PLC_CELL_SOURCE_DIR +
+              "/examples/conveyor/conveyor.yaml --modbus-gateway /dev/null --duration 1s");
+  EXPECT_NE(o.status, 0);
+  EXPECT_NE(o.text.find("needs a Modbus/TCP endpoint"), std::string::npos) << o.text;
 }
 
 }  // namespace
