@@ -294,12 +294,12 @@ devices:
   - name: plc
     rtu: )" + pty.b + R"(:115200:8E1
     unit: 1
-    timeout: 0.2
+    timeout: 1.0
     groups: [{name: g, rate: 20, points: [{name: r0, address: 0}]}]
   - name: ghost
     rtu: )" + pty.b + R"(:115200:8E1
     unit: 2
-    timeout: 0.1
+    timeout: 0.3
     groups: [{name: g, rate: 20, points: [{name: r0, address: 0}]}]
 )"),
            std::ref(c));

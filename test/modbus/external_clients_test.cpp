@@ -1,6 +1,9 @@
 // Real third-party masters against our slave: mbpoll, and the libmodbus reference
 // programs compiled here from /usr/share/doc/libmodbus-dev/examples. Tests on the
 // fixed port 1502 live in this one binary and run one after the other.
+#include <chrono>
+#include <thread>
+
 #include <gtest/gtest.h>
 
 #include "helpers.h"
@@ -82,6 +85,26 @@ TEST(ExternalClients, MbpollOverRtuOnAPtyPair) {
   // for slave 4's reply without the short ignore window in RtuServer).
   o = run(base + "-t 4 -r 6002 " + pty.b);
   EXPECT_NE(o.text.find("[6002]: \t654"), std::string::npos) << o.text;
+}
+
+TEST(ExternalClients, RtuSlaveDropsBadFramesAndKeepsServing) {
+  Plc plc;
+  test::PtyPair pty("badrtu");
+  RtuServer s(plc, parse_serial_settings(pty.a + ":19200", "8E1"), 1);
+  s.start();
+  {
+    std::ofstream line(pty.b, std::ios::binary);
+    const char bad_crc[] = {0x01, 0x06, 0x00, 0x00, 0x00, 0x09, char(0xFF), char(0xFF)};  // write R0 = 9
+    line.write(bad_crc, sizeof bad_crc);
+  }
+  // The slave drops the frame and flushes its input; wait (bounded) until it has, so the
+  // flush cannot take mbpoll's request with it.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (s.status().rejected == 0 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+  ASSERT_GE(s.status().rejected, 1u);
+  const auto o = run("mbpoll -m rtu -b 19200 -P even -a 1 -1 -o 1 -t 4 -r 1 -c 2 " + pty.b);
+  EXPECT_NE(o.text.find("[1]: \t0"), std::string::npos) << o.text;
+  EXPECT_EQ(reg(plc, Area::R, 0), 0);  // the bad-CRC write changed nothing
 }
 
 TEST(ExternalClients, RandomTestClientOverTcp) {
