@@ -12,7 +12,8 @@ add_library(plc_cell_modbus STATIC
   src/modbus/codec.cpp
   src/modbus/bridge_config.cpp
   src/modbus/bridge.cpp
-  src/modbus/gateway.cpp)
+  src/modbus/gateway.cpp
+  src/modbus/fun150.cpp)
 target_link_libraries(plc_cell_modbus PUBLIC plc_cell_core PkgConfig::LIBMODBUS ${YAML_CPP_LIBRARIES})
 set_target_properties(plc_cell_modbus PROPERTIES POSITION_INDEPENDENT_CODE ON)
 list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_modbus)

@@ -66,6 +66,7 @@ class RtuForwarder : public Forwarder {
 class GatewayServer : public Server {
  public:
   GatewayServer(Plc& plc, GatewayOptions o);
+  ~GatewayServer() override { stop(); }  // the line before the TCP side, as stop() does
   void start() override;
   void stop() override;
   std::string describe() const override;
