@@ -245,6 +245,36 @@ devices:
   b.stop();
 }
 
+TEST(Bridge, AgainstLibmodbusRandomTestServer) {
+  const std::string bin = test::build_example("random-test-server", {}, "tcp");
+  test::Child server({bin});  // 127.0.0.1:1502, 500 of each table, all zero
+  Collector c;
+  Bridge b(yaml(R"(
+backoff_min: 0.05
+devices:
+  - name: rnd
+    tcp: 127.0.0.1:1502
+    groups:
+      - name: g
+        rate: 20
+        points:
+          - {name: d, address: 100, type: float64, byte_order: little, word_order: little}
+          - {name: i, address: 104, type: int32, word_order: little}
+          - {name: coil, table: coil, address: 499}
+)"),
+           std::ref(c));
+  b.start();
+  c.wait([](const GroupResult& x) { return x.ok; });
+  b.write("d", -1234.5678);
+  b.write("i", -7);
+  b.write("coil", 1);
+  const GroupResult r = c.wait([](const GroupResult& x) {
+    return x.ok && x.values[0].as_double() == -1234.5678 && x.values[1].as_int64() == -7 && x.values[2].raw == 1;
+  });
+  EXPECT_EQ(r.reads.size(), 2u);  // registers 100..105 in one read, the coil in another
+  b.stop();
+}
+
 TEST(Bridge, AgainstPymodbus) {
   const int port = 15020;
   test::Child server({"/usr/bin/python3", std::string(PLC_CELL_SOURCE_DIR) + "/test/modbus/pymodbus_server.py",
