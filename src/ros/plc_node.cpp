@@ -62,6 +62,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   });
 
   // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
+  std::vector<std::unique_ptr<Server>> modbus_servers_from_params(Plc&, ros::NodeHandle&);  // modbus_params.cpp
+  for (auto& s : modbus_servers_from_params(cell_->plc(), pnh)) servers_.push_back(std::move(s));
   for (auto& s : servers_) {
     s->start();
     ROS_INFO("plc_node: serving %s", s->describe().c_str());

@@ -1,0 +1,44 @@
+#pragma once
+// Modbus RTU slave on a serial line (default 8E1, the FBs default). One thread;
+// libmodbus filters frames for other slave ids and drops bad CRCs.
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "plc_cell/io/serial_settings.h"
+#include "plc_cell/io/server.h"
+
+typedef struct _modbus modbus_t;
+
+namespace plc_cell {
+
+class Plc;
+
+namespace modbus {
+
+class RtuServer : public Server {
+ public:
+  RtuServer(Plc& plc, SerialSettings port, int slave_id);
+  ~RtuServer() override;
+
+  void start() override;
+  void stop() override;
+  std::string describe() const override;
+  ServerStatus status() const override;
+
+ private:
+  void run();
+
+  Plc& plc_;
+  SerialSettings port_;
+  int id_;
+  modbus_t* ctx_ = nullptr;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  mutable std::mutex mu_;
+  ServerStatus st_;
+};
+
+}  // namespace modbus
+}  // namespace plc_cell

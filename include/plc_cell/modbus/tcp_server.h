@@ -1,0 +1,67 @@
+#pragma once
+// Modbus/TCP slave on one Plc: one thread, a poll() loop over the listening socket
+// and up to max_connections clients. A request is read only once all of its bytes
+// are there (peeked MBAP length), so a stalling client never blocks the others.
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "plc_cell/io/server.h"
+
+typedef struct _modbus modbus_t;
+
+namespace plc_cell {
+
+class Plc;
+
+namespace modbus {
+
+class Forwarder;
+
+struct TcpServerOptions {
+  std::string host = "127.0.0.1";
+  int port = 502;             // 0: any free port (tests); see bound_port()
+  int max_connections = 16;   // further clients are accepted and closed at once
+  int idle_timeout_ms = 60000;  // a connection silent this long is closed
+  // Gateway: requests whose unit id is none of own_unit, 0 and 255 go to forwarder;
+  // without a forwarder every unit id is answered from the PLC.
+  int own_unit = 1;
+  Forwarder* forwarder = nullptr;
+};
+
+class TcpServer : public Server {
+ public:
+  TcpServer(Plc& plc, TcpServerOptions opt);
+  ~TcpServer() override;
+
+  void start() override;
+  void stop() override;
+  std::string describe() const override;
+  ServerStatus status() const override;
+  int bound_port() const { return port_; }
+
+ private:
+  void run();
+  void complete(uint64_t conn, std::vector<uint8_t> reply);  // from the forwarder's thread
+
+  Plc& plc_;
+  TcpServerOptions opt_;
+  modbus_t* ctx_ = nullptr;
+  int listen_fd_ = -1;
+  int wake_[2] = {-1, -1};
+  std::atomic<bool> stop_{false};
+  std::mutex done_mu_;
+  std::deque<std::pair<uint64_t, std::vector<uint8_t>>> done_;  // forwarded replies to send
+  int port_ = 0;
+  std::thread thread_;
+  mutable std::mutex mu_;
+  ServerStatus st_;
+};
+
+}  // namespace modbus
+}  // namespace plc_cell

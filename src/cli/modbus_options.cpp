@@ -1,0 +1,38 @@
+// `plc_cell run --modbus-tcp HOST:PORT --modbus-rtu DEVICE[:BAUD[:FORMAT]] --modbus-id N
+//   [--modbus-gateway DEVICE[:BAUD[:FORMAT]] --modbus-gateway-wait MS --modbus-gateway-retries N]`
+#include <memory>
+#include <vector>
+
+#include "args.h"
+#include "plc_cell/modbus/slave_servers.h"
+
+namespace plc_cell {
+namespace cli {
+
+std::vector<std::unique_ptr<Server>> modbus_servers_from_args(Plc& plc, const Args& args) {
+  modbus::SlaveOptions o;
+  o.tcp = args.get("modbus-tcp");
+  o.rtu = args.get("modbus-rtu");
+  o.gateway = args.get("modbus-gateway");
+  if (args.has("modbus-id")) {
+    try {
+      o.id = std::stoi(args.get("modbus-id"));
+    } catch (const std::exception&) {
+      throw UsageError("--modbus-id '" + args.get("modbus-id") + "' is not a number");
+    }
+  }
+  const auto number = [&](const char* name, int* out) {
+    if (!args.has(name)) return;
+    try {
+      *out = std::stoi(args.get(name));
+    } catch (const std::exception&) {
+      throw UsageError(std::string("--") + name + " '" + args.get(name) + "' is not a number");
+    }
+  };
+  number("modbus-gateway-wait", &o.gateway_wait_ms);
+  number("modbus-gateway-retries", &o.gateway_retries);
+  return modbus::make_slave_servers(plc, o);
+}
+
+}  // namespace cli
+}  // namespace plc_cell

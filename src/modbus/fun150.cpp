@@ -1,0 +1,381 @@
+#include "plc_cell/modbus/fun150.h"
+
+#include <atomic>
+#include <cerrno>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <modbus/modbus.h>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/core/interpreter.h"
+#include "plc_cell/core/memory.h"
+#include "plc_cell/io/serial_settings.h"
+
+namespace plc_cell {
+namespace modbus {
+
+using namespace mbus_result;
+
+std::map<int, MbusPort> parse_mbus_ports(const YAML::Node& section) {
+  std::map<int, MbusPort> out;
+  if (!section || !section["ports"]) return out;
+  for (const auto& kv : section["ports"]) {
+    const int n = kv.first.as<int>();
+    if (n < 1 || n > 4) throw Error("modbus.ports: port " + std::to_string(n) + " (FUN150 uses ports 1..4)");
+    MbusPort p;
+    if (kv.second["tcp"]) p.tcp = kv.second["tcp"].as<std::string>();
+    if (kv.second["rtu"]) p.rtu = kv.second["rtu"].as<std::string>();
+    if (p.tcp.empty() == p.rtu.empty()) throw Error("modbus.ports." + std::to_string(n) + ": give one of tcp or rtu");
+    if (!p.rtu.empty()) parse_serial_settings(p.rtu, "8E1");
+    out[n] = p;
+  }
+  return out;
+}
+
+namespace {
+
+// Port interface relays and time-out registers [M:4800-4830].
+constexpr uint32_t kReadyRelay[5] = {0, 1960, 1962, 1936, 1938};
+constexpr uint32_t kFinishedRelay[5] = {0, 1961, 1963, 1937, 1939};
+constexpr uint32_t kTimeoutReg[5] = {0, 4147, 4159, 4045, 4048};
+
+struct Job {
+  int station = 0, fc = 0;
+  uint32_t address = 0, count = 0;
+  std::vector<uint16_t> data;  // write data in, read data out (bits as 0/1)
+  int timeout_ms = 500;
+  int result = kOk;
+};
+
+// One port: a libmodbus context and a thread doing one transaction at a time.
+class PortWorker {
+ public:
+  explicit PortWorker(MbusPort cfg) : cfg_(std::move(cfg)) { thread_ = std::thread([this] { run(); }); }
+  ~PortWorker() {
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+    if (ctx_) modbus_free(ctx_);
+  }
+  bool idle() {
+    std::lock_guard<std::mutex> lk(mu_);
+    return !pending_ && !done_;
+  }
+  void submit(Job j) {
+    std::lock_guard<std::mutex> lk(mu_);
+    job_ = std::move(j);
+    pending_ = true;
+    cv_.notify_all();
+  }
+  bool take(Job* out) {  // the finished job, if any
+    std::lock_guard<std::mutex> lk(mu_);
+    if (!done_) return false;
+    *out = std::move(job_);
+    done_ = false;
+    return true;
+  }
+  void discard() {  // ABT: a result still to come is dropped
+    std::lock_guard<std::mutex> lk(mu_);
+    if (pending_) discard_ = true;
+    done_ = false;
+  }
+
+ private:
+  bool connect() {
+    if (connected_) return true;
+    if (!ctx_) {
+      if (!cfg_.tcp.empty()) {
+        std::string host;
+        int port;
+        parse_host_port(cfg_.tcp, &host, &port);
+        ctx_ = modbus_new_tcp(host.c_str(), port);
+      } else {
+        const SerialSettings s = parse_serial_settings(cfg_.rtu, "8E1");
+        ctx_ = modbus_new_rtu(s.device.c_str(), s.baud, s.parity, s.data_bits, s.stop_bits);
+      }
+      if (!ctx_) return false;
+    }
+    connected_ = modbus_connect(ctx_) == 0;
+    return connected_;
+  }
+
+  void execute(Job& j) {
+    if (!connect()) {
+      j.result = kNoResponse;
+      return;
+    }
+    modbus_set_slave(ctx_, j.station);
+    modbus_set_response_timeout(ctx_, uint32_t(j.timeout_ms / 1000), uint32_t(j.timeout_ms % 1000) * 1000);
+    int rc = -1;
+    const int n = int(j.count);
+    std::vector<uint8_t> bits(j.count);
+    switch (j.fc) {
+      case 1: rc = modbus_read_bits(ctx_, int(j.address), n, bits.data()); break;
+      case 2: rc = modbus_read_input_bits(ctx_, int(j.address), n, bits.data()); break;
+      case 3: rc = modbus_read_registers(ctx_, int(j.address), n, j.data.data()); break;
+      case 4: rc = modbus_read_input_registers(ctx_, int(j.address), n, j.data.data()); break;
+      case 5: rc = modbus_write_bit(ctx_, int(j.address), j.data[0] ? 1 : 0) == 1 ? 1 : -1; break;
+      case 6: rc = modbus_write_register(ctx_, int(j.address), j.data[0]) == 1 ? 1 : -1; break;
+      case 15:
+        for (uint32_t i = 0; i < j.count; ++i) bits[i] = uint8_t(j.data[i] != 0);
+        rc = modbus_write_bits(ctx_, int(j.address), n, bits.data());
+        break;
+      case 16: rc = modbus_write_registers(ctx_, int(j.address), n, j.data.data()); break;
+    }
+    if (j.fc == 1 || j.fc == 2)
+      for (uint32_t i = 0; i < j.count; ++i) j.data[i] = bits[i];
+    const bool broadcast = j.station == 0;
+    if (rc >= 0 || (broadcast && errno == ETIMEDOUT)) {  // broadcast: slaves do not reply
+      j.result = kOk;
+    } else if (errno == ETIMEDOUT) {
+      j.result = kNoResponse;
+      modbus_flush(ctx_);
+    } else {
+      j.result = kCommError;  // bad data or an exception reply
+      if (errno < MODBUS_ENOBASE) {
+        modbus_close(ctx_);
+        connected_ = false;
+      }
+    }
+  }
+
+  void run() {
+    for (;;) {
+      Job j;
+      {
+        std::unique_lock<std::mutex> lk(mu_);
+        cv_.wait(lk, [&] { return stop_ || pending_; });
+        if (stop_) return;
+        j = job_;
+      }
+      execute(j);
+      std::lock_guard<std::mutex> lk(mu_);
+      pending_ = false;
+      if (discard_) {
+        discard_ = false;
+        continue;
+      }
+      job_ = std::move(j);
+      done_ = true;
+    }
+  }
+
+  MbusPort cfg_;
+  modbus_t* ctx_ = nullptr;
+  bool connected_ = false;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  Job job_;
+  bool pending_ = false, done_ = false, discard_ = false, stop_ = false;
+  std::thread thread_;
+};
+
+struct Instance {
+  bool last_en = false;
+  bool running = false;
+  bool in_flight = false;
+  bool error = false;
+  bool done = false;
+  bool started_once = false;
+  int port = 0;
+  uint32_t tx = 0, n_tx = 0;
+};
+
+// One transaction of the table, decoded and checked.
+struct Tx {
+  int station, cmd, len, mtype, mstart, stype;
+  uint32_t sref;
+};
+
+bool master_range(int type, Area* area, uint32_t* max) {
+  switch (type) {
+    case 1: *area = Area::Y; *max = 255; return true;
+    case 2: *area = Area::M; *max = 1911; return true;
+    case 3: *area = Area::S; *max = 999; return true;
+    case 12: *area = Area::R; *max = 3839; return true;
+    case 13: *area = Area::D; *max = 3999; return true;
+    default: return false;
+  }
+}
+
+// Checks a transaction in the manual's order; returns a result code, and the FC.
+int check(const Tx& t, int* fc) {
+  if (t.cmd < 1 || t.cmd > 3) return kCommand;
+  const bool bits = t.mtype >= 1 && t.mtype <= 3;
+  if (t.len < 1 || t.len > (bits ? 255 : 125)) return kLength;
+  Area a;
+  uint32_t max;
+  if (!master_range(t.mtype, &a, &max)) return kDataType;
+  if (t.stype != 0 && t.stype != 1 && t.stype != 3 && t.stype != 4) return kDataType;
+  if (uint32_t(t.mstart) + uint32_t(t.len) - 1 > max || t.sref < 1 || t.sref + uint32_t(t.len) - 1 > 65536)
+    return kReference;
+  const bool sbits = t.stype == 0 || t.stype == 1;
+  if (bits != sbits) return kInconsistent;  // bit types 1~3 with 0x/1x, words 12~13 with 3x/4x (spec §5 item 11)
+  if (t.cmd != 1 && (t.stype == 1 || t.stype == 3)) return kInconsistent;  // inputs cannot be written
+  if (t.station < 0 || t.station > 247 || (t.station == 0 && t.cmd == 1)) return kReference;
+  static const int read_fc[5] = {1, 2, 0, 4, 3};
+  *fc = t.cmd == 1 ? read_fc[t.stype] : t.cmd == 2 ? (sbits ? 15 : 16) : (sbits ? 5 : 6);
+  return kOk;
+}
+
+}  // namespace
+
+class MbusEngine {
+ public:
+  explicit MbusEngine(std::map<int, MbusPort> ports) {
+    for (auto& p : ports) workers_[p.first] = std::make_unique<PortWorker>(p.second);
+  }
+  void exec(ExecContext& c, const BoundOperand* o);
+
+ private:
+  void finish(ExecContext& c, const BoundOperand* o, Instance& s, uint16_t* wr, bool error);
+  std::map<int, std::unique_ptr<PortWorker>> workers_;
+  std::map<int, uint32_t> owner_;  // port -> instance holding it
+  std::map<uint32_t, Instance> inst_;
+};
+
+void MbusEngine::finish(ExecContext& c, const BoundOperand* o, Instance& s, uint16_t* wr, bool error) {
+  s.running = s.in_flight = false;
+  s.done = true;
+  s.error = s.error || error;
+  if (owner_.count(s.port) && owner_[s.port] == c.instance) owner_.erase(s.port);
+  if (s.port >= 1 && s.port <= 4) c.mem.set_bit(Area::M, kFinishedRelay[s.port], true);
+  (void)wr;
+  (void)o;
+}
+
+void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
+  Instance& s = inst_[c.instance];
+  const bool en = c.inputs[0], ascii = c.inputs[1], abort = c.inputs[2];
+  const bool rising = en && !s.last_en;
+  s.last_en = en;
+  const int port = int(c.get(o[0]));
+  const Address sr = o[1].addr, wra = o[2].addr;
+  const uint32_t sr_room = area_size(sr.area) - sr.index, wr_room = area_size(wra.area) - wra.index;
+  if (wr_room < 8) return;  // the parser checked the register; WR needs 8 of them
+  uint16_t* wr = c.mem.words(wra.area) + wra.index;
+  const auto result = [&](int code, uint32_t tx, int station, int fc) {
+    wr[0] = uint16_t(code << 8 | (tx & 0xFF));
+    wr[1] = uint16_t((station & 0xFF) << 8 | (fc & 0xFF));
+  };
+  const auto table = [&](uint32_t k) { return k < sr_room ? c.mem.reg(sr.area, sr.index + k) : uint16_t(0); };
+
+  PortWorker* w = workers_.count(port) ? workers_[port].get() : nullptr;
+  if (port >= 1 && port <= 4) {
+    c.mem.set_bit(Area::M, kFinishedRelay[port], false);  // on for one scan after a pass
+    c.mem.set_bit(Area::M, kReadyRelay[port], !owner_.count(port));
+  }
+
+  if (abort && s.running) {  // release the port at once; a reply still to come is dropped
+    if (w) w->discard();
+    s.running = s.in_flight = false;
+    owner_.erase(s.port);
+  }
+  if (rising && !abort && !s.running) {
+    s.port = port;
+    s.error = s.done = false;
+    if (!w || ascii) {  // no such port configured, or Modbus ASCII (no libmodbus backend)
+      result(kPort, 0, 0, 0);
+      s.error = s.done = true;
+    } else if (owner_.count(port)) {
+      wr[4] |= 0x0001;  // waiting for the port
+      s.last_en = false;  // try again next scan, as if EN rose then
+    } else if (table(0) != 0xA550 || (table(1) >> 8) != 0x07 || (table(1) & 0xFF) == 0 ||
+               2 + 7 * uint32_t(table(1) & 0xFF) > sr_room) {
+      result(kTable, 0, 0, 0);
+      s.error = s.done = true;
+    } else {
+      owner_[port] = c.instance;
+      s.running = true;
+      s.tx = 0;
+      s.n_tx = table(1) & 0xFF;
+      wr[4] &= uint16_t(~0x0001);
+    }
+  }
+
+  if (s.running && w) {
+    Job j;
+    if (s.in_flight && w->take(&j)) {  // apply the finished transaction
+      s.in_flight = false;
+      const uint32_t b = 2 + 7 * s.tx;
+      Area a;
+      uint32_t max;
+      master_range(table(b + 3), &a, &max);
+      const uint32_t mstart = table(b + 4);
+      if (j.result == kOk && (j.fc >= 1 && j.fc <= 4)) {
+        for (uint32_t i = 0; i < j.count; ++i) {
+          if (is_discrete(a)) c.mem.set_bit(a, mstart + i, j.data[i] != 0);
+          else c.mem.set_reg(a, mstart + i, j.data[i]);
+        }
+      }
+      result(j.result, s.tx, j.station, j.fc);
+      if (j.result != kOk) s.error = true;
+      if (++s.tx >= s.n_tx) finish(c, o, s, wr, false);
+    }
+    if (s.running && !s.in_flight) {  // next transaction
+      const uint32_t b = 2 + 7 * s.tx;
+      const Tx t{int(table(b) & 0xFF), int(table(b + 1)), int(table(b + 2)), int(table(b + 3)), int(table(b + 4)),
+                 int(table(b + 5)), table(b + 6)};
+      int fc = 0;
+      const int code = check(t, &fc);
+      if (code != kOk) {
+        result(code, s.tx, t.station, 0);
+        s.error = true;
+        if (++s.tx >= s.n_tx) finish(c, o, s, wr, true);
+      } else {
+        Area a;
+        uint32_t max;
+        master_range(t.mtype, &a, &max);
+        Job nj;
+        nj.station = t.station;
+        nj.fc = fc;
+        nj.address = t.sref - 1;  // references are 1-based (spec §5 item 11)
+        nj.count = (fc == 5 || fc == 6) ? 1 : uint32_t(t.len);
+        nj.data.resize(nj.count);
+        if (fc == 5 || fc == 6 || fc == 15 || fc == 16)  // write data taken now, in this scan
+          for (uint32_t i = 0; i < nj.count; ++i)
+            nj.data[i] = is_discrete(a) ? uint16_t(c.mem.bit(a, uint32_t(t.mstart) + i)) : c.mem.reg(a, uint32_t(t.mstart) + i);
+        const uint16_t to = c.mem.reg(Area::R, kTimeoutReg[port]) & 0xFF;  // low byte, 0.01 s
+        nj.timeout_ms = to ? to * 10 : 500;
+        result(kOk, s.tx, t.station, fc);
+        w->submit(std::move(nj));
+        s.in_flight = true;
+      }
+    }
+  }
+
+  const bool act = s.running;
+  wr[4] = uint16_t((wr[4] & ~0x7000) | (act ? 0x1000 : 0) | (s.done && s.error ? 0x2000 : 0) | (s.done ? 0x4000 : 0));
+  if (s.started_once || s.running) wr[4] |= 0x0010;  // not the first run
+  s.started_once = s.started_once || s.running;
+  c.flag(o[3], act);
+  c.flag(o[4], s.done && s.error);
+  c.flag(o[5], s.done);
+}
+
+std::shared_ptr<MbusEngine> add_fun150(FunctionTable& t, std::map<int, MbusPort> ports) {
+  auto engine = std::make_shared<MbusEngine>(std::move(ports));
+  FunctionSpec s;
+  s.number = 150;
+  s.mnemonic = "MBUS";
+  s.inputs = {"EN", "A/R", "ABT"};
+  using R = OperandRole;
+  s.operands = {{"Pt", R::Const}, {"SR", R::Register}, {"WR", R::Register},
+                {"ACT", R::BitOut, true}, {"ERR", R::BitOut, true}, {"DN", R::BitOut, true}};
+  s.allow_32 = false;
+  s.allow_pulse = false;
+  s.always_runs = true;  // it watches EN rise and ABT while a pass runs
+  MbusEngine* e = engine.get();
+  s.handler = [e](ExecContext& c, const BoundOperand* o) { e->exec(c, o); };
+  t.add(s);
+  return engine;
+}
+
+}  // namespace modbus
+}  // namespace plc_cell

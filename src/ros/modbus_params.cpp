@@ -1,0 +1,29 @@
+// plc_node's Modbus slave parameters: ~modbus_tcp (HOST:PORT), ~modbus_rtu
+// (DEVICE[:BAUD[:FORMAT]], default format 8E1), ~modbus_id, ~modbus_max_connections,
+// ~modbus_idle_timeout (s), ~modbus_gateway (DEVICE[:BAUD[:FORMAT]]: forward other unit ids
+// to RTU), ~modbus_gateway_wait_ms, ~modbus_gateway_retries. Empty strings leave a server off.
+#include <memory>
+#include <vector>
+
+#include <ros/ros.h>
+
+#include "plc_cell/modbus/slave_servers.h"
+
+namespace plc_cell {
+
+std::vector<std::unique_ptr<Server>> modbus_servers_from_params(Plc& plc, ros::NodeHandle& pnh) {
+  modbus::SlaveOptions o;
+  double idle = o.idle_timeout_ms / 1000.0;
+  pnh.param<std::string>("modbus_tcp", o.tcp, "");
+  pnh.param<std::string>("modbus_rtu", o.rtu, "");
+  pnh.param("modbus_id", o.id, o.id);
+  pnh.param("modbus_max_connections", o.max_connections, o.max_connections);
+  pnh.param("modbus_idle_timeout", idle, idle);
+  pnh.param<std::string>("modbus_gateway", o.gateway, "");
+  pnh.param("modbus_gateway_wait_ms", o.gateway_wait_ms, o.gateway_wait_ms);
+  pnh.param("modbus_gateway_retries", o.gateway_retries, o.gateway_retries);
+  o.idle_timeout_ms = int(idle * 1000);
+  return modbus::make_slave_servers(plc, o);
+}
+
+}  // namespace plc_cell

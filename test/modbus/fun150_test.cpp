@@ -1,0 +1,143 @@
+// FUN150 M-BUS: an IL program as Modbus master of a second soft PLC's TCP slave.
+#include <chrono>
+
+#include <gtest/gtest.h>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/core/plc.h"
+#include "plc_cell/modbus/fun150.h"
+#include "plc_cell/modbus/tcp_server.h"
+
+namespace plc_cell {
+namespace modbus {
+namespace {
+
+const char* kProgram =
+    "ORG M100\n"
+    "LD M101\n"
+    "LD M102\n"
+    "FUN 150 Pt=1 SR=R100 WR=R200 ACT=M110 ERR=M111 DN=M112\n"
+    "END\n";
+
+class Fun150 : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    TcpServerOptions o;
+    o.port = 0;
+    server = std::make_unique<TcpServer>(slave, o);
+    server->start();
+    FunctionTable t = FunctionTable::with_core_functions();
+    std::map<int, MbusPort> ports;
+    ports[1].tcp = "127.0.0.1:" + std::to_string(server->bound_port());
+    engine = add_fun150(t, ports);
+    master = std::make_unique<Plc>(std::move(t));
+    master->load_program_text(kProgram, "fun150.il");
+    ASSERT_TRUE(master->set_mode(RunMode::Run));
+  }
+  void TearDown() override {
+    master.reset();
+    engine.reset();
+    server->stop();
+  }
+  void table(const std::vector<uint16_t>& words) {
+    master->locked([&](ScanEngine&, Memory& m) {
+      for (size_t i = 0; i < words.size(); ++i) m.set_reg(Area::R, 100 + uint32_t(i), words[i]);
+      return 0;
+    });
+  }
+  void set_m(uint32_t i, bool v) {
+    master->locked([&](ScanEngine&, Memory& m) { m.set_bit(Area::M, i, v); return 0; });
+  }
+  bool m(uint32_t i) { return master->locked([&](ScanEngine&, Memory& mem) { return mem.bit(Area::M, i); }); }
+  uint16_t r(Plc& p, Area a, uint32_t i) { return p.locked([&](ScanEngine&, Memory& mem) { return mem.reg(a, i); }); }
+  // Scans (the PLC's own work, not a sleep) until DN, bounded by 10 s.
+  bool run_until_done() {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (std::chrono::steady_clock::now() < end) {
+      now_us += 1000;
+      master->scan(now_us);
+      if (m(112)) return true;
+    }
+    return false;
+  }
+
+  Plc slave;
+  std::unique_ptr<TcpServer> server;
+  std::shared_ptr<MbusEngine> engine;
+  std::unique_ptr<Plc> master;
+  uint64_t now_us = 0;
+};
+
+TEST_F(Fun150, ReadsAndWritesASlaveFromTheTable) {
+  slave.locked([](ScanEngine&, Memory& mem) {
+    for (uint32_t i = 0; i < 4; ++i) mem.set_reg(Area::R, 5 + i, uint16_t(11 * (i + 1)));
+    return 0;
+  });
+  master->locked([](ScanEngine&, Memory& mem) {
+    mem.set_bit(Area::M, 20, true);
+    mem.set_bit(Area::M, 22, true);
+    mem.set_reg(Area::D, 0, 777);
+    return 0;
+  });
+  table({0xA550, 0x0703,
+         1, 1, 4, 12, 10, 4, 6,     // read 4 holding registers 400006.. into R10..R13
+         1, 2, 3, 2, 20, 0, 1,      // write M20..M22 to coils 000001.. (Y0..Y2)
+         1, 3, 1, 13, 0, 4, 101});  // write D0 to holding register 400101 (R100)
+  set_m(100, true);
+  ASSERT_TRUE(run_until_done());
+  EXPECT_FALSE(m(111));  // ERR
+  EXPECT_FALSE(m(110));  // ACT
+  for (uint32_t i = 0; i < 4; ++i) EXPECT_EQ(r(*master, Area::R, 10 + i), 11 * (i + 1));
+  EXPECT_TRUE(slave.locked([](ScanEngine&, Memory& mem) {
+    return mem.bit(Area::Y, 0) && !mem.bit(Area::Y, 1) && mem.bit(Area::Y, 2);
+  }));
+  EXPECT_EQ(r(slave, Area::R, 100), 777);
+  EXPECT_EQ(r(*master, Area::R, 200), 0x0002);  // result 0, last transaction no. 2
+  EXPECT_EQ(r(*master, Area::R, 201), 0x0106);  // station 1, FC 06
+  EXPECT_EQ(r(*master, Area::R, 204) & 0x4000, 0x4000);  // WR+4 b14 DN
+}
+
+TEST_F(Fun150, ResultCodes) {
+  // An exception reply (unmapped address on the slave): B, ERR.
+  table({0xA550, 0x0701, 1, 1, 1, 12, 10, 4, 4169});
+  set_m(100, true);
+  ASSERT_TRUE(run_until_done());
+  EXPECT_TRUE(m(111));
+  EXPECT_EQ(r(*master, Area::R, 200) >> 8, mbus_result::kCommError);
+  // A table without A550H: 8.
+  set_m(100, false);
+  now_us += 1000;
+  master->scan(now_us);
+  table({0x1234, 0x0701});
+  set_m(100, true);
+  ASSERT_TRUE(run_until_done());
+  EXPECT_EQ(r(*master, Area::R, 200) >> 8, mbus_result::kTable);
+  // Bit master type with a register slave type: 6; command 4: 3.
+  set_m(100, false);
+  now_us += 1000;
+  master->scan(now_us);
+  table({0xA550, 0x0702, 1, 1, 1, 2, 0, 4, 1, 1, 4, 1, 12, 0, 4, 1});
+  set_m(100, true);
+  ASSERT_TRUE(run_until_done());
+  EXPECT_EQ(r(*master, Area::R, 200), 0x0301);  // the last one: command error, transaction 1
+  EXPECT_TRUE(m(111));
+}
+
+TEST(Fun150Ports, UnconfiguredPortAndYaml) {
+  FunctionTable t = FunctionTable::with_core_functions();
+  auto engine = add_fun150(t, {});
+  Plc plc(std::move(t));
+  plc.load_program_text("ORG M100\nLD M101\nLD M102\nFUN 150 Pt=2 SR=R100 WR=R200 DN=M112\nEND\n", "p.il");
+  ASSERT_TRUE(plc.set_mode(RunMode::Run));
+  plc.locked([](ScanEngine&, Memory& m) { m.set_bit(Area::M, 100, true); return 0; });
+  plc.scan(1000);
+  EXPECT_EQ(plc.locked([](ScanEngine&, Memory& m) { return m.reg(Area::R, 200); }) >> 8, mbus_result::kPort);
+  const auto ports = parse_mbus_ports(YAML::Load("ports: {1: {rtu: /dev/ttyS1:19200}, 3: {tcp: '10.0.0.2:502'}}"));
+  ASSERT_EQ(ports.size(), 2u);
+  EXPECT_EQ(ports.at(1).rtu, "/dev/ttyS1:19200");
+  EXPECT_THROW(parse_mbus_ports(YAML::Load("ports: {5: {tcp: 'a:1'}}")), Error);
+}
+
+}  // namespace
+}  // namespace modbus
+}  // namespace plc_cell
