@@ -20,6 +20,7 @@ static void on_signal(int) { g_stop = 1; }
 int cmd_run(const std::vector<std::string>& argv) {
   std::vector<std::string> options = {"program", "config", "scan", "duration"};
   // @run-options: subsystems append their option names (e.g. "fatek-tcp") here
+  options.insert(options.end(), {"fatek-tcp", "fatek-serial", "station"});
   Args args(argv, options);
   SoftCell cell(args.get("config"), args.get("program"));
   const uint64_t scan = args.has("scan") ? parse_duration_us(args.get("scan")) : cell.config().scan_period_us;
@@ -29,6 +30,7 @@ int cmd_run(const std::vector<std::string>& argv) {
 
   std::vector<std::unique_ptr<Server>> servers;
   // @run-servers: subsystems create their servers from args here (servers.push_back(...))
+  add_fatek_servers(args, cell.plc(), &servers);
   for (auto& s : servers) {
     s->start();
     std::cerr << "plc_cell run: serving " << s->describe() << "\n";

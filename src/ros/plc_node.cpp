@@ -59,6 +59,17 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   });
 
   // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
+  {  // FATEK slave: ~fatek_tcp "HOST:PORT", ~fatek_serial "DEV[:BAUD[:FMT]]" (empty = off), ~fatek_station
+    std::unique_ptr<Server> make_fatek_server(Plc&, const std::string& kind, const std::string& where, int station);
+    std::string fatek_tcp, fatek_serial;
+    int fatek_station = 1;
+    pnh.param<std::string>("fatek_tcp", fatek_tcp, "");
+    pnh.param<std::string>("fatek_serial", fatek_serial, "");
+    pnh.param("fatek_station", fatek_station, fatek_station);
+    if (!fatek_tcp.empty()) servers_.push_back(make_fatek_server(cell_->plc(), "tcp", fatek_tcp, fatek_station));
+    if (!fatek_serial.empty())
+      servers_.push_back(make_fatek_server(cell_->plc(), "serial", fatek_serial, fatek_station));
+  }
   for (auto& s : servers_) {
     s->start();
     ROS_INFO("plc_node: serving %s", s->describe().c_str());
