@@ -5,7 +5,8 @@ add_library(plc_cell_fatek STATIC
   src/fatek/slave.cpp
   src/fatek/serial_port.cpp
   src/fatek/server.cpp
-  src/fatek/client.cpp)
+  src/fatek/client.cpp
+  src/fatek/poll_plan.cpp)
 target_link_libraries(plc_cell_fatek PUBLIC plc_cell_core)
 set_target_properties(plc_cell_fatek PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
@@ -27,4 +28,16 @@ if(CATKIN_ENABLE_TESTING)
   target_include_directories(fatek_fuzz_tests PRIVATE include)
   target_compile_options(fatek_fuzz_tests PRIVATE -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -O1)
   target_link_options(fatek_fuzz_tests PRIVATE -fsanitize=address,undefined)
+endif()
+
+# ---- fatek_bridge: a real FATEK PLC on ROS ----------------------------------------
+add_executable(fatek_bridge src/ros/fatek_bridge_main.cpp src/ros/fatek_bridge.cpp)
+target_include_directories(fatek_bridge PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(fatek_bridge plc_cell_fatek ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES})
+add_dependencies(fatek_bridge ${PROJECT_NAME}_generate_messages_cpp)
+install(TARGETS fatek_bridge RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/fatek/fatek_bridge.test DEPENDENCIES fatek_bridge plc_cell_tool)
 endif()

@@ -5,6 +5,8 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <climits>
+#include <cstdlib>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -30,6 +32,12 @@ speed_t speed_of(int baud) {
     case 921600: return B921600;
     default: return B0;
   }
+}
+
+bool is_pty(const std::string& device) {
+  char buf[PATH_MAX];
+  if (!::realpath(device.c_str(), buf)) return false;
+  return std::strncmp(buf, "/dev/pts/", 9) == 0;
 }
 
 }  // namespace
@@ -61,7 +69,18 @@ int open_serial_port(const SerialSettings& s) {
   t.c_cc[VTIME] = 0;
   cfsetispeed(&t, speed_of(s.baud));
   cfsetospeed(&t, speed_of(s.baud));
-  if (tcsetattr(fd, TCSANOW, &t) != 0) {
+  bool ok = tcsetattr(fd, TCSANOW, &t) == 0;
+  if (!ok && is_pty(s.device)) {
+    // Linux ptys refuse some data-bit/parity changes (EINVAL), depending on their state.
+    // A pty carries bytes unchanged and FATEK is 7-bit ASCII, so 8N1 there is byte-for-byte
+    // what 7E1 is on a real line; all that matters is raw mode without echo.
+    t.c_cflag &= ~tcflag_t(CSIZE | PARENB | PARODD | CSTOPB);
+    t.c_cflag |= CS8;
+    ok = tcsetattr(fd, TCSANOW, &t) == 0;
+    termios now{};
+    if (!ok && tcgetattr(fd, &now) == 0 && !(now.c_lflag & (ICANON | ECHO)) && !(now.c_oflag & OPOST)) ok = true;
+  }
+  if (!ok) {
     const int err = errno;
     ::close(fd);
     throw Error("serial " + name + ": cannot configure: " + std::strerror(err));
