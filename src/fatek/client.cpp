@@ -126,9 +126,13 @@ Client::Client(std::unique_ptr<Transport> t, ClientOptions opt) : t_(std::move(t
 Response Client::once(const Request& req, const std::string& bytes) {
   // Drop anything stale (a late answer to a timed-out request) before asking again.
   char buf[512];
-  if (t_->is_open())
-    while (t_->recv(buf, sizeof buf, 0) > 0) {
-    }
+  try {
+    if (t_->is_open())
+      while (t_->recv(buf, sizeof buf, 0) > 0) {
+      }
+  } catch (const CommError&) {
+    // The peer closed an idle connection: send() below reconnects.
+  }
   dec_.reset();
   const auto t0 = Clock::now();
   t_->send(bytes, opt_.timeout_ms);

@@ -6,7 +6,15 @@ import subprocess
 import sys
 
 import rospy
-import roslib.packages
+
+
+def find_tool():
+    """The plc_cell tool in the devel/install space (rospack's search trips on build/ symlinks)."""
+    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
+        path = os.path.join(prefix, "lib", "plc_cell", "plc_cell")
+        if prefix and os.access(path, os.X_OK):
+            return path
+    raise RuntimeError("plc_cell tool not found on CMAKE_PREFIX_PATH")
 
 
 def main():
@@ -14,17 +22,16 @@ def main():
     d = rospy.get_param("~dir")
     program = rospy.get_param("~program")
     os.makedirs(d, exist_ok=True)
+    tool = find_tool()
     a, b = os.path.join(d, "A"), os.path.join(d, "B")
     socat = subprocess.Popen(["socat", "-d", "-d", "pty,raw,echo=0,link=" + a, "pty,raw,echo=0,link=" + b],
                              stderr=subprocess.PIPE, universal_newlines=True)
     for line in socat.stderr:  # block until both ptys exist
         if "starting data transfer loop" in line:
             break
-    tool = roslib.packages.find_node("plc_cell", "plc_cell")[0]
     run = subprocess.Popen([tool, "run", "--program", program, "--fatek-serial", a + ":115200:7E1",
                             "--station", "1"])
     rospy.loginfo("fixture: socat %s <-> %s, plc_cell run serving %s", a, b, a)
-    rospy.on_shutdown(lambda: None)
     rospy.spin()
     for p in (run, socat):
         p.terminate()

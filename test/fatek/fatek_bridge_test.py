@@ -48,7 +48,7 @@ class FatekBridgeTest(unittest.TestCase):
         for s in ["write", "set_run_mode", "recover"]:
             rospy.wait_for_service(NS + s, timeout=30)
         cls.write = rospy.ServiceProxy(NS + "write", WriteMemory)
-        cls.run = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
+        cls.set_run = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
         cls.recover = rospy.ServiceProxy(NS + "recover", Trigger)
         cls.io = Latest(NS + "io", IoState)
         cls.regs = Latest(NS + "registers/regs", RegisterBlock)
@@ -92,10 +92,10 @@ class FatekBridgeTest(unittest.TestCase):
 
     def test_3_run_stop(self):
         self.assertTrue(self.io.wait_for(lambda m: m.run).run)
-        r = self.run(False)
+        r = self.set_run(False)
         self.assertTrue(r.success, r.message)
         self.assertFalse(self.io.wait_for(lambda m: not m.run).run)
-        r = self.run(True)
+        r = self.set_run(True)
         self.assertTrue(r.success, r.message)
         self.assertTrue(self.io.wait_for(lambda m: m.run).run)
 
