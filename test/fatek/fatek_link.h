@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -39,6 +40,18 @@ inline std::string roundtrip(int fd, const std::string& bytes, int timeout_ms = 
   }
   return "";
 }
+
+// A fresh directory under /tmp, removed with its contents at the end of the scope.
+class TempDir {
+ public:
+  TempDir() {
+    char t[] = "/tmp/fatek_test_XXXXXX";
+    if (!::mkdtemp(t)) throw std::runtime_error("mkdtemp");
+    path = t;
+  }
+  ~TempDir() { (void)!std::system(("rm -rf '" + path + "'").c_str()); }
+  std::string path;
+};
 
 // socat pty pair: a <-> b. Started in the constructor, killed in the destructor.
 class PtyPair {

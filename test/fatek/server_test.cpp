@@ -293,10 +293,9 @@ TEST_F(FatekTcp, ConnectionCountIsBounded) {
 }
 
 TEST(FatekSerial, ClientAndServerOverAPtyPair) {
-  char dir_tmpl[] = "/tmp/fatek_pty_XXXXXX";
-  ASSERT_NE(::mkdtemp(dir_tmpl), nullptr);
+  fatek_test::TempDir dir;
   {
-    fatek_test::PtyPair pty(dir_tmpl);
+    fatek_test::PtyPair pty(dir.path);
     Plc plc;
     plc.load_program_text(kProgram, "t.il");
     SerialServerOptions so;
@@ -334,6 +333,4 @@ TEST(FatekSerial, ClientAndServerOverAPtyPair) {
     EXPECT_EQ(c.read(parse_address("R11"), 1)[0], 2u);
     server.stop();
   }
-  std::string rm = std::string("rm -rf ") + dir_tmpl;
-  ASSERT_EQ(std::system(rm.c_str()), 0);
 }
