@@ -1,5 +1,6 @@
 #include "plc_cell/fatek/client.h"
 
+#include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -36,16 +37,24 @@ class FdTransport : public Transport {
   }
   size_t recv(char* buf, size_t n, int timeout_ms) override {
     if (fd_ < 0) open();
-    if (!wait_readable(fd_, timeout_ms)) return 0;
-    const ssize_t r = ::read(fd_, buf, n);
-    if (r > 0) return size_t(r);
-    if (r < 0 && (errno == EAGAIN || errno == EINTR)) return 0;
-    close();
-    throw CommError(describe() + ": connection closed");
+    // The fd is non-blocking: try first, wait only when nothing is there yet.
+    for (int pass = 0; pass < 2; ++pass) {
+      const ssize_t r = ::read(fd_, buf, n);
+      if (r > 0) return size_t(r);
+      // A socket reads 0 at EOF; a tty with VMIN=0 reads 0 when it has nothing yet.
+      const bool nothing = r == 0 ? !eof_on_zero_ : (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
+      if (!nothing) {
+        close();
+        throw CommError(describe() + ": connection closed");
+      }
+      if (pass == 0 && !wait_readable(fd_, timeout_ms)) return 0;
+    }
+    return 0;
   }
 
  protected:
   int fd_ = -1;
+  bool eof_on_zero_ = true;
 };
 
 class TcpTransport : public FdTransport {
@@ -63,7 +72,7 @@ class TcpTransport : public FdTransport {
     if (getaddrinfo(host_.c_str(), std::to_string(port_).c_str(), &hints, &res) != 0 || !res)
       throw CommError(describe() + ": cannot resolve");
     const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    const int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);
+    const int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);  // blocking connect, then non-blocking I/O
     const int err = errno;
     freeaddrinfo(res);
     if (rc != 0) {
@@ -72,6 +81,7 @@ class TcpTransport : public FdTransport {
     }
     int one = 1;
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
     fd_ = fd;
   }
   std::string describe() const override { return "tcp " + host_ + ":" + std::to_string(port_); }
@@ -83,7 +93,7 @@ class TcpTransport : public FdTransport {
 
 class SerialTransport : public FdTransport {
  public:
-  explicit SerialTransport(SerialSettings s) : s_(std::move(s)) {}
+  explicit SerialTransport(SerialSettings s) : s_(std::move(s)) { eof_on_zero_ = false; }
   ~SerialTransport() override { close(); }
   void open() override {
     close();
@@ -127,12 +137,13 @@ Response Client::once(const Request& req, const std::string& bytes) {
   // Drop anything stale (a late answer to a timed-out request) before asking again.
   char buf[512];
   try {
-    if (t_->is_open())
+    if (stale_ && t_->is_open())
       while (t_->recv(buf, sizeof buf, 0) > 0) {
       }
   } catch (const CommError&) {
     // The peer closed an idle connection: send() below reconnects.
   }
+  stale_ = false;
   dec_.reset();
   const auto t0 = Clock::now();
   t_->send(bytes, opt_.timeout_ms);
@@ -167,6 +178,7 @@ Response Client::transact(Request req) {
                                       ") to command " + cmd_hex(req.cmd));
       return rsp;
     } catch (const CommError&) {
+      stale_ = true;  // a late answer may still arrive: drop it before the next request
       if (attempt >= opt_.retries) throw;
       ++retries_used_;
     }

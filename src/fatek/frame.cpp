@@ -13,15 +13,24 @@ uint8_t lrc(std::string_view bytes) {
   return static_cast<uint8_t>(sum & 0xFF);
 }
 
-int hex_value(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
-}
+namespace {
+struct HexTable {
+  int8_t v[256];
+  constexpr HexTable() : v() {
+    for (int i = 0; i < 256; ++i) v[i] = -1;
+    for (int i = 0; i < 10; ++i) v['0' + i] = int8_t(i);
+    for (int i = 0; i < 6; ++i) v['A' + i] = v['a' + i] = int8_t(10 + i);
+  }
+};
+constexpr HexTable kHexTable;
+}  // namespace
+
+int hex_value(char c) { return kHexTable.v[static_cast<unsigned char>(c)]; }
 
 void append_hex(std::string& out, uint32_t v, int digits) {
-  for (int i = digits - 1; i >= 0; --i) out.push_back(kHex[(v >> (4 * i)) & 0xF]);
+  char buf[8];
+  for (int i = digits - 1; i >= 0; --i, v >>= 4) buf[i] = kHex[v & 0xF];
+  out.append(buf, size_t(digits));
 }
 
 bool parse_hex(std::string_view s, int digits, uint32_t* v) {

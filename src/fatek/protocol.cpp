@@ -377,25 +377,35 @@ ErrorCode parse_request(const Frame& f, Request* r) {
 }
 
 void append_response(std::string& out, const Request& req, const Response& r) {
-  std::string d;
+  // Built in place (no temporary): STX, station, command, data, then the LRC over them.
+  const size_t start = out.size();
+  out.push_back(char(kStx));
+  append_hex(out, r.station, 2);
+  append_hex(out, uint8_t(req.cmd), 2);
   if (req.cmd == Cmd::Loopback && r.error == ErrorCode::Ok) {
-    d = r.text;
+    out += r.text;
   } else {
-    d.push_back(char(r.error));
+    out.push_back(char(r.error));
     if (r.error == ErrorCode::Ok) {
-      for (uint8_t b : r.status) append_hex(d, b, 2);
+      for (uint8_t b : r.status) append_hex(out, b, 2);
       if (req.cmd == Cmd::MixedRead) {
-        for (size_t i = 0; i < r.values.size() && i < req.points.size(); ++i) append_value(d, req.points[i], r.values[i]);
+        for (size_t i = 0; i < r.values.size() && i < req.points.size(); ++i) append_value(out, req.points[i], r.values[i]);
       } else if (is_read(req.cmd)) {
-        for (uint32_t v : r.values) append_value(d, req.start, v);
+        for (uint32_t v : r.values) append_value(out, req.start, v);
       }
     }
   }
-  append_frame(out, r.station, uint8_t(req.cmd), d);
+  if (out.size() - start - 5 > kMaxData) {
+    out.resize(start);
+    throw Error("FATEK response data exceeds 500 chars");
+  }
+  append_hex(out, lrc(std::string_view(out).substr(start)), 2);
+  out.push_back(char(kEtx));
 }
 
 std::string encode_response(const Request& req, const Response& r) {
   std::string out;
+  out.reserve(kMaxFrame);
   append_response(out, req, r);
   return out;
 }

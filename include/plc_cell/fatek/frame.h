@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -43,10 +44,24 @@ class Decoder {
   // Consumes one byte. On Frame, frame() holds the decoded frame until the next push.
   Status push(uint8_t byte);
   // Feeds a buffer; calls on_frame(const Frame&) per good frame and on_error(Fault) per bad one.
+  // Fast path: plain data bytes are copied in runs; STX, ETX and bad bytes go through push().
   template <typename OnFrame, typename OnError>
   void feed(const uint8_t* p, size_t n, OnFrame&& on_frame, OnError&& on_error) {
-    for (size_t i = 0; i < n; ++i) {
-      const Status s = push(p[i]);
+    size_t i = 0;
+    while (i < n) {
+      if (len_ > 0) {
+        // Copy printable bytes (never STX/ETX) while there is room; linear in n.
+        const size_t room = kMaxFrame - 1 - len_;
+        size_t j = i;
+        while (j < n && j - i < room && p[j] >= 0x20 && p[j] <= 0x7E) ++j;
+        if (j > i) {
+          std::memcpy(buf_.data() + len_, p + i, j - i);
+          len_ += j - i;
+          i = j;
+          if (i == n) break;
+        }
+      }
+      const Status s = push(p[i++]);
       if (s == Status::Frame) on_frame(frame_);
       else if (s == Status::Error) on_error(fault_);
     }

@@ -42,7 +42,14 @@ TEST(FatekFuzz, MillionMutatedFramesUnderSanitizers) {
   seeds.push_back(with_frame("014740R00000" + std::string(256, 'F')));
   seeds.push_back(with_frame("014E" + std::string(256, 'Z')));
 
-  Decoder dec;
+  Decoder dec, ref, bulk;
+  std::vector<uint64_t> bulk_frames;
+  bulk_frames.reserve(64);
+  auto fnv = [](const std::string& d) {
+    uint64_t h = 1469598103934665603ull ^ d.size();
+    for (unsigned char c : d) h = (h ^ c) * 1099511628211ull;
+    return h;
+  };
   uint64_t frames = 0, good = 0, parsed_ok = 0, errors = 0;
   std::string stream;
   const uint64_t kFrames = 1000000;
@@ -71,6 +78,23 @@ TEST(FatekFuzz, MillionMutatedFramesUnderSanitizers) {
     }
     if (rnd(8) == 0) f.insert(0, std::string(rnd(20), char(rnd(256))));  // line noise before STX
     ++frames;
+    // The bulk feed() path must see exactly what byte-wise push() sees.
+    bulk_frames.clear();
+    size_t bulk_errors = 0;
+    bulk.feed(reinterpret_cast<const uint8_t*>(f.data()), f.size(),
+              [&](const Frame& fr) { bulk_frames.push_back(fnv(fr.data)); }, [&](Decoder::Fault) { ++bulk_errors; });
+    size_t byte_frames = 0, byte_errors = 0;
+    for (char c : f) {
+      const auto st0 = ref.push(uint8_t(c));
+      if (st0 == Decoder::Status::Error) ++byte_errors;
+      if (st0 == Decoder::Status::Frame) {
+        ASSERT_LT(byte_frames, bulk_frames.size());
+        ASSERT_EQ(fnv(ref.frame().data), bulk_frames[byte_frames]);
+        ++byte_frames;
+      }
+    }
+    ASSERT_EQ(byte_frames, bulk_frames.size());
+    ASSERT_EQ(byte_errors, bulk_errors);
     for (char c : f) {
       const auto st = dec.push(uint8_t(c));
       if (st == Decoder::Status::Error) {
