@@ -6,7 +6,8 @@ add_library(plc_cell_fatek STATIC
   src/fatek/serial_port.cpp
   src/fatek/server.cpp
   src/fatek/client.cpp
-  src/fatek/poll_plan.cpp)
+  src/fatek/poll_plan.cpp
+  src/fatek/clink.cpp)
 target_link_libraries(plc_cell_fatek PUBLIC plc_cell_core)
 set_target_properties(plc_cell_fatek PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
