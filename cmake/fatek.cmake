@@ -54,3 +54,7 @@ if(benchmark_FOUND AND LIBMODBUS_FOUND)
   target_include_directories(bench_fatek PRIVATE ${LIBMODBUS_INCLUDE_DIRS})
   target_link_libraries(bench_fatek plc_cell_fatek benchmark::benchmark ${LIBMODBUS_LIBRARIES})
 endif()
+
+if(CATKIN_ENABLE_TESTING)
+  add_rostest(test/fatek/plc_node_fatek.test DEPENDENCIES fatek_bridge plc_node)
+endif()

@@ -20,7 +20,7 @@ def find_tool():
 def main():
     rospy.init_node("fatek_bridge_fixture")
     d = rospy.get_param("~dir")
-    program = rospy.get_param("~program")
+    program = rospy.get_param("~program", "")  # empty: only the pty pair (plc_node serves A)
     os.makedirs(d, exist_ok=True)
     tool = find_tool()
     a, b = os.path.join(d, "A"), os.path.join(d, "B")
@@ -29,11 +29,13 @@ def main():
     for line in socat.stderr:  # block until both ptys exist
         if "starting data transfer loop" in line:
             break
-    run = subprocess.Popen([tool, "run", "--program", program, "--fatek-serial", a + ":115200:7E1",
-                            "--station", "1"])
-    rospy.loginfo("fixture: socat %s <-> %s, plc_cell run serving %s", a, b, a)
+    procs = [socat]
+    if program:
+        procs.insert(0, subprocess.Popen([tool, "run", "--program", program, "--fatek-serial", a + ":115200:7E1",
+                                          "--station", "1"]))
+    rospy.loginfo("fixture: socat %s <-> %s%s", a, b, ", plc_cell run serving A" if program else "")
     rospy.spin()
-    for p in (run, socat):
+    for p in procs:
         p.terminate()
         try:
             p.wait(timeout=5)
