@@ -1,11 +1,12 @@
 #pragma once
-// FUN151 CLINK mode 0: the PLC as master of a FATEK CPU link, driven by a table in
-// memory (manual ch. 13, spec 3.2). Transactions run on a per-port worker thread so the
-// scan never waits for the line; the instruction polls for completion on later scans.
+// FUN151 CLINK (manual ch. 13, spec 3.2-3.4): MD0 makes the PLC master of a FATEK CPU
+// link driven by a table in memory; MD1 sends (and optionally receives) free-protocol
+// messages; MD2 receives them (and optionally replies). Transactions run on a per-port
+// worker thread so the scan never waits for the line; the instruction polls on later scans.
 //
 //   ORG EN / LD PAU / LD ABT / FUN 151 Pt=1 MD=0 SR=R100 WR=R200 ACT=Y0 ERR=Y1 DN=Y2
 //
-// MD1/MD2 (free protocol) and MD3 (high-speed link) are not implemented: ERR with result 3.
+// MD3 (high-speed link, wire format undocumented) is not implemented: ERR with result 3.
 #include <array>
 #include <memory>
 #include <string>
