@@ -169,6 +169,9 @@ Response Client::once(const Request& req, const std::string& bytes) {
 
 Response Client::transact(Request req) {
   req.station = uint8_t(opt_.station);
+  if (req.station == 0 && req.cmd != Cmd::RunStop && req.cmd != Cmd::Control && req.cmd != Cmd::WriteDiscretes &&
+      req.cmd != Cmd::WriteRegisters && req.cmd != Cmd::MixedWrite)
+    throw Error("station 0 is broadcast: nobody answers command " + cmd_hex(req.cmd) + "; only writes can be broadcast");
   const std::string bytes = encode_request(req);
   for (int attempt = 0;; ++attempt) {
     try {

@@ -217,6 +217,7 @@ TEST_F(FatekTcp, BroadcastExecutesWritesWithoutReply) {
   client->set_station(0);
   client->write(parse_address("R100"), {7});
   client->control(parse_address("Y7"), Action::Set);
+  EXPECT_THROW(client->read(parse_address("R100"), 1), Error);  // a broadcast read has no answer
   client->set_station(1);
   EXPECT_EQ(client->read(parse_address("R100"), 1)[0], 7u);  // same stream: processed in order
   EXPECT_EQ(mem("Y7"), 1u);
