@@ -32,7 +32,7 @@ class FdTransport : public Transport {
     if (fd_ < 0) open();
     if (!write_all(fd_, b.data(), b.size(), timeout_ms)) {
       close();
-      throw CommError(describe() + ": write failed");
+      throw ConnectionClosed(describe() + ": write failed");
     }
   }
   size_t recv(char* buf, size_t n, int timeout_ms) override {
@@ -45,7 +45,7 @@ class FdTransport : public Transport {
       const bool nothing = r == 0 ? !eof_on_zero_ : (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
       if (!nothing) {
         close();
-        throw CommError(describe() + ": connection closed");
+        throw ConnectionClosed(describe() + ": connection closed");
       }
       if (pass == 0 && !wait_readable(fd_, timeout_ms)) return 0;
     }
@@ -173,13 +173,26 @@ Response Client::transact(Request req) {
       req.cmd != Cmd::WriteRegisters && req.cmd != Cmd::MixedWrite)
     throw Error("station 0 is broadcast: nobody answers command " + cmd_hex(req.cmd) + "; only writes can be broadcast");
   const std::string bytes = encode_request(req);
+  bool reconnected = false;
   for (int attempt = 0;; ++attempt) {
+    const bool reused = t_->is_open();
     try {
       Response rsp = once(req, bytes);
       if (rsp.error != ErrorCode::Ok)
         throw PlcError(rsp.error, "PLC error " + std::string(1, char(rsp.error)) + " (" + error_text(rsp.error) +
                                       ") to command " + cmd_hex(req.cmd));
       return rsp;
+    } catch (const ConnectionClosed&) {
+      // A connection the peer had already closed (e.g. its idle time-out): the request never
+      // reached it, so one fresh connection does not count as a retry.
+      if (reused && !reconnected) {
+        reconnected = true;
+        --attempt;
+        continue;
+      }
+      stale_ = true;
+      if (attempt >= opt_.retries) throw;
+      ++retries_used_;
     } catch (const CommError&) {
       stale_ = true;  // a late answer may still arrive: drop it before the next request
       if (attempt >= opt_.retries) throw;

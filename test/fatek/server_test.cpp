@@ -378,3 +378,29 @@ TEST(FatekSerial, EveryLineFormatOpensAndTalks) {
   }
   EXPECT_THROW(open_serial_port(parse_serial_settings(pty.a + ":1234:7E1")), Error);  // no such baud
 }
+
+TEST(FatekTcpIdle, ClientReconnectsAfterTheServerClosedAnIdleConnection) {
+  Plc plc;
+  TcpServerOptions o;
+  o.port = 0;
+  o.idle_timeout_ms = 1;  // the server drops a connection as soon as it is quiet
+  TcpServer s(plc, o);
+  s.start();
+  ClientOptions co;
+  co.timeout_ms = 3000;
+  co.retries = 0;  // no retry needed: the client notices the closed connection itself
+  Client c(tcp_transport("127.0.0.1:" + std::to_string(s.port())), co);
+  EXPECT_EQ(c.loopback("A"), "A");
+  // Block until the server has closed our connection: the socket then reads EOF.
+  Client probe(tcp_transport("127.0.0.1:" + std::to_string(s.port())), co);
+  char buf[8];
+  EXPECT_THROW(
+      {
+        probe.transport().open();
+        while (probe.transport().recv(buf, sizeof buf, 3000) == 0) {
+        }
+      },
+      CommError);
+  // c's connection was idle as long: closed too. The next request still succeeds.
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(c.loopback("B"), "B");
+}

@@ -18,6 +18,11 @@ class CommError : public Error {
  public:
   using Error::Error;
 };
+// The peer closed the connection (or the line went away).
+class ConnectionClosed : public CommError {
+ public:
+  using CommError::CommError;
+};
 // The PLC answered with an error code.
 class PlcError : public Error {
  public:
