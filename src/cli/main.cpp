@@ -20,6 +20,12 @@ const char* kUsage =
     "         run the soft PLC in real time until interrupted\n"
     "  check  --program FILE   parse a program and report every error\n"
     // @usage: subsystems add their commands' usage lines here
+    "  fatek  (--tcp HOST:PORT | --serial DEV[:BAUD[:FMT]]) [--station N] [--timeout MS]\n"
+    "         [--retries N] status|run|stop|read ADDR [COUNT]|write ADDR VALUE...|\n"
+    "         force ADDR on|off|enable|disable|disabled ADDR [COUNT]|loopback TEXT\n"
+    "         talk to a FATEK FBs-PLC (or plc_cell run --fatek-tcp/--fatek-serial)\n"
+    "  run    ... [--fatek-tcp HOST:PORT] [--fatek-serial DEV[:BAUD[:FMT]]] [--station N]\n"
+    "         also serve the FATEK protocol as slave station N (default 1)\n"
 
     "\n"
     "exit status: 0 ok, 1 program/config/runtime error, 2 usage error\n";
@@ -39,6 +45,7 @@ int main(int argc, char** argv) {
     if (cmd == "run") return plc_cell::cli::cmd_run(args);
     if (cmd == "check") return plc_cell::cli::cmd_check(args);
     // @commands: subsystems dispatch their commands here
+    if (cmd == "fatek") return plc_cell::cli::cmd_fatek(args);
     std::cerr << "plc_cell: unknown command '" << cmd << "'\n" << kUsage;
     return 2;
   } catch (const plc_cell::cli::UsageError& e) {

@@ -4,12 +4,13 @@
 #include <vector>
 
 #include "args.h"
+#include "commands.h"
 #include "plc_cell/modbus/slave_servers.h"
 
 namespace plc_cell {
 namespace cli {
 
-std::vector<std::unique_ptr<Server>> modbus_servers_from_args(Plc& plc, const Args& args) {
+void add_modbus_servers(const Args& args, Plc& plc, std::vector<std::unique_ptr<Server>>* servers) {
   modbus::SlaveOptions o;
   o.tcp = args.get("modbus-tcp");
   o.rtu = args.get("modbus-rtu");
@@ -31,7 +32,7 @@ std::vector<std::unique_ptr<Server>> modbus_servers_from_args(Plc& plc, const Ar
   };
   number("modbus-gateway-wait", &o.gateway_wait_ms);
   number("modbus-gateway-retries", &o.gateway_retries);
-  return modbus::make_slave_servers(plc, o);
+  for (auto& s : modbus::make_slave_servers(plc, o)) servers->push_back(std::move(s));
 }
 
 }  // namespace cli

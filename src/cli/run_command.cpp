@@ -20,6 +20,7 @@ static void on_signal(int) { g_stop = 1; }
 int cmd_run(const std::vector<std::string>& argv) {
   std::vector<std::string> options = {"program", "config", "scan", "duration", "rt-priority"};
   // @run-options: subsystems append their option names (e.g. "fatek-tcp") here
+  options.insert(options.end(), {"fatek-tcp", "fatek-serial", "station"});
   options.insert(options.end(), {"modbus-tcp", "modbus-rtu", "modbus-id", "modbus-gateway", "modbus-gateway-wait", "modbus-gateway-retries"});
   Args args(argv, options);
   SoftCell cell(args.get("config"), args.get("program"));
@@ -30,8 +31,8 @@ int cmd_run(const std::vector<std::string>& argv) {
 
   std::vector<std::unique_ptr<Server>> servers;
   // @run-servers: subsystems create their servers from args here (servers.push_back(...))
-  std::vector<std::unique_ptr<Server>> modbus_servers_from_args(Plc&, const Args&);  // modbus_options.cpp
-  for (auto& s : modbus_servers_from_args(cell.plc(), args)) servers.push_back(std::move(s));
+  add_fatek_servers(args, cell.plc(), &servers);
+  add_modbus_servers(args, cell.plc(), &servers);
   for (auto& s : servers) {
     s->start();
     std::cerr << "plc_cell run: serving " << s->describe() << "\n";

@@ -8,10 +8,11 @@
 #include <ros/ros.h>
 
 #include "plc_cell/modbus/slave_servers.h"
+#include "plc_cell/ros/server_params.h"
 
 namespace plc_cell {
 
-std::vector<std::unique_ptr<Server>> modbus_servers_from_params(Plc& plc, ros::NodeHandle& pnh) {
+void add_modbus_servers(Plc& plc, ros::NodeHandle& pnh, ServerList* servers) {
   modbus::SlaveOptions o;
   double idle = o.idle_timeout_ms / 1000.0;
   pnh.param<std::string>("modbus_tcp", o.tcp, "");
@@ -23,7 +24,7 @@ std::vector<std::unique_ptr<Server>> modbus_servers_from_params(Plc& plc, ros::N
   pnh.param("modbus_gateway_wait_ms", o.gateway_wait_ms, o.gateway_wait_ms);
   pnh.param("modbus_gateway_retries", o.gateway_retries, o.gateway_retries);
   o.idle_timeout_ms = int(idle * 1000);
-  return modbus::make_slave_servers(plc, o);
+  for (auto& s : modbus::make_slave_servers(plc, o)) servers->push_back(std::move(s));
 }
 
 }  // namespace plc_cell

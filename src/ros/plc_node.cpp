@@ -4,6 +4,7 @@
 
 #include "plc_cell/IoState.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/ros/server_params.h"
 
 namespace plc_cell {
 
@@ -62,8 +63,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   });
 
   // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
-  std::vector<std::unique_ptr<Server>> modbus_servers_from_params(Plc&, ros::NodeHandle&);  // modbus_params.cpp
-  for (auto& s : modbus_servers_from_params(cell_->plc(), pnh)) servers_.push_back(std::move(s));
+  add_fatek_servers(cell_->plc(), pnh, &servers_);
+  add_modbus_servers(cell_->plc(), pnh, &servers_);
   for (auto& s : servers_) {
     s->start();
     ROS_INFO("plc_node: serving %s", s->describe().c_str());

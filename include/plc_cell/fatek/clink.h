@@ -1,0 +1,49 @@
+#pragma once
+// FUN151 CLINK (manual ch. 13, spec 3.2-3.4): MD0 makes the PLC master of a FATEK CPU
+// link driven by a table in memory; MD1 sends (and optionally receives) free-protocol
+// messages; MD2 receives them (and optionally replies). Transactions run on a per-port
+// worker thread so the scan never waits for the line; the instruction polls on later scans.
+//
+//   ORG EN / LD PAU / LD ABT / FUN 151 Pt=1 MD=0 SR=R100 WR=R200 ACT=Y0 ERR=Y1 DN=Y2
+//
+// MD3 (high-speed link, wire format undocumented) is not implemented: ERR with result 3.
+#include <array>
+#include <memory>
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+#include "plc_cell/core/function_table.h"
+#include "plc_cell/fatek/client.h"
+
+namespace plc_cell {
+namespace fatek {
+
+// Result codes of WR+0 high byte (manual ch. 13).
+enum class ClinkResult : uint8_t {
+  Ok = 0, Length = 2, Command = 3, DataType = 4, Reference = 5, Inconsistent = 6, Timeout = 0xA, BadData = 0xB
+};
+
+// Ports 1..4 of the master PLC, each a FATEK line to its slaves.
+class ClinkPorts {
+ public:
+  ClinkPorts();
+  ~ClinkPorts();
+  // The cell YAML's `fatek:` section: `ports: {1: "/dev/ttyS1:9600:7E1", 2: "tcp:HOST:PORT"}`,
+  // optional `timeout_ms` (default 500, the FBs R4147 default of 50 x 0.01 s).
+  static std::shared_ptr<ClinkPorts> from_yaml(const YAML::Node& fatek_section);
+  void set_port(int n, std::unique_ptr<Transport> t, int timeout_ms = 500);
+  bool has(int n) const;
+
+  struct Port;
+  Port* port(int n);
+
+ private:
+  std::array<std::unique_ptr<Port>, 5> ports_;
+};
+
+// Registers FUN151 CLINK (inputs EN, PAU, ABT; operands Pt, MD, SR, WR, ACT, ERR, DN).
+void add_clink_function(FunctionTable& t, std::shared_ptr<ClinkPorts> ports);
+
+}  // namespace fatek
+}  // namespace plc_cell

@@ -1,0 +1,92 @@
+#pragma once
+// FATEK slave servers over TCP and serial, each on one poll() thread. A client that sends
+// garbage or stalls only loses its own connection; it never holds up the others.
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "plc_cell/core/plc.h"
+#include "plc_cell/fatek/slave.h"
+#include "plc_cell/io/serial_settings.h"
+#include "plc_cell/io/server.h"
+
+namespace plc_cell {
+namespace fatek {
+
+struct TcpServerOptions {
+  std::string host = "127.0.0.1";
+  int port = 500;                 // FATEK Ethernet default; 0 picks a free port (tests)
+  int station = 1;
+  int max_connections = 8;        // as the FATEK Ethernet module
+  int idle_timeout_ms = 60000;    // a silent connection is closed
+  int frame_timeout_ms = 1000;    // a frame not finished in time is dropped
+  size_t max_pending_output = 64 * 1024;  // a client that does not read is dropped
+};
+
+class TcpServer : public Server {
+ public:
+  TcpServer(Plc& plc, TcpServerOptions opt);
+  ~TcpServer() override;
+  void start() override;
+  void stop() override;
+  std::string describe() const override;
+  ServerStatus status() const override;
+  int port() const { return bound_port_; }  // the real port after start()
+
+ private:
+  void loop();
+  Plc& plc_;
+  TcpServerOptions opt_;
+  Slave slave_;
+  int listen_fd_ = -1;
+  int wake_[2] = {-1, -1};
+  int bound_port_ = 0;
+  std::thread thread_;
+  std::atomic<bool> running_{false};
+  std::atomic<uint64_t> connections_{0};
+  std::atomic<uint64_t> framing_errors_{0};
+  mutable std::mutex err_mu_;
+  std::string last_error_;
+};
+
+struct SerialServerOptions {
+  SerialSettings line;
+  int station = 1;
+  int frame_timeout_ms = 500;  // inter-byte gap that drops an unfinished frame
+};
+
+class SerialServer : public Server {
+ public:
+  SerialServer(Plc& plc, SerialServerOptions opt);
+  ~SerialServer() override;
+  void start() override;
+  void stop() override;
+  std::string describe() const override;
+  ServerStatus status() const override;
+
+ private:
+  void loop();
+  Plc& plc_;
+  SerialServerOptions opt_;
+  Slave slave_;
+  int fd_ = -1;
+  int wake_[2] = {-1, -1};
+  std::thread thread_;
+  std::atomic<bool> running_{false};
+  std::atomic<uint64_t> framing_errors_{0};
+  mutable std::mutex err_mu_;
+  std::string last_error_;
+};
+
+// Builders for `plc_cell run` and plc_node: "HOST:PORT" and "DEVICE[:BAUD[:FORMAT]]".
+std::unique_ptr<Server> make_tcp_server(Plc& plc, const std::string& host_port, int station);
+std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_spec, int station);
+
+}  // namespace fatek
+
+// kind "tcp" or "serial"; for plc_node, which declares it at its @node-servers anchor.
+std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station);
+
+}  // namespace plc_cell

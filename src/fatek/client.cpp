@@ -1,0 +1,325 @@
+#include "plc_cell/fatek/client.h"
+
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+#include "plc_cell/fatek/serial_port.h"
+
+namespace plc_cell {
+namespace fatek {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class FdTransport : public Transport {
+ public:
+  void close() override {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+  bool is_open() const override { return fd_ >= 0; }
+  void send(const std::string& b, int timeout_ms) override {
+    if (fd_ < 0) open();
+    if (!write_all(fd_, b.data(), b.size(), timeout_ms)) {
+      close();
+      throw ConnectionClosed(describe() + ": write failed");
+    }
+  }
+  size_t recv(char* buf, size_t n, int timeout_ms) override {
+    if (fd_ < 0) open();
+    // The fd is non-blocking: try first, wait only when nothing is there yet.
+    for (int pass = 0; pass < 2; ++pass) {
+      const ssize_t r = ::read(fd_, buf, n);
+      if (r > 0) return size_t(r);
+      // A socket reads 0 at EOF; a tty with VMIN=0 reads 0 when it has nothing yet.
+      const bool nothing = r == 0 ? !eof_on_zero_ : (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
+      if (!nothing) {
+        close();
+        throw ConnectionClosed(describe() + ": connection closed");
+      }
+      if (pass == 0 && !wait_readable(fd_, timeout_ms)) return 0;
+    }
+    return 0;
+  }
+
+ protected:
+  int fd_ = -1;
+  bool eof_on_zero_ = true;
+};
+
+class TcpTransport : public FdTransport {
+ public:
+  explicit TcpTransport(const std::string& hp) {
+    parse_host_port(hp, &host_, &port_);
+    if (host_.empty()) host_ = "127.0.0.1";
+  }
+  ~TcpTransport() override { close(); }
+  void open() override {
+    close();
+    addrinfo hints{}, *res = nullptr;
+    hints.ai_family = AF_INET;
+    hints.ai_socktype = SOCK_STREAM;
+    if (getaddrinfo(host_.c_str(), std::to_string(port_).c_str(), &hints, &res) != 0 || !res)
+      throw CommError(describe() + ": cannot resolve");
+    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    const int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);  // blocking connect, then non-blocking I/O
+    const int err = errno;
+    freeaddrinfo(res);
+    if (rc != 0) {
+      ::close(fd);
+      throw CommError(describe() + ": cannot connect: " + std::strerror(err));
+    }
+    int one = 1;
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
+    fd_ = fd;
+  }
+  std::string describe() const override { return "tcp " + host_ + ":" + std::to_string(port_); }
+
+ private:
+  std::string host_;
+  int port_ = 500;
+};
+
+class SerialTransport : public FdTransport {
+ public:
+  explicit SerialTransport(SerialSettings s) : s_(std::move(s)) { eof_on_zero_ = false; }
+  ~SerialTransport() override { close(); }
+  void open() override {
+    close();
+    try {
+      fd_ = open_serial_port(s_);
+    } catch (const CommError&) {
+      throw;
+    } catch (const Error& e) {
+      throw CommError(e.what());
+    }
+  }
+  std::string describe() const override { return "serial " + s_.to_string(); }
+
+ private:
+  SerialSettings s_;
+};
+
+std::string cmd_hex(Cmd c) {
+  char b[4];
+  std::snprintf(b, sizeof b, "%02X", unsigned(c));
+  return b;
+}
+
+}  // namespace
+
+std::unique_ptr<Transport> tcp_transport(const std::string& host_port) {
+  return std::make_unique<TcpTransport>(host_port);
+}
+std::unique_ptr<Transport> serial_transport(const SerialSettings& line) {
+  return std::make_unique<SerialTransport>(line);
+}
+
+uint32_t max_block(const Address& start) {
+  if (start.width == Width::Bit) return kMaxDiscretes;
+  return start.width == Width::Word ? kMaxWords : kMaxDWords;
+}
+
+Client::Client(std::unique_ptr<Transport> t, ClientOptions opt) : t_(std::move(t)), opt_(opt) {}
+
+Response Client::once(const Request& req, const std::string& bytes) {
+  // Drop anything stale (a late answer to a timed-out request) before asking again.
+  char buf[512];
+  try {
+    if (stale_ && t_->is_open())
+      while (t_->recv(buf, sizeof buf, 0) > 0) {
+      }
+  } catch (const CommError&) {
+    // The peer closed an idle connection: send() below reconnects.
+  }
+  stale_ = false;
+  dec_.reset();
+  const auto t0 = Clock::now();
+  t_->send(bytes, opt_.timeout_ms);
+  if (req.station == 0) return Response{};  // broadcast: nobody answers
+  const auto deadline = t0 + std::chrono::milliseconds(opt_.timeout_ms);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    if (left <= 0) break;
+    const size_t n = t_->recv(buf, sizeof buf, int(left));
+    for (size_t i = 0; i < n; ++i) {
+      if (dec_.push(uint8_t(buf[i])) != Decoder::Status::Frame) continue;
+      Response rsp;
+      std::string why;
+      if (dec_.frame().station != req.station && req.station != 0) continue;  // another slave's
+      if (!parse_response(req, dec_.frame(), &rsp, &why)) throw CommError("bad answer to command " + cmd_hex(req.cmd) + ": " + why);
+      last_latency_us_ = uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - t0).count());
+      return rsp;
+    }
+  }
+  throw CommError(t_->describe() + ": no answer to command " + cmd_hex(req.cmd) + " within " +
+                  std::to_string(opt_.timeout_ms) + " ms");
+}
+
+Response Client::transact(Request req) {
+  req.station = uint8_t(opt_.station);
+  if (req.station == 0 && req.cmd != Cmd::RunStop && req.cmd != Cmd::Control && req.cmd != Cmd::WriteDiscretes &&
+      req.cmd != Cmd::WriteRegisters && req.cmd != Cmd::MixedWrite)
+    throw Error("station 0 is broadcast: nobody answers command " + cmd_hex(req.cmd) + "; only writes can be broadcast");
+  const std::string bytes = encode_request(req);
+  bool reconnected = false;
+  for (int attempt = 0;; ++attempt) {
+    const bool reused = t_->is_open();
+    try {
+      Response rsp = once(req, bytes);
+      if (rsp.error != ErrorCode::Ok)
+        throw PlcError(rsp.error, "PLC error " + std::string(1, char(rsp.error)) + " (" + error_text(rsp.error) +
+                                      ") to command " + cmd_hex(req.cmd));
+      return rsp;
+    } catch (const ConnectionClosed&) {
+      // A connection the peer had already closed (e.g. its idle time-out): the request never
+      // reached it, so one fresh connection does not count as a retry.
+      if (reused && !reconnected) {
+        reconnected = true;
+        --attempt;
+        continue;
+      }
+      stale_ = true;
+      if (attempt >= opt_.retries) throw;
+      ++retries_used_;
+    } catch (const CommError&) {
+      stale_ = true;  // a late answer may still arrive: drop it before the next request
+      if (attempt >= opt_.retries) throw;
+      ++retries_used_;
+    }
+  }
+}
+
+static PlcStatus to_status(const Response& r) {
+  PlcStatus s;
+  s.bytes = r.status;
+  s.status1 = r.status.empty() ? 0 : r.status[0];
+  s.run = s.status1 & 1;
+  return s;
+}
+
+PlcStatus Client::status() {
+  Request r;
+  r.cmd = Cmd::GistStatus;
+  return to_status(transact(r));
+}
+
+PlcStatus Client::detailed_status() {
+  Request r;
+  r.cmd = Cmd::DetailedStatus;
+  return to_status(transact(r));
+}
+
+void Client::set_run(bool run) {
+  Request r;
+  r.cmd = Cmd::RunStop;
+  r.run = run;
+  transact(r);
+}
+
+void Client::control(const Address& point, Action a) {
+  Request r;
+  r.cmd = Cmd::Control;
+  r.start = point;
+  r.action = a;
+  transact(r);
+}
+
+std::vector<bool> Client::read_disabled(const Address& start, uint32_t count) {
+  if (start.width != Width::Bit) throw Error("read_disabled needs a discrete address");
+  check_span(start, count);
+  std::vector<bool> out;
+  for (uint32_t done = 0; done < count;) {
+    Request r;
+    r.cmd = Cmd::ReadEnable;
+    r.start = offset_address(start, done);
+    r.count = std::min(count - done, kMaxDiscretes);
+    for (uint32_t v : transact(r).values) out.push_back(v != 0);
+    done += r.count;
+  }
+  return out;
+}
+
+std::vector<uint32_t> Client::read(const Address& start, uint32_t count) {
+  check_span(start, count);
+  std::vector<uint32_t> out;
+  out.reserve(count);
+  for (uint32_t done = 0; done < count;) {
+    Request r;
+    r.cmd = start.width == Width::Bit ? Cmd::ReadDiscretes : Cmd::ReadRegisters;
+    r.start = offset_address(start, done);
+    r.count = std::min(count - done, max_block(start));
+    const Response rsp = transact(r);
+    out.insert(out.end(), rsp.values.begin(), rsp.values.end());
+    done += r.count;
+  }
+  return out;
+}
+
+void Client::write(const Address& start, const std::vector<uint32_t>& values) {
+  const uint32_t count = uint32_t(values.size());
+  check_span(start, count);
+  for (uint32_t done = 0; done < count;) {
+    Request r;
+    r.cmd = start.width == Width::Bit ? Cmd::WriteDiscretes : Cmd::WriteRegisters;
+    r.start = offset_address(start, done);
+    r.count = std::min(count - done, max_block(start));
+    r.values.assign(values.begin() + done, values.begin() + done + r.count);
+    transact(r);
+    done += r.count;
+  }
+}
+
+std::vector<uint32_t> Client::read_mixed(const std::vector<Address>& points) {
+  std::vector<uint32_t> out;
+  size_t i = 0;
+  while (i < points.size()) {
+    Request r;
+    r.cmd = Cmd::MixedRead;
+    uint32_t w = 0;
+    while (i < points.size() && w + weight(points[i]) <= kMaxMixedReadWeight) {
+      w += weight(points[i]);
+      r.points.push_back(points[i++]);
+    }
+    const Response rsp = transact(r);
+    out.insert(out.end(), rsp.values.begin(), rsp.values.end());
+  }
+  return out;
+}
+
+void Client::write_mixed(const std::vector<Address>& points, const std::vector<uint32_t>& values) {
+  if (points.size() != values.size()) throw Error("write_mixed: points and values differ in number");
+  size_t i = 0;
+  while (i < points.size()) {
+    Request r;
+    r.cmd = Cmd::MixedWrite;
+    uint32_t w = 0;
+    while (i < points.size() && w + weight(points[i]) <= kMaxMixedWriteWeight) {
+      w += weight(points[i]);
+      r.values.push_back(values[i]);
+      r.points.push_back(points[i++]);
+    }
+    transact(r);
+  }
+}
+
+std::string Client::loopback(const std::string& text) {
+  Request r;
+  r.cmd = Cmd::Loopback;
+  r.text = text;
+  return transact(r).text;
+}
+
+}  // namespace fatek
+}  // namespace plc_cell

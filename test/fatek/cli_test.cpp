@@ -1,0 +1,111 @@
+// `plc_cell fatek` against `plc_cell run --fatek-tcp`: output and exit status.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+namespace {
+
+struct Result {
+  int status;
+  std::string out;
+};
+
+Result sh(const std::string& cmd) {
+  Result r{0, ""};
+  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
+  std::array<char, 512> buf;
+  while (fgets(buf.data(), int(buf.size()), p)) r.out += buf.data();
+  const int st = ::pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+// `plc_cell run` serving FATEK on a free port; the port is read back from its log line.
+class RunServer {
+ public:
+  RunServer() {
+    int pipe_fd[2];
+    if (::pipe(pipe_fd) != 0) throw std::runtime_error("pipe");
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(pipe_fd[1], 2);
+      ::close(pipe_fd[0]);
+      const std::string prog = std::string(PLC_CELL_SOURCE_DIR) + "/test/fatek/bridge_cell.il";
+      ::execl(PLC_CELL_TOOL, PLC_CELL_TOOL, "run", "--program", prog.c_str(), "--fatek-tcp", "127.0.0.1:0",
+              "--station", "2", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    ::close(pipe_fd[1]);
+    fd_ = pipe_fd[0];
+    std::string log;
+    char c;
+    // Blocks until "serving FATEK TCP 127.0.0.1:PORT station 2" appears.
+    while (::read(fd_, &c, 1) == 1) {
+      log.push_back(c);
+      const auto k = log.find("FATEK TCP 127.0.0.1:");
+      if (k != std::string::npos && log.find(" station", k) != std::string::npos) {
+        port = std::stoi(log.substr(k + 20));
+        break;
+      }
+    }
+    if (!port) throw std::runtime_error("plc_cell run did not start: " + log);
+  }
+  ~RunServer() {
+    ::kill(pid_, SIGTERM);
+    ::waitpid(pid_, nullptr, 0);
+    ::close(fd_);
+  }
+  std::string fatek(const std::string& args) const {
+    return std::string(PLC_CELL_TOOL) + " fatek --tcp 127.0.0.1:" + std::to_string(port) + " --station 2 " + args;
+  }
+  int port = 0;
+
+ private:
+  pid_t pid_ = -1;
+  int fd_ = -1;
+};
+
+}  // namespace
+
+TEST(FatekCli, TalksToPlcCellRun) {
+  RunServer s;
+  Result r = sh(s.fatek("status"));
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("RUN"), std::string::npos) << r.out;
+  r = sh(s.fatek("write R11 5 0x7"));
+  EXPECT_EQ(r.status, 0) << r.out;
+  r = sh(s.fatek("read R11 2"));
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("R11      5 (0x0005"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("R12      7 (0x0007"), std::string::npos) << r.out;
+  r = sh(s.fatek("force Y9 disable"));
+  EXPECT_EQ(r.status, 0) << r.out;
+  r = sh(s.fatek("disabled Y8 2"));
+  EXPECT_NE(r.out.find("Y9       disabled"), std::string::npos) << r.out;
+  r = sh(s.fatek("loopback HELLO"));
+  EXPECT_EQ(r.out, "HELLO\n");
+  r = sh(s.fatek("stop"));
+  EXPECT_EQ(r.status, 0) << r.out;
+  r = sh(s.fatek("status"));
+  EXPECT_NE(r.out.find("STOP"), std::string::npos) << r.out;
+  r = sh(s.fatek("run"));
+  EXPECT_EQ(r.status, 0) << r.out;
+}
+
+TEST(FatekCli, ErrorsGiveNonZeroStatus) {
+  RunServer s;
+  Result r = sh(s.fatek("read R8000 100"));  // past R8071: refused before sending
+  EXPECT_EQ(r.status, 1) << r.out;
+  r = sh(s.fatek("frobnicate"));
+  EXPECT_EQ(r.status, 2) << r.out;
+  r = sh(std::string(PLC_CELL_TOOL) + " fatek --tcp 127.0.0.1:" + std::to_string(s.port) +
+         " --station 9 --timeout 100 --retries 0 status");  // nobody answers station 9
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("no answer"), std::string::npos) << r.out;
+}

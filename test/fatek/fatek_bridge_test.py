@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""rostest: fatek_bridge publishes what the soft PLC holds, and its services change it."""
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray
+from std_msgs.msg import Bool
+from std_srvs.srv import SetBool, Trigger
+
+from plc_cell.msg import IoState, RegisterBlock
+from plc_cell.srv import WriteMemory
+
+NS = "/fatek_bridge/"
+TIMEOUT = 20.0
+
+
+class Latest(object):
+    """Keeps the latest message of a topic; a test blocks until a condition holds on it."""
+
+    def __init__(self, topic, msg_type):
+        self.msg = None
+        self.cond = threading.Condition()
+        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
+
+    def _cb(self, msg):
+        with self.cond:
+            self.msg = msg
+            self.cond.notify_all()
+
+    def wait_for(self, pred, timeout=TIMEOUT):
+        deadline = time.monotonic() + timeout
+        with self.cond:
+            while self.msg is None or not pred(self.msg):
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    return self.msg
+                self.cond.wait(left)
+            return self.msg
+
+
+class FatekBridgeTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("fatek_bridge_test", anonymous=True)
+        for s in ["write", "set_run_mode", "recover"]:
+            rospy.wait_for_service(NS + s, timeout=30)
+        cls.write = rospy.ServiceProxy(NS + "write", WriteMemory)
+        cls.set_run = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
+        cls.recover = rospy.ServiceProxy(NS + "recover", Trigger)
+        cls.io = Latest(NS + "io", IoState)
+        cls.regs = Latest(NS + "registers/regs", RegisterBlock)
+        cls.motor = Latest(NS + "signals/motor", Bool)
+        cls.diag = Latest("/diagnostics", DiagnosticArray)
+
+    def write_ok(self, address, values):
+        # The bridge may still be connecting: retry until the write goes through.
+        deadline = time.monotonic() + TIMEOUT
+        while True:
+            r = self.write(address, values)
+            if r.success or time.monotonic() > deadline:
+                return r
+            self.io.wait_for(lambda m: True, timeout=1.0)
+
+    def test_1_registers_follow_the_plc(self):
+        m = self.regs.wait_for(lambda m: len(m.values) == 5)
+        self.assertIsNotNone(m)
+        self.assertEqual(m.name, "regs")
+        self.assertEqual(m.address, "R10:3,D0,R20")
+        r = self.write_ok("R11", [5, 7])  # R11 = 5, R12 = 7 -> the program computes R10 = 12
+        self.assertTrue(r.success, r.message)
+        m = self.regs.wait_for(lambda m: list(m.values[:3]) == [12, 5, 7])
+        self.assertEqual(list(m.values[:3]), [12, 5, 7])
+        r = self.write_ok("R20", [4242])  # the program copies R20 to D0
+        self.assertTrue(r.success, r.message)
+        m = self.regs.wait_for(lambda m: m.values[3] == 4242 and m.values[4] == 4242)
+        self.assertEqual(list(m.values[3:]), [4242, 4242])
+
+    def test_2_io_image_and_signals(self):
+        r = self.write_ok("start", [1])  # X0 by its signal name; the program drives Y0
+        self.assertTrue(r.success, r.message)
+        m = self.io.wait_for(lambda m: m.x[0] and m.y[0])
+        self.assertTrue(m.x[0])
+        self.assertTrue(m.y[0])
+        self.assertEqual(len(m.x), 256)
+        self.assertTrue(self.motor.wait_for(lambda m: m.data).data)
+        r = self.write_ok("X0", [0])
+        self.assertTrue(r.success, r.message)
+        self.assertFalse(self.motor.wait_for(lambda m: not m.data).data)
+
+    def test_3_run_stop(self):
+        self.assertTrue(self.io.wait_for(lambda m: m.run).run)
+        r = self.set_run(False)
+        self.assertTrue(r.success, r.message)
+        self.assertFalse(self.io.wait_for(lambda m: not m.run).run)
+        r = self.set_run(True)
+        self.assertTrue(r.success, r.message)
+        self.assertTrue(self.io.wait_for(lambda m: m.run).run)
+
+    def test_4_bad_write_is_reported(self):
+        r = self.write("R9000", [1])
+        self.assertFalse(r.success)
+        self.assertIn("R9000", r.message)
+
+    def test_5_diagnostics_and_recover(self):
+        def connected(m):
+            return any(s.name.endswith("link") and s.level == 0 for s in m.status)
+        self.assertTrue(connected(self.diag.wait_for(connected)))
+        self.assertTrue(self.recover().success)
+        stamp = rospy.Time.now()
+        m = self.regs.wait_for(lambda m: m.header.stamp > stamp)
+        self.assertGreater(m.header.stamp, stamp)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("plc_cell", "fatek_bridge_test", FatekBridgeTest)
