@@ -1,6 +1,7 @@
 #include "plc_cell/sim/soft_cell.h"
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/hsc/hsc_unit.h"
 
 namespace plc_cell {
 
@@ -15,10 +16,13 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
     e.add_hook(sim_.get());
     return 0;
   });
+  const YAML::Node& doc = config_.document;
+  hsc_ = std::make_unique<hsc::HscUnit>(plc_, hsc::parse_hsc_config(doc["counters"], config_.file));
   plc_.load_program_file(program_path_);
 }
 
 SoftCell::~SoftCell() {
+  hsc_.reset();
   plc_.locked([&](ScanEngine& e, Memory&) {
     e.remove_hook(sim_.get());
     return 0;
