@@ -79,11 +79,10 @@ class Parse {
   }
 
   bool boolean(const YAML::Node& n, const std::string& key) const {
-    try {
-      return n.as<bool>();
-    } catch (const YAML::Exception&) {
-      fail(n, key, "expected true or false");
-    }
+    const std::string s = str(n, key);
+    if (s == "1" || s == "true" || s == "on") return true;
+    if (s == "0" || s == "false" || s == "off") return false;
+    fail(n, key, "expected 0/1 or true/false");
   }
 
   // "X5" -> 5; only X0-X15 carry high-speed functions.
@@ -140,7 +139,7 @@ void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
     if (t == "timer") {
       if (!hard) p.fail(c["type"], key + ".type", "only HSC0-HSC3 can be high-speed timers (HST0-HST3)");
       d.used = d.timer = true;
-      if (c["name"] == nullptr) d.name = "hst" + std::to_string(n);
+      if (!c["name"]) d.name = "hst" + std::to_string(n);
       for (const char* k : {"mode", "a", "b", "mask", "clear", "invert"})
         if (c[k]) p.fail(c[k], key + "." + k, "a high-speed timer takes no further items");
       return;
