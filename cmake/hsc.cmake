@@ -21,3 +21,11 @@ if(benchmark_FOUND AND EXISTS ${PROJECT_SOURCE_DIR}/bench/hsc_bench.cpp)
   add_executable(bench_hsc bench/hsc_bench.cpp)
   target_link_libraries(bench_hsc plc_cell_core benchmark::benchmark)
 endif()
+
+# The counters on ROS topics and services (plc_node).
+list(APPEND PLC_CELL_NODE_SOURCES src/ros/counter_topics.cpp)
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/counters.test DEPENDENCIES plc_node)
+endif()

@@ -475,6 +475,16 @@ void HscUnit::set_source_rate(const std::string& name, double hz) {
   s->set_rate(cur_ns_, hz);
 }
 
+void HscUnit::preset(int n, int64_t value) {
+  Counter& c = counters_[n];
+  if (c.def.timer) {
+    c.t_cv0 = static_cast<uint32_t>(value);
+    c.t_base = cur_ns_;
+  } else {
+    set_cv(c, static_cast<uint32_t>(value));
+  }
+}
+
 int64_t HscUnit::count(int n) const {
   const Counter& c = counters_[n];
   if (c.def.timer) return hst_cv(c, cur_ns_);

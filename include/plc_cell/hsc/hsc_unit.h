@@ -57,6 +57,7 @@ class HscUnit : public ScanHook {
   void schedule_edge(int x, uint64_t t_ns, bool level);  // an exact-time switch edge
   PulseSource* source(const std::string& name);
   void set_source_rate(const std::string& name, double hz);  // from the last processed instant
+  void preset(int n, int64_t value);  // sets the CV now (chip, register or timer); 0 clears
   int64_t count(int n) const;       // CV now: chip (HHSC), register (SHSC), timer value (HST)
   double frequency(int n) const;    // counts/s over the configured window
   const HscConfig& config() const { return cfg_; }
