@@ -27,7 +27,12 @@ CounterTopics::CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell
     const std::string base = "counters/" + names_[i];
     one_pubs_.push_back(pnh.advertise<Counter>(base, 10));
     services_.push_back(pnh.advertiseService<PresetCounter::Request, PresetCounter::Response>(
-        base + "/preset", [this, n](PresetCounter::Request& req, PresetCounter::Response& res) {
+        base + "/preset", [this, n, i](PresetCounter::Request& req, PresetCounter::Response& res) {
+          if (!req.name.empty() && req.name != names_[i]) {
+            res.success = false;
+            res.message = "this service presets " + names_[i] + ", not " + req.name;
+            return true;
+          }
           cell_.plc().locked([&](ScanEngine&, Memory&) {
             cell_.counters().preset(n, req.value);
             return 0;
