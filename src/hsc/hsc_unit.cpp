@@ -271,8 +271,13 @@ void HscUnit::advance(uint64_t to) {
       t = std::min(t, pin_edge[e]);
     }
     if (!edges_.empty()) t = std::min(t, std::max(edges_.top().t, cur_ns_));
+    for (const auto& tr : trains_) {
+      bool up;
+      t = std::min(t, tr.next_after(cur_ns_, &up));
+    }
 
     advance_counters(t);
+    const uint64_t prev = cur_ns_;
     cur_ns_ = t;
     fired_.clear();
     for (auto& c : counters_)
@@ -282,6 +287,10 @@ void HscUnit::advance(uint64_t to) {
     for (int e = 0; e < 32; ++e)
       if (pin_edge[e] == t) fired_.push_back(kX0Up + e);
     std::vector<std::pair<int, bool>> group;
+    for (const auto& tr : trains_) {
+      bool up;
+      if (tr.next_after(prev, &up) == t) group.push_back({tr.x, up});
+    }
     while (!edges_.empty() && edges_.top().t <= t) {
       group.push_back({edges_.top().x, edges_.top().level});
       edges_.pop();
@@ -341,6 +350,32 @@ void HscUnit::raise(int source) {
 }
 
 void HscUnit::schedule_edge(int x, uint64_t t_ns, bool level) { edges_.push({t_ns, edge_seq_++, x, level}); }
+
+void HscUnit::add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint64_t delay_ns) {
+  if (x < 0 || x > 15 || pin_src_[x]) throw Error("X" + std::to_string(x) + ": no pulse train here");
+  if (period_ns == 0 || width_ns == 0) return;  // never on
+  if (width_ns >= period_ns) {
+    schedule_edge(x, delay_ns, true);  // on for good
+    return;
+  }
+  trains_.push_back({x, period_ns, width_ns, delay_ns});
+}
+
+// First edge strictly after t: rising at delay + k*period, falling width later.
+uint64_t HscUnit::Train::next_after(uint64_t t, bool* rising) const {
+  if (t < delay) {
+    *rising = true;
+    return delay;
+  }
+  const uint64_t k = (t - delay) / period;
+  const uint64_t r = delay + k * period;
+  if (r + width > t) {
+    *rising = false;
+    return r + width;
+  }
+  *rising = true;
+  return r + period;
+}
 
 // ---- scan hooks ------------------------------------------------------------------
 

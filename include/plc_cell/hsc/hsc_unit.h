@@ -55,7 +55,12 @@ class HscUnit : public ScanHook {
 
   // ---- simulation and observation (hold the Plc lock) ----
   void schedule_edge(int x, uint64_t t_ns, bool level);  // an exact-time switch edge
+  // A periodic switch on X0-X15 (the cell YAML's simulation pulse): on for width of
+  // every period from delay, as exact edges (one event per edge: for fast signals
+  // use a PulseSource, whose edges cost nothing).
+  void add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint64_t delay_ns);
   PulseSource* source(const std::string& name);
+  bool source_on(int x) const { return x >= 0 && x < 16 && pin_src_[x] != nullptr; }
   void set_source_rate(const std::string& name, double hz);  // from the last processed instant
   void preset(int n, int64_t value);  // sets the CV now (chip, register or timer); 0 clears
   int64_t count(int n) const;       // CV now: chip (HHSC), register (SHSC), timer value (HST)
@@ -127,7 +132,13 @@ class HscUnit : public ScanHook {
   std::array<int, 16> pin_phase_{};
   std::array<bool, 16> term_{};              // explicit terminal levels
   std::array<Counter, 8> counters_;
+  struct Train {
+    int x;
+    uint64_t period, width, delay;
+    uint64_t next_after(uint64_t t, bool* rising) const;
+  };
   std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> edges_;
+  std::vector<Train> trains_;
   uint64_t edge_seq_ = 0;
   InterruptController irq_;
   const void* bound_code_ = nullptr;
