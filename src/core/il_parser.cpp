@@ -507,6 +507,10 @@ class Parser {
       ok = false;
     }
     if (!ok) return;
+    if (spec->check) {
+      const std::string why = spec->check(ops);
+      if (!why.empty()) return error(at.column, name + ": " + why);
+    }
     if (!output_ok(toks[0], static_cast<int>(spec->inputs.size()))) return;
     Instruction& in = emit(Op::Fun, toks[0]);
     in.fun = spec->number;

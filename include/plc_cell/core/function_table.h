@@ -53,6 +53,9 @@ struct FunctionSpec {
   bool allow_pulse = true;
   bool always_runs = false;  // called with EN off too (instructions that track their input)
   FunctionHandler handler;
+  // Optional parse-time check of the operands (in spec order); a non-empty answer
+  // is reported as an error at the instruction.
+  std::function<std::string(const std::vector<Operand>&)> check;
 };
 
 class FunctionTable {
