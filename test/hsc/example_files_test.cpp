@@ -94,6 +94,15 @@ TEST(ExampleFiles, MultiZone) {
     EXPECT_EQ(c[1].t_ns, ends_ms[z] * kMs) << "Y" << 8 + z;
     start = ends_ms[z] * kMs;
   }
+  const int64_t ends[8] = {1000, 1500, 2500, 3000, 4200, 5000, 6000, 7000};
+  std::vector<Example::Isr> zone_isrs;
+  for (const auto& i : e.isrs)
+    if (i.source == kHsc0I + 1) zone_isrs.push_back(i);
+  ASSERT_EQ(zone_isrs.size(), 8u);
+  for (size_t k = 0; k < 8; ++k) {
+    EXPECT_EQ(zone_isrs[k].cv1, ends[k]);
+    EXPECT_EQ(zone_isrs[k].t_ns, ends_ms[k] * kMs);
+  }
   // X3 at 2 s resets HSC1: 0.5 s later it holds 2000.
   EXPECT_EQ(e.get("DR4100"), 1996u);  // read by the scan at 2.499 s
   EXPECT_EQ(e.isrs.back().source, x_edge_source(3, false));

@@ -16,8 +16,8 @@ struct Pins {
   bool a = false, b = false;
 };
 
-// CV change for the transition before -> after. dir is the direction (R) used by
-// P/R modes when R is not a counted pin: the R input or the software relay.
+// CV change for the transition before -> after. In P/R modes b is the direction R
+// (the R input, or the software relay when there is none): R = 1 counts down.
 // Simultaneous U and D rising edges cancel (MD0). An A/B transition that changes
 // both phases at once is illegal and counts 0 (AMBIG-5; docs/counters-and-interrupts.md).
 int count_delta(Mode m, Pins before, Pins after);

@@ -39,6 +39,8 @@ class InterruptController {
   // run(source, label) executes the routine; returns false on a runtime fault.
   using Runner = std::function<bool(int source, const std::string& label)>;
 
+  InterruptController();  // table priorities, everything enabled
+
   // Which routines the program has (and under which label), from its labels.
   void bind(const Program& program);
   bool present(int s) const { return !label_[s].empty(); }
@@ -72,8 +74,6 @@ class InterruptController {
   std::array<int, kMaxNesting> running_{};  // priorities of the running routines
   int depth_ = 0;
   bool failed_ = false;
- public:
-  InterruptController();
 };
 
 }  // namespace hsc
