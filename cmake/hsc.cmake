@@ -13,7 +13,10 @@ if(CATKIN_ENABLE_TESTING)
   file(GLOB HSC_TESTS test/hsc/*_test.cpp)
   catkin_add_gtest(hsc_tests test/core/test_main.cpp ${HSC_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(hsc_tests plc_cell_core)
-  target_compile_definitions(hsc_tests PRIVATE PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  target_compile_definitions(hsc_tests PRIVATE
+    PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+  add_dependencies(hsc_tests plc_cell_tool)
 endif()
 
 find_package(benchmark QUIET)
