@@ -113,6 +113,30 @@ TEST(Control, CellYamlPulseSignalsAreExactEdges) {
   EXPECT_EQ(cell.plc().locked([&](ScanEngine&, Memory&) { return cell.counters().count(4); }), 100);
 }
 
+TEST(Control, DoubleEdgeModesAndCountingInputInversion) {
+  // MD1 (U/D x2) and MD3 (P/R x2, R = relay M1942 on: down) on a 1 kHz generator.
+  for (int mode : {1, 3}) {
+    HscCell cell("counters:\n  hsc0: {mode: MD" + std::to_string(mode) +
+                     "}\n  sources:\n    - {name: gen, a: X0, hz: 1000}\n",
+                 "ORG M1925\nOUT M1942\nEND\n");
+    cell.run(1000000);
+    cell.run(1);  // t = 1 s
+    EXPECT_EQ(cell.with([](HscUnit& u) { return u.count(0); }), mode == 1 ? 2000 : -2000) << mode;  // relay latched at t = 0, first edge at 0.5 ms
+  }
+  // Inverted counting input: MD0 counts the falling edges of the raw signal.
+  HscCell inv("counters:\n  hsc0: {mode: MD0, invert: [count]}\n", "ORG M1925\nOUT M0\nEND\n");
+  inv.with([](HscUnit& u) {
+    u.schedule_edge(0, 1 * kMs, true);   // raw rise: inverted fall, no count
+    u.schedule_edge(0, 2 * kMs, false);  // raw fall: counted
+    u.schedule_edge(0, 3 * kMs, true);
+    return 0;
+  });
+  inv.run(2500);
+  EXPECT_EQ(inv.with([](HscUnit& u) { return u.count(0); }), 1);
+  inv.run(1000);
+  EXPECT_EQ(inv.with([](HscUnit& u) { return u.count(0); }), 1);
+}
+
 }  // namespace
 }  // namespace hsc
 }  // namespace plc_cell
