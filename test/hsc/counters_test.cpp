@@ -1,6 +1,8 @@
 // Counters against hand-made edge sequences and analytic encoders, in virtual time.
 #include "hsc_fixture.h"
 
+#include <cmath>
+
 namespace plc_cell {
 namespace hsc {
 namespace {
@@ -112,6 +114,24 @@ TEST(Counters, CountsStayExactAt460kHzWithCoarseScans) {
   cell.run(1, 1);  // one scan at exactly 3 s
   EXPECT_EQ(cell.with([](HscUnit& u) { return u.count(0); }), 5520000);
   EXPECT_DOUBLE_EQ(cell.with([](HscUnit& u) { return u.frequency(0); }), 1840000.0);
+}
+
+TEST(Counters, AnalyticCountForAnyFrequencyAndScanPeriod) {
+  // A/B x4 counts = floor(4 * f * t) exactly, whatever the scan period.
+  const double freqs[] = {1.0, 7.5, 999.999, 33333.333, 123456.789, 459999.999, 460000.0};
+  const uint64_t periods_us[] = {1000, 3700, 10000};
+  for (double f : freqs) {
+    for (uint64_t p : periods_us) {
+      HscCell cell("counters:\n  hsc0: {mode: MD7}\n  sources:\n    - {name: enc, type: encoder, a: X0, hz: " +
+                       std::to_string(f) + "}\n",
+                   kIdle);
+      cell.run(1300000, p);
+      const uint64_t last_ns = (cell.now_us - p) * 1000;
+      const int64_t f_mhz = std::llround(f * 1000);
+      const int64_t expect = static_cast<int64_t>((__int128(4) * f_mhz * last_ns) / 1000000000000ll);
+      EXPECT_EQ(cell.with([](HscUnit& u) { return u.count(0); }), expect) << f << " Hz, scan " << p << " us";
+    }
+  }
 }
 
 }  // namespace
