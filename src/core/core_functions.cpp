@@ -224,6 +224,7 @@ FunctionTable FunctionTable::with_core_functions() {
     };
     t.add(s);
   }
+  run_installers(t);
   return t;
 }
 

@@ -240,6 +240,11 @@ class Parser {
 
   bool value_operand(const Token& t, bool is32, OperandRole role, uint8_t span, Operand* o) {
     int64_t k;
+    if (role == OperandRole::Label) {  // a name; the function checks it when it runs
+      o->kind = Operand::Kind::Const;
+      o->text = upper(t.text);
+      return true;
+    }
     if (parse_constant(t.text, &k)) {
       if (role != OperandRole::Source && role != OperandRole::Const) {
         error(t.column, "'" + t.text + "' is a constant; this operand must be an address");
@@ -502,6 +507,10 @@ class Parser {
       ok = false;
     }
     if (!ok) return;
+    if (spec->check) {
+      const std::string why = spec->check(ops);
+      if (!why.empty()) return error(at.column, name + ": " + why);
+    }
     if (!output_ok(toks[0], static_cast<int>(spec->inputs.size()))) return;
     Instruction& in = emit(Op::Fun, toks[0]);
     in.fun = spec->number;

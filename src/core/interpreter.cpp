@@ -78,6 +78,7 @@ static BoundOperand bind_operand(Memory& mem, const Operand& o) {
   b.k = o.k;
   b.addr = o.addr;
   b.present = o.present;
+  b.text = o.text;
   if (!o.present || o.kind == Operand::Kind::Const) return b;
   if (is_discrete(o.addr.area)) {
     b.b = mem.bits(o.addr.area) + o.addr.index;

@@ -48,6 +48,9 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   services_.push_back(pnh.advertiseService("force", &PlcNode::on_force, this));
   services_.push_back(pnh.advertiseService("set_run_mode", &PlcNode::on_run, this));
   services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
+  double counter_rate = 0;  // 0: the cell's counters.publish_rate
+  pnh.param("counter_rate", counter_rate, counter_rate);
+  counters_ = std::make_unique<CounterTopics>(nh, pnh, *cell_, counter_rate);
 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);

@@ -1,6 +1,7 @@
 #include "plc_cell/sim/soft_cell.h"
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/hsc/hsc_unit.h"
 
 namespace plc_cell {
 
@@ -15,10 +16,27 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
     e.add_hook(sim_.get());
     return 0;
   });
+  const YAML::Node& doc = config_.document;
+  hsc_ = std::make_unique<hsc::HscUnit>(plc_, hsc::parse_hsc_config(doc["counters"], config_.file));
+  // Pulse and step signals on the high-speed inputs X0-X15 become exact-time edges,
+  // so counters and edge interrupts see every pulse, not the scan's samples.
+  plc_.locked([&](ScanEngine&, Memory&) {
+    for (const auto& d : config_.sim_inputs) {
+      if (d.x > 15 || d.kind == SimInputDef::Kind::Follow || hsc_->source_on(static_cast<int>(d.x))) continue;
+      sim_->release(d.x);
+      if (d.kind == SimInputDef::Kind::Steps) {
+        for (const auto& st : d.steps) hsc_->schedule_edge(static_cast<int>(d.x), st.first * 1000, st.second);
+      } else {
+        hsc_->add_pulse_train(static_cast<int>(d.x), d.period_us * 1000, d.width_us * 1000, d.delay_us * 1000);
+      }
+    }
+    return 0;
+  });
   plc_.load_program_file(program_path_);
 }
 
 SoftCell::~SoftCell() {
+  hsc_.reset();
   plc_.locked([&](ScanEngine& e, Memory&) {
     e.remove_hook(sim_.get());
     return 0;

@@ -21,6 +21,7 @@ enum class OperandRole : uint8_t {
   BitIn,    // a discrete read
   Const,    // a constant only
   Register, // a register base address (tables, working areas); no constant
+  Label,    // a name such as an interrupt label (FUN145 EN X0+I); kept as upper-case text
 };
 
 struct OperandSpec {
@@ -38,6 +39,7 @@ struct BoundOperand {
   uint8_t* b = nullptr;
   Address addr{};
   bool present = false;
+  std::string text;  // OperandRole::Label: the name as written, upper case
 };
 
 using FunctionHandler = std::function<void(ExecContext&, const BoundOperand* ops)>;
@@ -51,12 +53,19 @@ struct FunctionSpec {
   bool allow_pulse = true;
   bool always_runs = false;  // called with EN off too (instructions that track their input)
   FunctionHandler handler;
+  // Optional parse-time check of the operands (in spec order); a non-empty answer
+  // is reported as an error at the instruction.
+  std::function<std::string(const std::vector<Operand>&)> check;
 };
 
 class FunctionTable {
  public:
-  // A table with the core functions already registered.
+  // A table with the core functions and every installed subsystem's functions.
   static FunctionTable with_core_functions();
+  // Subsystems (counters, motion, ...) add their FUNs through an installer that
+  // with_core_functions() runs; register it from a static initialiser or at start-up.
+  static void add_installer(void (*install)(FunctionTable&));
+  static void run_installers(FunctionTable& t);  // what with_core_functions() ends with
 
   void add(FunctionSpec spec);  // throws if the number or mnemonic is taken
   const FunctionSpec* find(uint16_t number) const;

@@ -29,6 +29,7 @@ struct Operand {
   Address addr{};  // for the others
   std::string name;  // the operand name it was given for (S, D, EQ, ...)
   bool present = true;  // optional operands may be absent
+  std::string text;     // a Label operand's name (upper case)
 };
 
 struct Instruction {

@@ -61,6 +61,9 @@ class ScanEngine {
 
   void add_hook(ScanHook* h) { hooks_.push_back(h); }
   void remove_hook(ScanHook* h);
+  const std::vector<ScanHook*>& hooks() const { return hooks_; }
+  // A subsystem's runtime fault (an interrupt routine that failed): STOP with this reason.
+  void stop_with_fault(const std::string& why) { fault_stop(why); }
 
  private:
   void update_special_relays();

@@ -10,6 +10,10 @@
 
 namespace plc_cell {
 
+namespace hsc {
+class HscUnit;
+}
+
 class SoftCell {
  public:
   // config_path may be empty (no signals, no simulation); program_path overrides the
@@ -21,6 +25,9 @@ class SoftCell {
   // Only touch it under plc().locked(): the scan calls into it.
   SimulatedCell& simulation() { return *sim_; }
   const CellConfig& config() const { return config_; }
+  // High-speed counters, timers and interrupts (the config's counters: section).
+  // Only touch it under plc().locked().
+  hsc::HscUnit& counters() { return *hsc_; }
   const std::string& program_path() const { return program_path_; }
 
  private:
@@ -28,6 +35,7 @@ class SoftCell {
   std::string program_path_;
   Plc plc_;
   std::unique_ptr<SimulatedCell> sim_;
+  std::unique_ptr<hsc::HscUnit> hsc_;  // after sim_: its hook sees the simulated inputs
 };
 
 }  // namespace plc_cell

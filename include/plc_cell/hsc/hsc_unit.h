@@ -1,0 +1,159 @@
+#pragma once
+// High-speed counters HSC0-HSC7, high-speed timers HSTA/HST0-HST3 and the
+// interrupt system of one soft PLC, as a scan hook.
+//
+// Event model (docs/counters-and-interrupts.md): between two scans the unit
+// advances virtual time (ns) from event to event. Events are CV=PV matches,
+// timer expiries, time-base ticks, scheduled input edges and edges of the analytic
+// pulse sources on interrupt inputs; each is found in O(1) from the sources'
+// exact positions, so the cost per scan does not depend on the input frequency.
+// At each event the ISRs run at the event's instant, with arbitration, pre-emption
+// and nesting by priority. The next issue's pulse-output axes add their own event
+// times (PSOnI) the same way: next_event() + fire().
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <queue>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/scan_engine.h"
+#include "plc_cell/hsc/hsc_config.h"
+#include "plc_cell/hsc/interrupts.h"
+#include "plc_cell/hsc/pulse_source.h"
+
+namespace plc_cell {
+
+class Plc;
+
+namespace hsc {
+
+class HscUnit : public ScanHook {
+ public:
+  // Installs itself as a hook of plc's engine; throws Error if the config does not fit.
+  HscUnit(Plc& plc, HscConfig cfg);
+  ~HscUnit() override;
+  HscUnit(const HscUnit&) = delete;
+  HscUnit& operator=(const HscUnit&) = delete;
+
+  // The unit installed on an engine (what the FUNs use), or null.
+  static HscUnit* of(ScanEngine* engine);
+
+  void before_inputs(uint64_t now_us) override;
+  void after_program(uint64_t now_us) override;
+  void on_stop() override;
+
+  // ---- instructions (called from the interpreter, lock held) ----
+  void read_chip(int cn);               // FUN92 HSCTR
+  void write_chip(int cn, bool pv);     // FUN93 HSCTW: D=0 CV, D=1 PV
+  bool set_enabled(const std::string& label, bool on);  // FUN145 EN / FUN146 DIS
+  void immediate_io(const Address& first, uint32_t n);   // FUN74 IMDIO
+  void raise(int source);               // an interrupt request from a subsystem (PSO axes)
+
+  // ---- simulation and observation (hold the Plc lock) ----
+  void schedule_edge(int x, uint64_t t_ns, bool level);  // an exact-time switch edge
+  // A periodic switch on X0-X15 (the cell YAML's simulation pulse): on for width of
+  // every period from delay, as exact edges (one event per edge: for fast signals
+  // use a PulseSource, whose edges cost nothing).
+  void add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint64_t delay_ns);
+  PulseSource* source(const std::string& name);
+  bool source_on(int x) const { return x >= 0 && x < 16 && pin_src_[x] != nullptr; }
+  void set_source_rate(const std::string& name, double hz);  // from the last processed instant
+  void preset(int n, int64_t value);  // sets the CV now (chip, register or timer); 0 clears
+  int64_t count(int n) const;       // CV now: chip (HHSC), register (SHSC), timer value (HST)
+  double frequency(int n) const;    // counts/s over the configured window
+  const HscConfig& config() const { return cfg_; }
+  uint64_t now_ns() const { return cur_ns_; }
+  InterruptController& interrupts() { return irq_; }
+
+  using OutputObserver = std::function<void(uint64_t t_ns, uint32_t y, bool level)>;
+  using IsrObserver = std::function<void(uint64_t t_ns, int source)>;
+  void on_output(OutputObserver f) { output_obs_.push_back(std::move(f)); }
+  void on_isr(IsrObserver f) { isr_obs_.push_back(std::move(f)); }
+
+ private:
+  static constexpr uint64_t kNever = UINT64_MAX;
+  static constexpr uint64_t kTick = 100000;  // 0.1 ms in ns
+
+  struct Counter {
+    int n = 0;
+    CounterDef def;
+    uint32_t cv = 0, pv = 0;  // chip registers (HHSC); SHSC keeps them in R memory
+    bool sw_mask = false, sw_clear = false, sw_dir = false;
+    PulseSource* src = nullptr;  // drives one or both counting inputs
+    int phase[2] = {-1, -1};     // which phase of src drives a, b (0 = A, 1 = B)
+    int64_t q = 0;               // src quarter at cur_ns_
+    int64_t total = 0;           // net counts, for the frequency
+    std::deque<std::pair<uint64_t, int64_t>> hist;
+    uint32_t t_cv0 = 0;          // HST: CV at t_base
+    uint64_t t_base = 0;
+  };
+  struct Edge {
+    uint64_t t;
+    uint64_t seq;
+    int x;
+    bool level;
+    bool operator>(const Edge& o) const { return t != o.t ? t > o.t : seq > o.seq; }
+  };
+
+  void start(uint64_t t_ns);
+  void advance(uint64_t to_ns);
+  void advance_counters(uint64_t t);
+  void apply_edge(int x, bool level);
+  void fire_pending();
+  bool run_isr(int source);
+  void refresh_outputs(uint32_t first, uint32_t n);
+
+  bool term(int x, uint64_t t) const;     // terminal level of X0-X15
+  bool counting(const Counter& c) const;  // not masked, not cleared, enabled
+  bool cleared(const Counter& c) const;
+  Pins pins_at(const Counter& c, int64_t q) const;
+  void weights(const Counter& c, std::array<int, 4>* seq) const;  // of the next 4 boundaries
+  uint64_t next_match(const Counter& c) const;
+  uint32_t get_cv(const Counter& c) const;
+  uint32_t get_pv(const Counter& c) const;
+  void set_cv(Counter& c, uint32_t v);
+  void add_count(Counter& c, int64_t d, bool check);
+  uint32_t hst_cv(const Counter& c, uint64_t t) const;
+  uint64_t hst_match(const Counter& c) const;
+  uint64_t hsta_next() const;
+  int active_time_base() const;
+  uint64_t next_pin_edge(int x, bool rising) const;
+
+  ScanEngine& engine_;
+  Memory& mem_;
+  Plc& plc_;
+  HscConfig cfg_;
+  std::vector<std::unique_ptr<PulseSource>> sources_;
+  std::array<PulseSource*, 16> pin_src_{};  // analytic driver of each X0-X15
+  std::array<int, 16> pin_phase_{};
+  std::array<bool, 16> term_{};              // explicit terminal levels
+  std::array<Counter, 8> counters_;
+  struct Train {
+    int x;
+    uint64_t period, width, delay;
+    uint64_t next_after(uint64_t t, bool* rising) const;
+  };
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> edges_;
+  std::vector<Train> trains_;
+  uint64_t edge_seq_ = 0;
+  InterruptController irq_;
+  const void* bound_code_ = nullptr;
+  size_t bound_size_ = 0;
+  bool running_ = false;
+  uint64_t cur_ns_ = 0;
+  uint64_t run_ns_ = 0;      // when RUN started: the time bases count from here
+  uint16_t hsta_pv_ = 0;
+  uint32_t hsta_cv0_ = 0;
+  uint64_t hsta_t0_ = 0;
+  std::vector<bool> phys_y_ = std::vector<bool>(256, false);
+  std::vector<int> fired_;   // sources requested at the present instant
+  std::vector<OutputObserver> output_obs_;
+  std::vector<IsrObserver> isr_obs_;
+};
+
+}  // namespace hsc
+}  // namespace plc_cell

@@ -1,0 +1,33 @@
+#pragma once
+// The cell's high-speed counters on ROS: ~counters (CounterArray, all counters),
+// ~counters/<name> (Counter, one per configured counter), ~counters/<name>/preset
+// (PresetCounter), ~counters/<name>/clear (std_srvs/Trigger) and, per simulated
+// pulse source, ~sources/<name>/rate (std_msgs/Float64, periods per second).
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+
+#include "plc_cell/sim/soft_cell.h"
+
+namespace plc_cell {
+
+class CounterTopics {
+ public:
+  // rate_hz <= 0: the config's counters.publish_rate.
+  CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz);
+
+ private:
+  void publish();
+
+  SoftCell& cell_;
+  std::vector<int> numbers_;  // configured counters, in order
+  std::vector<std::string> names_;
+  ros::Publisher all_pub_;
+  std::vector<ros::Publisher> one_pubs_;
+  std::vector<ros::ServiceServer> services_;
+  std::vector<ros::Subscriber> subs_;
+  ros::Timer timer_;
+};
+
+}  // namespace plc_cell

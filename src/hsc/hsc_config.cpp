@@ -1,0 +1,296 @@
+#include "plc_cell/hsc/hsc_config.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "plc_cell/config/cell_config.h"
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+namespace hsc {
+
+const HhscPins& hhsc_pins(int n) {
+  static const HhscPins pins[4] = {{{0}, 1, 2, 3}, {{4, 1}, 5, 6, 7}, {{8, 4, 5}, 9, 10, 11}, {{12, 5}, 13, 14, 15}};
+  return pins[n];
+}
+uint32_t mask_relay(int n) {
+  static const uint32_t m[8] = {1940, 1946, 1976, 1979, 1982, 1984, 1986, 1988};
+  return m[n];
+}
+int clear_relay(int n) {
+  static const int m[8] = {1941, 1947, 1977, 1980, -1, -1, -1, -1};
+  return m[n];
+}
+uint32_t dir_relay(int n) {
+  static const uint32_t m[8] = {1942, 1948, 1978, 1981, 1983, 1985, 1987, 1989};
+  return m[n];
+}
+
+namespace {
+
+class Parse {
+ public:
+  explicit Parse(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
+    const YAML::Mark m = n.Mark();
+    throw SourceError::at(file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
+                          "key '" + key + "': " + msg);
+  }
+  static int line(const YAML::Node& n) { return n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
+
+  void only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {
+    if (!map.IsMap()) fail(map, key, "expected a mapping");
+    for (const auto& kv : map) {
+      const std::string k = kv.first.as<std::string>();
+      if (!allowed.count(k)) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(kv.first, key + "." + k, "unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  std::string str(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) fail(n, key, "expected a single value");
+    return n.as<std::string>();
+  }
+
+  double number(const YAML::Node& n, const std::string& key, double lo, double hi) const {
+    double v = 0;
+    try {
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(n, key, "expected a number");
+    }
+    if (!(v >= lo && v <= hi)) fail(n, key, "value " + n.as<std::string>() + " out of range");
+    return v;
+  }
+
+  uint64_t duration_us(const YAML::Node& n, const std::string& key) const {
+    try {
+      return parse_duration_us(str(n, key));
+    } catch (const Error& e) {
+      fail(n, key, e.what());
+    }
+  }
+
+  bool boolean(const YAML::Node& n, const std::string& key) const {
+    const std::string s = str(n, key);
+    if (s == "1" || s == "true" || s == "on") return true;
+    if (s == "0" || s == "false" || s == "off") return false;
+    fail(n, key, "expected 0/1 or true/false");
+  }
+
+  // "X5" -> 5; only X0-X15 carry high-speed functions.
+  int pin(const YAML::Node& n, const std::string& key) const {
+    std::string s = str(n, key);
+    for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (s.size() < 2 || s[0] != 'X' || !std::all_of(s.begin() + 1, s.end(), ::isdigit) || s.size() > 3)
+      fail(n, key, "'" + n.as<std::string>() + "' is not an input X0-X15");
+    const int x = std::stoi(s.substr(1));
+    if (x > 15) fail(n, key, "'" + s + "': only X0-X15 are high-speed inputs");
+    return x;
+  }
+
+  Address address(const YAML::Node& n, const std::string& key) const {
+    Address a;
+    std::string why;
+    if (!try_parse_address(str(n, key), &a, &why)) fail(n, key, "bad address " + why);
+    return a;
+  }
+
+  // Each of X0-X15 serves one function (manual §10.2).
+  void use(int x, const YAML::Node& at, const std::string& key, const std::string& what) {
+    auto it = uses_.find(x);
+    if (it != uses_.end())
+      fail(at, key, "X" + std::to_string(x) + " is already used as " + it->second.first + " (line " +
+                        std::to_string(it->second.second) + "); each of X0-X15 can serve only one function");
+    uses_[x] = {what, line(at)};
+  }
+
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+  std::map<int, std::pair<std::string, int>> uses_;
+};
+
+Mode parse_mode(const Parse& p, const YAML::Node& n, const std::string& key) {
+  std::string s = p.str(n, key);
+  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (s.rfind("MD", 0) == 0) s = s.substr(2);
+  if (s.size() != 1 || s[0] < '0' || s[0] > '7') p.fail(n, key, "mode must be MD0 ... MD7");
+  return static_cast<Mode>(s[0] - '0');
+}
+
+void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
+  const std::string key = "counters.hsc" + std::to_string(n);
+  const std::string who = "HSC" + std::to_string(n);
+  const bool hard = n < 4;
+  p.only(c, key, {"type", "mode", "a", "b", "mask", "clear", "invert", "name"});
+  d.line = Parse::line(c);
+  d.name = c["name"] ? p.str(c["name"], key + ".name") : "hsc" + std::to_string(n);
+  if (c["type"]) {
+    const std::string t = p.str(c["type"], key + ".type");
+    if (t == "timer") {
+      if (!hard) p.fail(c["type"], key + ".type", "only HSC0-HSC3 can be high-speed timers (HST0-HST3)");
+      d.used = d.timer = true;
+      if (!c["name"]) d.name = "hst" + std::to_string(n);
+      for (const char* k : {"mode", "a", "b", "mask", "clear", "invert"})
+        if (c[k]) p.fail(c[k], key + "." + k, "a high-speed timer takes no further items");
+      return;
+    }
+    if (t != "counter") p.fail(c["type"], key + ".type", "expected counter or timer");
+  }
+  if (!c["mode"]) p.fail(c, key, "needs mode: MD0 ... MD7 (leave the counter out if it is not used)");
+  d.used = true;
+  d.mode = parse_mode(p, c["mode"], key + ".mode");
+  if (!hard && d.mode != Mode::UD && d.mode != Mode::PR && d.mode != Mode::AB)
+    p.fail(c["mode"], key + ".mode", "software counters (HSC4-HSC7) count in MD0, MD2 or MD4 only");
+  const char* a_name = is_ab(d.mode) ? "A" : (d.mode <= Mode::UDx2 ? "U" : "P");
+  const char* b_name = is_ab(d.mode) ? "B" : (d.mode <= Mode::UDx2 ? "D" : "R");
+
+  // A pin: fixed (with alternatives) on HHSC, free on SHSC.
+  if (hard) {
+    const HhscPins& hp = hhsc_pins(n);
+    d.pin_a = hp.a[0];
+    if (c["a"] && !c["a"].IsNull() && p.str(c["a"], key + ".a") != "true") {
+      const int x = p.pin(c["a"], key + ".a");
+      if (std::find(hp.a.begin(), hp.a.end(), x) == hp.a.end() || (is_ab(d.mode) && x != hp.a[0]))
+        p.fail(c["a"], key + ".a", who + " cannot take its " + a_name + " input on X" + std::to_string(x));
+      d.pin_a = x;
+    }
+  } else {
+    if (!c["a"]) p.fail(c, key, "a software counter needs its " + std::string(a_name) + " input, e.g. a: X4");
+    d.pin_a = p.pin(c["a"], key + ".a");
+  }
+  // B pin: required in A/B modes, optional otherwise (absent R: the direction relay).
+  auto optional_pin = [&](const char* k, int fixed) {
+    const YAML::Node v = c[k];
+    if (!v || v.IsNull()) return kNoPin;
+    const std::string s = p.str(v, key + "." + k);
+    if (s == "false") return kNoPin;
+    if (s == "true") {
+      if (fixed < 0) p.fail(v, key + "." + k, "a software counter needs a pin here, e.g. X5");
+      return fixed;
+    }
+    const int x = p.pin(v, key + "." + k);
+    if (fixed >= 0 && x != fixed)
+      p.fail(v, key + "." + k, who + "'s " + k + " input is X" + std::to_string(fixed) + " (fixed pin)");
+    return x;
+  };
+  d.pin_b = optional_pin("b", hard ? hhsc_pins(n).b : -1);
+  if (is_ab(d.mode)) {
+    if (hard) d.pin_b = hhsc_pins(n).b;
+    if (d.pin_b == kNoPin) p.fail(c, key, "A/B mode needs its B input, e.g. b: X" + std::to_string(d.pin_a + 1));
+    if (d.pin_a % 2 != 0 || d.pin_b != d.pin_a + 1)
+      p.fail(c["b"] ? c["b"] : c, key + ".b", "A and B must be a pair: A even, B the next input (e.g. X8, X9)");
+  }
+  d.pin_mask = optional_pin("mask", hard ? hhsc_pins(n).mask : -1);
+  d.pin_clear = optional_pin("clear", hard ? hhsc_pins(n).clear : -1);
+  if (c["invert"]) {
+    const YAML::Node inv = c["invert"];
+    if (!hard) p.fail(inv, key + ".invert", "polarity inversion is a hardware-counter (HSC0-HSC3) setting");
+    if (!inv.IsSequence()) p.fail(inv, key + ".invert", "expected a list of count, mask, clear");
+    for (const auto& e : inv) {
+      const std::string s = p.str(e, key + ".invert");
+      if (s == "count") d.inv_count = true;
+      else if (s == "mask") d.inv_mask = true;
+      else if (s == "clear") d.inv_clear = true;
+      else p.fail(e, key + ".invert", "'" + s + "': expected count, mask or clear");
+    }
+  }
+  auto at = [&](const char* k) { return c[k] ? c[k] : c; };
+  p.use(d.pin_a, at("a"), key + ".a", "the " + std::string(a_name) + " input of " + who);
+  if (d.pin_b != kNoPin) p.use(d.pin_b, at("b"), key + ".b", "the " + std::string(b_name) + " input of " + who);
+  if (d.pin_mask != kNoPin) p.use(d.pin_mask, at("mask"), key + ".mask", "the MASK input of " + who);
+  if (d.pin_clear != kNoPin) p.use(d.pin_clear, at("clear"), key + ".clear", "the CLEAR input of " + who);
+}
+
+}  // namespace
+
+HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
+  HscConfig cfg;
+  if (!node || node.IsNull()) return cfg;
+  Parse p(file);
+  p.only(node, "counters", {"hsc0", "hsc1", "hsc2", "hsc3", "hsc4", "hsc5", "hsc6", "hsc7", "interrupts",
+                            "sources", "edges", "frequency_window", "publish_rate"});
+  for (int n = 0; n < 8; ++n) {
+    const YAML::Node c = node["hsc" + std::to_string(n)];
+    if (c && !c.IsNull()) parse_counter(p, n, c, cfg.counters[n]);
+  }
+  if (node["interrupts"]) {
+    const YAML::Node l = node["interrupts"];
+    if (!l.IsSequence()) p.fail(l, "counters.interrupts", "expected a list such as [X3+, X0-]");
+    std::set<int> pins;
+    for (const auto& e : l) {
+      std::string s = p.str(e, "counters.interrupts");
+      if (s.size() < 3 || (s.back() != '+' && s.back() != '-'))
+        p.fail(e, "counters.interrupts", "'" + s + "': expected an input and an edge, e.g. X3+ or X3-");
+      const bool falling = s.back() == '-';
+      const int x = p.pin(YAML::Node(s.substr(0, s.size() - 1)), "counters.interrupts");
+      if (!pins.count(x)) p.use(x, e, "counters.interrupts", "an external interrupt input");
+      pins.insert(x);
+      cfg.edge_interrupts.push_back(2 * x + (falling ? 1 : 0));
+    }
+  }
+  if (node["frequency_window"]) {
+    cfg.frequency_window_us = p.duration_us(node["frequency_window"], "counters.frequency_window");
+    if (cfg.frequency_window_us < 1000) p.fail(node["frequency_window"], "counters.frequency_window", "at least 1ms");
+  }
+  if (node["publish_rate"]) cfg.publish_rate_hz = p.number(node["publish_rate"], "counters.publish_rate", 0.1, 1000);
+  if (node["sources"]) {
+    const YAML::Node l = node["sources"];
+    if (!l.IsSequence()) p.fail(l, "counters.sources", "expected a list");
+    for (const auto& s : l) {
+      const std::string key = "counters.sources";
+      p.only(s, key, {"name", "type", "a", "b", "hz", "rpm", "per_rev", "follow"});
+      SourceDef d;
+      d.name = s["name"] ? p.str(s["name"], key + ".name") : "source" + std::to_string(cfg.sources.size());
+      const std::string type = s["type"] ? p.str(s["type"], key + ".type") : "pulses";
+      if (type != "encoder" && type != "pulses") p.fail(s["type"], key + ".type", "expected encoder or pulses");
+      if (!s["a"]) p.fail(s, key, "needs a: the input its (A) phase drives");
+      d.pin_a = p.pin(s["a"], key + ".a");
+      if (type == "encoder") {
+        d.pin_b = s["b"] ? p.pin(s["b"], key + ".b") : d.pin_a + 1;
+        if (d.pin_b > 15) p.fail(s, key, "an encoder needs two inputs");
+      } else if (s["b"]) {
+        p.fail(s["b"], key + ".b", "a pulse generator drives one input");
+      }
+      if (s["hz"]) d.hz = p.number(s["hz"], key + ".hz", -1e7, 1e7);
+      else if (s["rpm"]) d.hz = p.number(s["rpm"], key + ".rpm", -1e9, 1e9) / 60.0 *
+                                (s["per_rev"] ? p.number(s["per_rev"], key + ".per_rev", 1, 1e6) : 1.0);
+      else p.fail(s, key, "needs hz: (periods per second) or rpm: (with per_rev:)");
+      if (s["follow"]) {
+        d.has_follow = true;
+        d.follow = p.address(s["follow"], key + ".follow");
+        if (d.follow.width != Width::Bit) p.fail(s["follow"], key + ".follow", "expected a discrete such as Y0");
+      }
+      cfg.sources.push_back(d);
+    }
+  }
+  if (node["edges"]) {
+    const YAML::Node l = node["edges"];
+    if (!l.IsSequence()) p.fail(l, "counters.edges", "expected a list");
+    for (const auto& s : l) {
+      p.only(s, "counters.edges", {"x", "steps"});
+      if (!s["x"] || !s["steps"] || !s["steps"].IsSequence()) p.fail(s, "counters.edges", "needs x: and steps:");
+      const int x = p.pin(s["x"], "counters.edges.x");
+      for (const auto& st : s["steps"]) {
+        if (!st.IsSequence() || st.size() != 2) p.fail(st, "counters.edges.steps", "each step is [time, level]");
+        cfg.edges.push_back({p.duration_us(st[0], "counters.edges.steps") * 1000, x,
+                             p.boolean(st[1], "counters.edges.steps")});
+      }
+    }
+    std::stable_sort(cfg.edges.begin(), cfg.edges.end(),
+                     [](const ScheduledEdge& a, const ScheduledEdge& b) { return a.t_ns < b.t_ns; });
+  }
+  return cfg;
+}
+
+}  // namespace hsc
+}  // namespace plc_cell

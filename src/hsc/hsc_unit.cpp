@@ -1,0 +1,537 @@
+#include "plc_cell/hsc/hsc_unit.h"
+
+#include <algorithm>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/core/plc.h"
+
+namespace plc_cell {
+namespace hsc {
+
+namespace {
+ScanEngine& engine_of(Plc& p) { return *p.locked([](ScanEngine& e, Memory&) { return &e; }); }
+Memory& memory_of(Plc& p) { return *p.locked([](ScanEngine&, Memory& m) { return &m; }); }
+bool phase_level(int ph, int64_t q) { return ph == 0 ? PulseSource::level_a(q) : PulseSource::level_b(q); }
+int counter_source(int n) { return n < 4 ? kHsc0I + n : kHsc4I + (n - 4); }
+}  // namespace
+
+HscUnit::HscUnit(Plc& plc, HscConfig cfg)
+    : engine_(engine_of(plc)), mem_(memory_of(plc)), plc_(plc), cfg_(std::move(cfg)) {
+  pin_phase_.fill(-1);
+  for (const auto& d : cfg_.sources) {
+    sources_.push_back(std::make_unique<PulseSource>(d.name, d.pin_a, d.pin_b));
+    PulseSource* s = sources_.back().get();
+    s->set_rate(0, d.has_follow ? 0.0 : d.hz);
+    for (int k = 0; k < 2; ++k) {
+      const int x = k == 0 ? d.pin_a : d.pin_b;
+      if (x < 0) continue;
+      if (pin_src_[x]) throw Error("counters.sources: X" + std::to_string(x) + " is driven by both " +
+                                   pin_src_[x]->name() + " and " + d.name);
+      pin_src_[x] = s;
+      pin_phase_[x] = k;
+    }
+  }
+  for (int n = 0; n < 8; ++n) {
+    Counter& c = counters_[n];
+    c.n = n;
+    c.def = cfg_.counters[n];
+    if (!c.def.used || c.def.timer) continue;
+    for (int k = 0; k < 2; ++k) {
+      const int x = k == 0 ? c.def.pin_a : c.def.pin_b;
+      if (x < 0 || !pin_src_[x]) continue;
+      if (c.src && c.src != pin_src_[x])
+        throw Error("HSC" + std::to_string(n) + ": its counting inputs are driven by two sources (" +
+                    c.src->name() + ", " + pin_src_[x]->name() + "); give it one encoder");
+      c.src = pin_src_[x];
+      c.phase[k] = pin_phase_[x];
+    }
+    for (int x : {c.def.pin_mask, c.def.pin_clear})
+      if (x >= 0 && pin_src_[x])
+        throw Error("HSC" + std::to_string(n) + ": X" + std::to_string(x) +
+                    " is a MASK/CLEAR input; pulse sources drive counting or interrupt inputs only");
+    if (n >= 4) irq_.set_priority(counter_source(n), x_edge_source(c.def.pin_a, false) + 1);
+  }
+  for (const auto& e : cfg_.edges) schedule_edge(e.x, e.t_ns, e.level);
+  plc_.locked([this](ScanEngine& e, Memory&) {
+    e.add_hook(this);
+    return 0;
+  });
+}
+
+HscUnit::~HscUnit() {
+  plc_.locked([this](ScanEngine& e, Memory&) {
+    e.remove_hook(this);
+    return 0;
+  });
+}
+
+HscUnit* HscUnit::of(ScanEngine* engine) {
+  if (!engine) return nullptr;
+  for (ScanHook* h : engine->hooks())
+    if (auto* u = dynamic_cast<HscUnit*>(h)) return u;
+  return nullptr;
+}
+
+// ---- levels and counting ------------------------------------------------------
+
+bool HscUnit::term(int x, uint64_t t) const {
+  if (pin_src_[x]) return phase_level(pin_phase_[x], pin_src_[x]->quarter(t));
+  return term_[x];
+}
+
+bool HscUnit::cleared(const Counter& c) const {
+  return (c.def.pin_clear >= 0 && term_[c.def.pin_clear] != c.def.inv_clear) || c.sw_clear;
+}
+
+bool HscUnit::counting(const Counter& c) const {
+  if (!c.def.used || c.def.timer || cleared(c)) return false;
+  if ((c.def.pin_mask >= 0 && term_[c.def.pin_mask] != c.def.inv_mask) || c.sw_mask) return false;
+  if (c.n >= 4 && !irq_.enabled(counter_source(c.n))) return false;  // a disabled SHSC stops counting
+  return true;
+}
+
+Pins HscUnit::pins_at(const Counter& c, int64_t q) const {
+  auto lvl = [&](int pin, int ph) { return ph >= 0 ? phase_level(ph, q) : term_[pin]; };
+  Pins p;
+  p.a = lvl(c.def.pin_a, c.phase[0]) != c.def.inv_count;
+  if (c.def.pin_b >= 0) p.b = lvl(c.def.pin_b, c.phase[1]) != c.def.inv_count;
+  else if (c.def.mode == Mode::PR || c.def.mode == Mode::PRx2) p.b = c.sw_dir;
+  return p;
+}
+
+void HscUnit::weights(const Counter& c, std::array<int, 4>* seq) const {
+  const int dir = c.src->direction();
+  for (int i = 1; i <= 4; ++i) {
+    const int64_t from = c.q + (i - 1) * dir, to = c.q + i * dir;
+    (*seq)[i - 1] = count_delta(c.def.mode, pins_at(c, from), pins_at(c, to));
+  }
+}
+
+uint32_t HscUnit::get_cv(const Counter& c) const {
+  if (c.n < 4) return c.cv;
+  const uint32_t r = cv_register(c.n);
+  return uint32_t(mem_.reg(Area::R, r)) | (uint32_t(mem_.reg(Area::R, r + 1)) << 16);
+}
+
+uint32_t HscUnit::get_pv(const Counter& c) const {
+  if (c.n < 4) return c.pv;
+  const uint32_t r = pv_register(c.n);
+  return uint32_t(mem_.reg(Area::R, r)) | (uint32_t(mem_.reg(Area::R, r + 1)) << 16);
+}
+
+void HscUnit::set_cv(Counter& c, uint32_t v) {
+  if (c.n < 4) {
+    c.cv = v;
+    return;
+  }
+  mem_.set_reg(Area::R, cv_register(c.n), static_cast<uint16_t>(v));
+  mem_.set_reg(Area::R, cv_register(c.n) + 1, static_cast<uint16_t>(v >> 16));
+}
+
+void HscUnit::add_count(Counter& c, int64_t d, bool check) {
+  if (d == 0) return;
+  const uint32_t v = get_cv(c) + static_cast<uint32_t>(d);
+  set_cv(c, v);
+  c.total += d;
+  if (check && v == get_pv(c)) fired_.push_back(counter_source(c.n));
+}
+
+void HscUnit::advance_counters(uint64_t t) {
+  for (auto& c : counters_) {
+    if (!c.src) continue;
+    const int64_t q1 = c.src->quarter(t);
+    if (q1 == c.q) continue;
+    if (counting(c)) {
+      std::array<int, 4> seq;
+      weights(c, &seq);
+      const int64_t k = q1 > c.q ? q1 - c.q : c.q - q1;
+      int64_t d = 0, n = 0;
+      for (int i = 0; i < 4; ++i) n += seq[i];
+      for (int i = 0; i < k % 4; ++i) d += seq[i];
+      add_count(c, (k / 4) * n + d, false);  // matches inside the span are events of their own
+    }
+    c.q = q1;
+  }
+}
+
+// First instant after now at which counting makes CV equal PV: the k-th boundary
+// the source crosses, solved in O(1) from the 4-periodic weights.
+uint64_t HscUnit::next_match(const Counter& c) const {
+  const int s = counter_source(c.n);
+  if (!c.src || c.src->direction() == 0 || !irq_.present(s) || !irq_.enabled(s) || !counting(c)) return kNever;
+  std::array<int, 4> seq;
+  weights(c, &seq);
+  const int64_t target = static_cast<int32_t>(get_pv(c) - get_cv(c));
+  int64_t prefix = 0, n = 0;
+  for (int i = 0; i < 4; ++i) n += seq[i];
+  int64_t best = -1;
+  for (int j = 1; j <= 4; ++j) {
+    prefix += seq[j - 1];
+    if (seq[j - 1] == 0) continue;  // CV changes only where an edge counts
+    const int64_t d = target - prefix;
+    int64_t k = -1;
+    if (n == 0) {
+      if (d == 0) k = j;
+    } else if (d % n == 0 && d / n >= 0) {
+      k = 4 * (d / n) + j;
+    }
+    if (k > 0 && (best < 0 || k < best)) best = k;
+  }
+  if (best < 0) return kNever;
+  return c.src->time_of_quarter(c.q + best * c.src->direction(), cur_ns_);
+}
+
+// ---- timers ------------------------------------------------------------------
+
+uint32_t HscUnit::hst_cv(const Counter& c, uint64_t t) const {
+  return c.t_cv0 + static_cast<uint32_t>((t - c.t_base) / kTick);
+}
+
+uint64_t HscUnit::hst_match(const Counter& c) const {
+  const int s = kHsc0I + c.n;
+  if (!irq_.present(s) || !irq_.enabled(s)) return kNever;
+  uint64_t ticks = static_cast<uint32_t>(c.pv - c.t_cv0);
+  if (ticks == 0) ticks = 1ull << 32;
+  uint64_t t = c.t_base + ticks * kTick;
+  while (t <= cur_ns_) t += (1ull << 32) * kTick;
+  return t;
+}
+
+uint64_t HscUnit::hsta_next() const {
+  if (hsta_pv_ == 0 || !irq_.present(kHstaI) || !irq_.enabled(kHstaI)) return kNever;
+  const uint64_t period = std::max<uint64_t>(hsta_pv_, 2) * kTick;  // PV = 1 acts as 2 (AMBIG-12)
+  return hsta_t0_ + ((cur_ns_ - hsta_t0_) / period + 1) * period;
+}
+
+int HscUnit::active_time_base() const {
+  const uint16_t mask = mem_.reg(Area::R, kTimeBaseMask);
+  for (int i = 0; i < 8; ++i)
+    if (!((mask >> i) & 1) && irq_.present(kTimeBase0 + i)) return i;  // the smallest unmasked
+  return -1;
+}
+
+uint64_t HscUnit::next_pin_edge(int x, bool rising) const {
+  const PulseSource* s = pin_src_[x];
+  const int dir = s->direction();
+  if (dir == 0) return kNever;
+  const int64_t q = s->quarter(cur_ns_);
+  for (int i = 1; i <= 4; ++i) {
+    const bool a = phase_level(pin_phase_[x], q + (i - 1) * dir), b = phase_level(pin_phase_[x], q + i * dir);
+    if (a != b && b == rising) return s->time_of_quarter(q + i * dir, cur_ns_);
+  }
+  return kNever;
+}
+
+// ---- the event loop ------------------------------------------------------------
+
+void HscUnit::start(uint64_t t) {
+  cur_ns_ = run_ns_ = t;
+  for (auto& c : counters_) {
+    c.cv = c.pv = 0;
+    c.sw_mask = c.sw_clear = c.sw_dir = false;
+    c.total = 0;
+    c.hist.clear();
+    c.t_cv0 = 0;
+    c.t_base = t;
+    if (c.src) c.q = c.src->quarter(t);
+  }
+  hsta_pv_ = 0;
+  hsta_cv0_ = 0;
+  hsta_t0_ = t;
+  for (int s = 0; s < kSourceCount; ++s) irq_.set_enabled(s, true);
+  irq_.reset();
+  for (int x = 0; x < 16; ++x)
+    if (!pin_src_[x]) term_[x] = engine_.input(x);
+  running_ = true;
+}
+
+void HscUnit::advance(uint64_t to) {
+  std::array<uint64_t, 8> match;
+  for (;;) {
+    uint64_t t = to;
+    for (auto& c : counters_) {
+      match[c.n] = !c.def.used ? kNever : c.def.timer ? hst_match(c) : next_match(c);
+      t = std::min(t, match[c.n]);
+    }
+    const uint64_t hsta = hsta_next();
+    t = std::min(t, hsta);
+    const int tb = active_time_base();
+    uint64_t tb_next = kNever;
+    if (tb >= 0) {
+      const uint64_t p = uint64_t(kTimeBaseMs[tb]) * 1000000;
+      tb_next = run_ns_ + ((cur_ns_ - run_ns_) / p + 1) * p;
+      t = std::min(t, tb_next);
+    }
+    std::array<uint64_t, 32> pin_edge;
+    pin_edge.fill(kNever);
+    for (int e : cfg_.edge_interrupts) {
+      const int x = e / 2;
+      if (!pin_src_[x] || !irq_.present(kX0Up + e) || !irq_.enabled(kX0Up + e)) continue;
+      pin_edge[e] = next_pin_edge(x, e % 2 == 0);
+      t = std::min(t, pin_edge[e]);
+    }
+    if (!edges_.empty()) t = std::min(t, std::max(edges_.top().t, cur_ns_));
+    for (const auto& tr : trains_) {
+      bool up;
+      t = std::min(t, tr.next_after(cur_ns_, &up));
+    }
+
+    advance_counters(t);
+    const uint64_t prev = cur_ns_;
+    cur_ns_ = t;
+    fired_.clear();
+    for (auto& c : counters_)
+      if (match[c.n] == t) fired_.push_back(counter_source(c.n));
+    if (hsta == t) fired_.push_back(kHstaI);
+    if (tb_next == t) fired_.push_back(kTimeBase0 + tb);
+    for (int e = 0; e < 32; ++e)
+      if (pin_edge[e] == t) fired_.push_back(kX0Up + e);
+    std::vector<std::pair<int, bool>> group;
+    for (const auto& tr : trains_) {
+      bool up;
+      if (tr.next_after(prev, &up) == t) group.push_back({tr.x, up});
+    }
+    while (!edges_.empty() && edges_.top().t <= t) {
+      group.push_back({edges_.top().x, edges_.top().level});
+      edges_.pop();
+    }
+    if (!group.empty()) {
+      // Edges at one instant act together: simultaneous U and D edges cancel.
+      std::array<Pins, 8> before;
+      for (auto& c : counters_)
+        if (c.def.used && !c.def.timer) before[c.n] = pins_at(c, c.q);
+      std::array<bool, 16> old = term_;
+      for (const auto& g : group)
+        if (!pin_src_[g.first]) term_[g.first] = g.second;
+      std::array<bool, 16> now = term_;
+      for (auto& c : counters_) {
+        if (!c.def.used || c.def.timer) continue;
+        term_ = old;
+        const bool was_counting = counting(c);
+        term_ = now;
+        if (was_counting && counting(c)) add_count(c, count_delta(c.def.mode, before[c.n], pins_at(c, c.q)), true);
+        if (cleared(c)) set_cv(c, 0);
+      }
+      for (int x = 0; x < 16; ++x) {
+        if (old[x] == now[x]) continue;
+        engine_.set_input(x, now[x]);
+        fired_.push_back(x_edge_source(x, !now[x]));  // ignored unless configured with a routine
+      }
+    }
+    fire_pending();
+    if (!running_ || t >= to) return;
+  }
+}
+
+void HscUnit::fire_pending() {
+  for (int s : fired_) {
+    if (s >= kX0Up && s < kHsc4I) {
+      const int e = s - kX0Up;
+      if (std::find(cfg_.edge_interrupts.begin(), cfg_.edge_interrupts.end(), e) == cfg_.edge_interrupts.end())
+        continue;  // an input edge interrupts only if configured (manual §9.5)
+    }
+    irq_.request(s);
+  }
+  fired_.clear();
+  irq_.dispatch([this](int s, const std::string&) { return run_isr(s); });
+}
+
+bool HscUnit::run_isr(int source) {
+  for (auto& f : isr_obs_) f(cur_ns_, source);
+  const std::string label = irq_.label(source);
+  Interpreter& in = engine_.interpreter();
+  if (in.run_routine(label, cur_ns_ / 1000, &engine_)) return true;
+  engine_.stop_with_fault("interrupt " + label + ": " + in.fault());
+  return false;
+}
+
+void HscUnit::raise(int source) {
+  irq_.raise(source, [this](int s, const std::string&) { return run_isr(s); });
+}
+
+void HscUnit::schedule_edge(int x, uint64_t t_ns, bool level) { edges_.push({t_ns, edge_seq_++, x, level}); }
+
+void HscUnit::add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint64_t delay_ns) {
+  if (x < 0 || x > 15 || pin_src_[x]) throw Error("X" + std::to_string(x) + ": no pulse train here");
+  if (period_ns == 0 || width_ns == 0) return;  // never on
+  if (width_ns >= period_ns) {
+    schedule_edge(x, delay_ns, true);  // on for good
+    return;
+  }
+  trains_.push_back({x, period_ns, width_ns, delay_ns});
+}
+
+// First edge strictly after t: rising at delay + k*period, falling width later.
+uint64_t HscUnit::Train::next_after(uint64_t t, bool* rising) const {
+  if (t < delay) {
+    *rising = true;
+    return delay;
+  }
+  const uint64_t k = (t - delay) / period;
+  const uint64_t r = delay + k * period;
+  if (r + width > t) {
+    *rising = false;
+    return r + width;
+  }
+  *rising = true;
+  return r + period;
+}
+
+// ---- scan hooks ------------------------------------------------------------------
+
+void HscUnit::before_inputs(uint64_t now_us) {
+  const uint64_t now = now_us * 1000;
+  if (engine_.mode() != RunMode::Run) {
+    running_ = false;
+    return;
+  }
+  const Program& prog = engine_.program();
+  if (prog.code.data() != bound_code_ || prog.code.size() != bound_size_) {
+    irq_.bind(prog);
+    bound_code_ = prog.code.data();
+    bound_size_ = prog.code.size();
+  }
+  if (!running_) start(now);
+  if (now > cur_ns_) advance(now);
+  if (!running_) return;
+  // Levels that the simulation or a ROS topic set since the last scan change now.
+  for (int x = 0; x < 16; ++x)
+    if (!pin_src_[x] && engine_.input(x) != term_[x]) schedule_edge(x, cur_ns_, engine_.input(x));
+  if (!edges_.empty() && edges_.top().t <= cur_ns_) advance(cur_ns_);
+  if (!running_) return;
+  for (int x = 0; x < 16; ++x)
+    if (pin_src_[x]) engine_.set_input(x, term(x, cur_ns_));
+  for (auto& c : counters_) {
+    if (!c.def.used || c.def.timer) continue;
+    c.hist.push_back({cur_ns_, c.total});
+    const uint64_t w = cfg_.frequency_window_us * 1000;
+    while (c.hist.size() > 2 && c.hist[1].first + w <= cur_ns_) c.hist.pop_front();
+  }
+}
+
+void HscUnit::after_program(uint64_t) {
+  if (!running_) return;
+  // The software MASK/CLEAR/direction relays reach the counters at the I/O refresh.
+  for (auto& c : counters_) {
+    if (!c.def.used || c.def.timer) continue;
+    c.sw_mask = mem_.bit(Area::M, mask_relay(c.n));
+    c.sw_clear = clear_relay(c.n) >= 0 && mem_.bit(Area::M, clear_relay(c.n));
+    c.sw_dir = mem_.bit(Area::M, dir_relay(c.n));
+    if (cleared(c)) set_cv(c, 0);
+  }
+  refresh_outputs(0, 256);
+}
+
+void HscUnit::on_stop() {
+  if (running_) refresh_outputs(0, 256);
+  running_ = false;
+}
+
+void HscUnit::refresh_outputs(uint32_t first, uint32_t n) {
+  for (uint32_t y = first; y < first + n && y < phys_y_.size(); ++y) {
+    const bool v = mem_.bit(Area::Y, y);
+    if (v == phys_y_[y]) continue;
+    phys_y_[y] = v;
+    for (auto& f : output_obs_) f(cur_ns_, y, v);
+    for (size_t i = 0; i < cfg_.sources.size(); ++i) {
+      const SourceDef& d = cfg_.sources[i];
+      if (d.has_follow && d.follow.area == Area::Y && d.follow.index == y) sources_[i]->set_rate(cur_ns_, v ? d.hz : 0);
+    }
+  }
+}
+
+// ---- instructions ------------------------------------------------------------------
+
+void HscUnit::read_chip(int cn) {
+  if (cn == 4) {
+    const uint64_t ticks = (cur_ns_ - hsta_t0_) / kTick;
+    const uint32_t v = hsta_pv_ == 0 ? hsta_cv0_ + static_cast<uint32_t>(ticks)
+                                     : static_cast<uint32_t>(ticks % std::max<uint64_t>(hsta_pv_, 2));
+    mem_.set_reg(Area::R, kHstaCv, static_cast<uint16_t>(v));
+    mem_.set_reg(Area::R, kHstaCv + 1, static_cast<uint16_t>(v >> 16));
+    return;
+  }
+  if (cn < 0 || cn > 3) return;
+  const Counter& c = counters_[cn];
+  const uint32_t v = c.def.timer ? hst_cv(c, cur_ns_) : c.cv;
+  mem_.set_reg(Area::R, cv_register(cn), static_cast<uint16_t>(v));
+  mem_.set_reg(Area::R, cv_register(cn) + 1, static_cast<uint16_t>(v >> 16));
+}
+
+void HscUnit::write_chip(int cn, bool pv) {
+  auto reg32 = [&](uint32_t r) { return uint32_t(mem_.reg(Area::R, r)) | (uint32_t(mem_.reg(Area::R, r + 1)) << 16); };
+  if (cn == 4) {
+    if (pv) hsta_pv_ = mem_.reg(Area::R, kHstaPv);
+    else hsta_cv0_ = reg32(kHstaCv);
+    hsta_t0_ = cur_ns_;  // the timer starts over from the write
+    return;
+  }
+  if (cn < 0 || cn > 3) return;
+  Counter& c = counters_[cn];
+  if (pv) {
+    c.pv = reg32(pv_register(cn));
+  } else if (c.def.timer) {
+    c.t_cv0 = reg32(cv_register(cn));
+    c.t_base = cur_ns_;
+  } else {
+    c.cv = reg32(cv_register(cn));
+  }
+}
+
+bool HscUnit::set_enabled(const std::string& label, bool on) {
+  const int s = source_of_label(label);
+  if (s < 0) return false;
+  irq_.set_enabled(s, on);
+  return true;
+}
+
+void HscUnit::immediate_io(const Address& first, uint32_t n) {
+  if (first.area == Area::Y) {
+    refresh_outputs(first.index, n);
+  } else if (first.area == Area::X) {
+    for (uint32_t x = first.index; x < first.index + n && x < 256; ++x)
+      mem_.set_bit(Area::X, x, x < 16 ? term(static_cast<int>(x), cur_ns_) : engine_.input(x));
+  }
+}
+
+// ---- observation ----------------------------------------------------------------------
+
+PulseSource* HscUnit::source(const std::string& name) {
+  for (auto& s : sources_)
+    if (s->name() == name) return s.get();
+  return nullptr;
+}
+
+void HscUnit::set_source_rate(const std::string& name, double hz) {
+  PulseSource* s = source(name);
+  if (!s) throw Error("no pulse source named '" + name + "'");
+  for (auto& c : counters_)
+    if (c.src == s) c.q = s->quarter(cur_ns_);
+  s->set_rate(cur_ns_, hz);
+}
+
+void HscUnit::preset(int n, int64_t value) {
+  Counter& c = counters_[n];
+  if (c.def.timer) {
+    c.t_cv0 = static_cast<uint32_t>(value);
+    c.t_base = cur_ns_;
+  } else {
+    set_cv(c, static_cast<uint32_t>(value));
+  }
+}
+
+int64_t HscUnit::count(int n) const {
+  const Counter& c = counters_[n];
+  if (c.def.timer) return hst_cv(c, cur_ns_);
+  return static_cast<int32_t>(get_cv(c));
+}
+
+double HscUnit::frequency(int n) const {
+  const Counter& c = counters_[n];
+  if (c.hist.size() < 2 || c.hist.back().first == c.hist.front().first) return 0.0;
+  return double(c.hist.back().second - c.hist.front().second) * 1e9 /
+         double(c.hist.back().first - c.hist.front().first);
+}
+
+}  // namespace hsc
+}  // namespace plc_cell

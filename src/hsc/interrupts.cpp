@@ -1,0 +1,96 @@
+#include "plc_cell/hsc/interrupts.h"
+
+#include "plc_cell/core/program.h"
+
+namespace plc_cell {
+namespace hsc {
+
+std::vector<std::string> source_labels(int s) {
+  static const char* const tb[8] = {"1MS", "2MS", "3MS", "4MS", "5MS", "10MS", "50MS", "100MS"};
+  if (s == kHstaI) return {"HSTAI", "ATMRI"};
+  if (s >= kTimeBase0 && s < kHsc0I) {
+    const std::string b = tb[s - kTimeBase0];
+    return {b + "I", b};
+  }
+  if (s >= kHsc0I && s < kPso0I) {
+    const std::string n = std::to_string(s - kHsc0I);
+    return {"HSC" + n + "I", "HST" + n + "I"};
+  }
+  if (s >= kPso0I && s < kX0Up) return {"PSO" + std::to_string(s - kPso0I) + "I"};
+  if (s >= kX0Up && s < kHsc4I) {
+    const int x = (s - kX0Up) / 2;
+    const bool falling = (s - kX0Up) % 2;
+    const std::string n = std::to_string(x);
+    return {"X" + n + (falling ? "-I" : "+I"), "INT" + n + (falling ? "-" : "")};
+  }
+  if (s >= kHsc4I && s < kSourceCount) return {"HSC" + std::to_string(4 + s - kHsc4I) + "I"};
+  return {};
+}
+
+int source_of_label(const std::string& label) {
+  for (int s = 0; s < kSourceCount; ++s)
+    for (const auto& l : source_labels(s))
+      if (l == label) return s;
+  return -1;
+}
+
+InterruptController::InterruptController() {
+  for (int s = 0; s < kSourceCount; ++s) priority_[s] = s < kHsc4I ? s + 1 : kSourceCount;
+  enabled_.fill(true);
+}
+
+void InterruptController::bind(const Program& program) {
+  for (int s = 0; s < kSourceCount; ++s) {
+    label_[s].clear();
+    for (const auto& l : source_labels(s)) {
+      auto it = program.labels.find(l);
+      if (it != program.labels.end() && it->second >= program.main_end) {
+        label_[s] = l;
+        break;
+      }
+    }
+  }
+  reset();
+}
+
+void InterruptController::reset() {
+  pending_.fill(false);
+  pending_count_ = 0;
+  depth_ = 0;
+  failed_ = false;
+}
+
+void InterruptController::request(int s) {
+  if (label_[s].empty() || !enabled_[s] || failed_) return;
+  if (!pending_[s]) {
+    pending_[s] = true;  // a second request before it runs is the same request
+    ++pending_count_;
+  }
+}
+
+void InterruptController::raise(int s, const Runner& run) {
+  request(s);
+  dispatch(run);
+}
+
+void InterruptController::dispatch(const Runner& run) {
+  while (pending_count_ > 0 && !failed_ && depth_ < kMaxNesting) {
+    int best = -1;
+    for (int s = 0; s < kSourceCount; ++s)
+      if (pending_[s] && (best < 0 || priority_[s] < priority_[best])) best = s;
+    // Lower or equal priority waits for the running routine; higher pre-empts it.
+    if (depth_ > 0 && priority_[best] >= running_[depth_ - 1]) return;
+    pending_[best] = false;
+    --pending_count_;
+    running_[depth_++] = priority_[best];
+    const bool ok = run(best, label_[best]);
+    --depth_;
+    if (!ok) {
+      failed_ = true;
+      return;
+    }
+  }
+}
+
+}  // namespace hsc
+}  // namespace plc_cell

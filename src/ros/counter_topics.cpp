@@ -1,0 +1,87 @@
+#include "plc_cell/ros/counter_topics.h"
+
+#include <std_msgs/Float64.h>
+#include <std_srvs/Trigger.h>
+
+#include "plc_cell/Counter.h"
+#include "plc_cell/CounterArray.h"
+#include "plc_cell/PresetCounter.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/hsc/hsc_unit.h"
+
+namespace plc_cell {
+
+CounterTopics::CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
+    : cell_(cell) {
+  const hsc::HscConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.counters().config(); });
+  for (int n = 0; n < 8; ++n) {
+    if (!cfg.counters[n].used) continue;
+    numbers_.push_back(n);
+    names_.push_back(cfg.counters[n].name);
+  }
+  if (rate_hz <= 0) rate_hz = cfg.publish_rate_hz;
+  if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~counter_rate must be in (0, 1000] Hz");
+  all_pub_ = pnh.advertise<CounterArray>("counters", 10);
+  for (size_t i = 0; i < numbers_.size(); ++i) {
+    const int n = numbers_[i];
+    const std::string base = "counters/" + names_[i];
+    one_pubs_.push_back(pnh.advertise<Counter>(base, 10));
+    services_.push_back(pnh.advertiseService<PresetCounter::Request, PresetCounter::Response>(
+        base + "/preset", [this, n, i](PresetCounter::Request& req, PresetCounter::Response& res) {
+          if (!req.name.empty() && req.name != names_[i]) {
+            res.success = false;
+            res.message = "this service presets " + names_[i] + ", not " + req.name;
+            return true;
+          }
+          cell_.plc().locked([&](ScanEngine&, Memory&) {
+            cell_.counters().preset(n, req.value);
+            return 0;
+          });
+          res.success = true;
+          return true;
+        }));
+    services_.push_back(pnh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
+        base + "/clear", [this, n](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+          cell_.plc().locked([&](ScanEngine&, Memory&) {
+            cell_.counters().preset(n, 0);
+            return 0;
+          });
+          res.success = true;
+          return true;
+        }));
+  }
+  // A pulse source whose rate comes from a topic: an encoder wheel on a real axis, a
+  // simulated spindle whose speed another node decides.
+  for (const auto& s : cfg.sources) {
+    const std::string name = s.name;
+    subs_.push_back(pnh.subscribe<std_msgs::Float64>(
+        "sources/" + name + "/rate", 10, [this, name](const std_msgs::Float64::ConstPtr& m) {
+          cell_.plc().locked([&](ScanEngine&, Memory&) {
+            cell_.counters().set_source_rate(name, m->data);
+            return 0;
+          });
+        }));
+  }
+  timer_ = nh.createTimer(ros::Duration(1.0 / rate_hz), [this](const ros::TimerEvent&) { publish(); });
+}
+
+void CounterTopics::publish() {
+  CounterArray all;
+  all.header.stamp = ros::Time::now();
+  all.header.frame_id = cell_.config().name;
+  cell_.plc().locked([&](ScanEngine&, Memory&) {
+    for (size_t i = 0; i < numbers_.size(); ++i) {
+      Counter c;
+      c.name = names_[i];
+      c.number = static_cast<uint8_t>(numbers_[i]);
+      c.count = cell_.counters().count(numbers_[i]);
+      c.frequency = cell_.counters().frequency(numbers_[i]);
+      all.counters.push_back(c);
+    }
+    return 0;
+  });
+  all_pub_.publish(all);
+  for (size_t i = 0; i < all.counters.size(); ++i) one_pubs_[i].publish(all.counters[i]);
+}
+
+}  // namespace plc_cell

@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""rostest: the simulated conveyor encoder on the counters topics; preset and clear."""
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from std_srvs.srv import Trigger
+
+from plc_cell.msg import Counter, CounterArray
+from plc_cell.srv import PresetCounter
+
+NS = "/plc_node/"
+TIMEOUT = 15.0
+
+
+class Latest(object):
+    """Keeps the latest message of a topic and lets a test wait for a condition on it."""
+
+    def __init__(self, topic, msg_type):
+        self.msg = None
+        self.cond = threading.Condition()
+        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
+
+    def _cb(self, msg):
+        with self.cond:
+            self.msg = msg
+            self.cond.notify_all()
+
+    def wait_for(self, pred, timeout=TIMEOUT):
+        deadline = time.monotonic() + timeout
+        with self.cond:
+            while self.msg is None or not pred(self.msg):
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    return self.msg
+                self.cond.wait(left)
+            return self.msg
+
+
+class CountersTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("counters_test", anonymous=True)
+        rospy.wait_for_service(NS + "counters/conveyor/preset", timeout=30)
+        cls.preset = rospy.ServiceProxy(NS + "counters/conveyor/preset", PresetCounter)
+        cls.clear = rospy.ServiceProxy(NS + "counters/conveyor/clear", Trigger)
+        cls.all = Latest(NS + "counters", CounterArray)
+        cls.one = Latest(NS + "counters/conveyor", Counter)
+
+    def test_1_encoder_count_stops_at_the_preset(self):
+        # 1 kHz x4 = 4000 counts/s; the HSC0I routine stops the motor at CV = PV = 4000.
+        msg = self.all.wait_for(lambda m: len(m.counters) == 1 and m.counters[0].count >= 4000)
+        self.assertIsNotNone(msg)
+        self.assertEqual(msg.counters[0].name, "conveyor")
+        self.assertEqual(msg.counters[0].number, 0)
+        self.assertEqual(msg.counters[0].count, 4000)
+        self.assertEqual(msg.header.frame_id, "counter_cell")
+        one = self.one.wait_for(lambda m: m.count == 4000)
+        self.assertEqual(one.count, 4000)
+        # Stopped: the frequency falls to 0 once the window has passed.
+        one = self.one.wait_for(lambda m: m.frequency == 0.0)
+        self.assertEqual(one.frequency, 0.0)
+        self.assertEqual(one.count, 4000)
+
+    def test_2_preset_and_clear(self):
+        self.one.wait_for(lambda m: m.count == 4000)
+        self.assertTrue(self.preset("conveyor", 123).success)
+        self.assertEqual(self.one.wait_for(lambda m: m.count == 123).count, 123)
+        self.assertTrue(self.clear().success)
+        self.assertEqual(self.one.wait_for(lambda m: m.count == 0).count, 0)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("plc_cell", "counters_test", CountersTest)
