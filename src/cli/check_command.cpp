@@ -6,6 +6,7 @@
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/il_parser.h"
+#include "plc_cell/io/protocol_functions.h"
 
 namespace plc_cell {
 namespace cli {
@@ -13,7 +14,8 @@ namespace cli {
 int cmd_check(const std::vector<std::string>& argv) {
   Args args(argv, {"program"});
   const std::string path = args.require("program");
-  const FunctionTable fns = FunctionTable::with_core_functions();
+  FunctionTable fns = FunctionTable::with_core_functions();
+  const auto keep = install_protocol_functions(CellConfig(), fns);  // FUN150/151 without ports
   try {
     const Program p = load_program_file(path, fns);
     std::cout << path << ": OK, " << p.code.size() << " instructions, " << p.labels.size() << " labels\n";

@@ -6,6 +6,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "plc_cell/io/protocol_functions.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/io/server.h"
@@ -23,7 +24,7 @@ int cmd_run(const std::vector<std::string>& argv) {
   options.insert(options.end(), {"fatek-tcp", "fatek-serial", "station"});
   options.insert(options.end(), {"modbus-tcp", "modbus-rtu", "modbus-id", "modbus-gateway", "modbus-gateway-wait", "modbus-gateway-retries"});
   Args args(argv, options);
-  SoftCell cell(args.get("config"), args.get("program"));
+  SoftCell cell(args.get("config"), args.get("program"), install_protocol_functions);
   const uint64_t scan = args.has("scan") ? parse_duration_us(args.get("scan")) : cell.config().scan_period_us;
   if (scan == 0) throw UsageError("--scan must be positive");
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;

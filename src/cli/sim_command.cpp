@@ -6,6 +6,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "plc_cell/io/protocol_functions.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/sim/virtual_run.h"
@@ -23,7 +24,7 @@ int cmd_sim(const std::vector<std::string>& argv) {
   Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   const uint64_t duration = parse_duration_us(args.require("duration"));
-  SoftCell cell(args.get("config"), args.get("program"));
+  SoftCell cell(args.get("config"), args.get("program"), install_protocol_functions);
   const uint64_t scan = args.has("scan") ? parse_duration_us(args.get("scan")) : cell.config().scan_period_us;
   if (scan == 0) throw UsageError("--scan must be positive");
 

@@ -1,3 +1,4 @@
+#include "plc_cell/io/protocol_functions.h"
 #include "plc_cell/ros/plc_node.h"
 
 #include <sstream>
@@ -12,7 +13,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   std::string program, cell;
   pnh.param<std::string>("program", program, "");
   pnh.param<std::string>("cell", cell, "");
-  cell_ = std::make_unique<SoftCell>(cell, program);
+  cell_ = std::make_unique<SoftCell>(cell, program, install_protocol_functions);
   program_path_ = cell_->program_path();
   const CellConfig& cfg = cell_->config();
 

@@ -5,8 +5,17 @@
 
 namespace plc_cell {
 
-SoftCell::SoftCell(const std::string& config_path, const std::string& program_path) {
-  if (!config_path.empty()) config_ = load_cell_config(config_path);
+FunctionTable SoftCell::functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
+                                      std::vector<std::shared_ptr<void>>* keep) {
+  FunctionTable t = FunctionTable::with_core_functions();
+  if (install) *keep = install(cfg, t);
+  return t;
+}
+
+SoftCell::SoftCell(const std::string& config_path, const std::string& program_path,
+                   const CellFunctionInstaller& install)
+    : config_(config_path.empty() ? CellConfig() : load_cell_config(config_path)),
+      plc_(functions_for(config_, install, &installed_)) {
   program_path_ = program_path.empty() ? config_.program : program_path;
   if (program_path_.empty())
     throw Error("no program: give --program or set cell.program in the cell config");
@@ -36,6 +45,7 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
 }
 
 SoftCell::~SoftCell() {
+  installed_.clear();
   hsc_.reset();
   plc_.locked([&](ScanEngine& e, Memory&) {
     e.remove_hook(sim_.get());

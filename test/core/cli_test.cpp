@@ -106,3 +106,11 @@ TEST(Cli, RunRejectsABadPriority) {
   EXPECT_NE(r.out.find("--rt-priority takes a whole number, got 'high'"), std::string::npos) << r.out;
   EXPECT_EQ(tool("run --config " + kDemo + " --duration 10ms --rt-priority 100").status, 2);
 }
+
+TEST(Cli, CheckKnowsEveryInstalledFunction) {
+  const std::string prog = "/tmp/plc_cell_cli_funs.il";
+  std::ofstream(prog) << "ORG M0\nLD M1\nLD M2\nFUN 151 Pt=1 MD=0 SR=R100 WR=R200 ACT=Y0 ERR=Y1 DN=Y2\n"
+                         "ORG M3\nLD M4\nLD M5\nFUN 150 Pt=2 SR=R300 WR=R400 ACT=M10 ERR=M11 DN=M12\nEND\n";
+  const Result r = tool("check --program " + prog);
+  EXPECT_EQ(r.status, 0) << r.out;
+}

@@ -1,8 +1,10 @@
 #pragma once
 // A soft PLC with its cell config and simulated inputs: what `plc_cell sim/run`
 // and plc_node both start from.
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/plc.h"
@@ -14,11 +16,17 @@ namespace hsc {
 class HscUnit;
 }
 
+// Adds FUN instructions that need the cell's config (FUN150/151 and their ports) before
+// the program is parsed. What it returns (port threads, engines) lives as long as the cell.
+using CellFunctionInstaller =
+    std::function<std::vector<std::shared_ptr<void>>(const CellConfig&, FunctionTable&)>;
+
 class SoftCell {
  public:
   // config_path may be empty (no signals, no simulation); program_path overrides the
   // config's cell.program. Throws SourceError/Error with file and line on bad input.
-  SoftCell(const std::string& config_path, const std::string& program_path);
+  SoftCell(const std::string& config_path, const std::string& program_path,
+           const CellFunctionInstaller& install = {});
   ~SoftCell();
 
   Plc& plc() { return plc_; }
@@ -31,7 +39,11 @@ class SoftCell {
   const std::string& program_path() const { return program_path_; }
 
  private:
+  static FunctionTable functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
+                                     std::vector<std::shared_ptr<void>>* keep);
+
   CellConfig config_;
+  std::vector<std::shared_ptr<void>> installed_;  // released first: ports stop before the PLC goes
   std::string program_path_;
   Plc plc_;
   std::unique_ptr<SimulatedCell> sim_;

@@ -1,0 +1,106 @@
+// FUN151 and FUN150 reach the running PLC: a SoftCell built as `plc_cell run` and plc_node
+// build it (with install_protocol_functions) takes its ports from the cell YAML.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <thread>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/fatek/server.h"
+#include "plc_cell/io/protocol_functions.h"
+#include "plc_cell/modbus/slave_servers.h"
+#include "plc_cell/sim/soft_cell.h"
+
+using namespace plc_cell;
+
+namespace {
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = "/tmp/plc_cell_protocol_functions_" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Scans (virtual time) until pred holds; the port works on its own thread. No sleeping.
+bool scan_until(Plc& plc, const std::function<bool()>& pred) {
+  uint64_t now = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (std::chrono::steady_clock::now() < deadline) {
+    plc.scan(now += 1000);
+    if (pred()) return true;
+    std::this_thread::yield();
+  }
+  return false;
+}
+
+uint32_t get(Plc& plc, const char* a) { return plc.read(parse_address(a), 1)[0]; }
+
+}  // namespace
+
+TEST(ProtocolFunctions, Fun151ReadsAnotherPlcThroughTheCellsFatekPort) {
+  Plc slave;
+  slave.write(parse_address("R0"), {11, 22, 33});
+  fatek::TcpServerOptions o;
+  o.port = 0;
+  o.station = 5;
+  fatek::TcpServer server(slave, o);
+  server.start();
+  const std::string prog = write_file("clink.il",
+                                      "ORG M0\nLD M1\nLD M2\nFUN 151 Pt=1 MD=0 SR=R100 WR=R200 ACT=Y0 ERR=Y1 DN=Y2\nEND\n");
+  const std::string cfg = write_file("clink.yaml", "cell: {program: " + prog +
+                                                       "}\nfatek:\n  ports:\n    1: tcp:127.0.0.1:" +
+                                                       std::to_string(server.port()) + "\n");
+  SoftCell cell(cfg, "", install_protocol_functions);
+  Plc& master = cell.plc();
+  ASSERT_TRUE(master.set_mode(RunMode::Run));
+  // One packet: read slave R0..R2 (type 12) into master R10.. (type 12).
+  master.write(parse_address("R100"), {1, 5, 1, 3, 12, 10, 12, 0});
+  master.write(parse_address("M0"), {1});
+  ASSERT_TRUE(scan_until(master, [&] { return get(master, "Y2") == 1; }));
+  EXPECT_EQ(master.read(parse_address("R10"), 3), (std::vector<uint32_t>{11, 22, 33}));
+  EXPECT_EQ(get(master, "Y1"), 0u);
+  server.stop();
+}
+
+TEST(ProtocolFunctions, Fun150ReadsAModbusSlaveThroughTheCellsModbusPort) {
+  Plc slave;
+  slave.write(parse_address("R7"), {1234, 5678});
+  modbus::SlaveOptions so;
+  so.tcp = "127.0.0.1:0";
+  auto servers = modbus::make_slave_servers(slave, so);
+  ASSERT_EQ(servers.size(), 1u);
+  servers[0]->start();
+  const std::string where = servers[0]->describe();  // "... 127.0.0.1:PORT ..."
+  const auto colon = where.rfind(':');
+  ASSERT_NE(colon, std::string::npos);
+  const int port = std::stoi(where.substr(colon + 1));
+  const std::string prog =
+      write_file("mbus.il", "ORG M100\nLD M101\nLD M102\nFUN 150 Pt=1 SR=R100 WR=R200 ACT=M110 ERR=M111 DN=M112\nEND\n");
+  const std::string cfg = write_file("mbus.yaml", "cell: {program: " + prog + "}\nmodbus:\n  ports:\n    1: {tcp: 127.0.0.1:" +
+                                                      std::to_string(port) + "}\n");
+  SoftCell cell(cfg, "", install_protocol_functions);
+  Plc& master = cell.plc();
+  ASSERT_TRUE(master.set_mode(RunMode::Run));
+  // A550H, 07H/1 transaction: station 1, read, 2 words, into R (12) at 20, from 4x (4) reference 8 = R7.
+  master.write(parse_address("R100"), {0xA550, 0x0701, 1, 1, 2, 12, 20, 4, 8});
+  master.write(parse_address("M100"), {1});
+  ASSERT_TRUE(scan_until(master, [&] { return get(master, "M112") == 1 || get(master, "M111") == 1; }));
+  EXPECT_EQ(get(master, "M111"), 0u) << "WR+0 = " << get(master, "R200");
+  EXPECT_EQ(master.read(parse_address("R20"), 2), (std::vector<uint32_t>{1234, 5678}));
+  servers[0]->stop();
+}
+
+TEST(ProtocolFunctions, ABadPortSectionNamesTheFile) {
+  const std::string prog = write_file("bad.il", "END\n");
+  const std::string cfg = write_file("bad.yaml", "cell: {program: " + prog + "}\nmodbus:\n  ports:\n    9: {tcp: x:1}\n");
+  try {
+    SoftCell cell(cfg, "", install_protocol_functions);
+    FAIL();
+  } catch (const SourceError& e) {
+    EXPECT_NE(std::string(e.what()).find(cfg + ":3: error: section 'modbus'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ports 1..4"), std::string::npos) << e.what();
+  }
+}
