@@ -26,6 +26,9 @@ const char* kUsage =
     "         talk to a FATEK FBs-PLC (or plc_cell run --fatek-tcp/--fatek-serial)\n"
     "  run    ... [--fatek-tcp HOST:PORT] [--fatek-serial DEV[:BAUD[:FMT]]] [--station N]\n"
     "         also serve the FATEK protocol as slave station N (default 1)\n"
+    "  run    ... [--modbus-tcp HOST:PORT] [--modbus-rtu DEV[:BAUD[:FMT]]] [--modbus-id N]\n"
+    "         [--modbus-gateway DEV[:BAUD[:FMT]] --modbus-gateway-wait MS --modbus-gateway-retries N]\n"
+    "         also serve Modbus (FBs address map) and forward other unit ids to RTU\n"
 
     "\n"
     "exit status: 0 ok, 1 program/config/runtime error, 2 usage error\n";

@@ -1,4 +1,5 @@
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/yaml_reader.h"
 
 #include <cmath>
 #include <fstream>
@@ -11,83 +12,6 @@
 
 namespace plc_cell {
 namespace {
-
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
-    const YAML::Mark m = n.Mark();
-    throw SourceError::at(file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
-                          "key '" + key + "': " + msg);
-  }
-
-  void only(const YAML::Node& map, const std::string& key, std::set<std::string> allowed) const {
-    if (!map.IsMap()) fail(map, key, "expected a mapping");
-    for (const auto& kv : map) {
-      const std::string k = kv.first.as<std::string>();
-      if (!allowed.count(k)) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + list + ")");
-      }
-    }
-  }
-
-  std::string str(const YAML::Node& n, const std::string& key) const {
-    if (!n.IsScalar()) fail(n, key, "expected a single value");
-    return n.as<std::string>();
-  }
-
-  double number(const YAML::Node& n, const std::string& key, double lo, double hi) const {
-    double v;
-    try {
-      v = n.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(n, key, "expected a number");
-    }
-    if (!(v >= lo && v <= hi) || std::isnan(v))
-      fail(n, key, "value " + n.as<std::string>() + " out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
-    return v;
-  }
-
-  uint64_t seconds_us(const YAML::Node& n, const std::string& key, double lo_s, double hi_s) const {
-    return static_cast<uint64_t>(std::llround(number(n, key, lo_s, hi_s) * 1e6));
-  }
-
-  Address address(const YAML::Node& n, const std::string& key) const {
-    Address a;
-    std::string why;
-    if (!try_parse_address(str(n, key), &a, &why)) fail(n, key, "bad address " + why);
-    return a;
-  }
-
-  AreaRange range(const YAML::Node& n, const std::string& key) const {
-    const std::string s = str(n, key);
-    const auto dash = s.find('-');
-    Address a, b;
-    std::string why;
-    if (dash == std::string::npos) {
-      if (!try_parse_address(s, &a, &why)) fail(n, key, "bad range '" + s + "': " + why);
-      return {a.area, a.index, a.index};
-    }
-    if (!try_parse_address(s.substr(0, dash), &a, &why) || !try_parse_address(s.substr(dash + 1), &b, &why))
-      fail(n, key, "bad range '" + s + "': " + why);
-    if (a.area != b.area || a.width != b.width || b.index < a.index)
-      fail(n, key, "bad range '" + s + "': both ends must name the same area, low end first (e.g. M800-M1399)");
-    return {a.area, a.index, b.index};
-  }
-
-  static std::string fmt(double v) {
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    return s;
-  }
-
- private:
-  std::string file_;
-};
 
 std::string folder_of(const std::string& path) {
   const auto slash = path.find_last_of('/');
@@ -111,7 +35,7 @@ Address CellConfig::resolve(const std::string& name_or_address) const {
 }
 
 CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file) {
-  Reader r(file);
+  YamlReader r(file);
   CellConfig cfg;
   cfg.file = file;
   YAML::Node doc;
@@ -221,7 +145,7 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
           if (d.source.width != Width::Bit) r.fail(f["source"], key + ".follow.source", "must be a single discrete");
           if (f["on_delay"]) d.on_delay_us = r.seconds_us(f["on_delay"], key + ".follow.on_delay", 0.0, 1e6);
           if (f["off_delay"]) d.off_delay_us = r.seconds_us(f["off_delay"], key + ".follow.off_delay", 0.0, 1e6);
-          if (f["invert"]) d.invert = f["invert"].as<bool>();
+          if (f["invert"]) d.invert = r.boolean(f["invert"], key + ".follow.invert");
         }
         cfg.sim_inputs.push_back(std::move(d));
       }

@@ -1,5 +1,7 @@
 #include "plc_cell/hsc/hsc_config.h"
 
+#include "plc_cell/config/yaml_reader.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -7,6 +9,7 @@
 #include <set>
 
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 
 namespace plc_cell {
@@ -31,59 +34,9 @@ uint32_t dir_relay(int n) {
 
 namespace {
 
-class Parse {
+class Parse : public YamlReader {
  public:
-  explicit Parse(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
-    const YAML::Mark m = n.Mark();
-    throw SourceError::at(file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
-                          "key '" + key + "': " + msg);
-  }
-  static int line(const YAML::Node& n) { return n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
-
-  void only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {
-    if (!map.IsMap()) fail(map, key, "expected a mapping");
-    for (const auto& kv : map) {
-      const std::string k = kv.first.as<std::string>();
-      if (!allowed.count(k)) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(kv.first, key + "." + k, "unknown key (expected one of: " + list + ")");
-      }
-    }
-  }
-
-  std::string str(const YAML::Node& n, const std::string& key) const {
-    if (!n.IsScalar()) fail(n, key, "expected a single value");
-    return n.as<std::string>();
-  }
-
-  double number(const YAML::Node& n, const std::string& key, double lo, double hi) const {
-    double v = 0;
-    try {
-      v = n.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(n, key, "expected a number");
-    }
-    if (!(v >= lo && v <= hi)) fail(n, key, "value " + n.as<std::string>() + " out of range");
-    return v;
-  }
-
-  uint64_t duration_us(const YAML::Node& n, const std::string& key) const {
-    try {
-      return parse_duration_us(str(n, key));
-    } catch (const Error& e) {
-      fail(n, key, e.what());
-    }
-  }
-
-  bool boolean(const YAML::Node& n, const std::string& key) const {
-    const std::string s = str(n, key);
-    if (s == "1" || s == "true" || s == "on") return true;
-    if (s == "0" || s == "false" || s == "off") return false;
-    fail(n, key, "expected 0/1 or true/false");
-  }
+  using YamlReader::YamlReader;
 
   // "X5" -> 5; only X0-X15 carry high-speed functions.
   int pin(const YAML::Node& n, const std::string& key) const {
@@ -96,13 +49,6 @@ class Parse {
     return x;
   }
 
-  Address address(const YAML::Node& n, const std::string& key) const {
-    Address a;
-    std::string why;
-    if (!try_parse_address(str(n, key), &a, &why)) fail(n, key, "bad address " + why);
-    return a;
-  }
-
   // Each of X0-X15 serves one function (manual §10.2).
   void use(int x, const YAML::Node& at, const std::string& key, const std::string& what) {
     auto it = uses_.find(x);
@@ -112,10 +58,7 @@ class Parse {
     uses_[x] = {what, line(at)};
   }
 
-  const std::string& file() const { return file_; }
-
  private:
-  std::string file_;
   std::map<int, std::pair<std::string, int>> uses_;
 };
 

@@ -1,7 +1,7 @@
 // The plc_cell command-line tool, run as a user would run it.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
+#include "run_tool.h"
 
 #include <cstdio>
 #include <fstream>
@@ -10,23 +10,8 @@
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out;  // stdout and stderr
-};
-
-Result tool(const std::string& args) {
-  const std::string cmd = std::string(PLC_CELL_TOOL) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  Result r{-1, ""};
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using Result = plc_cell::testing::ToolResult;
+Result tool(const std::string& args) { return plc_cell::testing::run_tool(args); }
 
 std::string slurp(const std::string& path) {
   std::ifstream f(path);

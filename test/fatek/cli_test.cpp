@@ -1,6 +1,8 @@
 // `plc_cell fatek` against `plc_cell run --fatek-tcp`: output and exit status.
 #include <gtest/gtest.h>
 
+#include "../core/run_tool.h"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,20 +13,8 @@
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out;
-};
-
-Result sh(const std::string& cmd) {
-  Result r{0, ""};
-  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
-  std::array<char, 512> buf;
-  while (fgets(buf.data(), int(buf.size()), p)) r.out += buf.data();
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using Result = plc_cell::testing::ToolResult;
+Result sh(const std::string& cmd) { return plc_cell::testing::run_shell(cmd); }
 
 // `plc_cell run` serving FATEK on a free port; the port is read back from its log line.
 class RunServer {

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rostest: fatek_bridge publishes what the soft PLC holds, and its services change it."""
-import threading
+import os
+import sys
 import time
 import unittest
 
@@ -13,32 +14,13 @@ from std_srvs.srv import SetBool, Trigger
 from plc_cell.msg import IoState, RegisterBlock
 from plc_cell.srv import WriteMemory
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from latest_message import Latest  # noqa: E402
+
 NS = "/fatek_bridge/"
 TIMEOUT = 20.0
 
 
-class Latest(object):
-    """Keeps the latest message of a topic; a test blocks until a condition holds on it."""
-
-    def __init__(self, topic, msg_type):
-        self.msg = None
-        self.cond = threading.Condition()
-        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
-
-    def _cb(self, msg):
-        with self.cond:
-            self.msg = msg
-            self.cond.notify_all()
-
-    def wait_for(self, pred, timeout=TIMEOUT):
-        deadline = time.monotonic() + timeout
-        with self.cond:
-            while self.msg is None or not pred(self.msg):
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    return self.msg
-                self.cond.wait(left)
-            return self.msg
 
 
 class FatekBridgeTest(unittest.TestCase):
@@ -50,10 +32,10 @@ class FatekBridgeTest(unittest.TestCase):
         cls.write = rospy.ServiceProxy(NS + "write", WriteMemory)
         cls.set_run = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
         cls.recover = rospy.ServiceProxy(NS + "recover", Trigger)
-        cls.io = Latest(NS + "io", IoState)
-        cls.regs = Latest(NS + "registers/regs", RegisterBlock)
-        cls.motor = Latest(NS + "signals/motor", Bool)
-        cls.diag = Latest("/diagnostics", DiagnosticArray)
+        cls.io = Latest(NS + "io", IoState, timeout=TIMEOUT)
+        cls.regs = Latest(NS + "registers/regs", RegisterBlock, timeout=TIMEOUT)
+        cls.motor = Latest(NS + "signals/motor", Bool, timeout=TIMEOUT)
+        cls.diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
 
     def write_ok(self, address, values):
         # The bridge may still be connecting: retry until the write goes through.

@@ -1,42 +1,25 @@
 #!/usr/bin/env python3
 """rostest: modbus_bridge against plc_node's Modbus/TCP slave publishes what the
 PLC holds, and its write service changes the PLC's memory."""
-import threading
-import time
+import os
+import sys
 import unittest
 
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
-from std_msgs.msg import Bool, Float32, Float64, Int16
+from std_msgs.msg import Float32, Float64, Int16
 from std_srvs.srv import Trigger
 
 from plc_cell.msg import RegisterBlock
 from plc_cell.srv import ReadMemory, WriteMemory, WritePoint
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from latest_message import Latest  # noqa: E402
+
 TIMEOUT = 20.0
 
 
-class Latest(object):
-    def __init__(self, topic, msg_type):
-        self.msg = None
-        self.cond = threading.Condition()
-        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
-
-    def _cb(self, msg):
-        with self.cond:
-            self.msg = msg
-            self.cond.notify_all()
-
-    def wait_for(self, pred, timeout=TIMEOUT):
-        deadline = time.monotonic() + timeout
-        with self.cond:
-            while self.msg is None or not pred(self.msg):
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    return self.msg
-                self.cond.wait(left)
-            return self.msg
 
 
 class ModbusBridgeTest(unittest.TestCase):
@@ -55,9 +38,9 @@ class ModbusBridgeTest(unittest.TestCase):
         return list(self.plc_read(address, 1).values)
 
     def test_publishes_what_the_plc_holds(self):
-        a = Latest("/modbus_bridge/plc/a", Int16)
-        level = Latest("/modbus_bridge/plc/level", Float32)
-        temp = Latest("/modbus_bridge/plc/temp", Float64)
+        a = Latest("/modbus_bridge/plc/a", Int16, timeout=TIMEOUT)
+        level = Latest("/modbus_bridge/plc/level", Float32, timeout=TIMEOUT)
+        temp = Latest("/modbus_bridge/plc/temp", Float64, timeout=TIMEOUT)
         self.assertTrue(self.plc_write("R11", [1234]).success)
         # DR100 = 0x40490FDB (float 3.1415927): word-swapped, low word at D100.
         self.assertTrue(self.plc_write("D100", [0x40490FDB & 0xFFFF, 0x4049]).success)
@@ -70,7 +53,7 @@ class ModbusBridgeTest(unittest.TestCase):
         self.assertAlmostEqual(m.data, 21.5)
 
     def test_write_service_changes_the_plc(self):
-        total = Latest("/modbus_bridge/plc/sum", Int16)
+        total = Latest("/modbus_bridge/plc/sum", Int16, timeout=TIMEOUT)
         r = self.write("plc/a", 40)
         self.assertTrue(r.success, r.message)
         r = self.write("b", -2)
@@ -92,12 +75,12 @@ class ModbusBridgeTest(unittest.TestCase):
         self.assertFalse(r.success)
 
     def test_blocks_diagnostics_and_recover(self):
-        blocks = Latest("/modbus_bridge/plc/blocks", RegisterBlock)
+        blocks = Latest("/modbus_bridge/plc/blocks", RegisterBlock, timeout=TIMEOUT)
         m = blocks.wait_for(lambda m: m.name == "fast" and m.address == "holding_register:10")
         self.assertIsNotNone(m)
         self.assertEqual(len(m.values), 3)
         self.assertTrue(self.recover().success)
-        diags = Latest("/diagnostics", DiagnosticArray)
+        diags = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
 
         def plc_ok(msg):
             return any(s.name.endswith("plc") and s.level == 0 for s in msg.status)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rostest: the simulated conveyor encoder on the counters topics; preset and clear."""
-import threading
-import time
+import os
+import sys
 import unittest
 
 import rospy
@@ -11,32 +11,13 @@ from std_srvs.srv import Trigger
 from plc_cell.msg import Counter, CounterArray
 from plc_cell.srv import PresetCounter
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from latest_message import Latest  # noqa: E402
+
 NS = "/plc_node/"
 TIMEOUT = 15.0
 
 
-class Latest(object):
-    """Keeps the latest message of a topic and lets a test wait for a condition on it."""
-
-    def __init__(self, topic, msg_type):
-        self.msg = None
-        self.cond = threading.Condition()
-        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
-
-    def _cb(self, msg):
-        with self.cond:
-            self.msg = msg
-            self.cond.notify_all()
-
-    def wait_for(self, pred, timeout=TIMEOUT):
-        deadline = time.monotonic() + timeout
-        with self.cond:
-            while self.msg is None or not pred(self.msg):
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    return self.msg
-                self.cond.wait(left)
-            return self.msg
 
 
 class CountersTest(unittest.TestCase):
@@ -46,8 +27,8 @@ class CountersTest(unittest.TestCase):
         rospy.wait_for_service(NS + "counters/conveyor/preset", timeout=30)
         cls.preset = rospy.ServiceProxy(NS + "counters/conveyor/preset", PresetCounter)
         cls.clear = rospy.ServiceProxy(NS + "counters/conveyor/clear", Trigger)
-        cls.all = Latest(NS + "counters", CounterArray)
-        cls.one = Latest(NS + "counters/conveyor", Counter)
+        cls.all = Latest(NS + "counters", CounterArray, timeout=TIMEOUT)
+        cls.one = Latest(NS + "counters/conveyor", Counter, timeout=TIMEOUT)
 
     def test_1_encoder_count_stops_at_the_preset(self):
         # 1 kHz x4 = 4000 counts/s; the HSC0I routine stops the motor at CV = PV = 4000.

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rostest for plc_node: topics in, program outputs observed on topics out, services."""
-import threading
+import os
+import sys
 import time
 import unittest
 
@@ -13,32 +14,13 @@ from std_srvs.srv import SetBool
 from plc_cell.msg import IoState
 from plc_cell.srv import ForceDiscrete, LoadProgram, ReadMemory, WriteMemory
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from latest_message import Latest  # noqa: E402
+
 NS = "/plc_node/"
 TIMEOUT = 10.0
 
 
-class Latest(object):
-    """Keeps the latest message of a topic and lets a test wait for a condition on it."""
-
-    def __init__(self, topic, msg_type):
-        self.msg = None
-        self.cond = threading.Condition()
-        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
-
-    def _cb(self, msg):
-        with self.cond:
-            self.msg = msg
-            self.cond.notify_all()
-
-    def wait_for(self, pred, timeout=TIMEOUT):
-        deadline = time.monotonic() + timeout
-        with self.cond:
-            while self.msg is None or not pred(self.msg):
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    return self.msg
-                self.cond.wait(left)
-            return self.msg
 
 
 class PlcNodeTest(unittest.TestCase):
@@ -53,8 +35,8 @@ class PlcNodeTest(unittest.TestCase):
         cls.run_mode = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
         cls.load = rospy.ServiceProxy(NS + "load_program", LoadProgram)
         cls.start_pub = rospy.Publisher(NS + "inputs/start", Bool, queue_size=1, latch=True)
-        cls.io = Latest(NS + "io", IoState)
-        cls.motor = Latest(NS + "signals/motor", Bool)
+        cls.io = Latest(NS + "io", IoState, timeout=TIMEOUT)
+        cls.motor = Latest(NS + "signals/motor", Bool, timeout=TIMEOUT)
 
     def setUp(self):
         self.assertTrue(self.run_mode(True).success)
@@ -161,7 +143,7 @@ class PlcNodeTest(unittest.TestCase):
         self.assertTrue(r.success, r.message)
 
     def test_diagnostics_report_the_scan(self):
-        diag = Latest("/diagnostics", DiagnosticArray)
+        diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
         msg = diag.wait_for(lambda m: any(s.name.endswith("scan") for s in m.status), timeout=15)
         self.assertIsNotNone(msg)
         st = [s for s in msg.status if s.name.endswith("scan")][0]

@@ -1,0 +1,39 @@
+#pragma once
+// Reading YAML with errors that name file:line:column and the key path, e.g.
+// "cell.yaml:3:5: error: key 'plc.scan_period': value 5 out of range [0.0001, 1]".
+// Every config section (cell, counters, axes, modules, ...) reads through it.
+#include <cstdint>
+#include <set>
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/memory.h"
+
+namespace plc_cell {
+
+class YamlReader {
+ public:
+  explicit YamlReader(std::string file) : file_(std::move(file)) {}
+
+  // Throws SourceError at n's position.
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const;
+  static int line(const YAML::Node& n) { return n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
+  const std::string& file() const { return file_; }
+
+  // A mapping whose keys are all in allowed.
+  void only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const;
+  std::string str(const YAML::Node& n, const std::string& key) const;
+  double number(const YAML::Node& n, const std::string& key, double lo, double hi) const;
+  uint64_t seconds_us(const YAML::Node& n, const std::string& key, double lo_s, double hi_s) const;
+  uint64_t duration_us(const YAML::Node& n, const std::string& key) const;  // "2.5s", "100ms", ...
+  bool boolean(const YAML::Node& n, const std::string& key) const;          // 0/1, true/false, on/off
+  Address address(const YAML::Node& n, const std::string& key) const;
+  AreaRange range(const YAML::Node& n, const std::string& key) const;       // M800-M1399 or R7
+
+ private:
+  std::string file_;
+};
+
+}  // namespace plc_cell

@@ -1,0 +1,96 @@
+#include "plc_cell/config/yaml_reader.h"
+
+#include <cmath>
+
+#include "plc_cell/config/cell_config.h"
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+
+static std::string fmt(double v) {
+  std::string s = std::to_string(v);
+  s.erase(s.find_last_not_of('0') + 1);
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  return s;
+}
+
+void YamlReader::fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
+  const YAML::Mark m = n.Mark();
+  throw SourceError::at(file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
+                        "key '" + key + "': " + msg);
+}
+
+void YamlReader::only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {
+  if (!map.IsMap()) fail(map, key, "expected a mapping");
+  for (const auto& kv : map) {
+    const std::string k = kv.first.as<std::string>();
+    if (!allowed.count(k)) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + list + ")");
+    }
+  }
+}
+
+std::string YamlReader::str(const YAML::Node& n, const std::string& key) const {
+  if (!n.IsScalar()) fail(n, key, "expected a single value");
+  return n.as<std::string>();
+}
+
+double YamlReader::number(const YAML::Node& n, const std::string& key, double lo, double hi) const {
+  double v = 0;
+  try {
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+    fail(n, key, "expected a number");
+  }
+  if (!(v >= lo && v <= hi) || std::isnan(v))
+    fail(n, key, "value " + n.as<std::string>() + " out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
+  return v;
+}
+
+uint64_t YamlReader::seconds_us(const YAML::Node& n, const std::string& key, double lo_s, double hi_s) const {
+  return static_cast<uint64_t>(std::llround(number(n, key, lo_s, hi_s) * 1e6));
+}
+
+uint64_t YamlReader::duration_us(const YAML::Node& n, const std::string& key) const {
+  try {
+    return parse_duration_us(str(n, key));
+  } catch (const SourceError&) {
+    throw;
+  } catch (const Error& e) {
+    fail(n, key, e.what());
+  }
+}
+
+bool YamlReader::boolean(const YAML::Node& n, const std::string& key) const {
+  const std::string s = str(n, key);
+  if (s == "1" || s == "true" || s == "on") return true;
+  if (s == "0" || s == "false" || s == "off") return false;
+  fail(n, key, "expected 0/1 or true/false");
+}
+
+Address YamlReader::address(const YAML::Node& n, const std::string& key) const {
+  Address a;
+  std::string why;
+  if (!try_parse_address(str(n, key), &a, &why)) fail(n, key, "bad address " + why);
+  return a;
+}
+
+AreaRange YamlReader::range(const YAML::Node& n, const std::string& key) const {
+  const std::string s = str(n, key);
+  const auto dash = s.find('-');
+  Address a, b;
+  std::string why;
+  if (dash == std::string::npos) {
+    if (!try_parse_address(s, &a, &why)) fail(n, key, "bad range '" + s + "': " + why);
+    return {a.area, a.index, a.index};
+  }
+  if (!try_parse_address(s.substr(0, dash), &a, &why) || !try_parse_address(s.substr(dash + 1), &b, &why))
+    fail(n, key, "bad range '" + s + "': " + why);
+  if (a.area != b.area || a.width != b.width || b.index < a.index)
+    fail(n, key, "bad range '" + s + "': both ends must name the same area, low end first (e.g. M800-M1399)");
+  return {a.area, a.index, b.index};
+}
+
+}  // namespace plc_cell
