@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace plc_cell {
@@ -13,9 +14,14 @@ struct ToolResult {
   std::string out;  // stdout and stderr
 };
 
-inline ToolResult run_shell(const std::string& command) {
+// Runs command through sh with a hard time limit, so a hung program fails its test
+// instead of hanging the suite.
+inline ToolResult run_shell(const std::string& command, int limit_s = 60) {
   ToolResult r{-1, ""};
-  FILE* p = popen((command + " 2>&1").c_str(), "r");
+  setenv("PLC_CELL_TEST_CMD", command.c_str(), 1);  // sh reads it from the environment: no quoting
+  const std::string full =
+      "timeout -s KILL " + std::to_string(limit_s) + " sh -c \"$PLC_CELL_TEST_CMD\" 2>&1";
+  FILE* p = popen(full.c_str(), "r");
   if (!p) return r;
   char buf[4096];
   size_t n;
@@ -25,8 +31,9 @@ inline ToolResult run_shell(const std::string& command) {
   return r;
 }
 
-// PLC_CELL_TOOL is the built tool's path, defined by the test target.
+#ifdef PLC_CELL_TOOL  // the built tool's path, defined by the targets that run it
 inline ToolResult run_tool(const std::string& args) { return run_shell(std::string(PLC_CELL_TOOL) + " " + args); }
+#endif
 
 }  // namespace testing
 }  // namespace plc_cell

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "../core/run_tool.h"
+
 namespace plc_cell {
 namespace test {
 
@@ -28,17 +30,8 @@ struct Output {
 
 // Runs cmd through sh with a hard time limit (coreutils timeout).
 inline Output run(const std::string& cmd, int limit_s = 60) {
-  Output out;
-  setenv("PLC_CELL_TEST_CMD", cmd.c_str(), 1);  // no quoting trouble: sh reads it from the environment
-  const std::string full = "timeout -s KILL " + std::to_string(limit_s) + " sh -c \"$PLC_CELL_TEST_CMD\" 2>&1";
-  FILE* p = popen(full.c_str(), "r");
-  if (!p) throw std::runtime_error("popen " + cmd);
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.text.append(buf, n);
-  const int st = pclose(p);
-  out.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return out;
+  const testing::ToolResult r = testing::run_shell(cmd, limit_s);
+  return {r.status, r.out};
 }
 
 inline std::string tmp_dir() {
