@@ -149,13 +149,7 @@ Address offset_address(const Address& a, uint32_t n) {
   if (!span_ok(a, n + 1, &why)) throw Error("address " + format_address(a) + " + " +
                                             std::to_string(n) + ": " + why);
   Address r = a;
-  if (is_discrete(a.area)) {
-    r.index += n * (a.width == Width::Bit ? 1 : a.width == Width::Word ? 16 : 32);
-  } else if (a.width == Width::DWord && !(a.area == Area::RC && a.index >= kFirst32BitCounter)) {
-    r.index += 2 * n;
-  } else {
-    r.index += n;
-  }
+  r.index += n * element_stride(a);
   return r;
 }
 

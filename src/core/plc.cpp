@@ -22,8 +22,10 @@ std::vector<uint32_t> Plc::read(const Address& start, uint32_t count) const {
   check_span(start, count);
   std::vector<uint32_t> out;
   out.reserve(count);
+  Address a = start;
+  const uint32_t stride = element_stride(a);
   std::lock_guard<std::mutex> lk(mu_);
-  for (uint32_t i = 0; i < count; ++i) out.push_back(memory_.read(offset_address(start, i)));
+  for (uint32_t i = 0; i < count; ++i, a.index += stride) out.push_back(memory_.read(a));
   return out;
 }
 

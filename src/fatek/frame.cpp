@@ -13,19 +13,6 @@ uint8_t lrc(std::string_view bytes) {
   return static_cast<uint8_t>(sum & 0xFF);
 }
 
-namespace {
-struct HexTable {
-  int8_t v[256];
-  constexpr HexTable() : v() {
-    for (int i = 0; i < 256; ++i) v[i] = -1;
-    for (int i = 0; i < 10; ++i) v['0' + i] = int8_t(i);
-    for (int i = 0; i < 6; ++i) v['A' + i] = v['a' + i] = int8_t(10 + i);
-  }
-};
-constexpr HexTable kHexTable;
-}  // namespace
-
-int hex_value(char c) { return kHexTable.v[static_cast<unsigned char>(c)]; }
 
 void append_hex(std::string& out, uint32_t v, int digits) {
   char buf[8];

@@ -110,13 +110,22 @@ ErrorCode Slave::execute(const Request& req, Response* rsp) {
           rsp->values.push_back(m.disabled(req.start.area, req.start.index + i) ? 1 : 0);  // '1' = DISABLE
         break;
       case Cmd::ReadDiscretes:
-      case Cmd::ReadRegisters:
-        for (uint32_t i = 0; i < req.count; ++i) rsp->values.push_back(m.read(offset_address(req.start, i)));
+      case Cmd::ReadRegisters: {
+        // The whole range was checked above; step through it without re-checking each element.
+        Address a = req.start;
+        const uint32_t stride = element_stride(a);
+        rsp->values.reserve(req.count);
+        for (uint32_t i = 0; i < req.count; ++i, a.index += stride) rsp->values.push_back(m.read(a));
         break;
+      }
       case Cmd::WriteDiscretes:
       case Cmd::WriteRegisters:
-        for (uint32_t i = 0; i < req.count; ++i) write_point(e, m, offset_address(req.start, i), req.values[i]);
+      {
+        Address a = req.start;
+        const uint32_t stride = element_stride(a);
+        for (uint32_t i = 0; i < req.count; ++i, a.index += stride) write_point(e, m, a, req.values[i]);
         break;
+      }
       case Cmd::MixedRead:
         for (const auto& p : req.points) rsp->values.push_back(m.read(p));
         break;

@@ -33,6 +33,14 @@ std::string format_address(const Address& a);
 // Fixed-width FATEK protocol form: X0003, WY0008, R00100, DR04088, DRC0200.
 std::string format_fatek_address(const Address& a);
 
+// How far the index moves from one element to the next: 1 for a bit, 16/32 for W/DW
+// views, 2 for a 32-bit register pair, 1 for a 32-bit counter (DRC200, DRC201, ...).
+inline uint32_t element_stride(const Address& a) {
+  if (is_discrete(a.area)) return a.width == Width::Bit ? 1 : a.width == Width::Word ? 16 : 32;
+  if (a.width == Width::DWord && !(a.area == Area::RC && a.index >= kFirst32BitCounter)) return 2;
+  return 1;
+}
+
 // The n-th element after a: X3+1 = X4, WY8+1 = WY24, DR0+1 = DR2, DRC200+1 = DRC201.
 // Throws if the result leaves the area.
 Address offset_address(const Address& a, uint32_t n);

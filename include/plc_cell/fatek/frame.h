@@ -29,7 +29,19 @@ void append_frame(std::string& out, uint8_t station, uint8_t command, std::strin
 std::string encode_frame(const Frame& f);
 
 // Hex helpers shared by the codec (upper-case out, either case in).
-int hex_value(char c);  // -1 if not a hex digit
+namespace detail {
+struct HexTable {
+  int8_t v[256];
+  constexpr HexTable() : v() {
+    for (int i = 0; i < 256; ++i) v[i] = -1;
+    for (int i = 0; i < 10; ++i) v['0' + i] = int8_t(i);
+    for (int i = 0; i < 6; ++i) v['A' + i] = v['a' + i] = int8_t(10 + i);
+  }
+};
+inline constexpr HexTable kHexTable;
+}  // namespace detail
+// -1 if not a hex digit. Inline: the codec calls it for every character.
+inline int hex_value(char c) { return detail::kHexTable.v[static_cast<unsigned char>(c)]; }
 void append_hex(std::string& out, uint32_t v, int digits);
 // Parses exactly `digits` hex chars at s; false on a non-hex char or short input.
 bool parse_hex(std::string_view s, int digits, uint32_t* v);
