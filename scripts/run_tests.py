@@ -19,6 +19,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 def expected_results():
     """Result files catkin writes for the tests that CMakeLists.txt declares."""
     text = open(os.path.join(ROOT, "CMakeLists.txt")).read()
+    for extra in sorted(glob.glob(os.path.join(ROOT, "cmake", "*.cmake"))):
+        text += "\n" + open(extra).read()
     names = ["gtest-%s.xml" % n for n in re.findall(r"catkin_add_gtest\((\w+)", text)]
     for path in re.findall(r"add_rostest\(([\w/.]+)", text):
         names.append("rostest-%s.xml" % os.path.splitext(path)[0].replace("/", "_"))
