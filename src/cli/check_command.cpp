@@ -6,6 +6,7 @@
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/il_parser.h"
+#include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 namespace cli {
@@ -13,7 +14,7 @@ namespace cli {
 int cmd_check(const std::vector<std::string>& argv) {
   Args args(argv, {"program"});
   const std::string path = args.require("program");
-  const FunctionTable fns = FunctionTable::with_core_functions();
+  const FunctionTable fns = SoftCell::functions();
   try {
     const Program p = load_program_file(path, fns);
     std::cout << path << ": OK, " << p.code.size() << " instructions, " << p.labels.size() << " labels\n";

@@ -7,6 +7,7 @@
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/simulated_cell.h"
+#include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
 
@@ -15,6 +16,8 @@ class SoftCell {
   // config_path may be empty (no signals, no simulation); program_path overrides the
   // config's cell.program. Throws SourceError/Error with file and line on bad input.
   SoftCell(const std::string& config_path, const std::string& program_path);
+  // The instruction set of every cell: the core's plus the subsystems' FUNs.
+  static FunctionTable functions();
   ~SoftCell();
 
   Plc& plc() { return plc_; }
@@ -22,12 +25,15 @@ class SoftCell {
   SimulatedCell& simulation() { return *sim_; }
   const CellConfig& config() const { return config_; }
   const std::string& program_path() const { return program_path_; }
+  // The temperature modules and thermal plants of `modules:`, or nullptr.
+  temp::TemperatureCell* temperature() { return temperature_.get(); }
 
  private:
   CellConfig config_;
   std::string program_path_;
   Plc plc_;
   std::unique_ptr<SimulatedCell> sim_;
+  std::unique_ptr<temp::TemperatureCell> temperature_;
 };
 
 }  // namespace plc_cell
