@@ -19,3 +19,10 @@ if(CATKIN_ENABLE_TESTING)
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
   add_dependencies(temp_tests plc_cell_tool)
 endif()
+
+# make bench: 64 temperature channels + 16 PID loops against a 1 ms scan.
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+  add_executable(bench_temp bench/temp_bench.cpp)
+  target_link_libraries(bench_temp plc_cell_core benchmark::benchmark)
+endif()

@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "plc_cell/core/area.h"
+#include "plc_cell/core/error.h"
 #include "plc_cell/temp/rtd.h"
 
 namespace plc_cell {
@@ -44,6 +45,7 @@ const TemperatureCell* temperature_cell_of(const Memory& mem) {
 }
 
 TemperatureCell::TemperatureCell(TemperatureConfig cfg, Memory& mem) : cfg_(std::move(cfg)), mem_(mem) {
+  if (cfg_.total_channels() > 32) throw Error("more than 32 temperature points (the FBs limit)");
   for (const auto& p : cfg_.plants) {
     plants_.emplace_back(p.params);
     plant_defs_.push_back(p);
