@@ -188,7 +188,22 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
   r.only(node, "modules", {"temperature", "plants"});
   if (const YAML::Node t = node["temperature"]) {
     const std::string k = "modules.temperature";
-    r.only(t, k, {"scan", "unit", "averaging", "readings", "working", "table", "first_ir", "modules"});
+    r.only(t, k, {"scan", "unit", "averaging", "readings", "working", "table", "first_ir", "modules", "loops"});
+    if (const YAML::Node ls = t["loops"]) {
+      if (!ls.IsSequence()) r.fail(ls, k + ".loops", "expected a list");
+      for (size_t i = 0; i < ls.size(); ++i) {
+        const std::string lk = k + ".loops[" + std::to_string(i) + "]";
+        r.only(ls[i], lk, {"name", "sv", "kc", "ki", "td"});
+        LoopDef l;
+        if (!ls[i]["name"] || !ls[i]["sv"]) r.fail(ls[i], lk, "a loop needs name and sv");
+        l.name = r.str(ls[i]["name"], lk + ".name");
+        l.sv = r.reg(ls[i]["sv"], lk + ".sv");
+        if (ls[i]["kc"]) l.kc = r.reg(ls[i]["kc"], lk + ".kc"), l.has_kc = true;
+        if (ls[i]["ki"]) l.ki = r.reg(ls[i]["ki"], lk + ".ki"), l.has_ki = true;
+        if (ls[i]["td"]) l.td = r.reg(ls[i]["td"], lk + ".td"), l.has_td = true;
+        c.loops.push_back(l);
+      }
+    }
     if (t["scan"]) {
       const std::string s = r.str(t["scan"], k + ".scan");
       if (s != "normal" && s != "fast") r.fail(t["scan"], k + ".scan", "normal or fast");

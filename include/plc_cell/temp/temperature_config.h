@@ -54,6 +54,13 @@ struct PlantDef {
   double full_scale = 16383;
 };
 
+// A PID loop whose set point and gains ROS may change (FUN86 reads them from registers).
+struct LoopDef {
+  std::string name;
+  Address sv{}, kc{}, ki{}, td{};
+  bool has_kc = false, has_ki = false, has_td = false;
+};
+
 struct TemperatureConfig {
   bool fast = false;        // Fast: half the update period, 1 degree resolution
   bool fahrenheit = false;  // readings in 0.1 degF
@@ -65,6 +72,7 @@ struct TemperatureConfig {
   uint32_t first_ir = 0;    // IR (R3840 + n) of the first module
   std::vector<ModuleDef> modules;
   std::vector<PlantDef> plants;
+  std::vector<LoopDef> loops;
   int total_channels() const;
 };
 
