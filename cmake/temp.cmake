@@ -8,6 +8,7 @@ target_sources(plc_cell_core PRIVATE
   src/temp/temperature_config.cpp
   src/temp/temperature_cell.cpp
   src/temp/tpctl.cpp
+  src/temp/pid.cpp
   src/temp/temp_functions.cpp)
 
 if(CATKIN_ENABLE_TESTING)
@@ -25,4 +26,12 @@ find_package(benchmark QUIET)
 if(benchmark_FOUND)
   add_executable(bench_temp bench/temp_bench.cpp)
   target_link_libraries(bench_temp plc_cell_core benchmark::benchmark)
+endif()
+
+# plc_node: temperatures on topics, /diagnostics per module, ~set_pid_loop.
+list(APPEND PLC_CELL_NODE_SOURCES src/ros/temperature_ros.cpp)
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/temperature.test DEPENDENCIES plc_node)
 endif()

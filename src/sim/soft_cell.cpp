@@ -7,7 +7,7 @@ namespace plc_cell {
 
 FunctionTable SoftCell::functions() {
   FunctionTable t = FunctionTable::with_core_functions();
-  temp::add_temperature_functions(t);  // FUN86 TPCTL
+  temp::add_temperature_functions(t);  // FUN86 TPCTL, FUN30 PID
   return t;
 }
 
