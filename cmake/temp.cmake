@@ -7,6 +7,8 @@ target_sources(plc_cell_core PRIVATE
   src/temp/thermal_plant.cpp
   src/temp/temperature_config.cpp
   src/temp/temperature_cell.cpp
+  src/temp/analog_codes.cpp
+  src/temp/analog_modules.cpp
   src/temp/tpctl.cpp
   src/temp/pid.cpp
   src/temp/temp_functions.cpp)

@@ -79,6 +79,11 @@ TemperatureCell::TemperatureCell(TemperatureConfig cfg, Memory& mem) : cfg_(std:
       wired_open_.push_back(open);
     }
   }
+  if (cfg_.has_analog)
+    analog_ = std::make_unique<AnalogModules>(cfg_.analog, mem_, [this](const std::string& name) {
+      ThermalPlant* p = plant(name);
+      return p ? p->temperature_c() : 0.0;
+    });
   std::lock_guard<std::mutex> lk(g_registry_mu);
   registry()[&mem_] = this;
 }
@@ -145,7 +150,12 @@ void TemperatureCell::sample(size_t i) {
   ch.value_c = sum / double(ch.window.size());
 }
 
+void TemperatureCell::after_program(uint64_t now_us) {
+  if (analog_) analog_->after_program(now_us);
+}
+
 void TemperatureCell::before_inputs(uint64_t now_us) {
+  if (analog_) analog_->before_inputs(now_us);
   const uint64_t dt = have_time_ && now_us > last_us_ ? now_us - last_us_ : 0;
   have_time_ = true;
   last_us_ = now_us;
@@ -182,7 +192,7 @@ int16_t TemperatureCell::register_value(double c, double resolution_c) const {
   return static_cast<int16_t>(std::clamp(v, -32768.0, 32766.0));
 }
 
-void TemperatureCell::before_program(uint64_t) {
+void TemperatureCell::before_program(uint64_t now_us) {
   if (mem_.bit(Area::M, special::kFirstScan)) {
     // The manual's defaults (A:6945, A:7170-A:7177); the program may overwrite them.
     mem_.set_reg(Area::R, treg::kIntervals, 0x0102);
@@ -191,7 +201,8 @@ void TemperatureCell::before_program(uint64_t) {
     mem_.set_reg(Area::R, treg::kHighAlarm, 3500);
     for (uint32_t r = 0; r < 4; ++r) mem_.set_reg(Area::R, treg::kInstalled + r, 0xFFFF);
   }
-  write_registers();
+  if (!modules_.empty()) write_registers();
+  if (analog_) analog_->before_program(now_us);
 }
 
 void TemperatureCell::write_registers() {

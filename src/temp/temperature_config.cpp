@@ -141,7 +141,7 @@ PlantDef parse_plant(const Reader& r, const YAML::Node& n, const std::string& ke
   if (!n["name"]) r.fail(n, key + ".name", "missing");
   p.name = r.str(n["name"], key + ".name");
   auto& q = p.params;
-  if (n["ambient"]) q.ambient_c = r.number(n["ambient"], key + ".ambient", -50, 100);
+  if (n["ambient"]) q.ambient_c = r.number(n["ambient"], key + ".ambient", -200, 1500);
   q.initial_c = q.ambient_c;
   if (n["initial"]) q.initial_c = r.number(n["initial"], key + ".initial", -273, 3000);
   if (n["gain"]) q.gain_c = r.number(n["gain"], key + ".gain", 0, 3000);
@@ -185,7 +185,8 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
   Reader r(file);
   TemperatureConfig c;
   if (!node) return c;
-  r.only(node, "modules", {"temperature", "plants"});
+  r.only(node, "modules", {"temperature", "plants", "analog"});
+  if (node["analog"]) c.analog = parse_analog_config(node["analog"], file), c.has_analog = true;
   if (const YAML::Node t = node["temperature"]) {
     const std::string k = "modules.temperature";
     r.only(t, k, {"scan", "unit", "averaging", "readings", "working", "table", "first_ir", "modules", "loops"});
@@ -247,6 +248,13 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
     if (!ps.IsSequence()) r.fail(ps, "modules.plants", "expected a list");
     for (size_t i = 0; i < ps.size(); ++i) c.plants.push_back(parse_plant(r, ps[i], "modules.plants[" + std::to_string(i) + "]"));
   }
+  for (const auto& m : c.analog.modules)
+    for (const auto& in : m.inputs) {
+      if (in.plant.empty()) continue;
+      bool ok = false;
+      for (const auto& p : c.plants) ok |= p.name == in.plant;
+      if (!ok) r.fail(node["analog"], "modules.analog", "input '" + in.name + "' names an unknown plant '" + in.plant + "'");
+    }
   for (const auto& m : c.modules)
     for (const auto& ch : m.channels) {
       if (ch.plant.empty()) continue;

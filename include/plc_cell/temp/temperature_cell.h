@@ -1,6 +1,6 @@
 #pragma once
-// The FBs temperature modules of a cell and the thermal plants behind them, as a
-// ScanHook: plants advance and modules sample in virtual time before each scan's input
+// The `modules:` section as one ScanHook: the FBs temperature modules, the thermal
+// plants behind them, and the analog I/O modules (analog_modules.h). plants advance and modules sample in virtual time before each scan's input
 // image; readings, working registers and the configuration table are written into PLC
 // memory before the program runs. docs/analog-and-temperature.md.
 #include <cstdint>
@@ -47,6 +47,10 @@ class TemperatureCell : public ScanHook {
 
   void before_inputs(uint64_t now_us) override;   // plants and sampling
   void before_program(uint64_t now_us) override;  // readings and registers into memory
+  void after_program(uint64_t now_us) override;   // analog outputs take the OR values
+
+  // The analog I/O modules of modules.analog, or nullptr.
+  const AnalogModules* analog() const { return analog_.get(); }
 
   const TemperatureConfig& config() const { return cfg_; }
   const std::vector<ChannelState>& channels() const { return channels_; }
@@ -79,6 +83,7 @@ class TemperatureCell : public ScanHook {
     uint32_t reads = 0;
   };
   std::vector<ModuleState> modules_;
+  std::unique_ptr<AnalogModules> analog_;
   bool all_read_ = false;
   bool have_time_ = false;
   uint64_t last_us_ = 0;

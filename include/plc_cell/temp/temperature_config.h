@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "plc_cell/core/address.h"
+#include "plc_cell/temp/analog_modules.h"
 #include "plc_cell/temp/ntc.h"
 #include "plc_cell/temp/thermal_plant.h"
 #include "plc_cell/temp/thermocouple.h"
@@ -73,6 +74,8 @@ struct TemperatureConfig {
   std::vector<ModuleDef> modules;
   std::vector<PlantDef> plants;
   std::vector<LoopDef> loops;
+  bool has_analog = false;
+  AnalogConfig analog;  // modules.analog
   int total_channels() const;
 };
 
