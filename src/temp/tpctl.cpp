@@ -43,6 +43,7 @@ using R = OperandRole;
 
 struct Instance {
   bool active = false;          // EN was on at the previous execution
+  uint64_t last_us = 0;
   uint64_t ts_us = 0, cycle_us = 0;
   int ts_tenths = 40;
   uint64_t next_solve = 0, cycle_start = 0;
@@ -119,6 +120,9 @@ void run(Store& store, ExecContext& c, const BoundOperand* o) {
     return;
   }
   const uint64_t now = c.now_us;
+  // A new RUN (or a new clock) starts the loop afresh, as EN rising does.
+  if (mem.bit(Area::M, special::kFirstScan) || now < st.last_us) st.active = false;
+  st.last_us = now;
   if (!st.active) {
     const uint16_t r4005 = mem.reg(Area::R, treg::kIntervals);
     st.ts_us = interval_us(r4005 & 0xFF);

@@ -139,6 +139,36 @@ TEST(Fun86, PvFromR4004WithoutModules) {
   EXPECT_EQ(p.read(parse_address("Y0"), 2), (std::vector<uint32_t>{0, 0}));
 }
 
+TEST(Fun86, StopAndRunStartsAfresh) {
+  Plc p(table());
+  p.load_program_text("ORG M1925\nLD M1925\nFUN 86 Md=1 Yn=Y0 Sn=0 Zn=1 Sv=R100 Os=R110 PR=R120 IR=R130 "
+                      "DR=R140 OR=R200 WR=R300\nEND\n", "t.il");
+  auto setup = [&] {
+    p.write(parse_address("R4003"), {0xA55A});
+    p.write(parse_address("R4004"), {20500});
+    p.write(parse_address("R4012"), {0xFFFF});
+    p.write(parse_address("R4005"), {0x0102});  // Ts 4 s
+    p.write(parse_address("D500"), {1000});
+    p.write(parse_address("R100"), {2000});
+    p.write(parse_address("R120"), {10});
+    p.write(parse_address("R130"), {0});
+  };
+  ASSERT_TRUE(p.set_mode(RunMode::Run));
+  setup();
+  p.scan(0);
+  p.scan(1000);
+  // P 10 x 1000 plus one integral step with the default Ki 17: 10 x 1000 x 17 x 40 / 60000 = 113.
+  EXPECT_EQ(p.read(parse_address("R200"), 1)[0], 10113u);
+  p.set_mode(RunMode::Stop);
+  ASSERT_TRUE(p.set_mode(RunMode::Run));
+  setup();
+  p.write(parse_address("D500"), {1500});
+  p.scan(2000);  // first scan of the new RUN: solves at once instead of waiting for t = 4 s
+  p.scan(3000);
+  // 5000 + 57 with a fresh integral (the old one would give 5170).
+  EXPECT_EQ(p.read(parse_address("R200"), 1)[0], 5057u);
+}
+
 // The acceptance test: the oven from 25 degC to 200 degC under FUN86, then held
 // within +-1 degC. Writes the trace for docs/oven.png when PLC_CELL_OVEN_TRACE is set.
 TEST(Fun86Oven, ReachesAndHolds200) {
