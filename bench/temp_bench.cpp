@@ -72,8 +72,6 @@ void run(benchmark::State& state, bool with_temp) {
     b.plc.scan(t);
     t += 1000;
   }
-  state.counters["pct_of_1ms"] = benchmark::Counter(double(state.iterations()) * 1e-5,
-                                                    benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 void BM_TwoPlcs_Baseline(benchmark::State& s) { run(s, false); }
