@@ -14,6 +14,7 @@ namespace {
 struct Reading {
   int16_t raw = 0;
   bool installed = false, abnormal = false;
+  bool all_read = false;  // the module set has read every channel once
 };
 
 // What the PLC itself sees: the reading registers and the abnormal / installed bits.
@@ -30,6 +31,7 @@ std::vector<Reading> readings(SoftCell& cell) {
       r[i].raw = int16_t(m.reg(cfg.readings.area, cfg.readings.index + uint32_t(i)));
       r[i].installed = inst >> i & 1u;
       r[i].abnormal = abn >> i & 1u;
+      r[i].all_read = tc.all_read();
     }
     return r;
   });
@@ -83,7 +85,7 @@ void TemperatureRos::publish() {
 void TemperatureRos::diagnose_module(size_t k, diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const auto r = readings(cell_);
   const temp::TemperatureCell& tc = *cell_.temperature();
-  const bool ready = tc.all_read();
+  const bool ready = !r.empty() && r[0].all_read;
   std::string bad;
   int n = 0;
   for (size_t i = 0; i < tc.channels().size(); ++i) {
