@@ -125,6 +125,7 @@ double TemperatureCell::sense(const ModuleDef& m, double t, bool* out_of_range) 
       return rtd_temperature(k, rtd_resistance(k, t));
     }
     case SensorKind::Ntc:
+      if (m.use_sh) return ntc_temperature(m.sh, ntc_resistance(m.sh, t));
       return ntc_temperature(m.ntc, ntc_resistance(m.ntc, t));
   }
   return t;

@@ -84,7 +84,7 @@ ChannelDef parse_channel(const Reader& r, const YAML::Node& n, const std::string
 }
 
 ModuleDef parse_module(const Reader& r, const YAML::Node& n, const std::string& key) {
-  r.only(n, key, {"type", "sensor", "alpha", "cold_junction", "r25", "beta", "channels"});
+  r.only(n, key, {"type", "sensor", "alpha", "cold_junction", "r25", "beta", "steinhart_hart", "channels"});
   ModuleDef m;
   if (!n["type"]) r.fail(n, key + ".type", "missing");
   const std::string type = r.str(n["type"], key + ".type");
@@ -123,6 +123,13 @@ ModuleDef parse_module(const Reader& r, const YAML::Node& n, const std::string& 
       r.fail(n["r25"], key + ".r25", "the FBs-6NTC takes 2k, 5k, 10k or 20k at 25 degC");
   }
   if (n["beta"]) m.ntc.beta = r.number(n["beta"], key + ".beta", 1000, 10000);
+  if (const YAML::Node sh = n["steinhart_hart"]) {
+    if (!ntc) r.fail(sh, key + ".steinhart_hart", "only for a 6NTC");
+    if (!sh.IsSequence() || sh.size() != 3) r.fail(sh, key + ".steinhart_hart", "expected [a, b, c]");
+    m.sh = {r.number(sh[0], key + ".steinhart_hart", -1, 1), r.number(sh[1], key + ".steinhart_hart", -1, 1),
+            r.number(sh[2], key + ".steinhart_hart", -1, 1)};
+    m.use_sh = true;
+  }
   if (n["channels"]) {
     const YAML::Node& ch = n["channels"];
     if (!ch.IsSequence()) r.fail(ch, key + ".channels", "expected a list");

@@ -137,6 +137,48 @@ modules:
   EXPECT_NEAR(r0 / 10.0, 220 * 9.0 / 5 + 32, 1.0);
 }
 
+TEST_F(TemperatureCellTest, NtcAndJisRtdModules) {
+  setup(R"(
+modules:
+  temperature:
+    averaging: 16
+    readings: D100
+    working: D200
+    modules:
+      - type: 6NTC
+        r25: 10000
+        beta: 3950
+        channels: [{name: a, temperature: 37.3}, {name: hot, temperature: 180}]
+  plants: []
+)");
+  scans(2100);  // 6NTC normal: 2 s for 6 channels
+  EXPECT_EQ(sget("D100"), 373);
+  EXPECT_EQ(sget("D101"), 1500);          // beyond plc_cell's -40..150 degC NTC range: saturated
+  EXPECT_EQ(get("D201") & 0x3u, 0x2u);    // ... and abnormal
+  EXPECT_EQ(get("D204") >> 8, 0x20u);     // NTC sensor code
+}
+
+TEST(TemperatureConfig, SteinhartHartAndJisOptions) {
+  const TemperatureConfig c = parse_temperature_config(YAML::Load(R"(
+modules:
+  temperature:
+    modules:
+      - {type: 6NTC, steinhart_hart: [1.009249522e-3, 2.378405444e-4, 2.019202697e-7],
+         channels: [{temperature: 25}]}
+      - {type: 16RTD, sensor: PT1000, alpha: JIS, channels: [{temperature: 25}]}
+)")["modules"], "c.yaml");
+  ASSERT_EQ(c.modules.size(), 2u);
+  EXPECT_TRUE(c.modules[0].use_sh);
+  EXPECT_EQ(c.modules[1].sensor, SensorKind::Pt1000);
+  EXPECT_EQ(c.modules[1].sensor_code(), 0x13);
+  Memory mem;
+  TemperatureCell cell(c, mem);
+  cell.before_inputs(0);  // t = 0: the first channel of each module is converted
+  // 25 degC through the Steinhart-Hart curve and the JIS Pt1000 curve comes back as 25.0.
+  EXPECT_NEAR(cell.channels()[0].value_c, 25.0, 1e-6);
+  EXPECT_NEAR(cell.channels()[6].value_c, 25.0, 1e-6);
+}
+
 TEST_F(TemperatureCellTest, ConfigErrorsNameTheKey) {
   const auto bad = [](const std::string& y) {
     try {

@@ -40,6 +40,8 @@ struct ModuleDef {
   TcType tc = TcType::K;
   std::string alpha = "DIN";          // RTD: DIN (0.00385) or JIS (0.003916)
   NtcBeta ntc{10000, 3950};
+  bool use_sh = false;                // 6NTC: Steinhart-Hart coefficients instead of beta
+  SteinhartHart sh{};
   double cold_junction_c = 25;        // the module's terminal temperature
   std::vector<ChannelDef> channels;   // at most module_info(kind).channels; the rest are unwired
   int sensor_code() const;            // high byte of SR+4..: plc_cell's numbering
