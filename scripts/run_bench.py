@@ -6,6 +6,8 @@
                   compiled to C++; repeated, medians reported.
   bench_realtime  RealTimeLoop at 1 ms on the conveyor program: wake latency
                   percentiles, cycle time, overruns.
+  bench_temp      (when built) 64 temperature channels + 16 FUN86 loops against
+                  a 1 ms scan.
 
 The targets checked are those of docs/performance.md. The exit status is 0 when
 both benchmarks ran, whatever the figures: the machine decides those.
@@ -133,6 +135,16 @@ def main():
         ("  scans / overruns", "%s / %s" % (rt.get("scans"), rt.get("overruns")),
          rt.get("sched", "")),
     ]
+    # Subsystem benchmarks: bench_temp (docs/analog-and-temperature.md).
+    temp_bin = os.path.join(ws, "devel", "lib", "plc_cell", "bench_temp")
+    if os.path.isfile(temp_bin):
+        print()
+        t = run_scan_bench(temp_bin, args.repetitions, args.min_time)
+        base_ns = cpu_us(t["BM_TwoPlcs_Baseline"]) * 1e3
+        full_ns = cpu_us(t["BM_TwoPlcs_64Channels_16Pid"]) * 1e3
+        pct = (full_ns - base_ns) / 1e6 * 100
+        rows.append(("64 temp channels + 16 PID loops", "%.0f ns/scan" % (full_ns - base_ns),
+                     "%.3f %% of 1 ms, < 2 %%: %s" % (pct, verdict(pct < 2.0))))
     print()
     print("== plc_cell benchmark summary (medians of %d repetitions; CPU time; %d CPUs)"
           % (args.repetitions, os.cpu_count() or 0))

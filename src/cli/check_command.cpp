@@ -7,6 +7,7 @@
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/il_parser.h"
 #include "plc_cell/io/protocol_functions.h"
+#include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 namespace cli {
@@ -14,7 +15,7 @@ namespace cli {
 int cmd_check(const std::vector<std::string>& argv) {
   Args args(argv, {"program"});
   const std::string path = args.require("program");
-  FunctionTable fns = FunctionTable::with_core_functions();
+  FunctionTable fns = SoftCell::functions();
   const auto keep = install_protocol_functions(CellConfig(), fns);  // FUN150/151 without ports
   try {
     const Program p = load_program_file(path, fns);

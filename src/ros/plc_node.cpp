@@ -69,6 +69,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
   add_fatek_servers(cell_->plc(), pnh, &servers_);
   add_modbus_servers(cell_->plc(), pnh, &servers_);
+  if (cell_->temperature()) temperature_ = std::make_unique<TemperatureRos>(nh, pnh, *cell_, updater_);
   for (auto& s : servers_) {
     s->start();
     ROS_INFO("plc_node: serving %s", s->describe().c_str());

@@ -2,12 +2,19 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/temp/temp_functions.h"
 
 namespace plc_cell {
 
+FunctionTable SoftCell::functions() {
+  FunctionTable t = FunctionTable::with_core_functions();
+  temp::add_temperature_functions(t);  // FUN86 TPCTL, FUN30 PID
+  return t;
+}
+
 FunctionTable SoftCell::functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
                                       std::vector<std::shared_ptr<void>>* keep) {
-  FunctionTable t = FunctionTable::with_core_functions();
+  FunctionTable t = functions();
   if (install) *keep = install(cfg, t);
   return t;
 }
@@ -21,8 +28,10 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
     throw Error("no program: give --program or set cell.program in the cell config");
   sim_ = plc_.locked([&](ScanEngine& e, Memory& m) { return std::make_unique<SimulatedCell>(e, m); });
   apply_cell_config(config_, plc_, *sim_);
-  plc_.locked([&](ScanEngine& e, Memory&) {
+  plc_.locked([&](ScanEngine& e, Memory& m) {
     e.add_hook(sim_.get());
+    temperature_ = temp::make_temperature_cell(config_.document, config_.file, m);
+    if (temperature_) e.add_hook(temperature_.get());
     return 0;
   });
   const YAML::Node& doc = config_.document;
@@ -49,6 +58,7 @@ SoftCell::~SoftCell() {
   hsc_.reset();
   plc_.locked([&](ScanEngine& e, Memory&) {
     e.remove_hook(sim_.get());
+    if (temperature_) e.remove_hook(temperature_.get());
     return 0;
   });
 }

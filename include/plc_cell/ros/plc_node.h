@@ -20,6 +20,7 @@
 #include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/ros/counter_topics.h"
 #include "plc_cell/io/server.h"
+#include "plc_cell/ros/temperature_ros.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
@@ -64,6 +65,7 @@ class PlcNode {
   std::vector<ros::ServiceServer> services_;
   ros::Timer io_timer_, diag_timer_;
   diagnostic_updater::Updater updater_;
+  std::unique_ptr<TemperatureRos> temperature_;  // ~temperature/<name>, ~set_pid_loop
 
   std::mutex snap_mu_;
   std::condition_variable snap_cv_;

@@ -9,6 +9,7 @@
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/simulated_cell.h"
+#include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
 
@@ -27,6 +28,8 @@ class SoftCell {
   // config's cell.program. Throws SourceError/Error with file and line on bad input.
   SoftCell(const std::string& config_path, const std::string& program_path,
            const CellFunctionInstaller& install = {});
+  // The instruction set of every cell: the core's plus the subsystems' FUNs.
+  static FunctionTable functions();
   ~SoftCell();
 
   Plc& plc() { return plc_; }
@@ -37,6 +40,8 @@ class SoftCell {
   // Only touch it under plc().locked().
   hsc::HscUnit& counters() { return *hsc_; }
   const std::string& program_path() const { return program_path_; }
+  // The temperature modules and thermal plants of `modules:`, or nullptr.
+  temp::TemperatureCell* temperature() { return temperature_.get(); }
 
  private:
   static FunctionTable functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
@@ -48,6 +53,7 @@ class SoftCell {
   Plc plc_;
   std::unique_ptr<SimulatedCell> sim_;
   std::unique_ptr<hsc::HscUnit> hsc_;  // after sim_: its hook sees the simulated inputs
+  std::unique_ptr<temp::TemperatureCell> temperature_;
 };
 
 }  // namespace plc_cell

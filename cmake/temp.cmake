@@ -1,0 +1,39 @@
+# Analog and temperature modules, thermal plants, FUN86 TPCTL (issue 7).
+# Core, no ROS. The sources join plc_cell_core: SoftCell installs them for every cell.
+target_sources(plc_cell_core PRIVATE
+  src/temp/thermocouple.cpp
+  src/temp/rtd.cpp
+  src/temp/ntc.cpp
+  src/temp/thermal_plant.cpp
+  src/temp/temperature_config.cpp
+  src/temp/temperature_cell.cpp
+  src/temp/analog_codes.cpp
+  src/temp/analog_modules.cpp
+  src/temp/tpctl.cpp
+  src/temp/pid.cpp
+  src/temp/temp_functions.cpp)
+
+if(CATKIN_ENABLE_TESTING)
+  file(GLOB TEMP_TESTS test/temp/*_test.cpp)
+  catkin_add_gtest(temp_tests test/core/test_main.cpp ${TEMP_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  target_link_libraries(temp_tests plc_cell_core)
+  target_compile_definitions(temp_tests PRIVATE
+    PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+  add_dependencies(temp_tests plc_cell_tool)
+endif()
+
+# make bench: 64 temperature channels + 16 PID loops against a 1 ms scan.
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+  add_executable(bench_temp bench/temp_bench.cpp)
+  target_link_libraries(bench_temp plc_cell_core benchmark::benchmark)
+endif()
+
+# plc_node: temperatures on topics, /diagnostics per module, ~set_pid_loop.
+list(APPEND PLC_CELL_NODE_SOURCES src/ros/temperature_ros.cpp)
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/temperature.test DEPENDENCIES plc_node)
+endif()

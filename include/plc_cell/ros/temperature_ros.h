@@ -1,0 +1,33 @@
+#pragma once
+// The temperature modules on ROS: one sensor_msgs/Temperature per named channel on
+// ~temperature/<name>, one /diagnostics status per module, and ~set_pid_loop.
+// plc_node creates it when the cell has temperature modules.
+#include <string>
+#include <vector>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+
+#include "plc_cell/SetPidLoop.h"
+#include "plc_cell/sim/soft_cell.h"
+
+namespace plc_cell {
+
+class TemperatureRos {
+ public:
+  // Reads ~temperature_rate (Hz, default 1).
+  TemperatureRos(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, diagnostic_updater::Updater& updater);
+
+ private:
+  void publish();
+  void diagnose_module(size_t module, diagnostic_updater::DiagnosticStatusWrapper& stat);
+  bool on_set_loop(SetPidLoop::Request& req, SetPidLoop::Response& res);
+
+  SoftCell& cell_;
+  std::vector<size_t> channel_;  // channel index of each publisher
+  std::vector<ros::Publisher> pubs_;
+  ros::Timer timer_;
+  ros::ServiceServer set_loop_;
+};
+
+}  // namespace plc_cell

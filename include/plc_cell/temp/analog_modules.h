@@ -1,0 +1,83 @@
+#pragma once
+// FBs analog I/O modules (6AD, 4A2D, 4DA, 2DA) of the `modules.analog` section: input
+// signals become IR codes (R3840 + n) each scan with the D4006-D4042 format and
+// averaging settings; OR codes (R3904 + n) become output signals, forced to zero when
+// the CPU has not serviced them for 0.5 s. Owned by the TemperatureCell (the hook of
+// the whole `modules:` section).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "plc_cell/core/memory.h"
+#include "plc_cell/temp/analog_codes.h"
+
+namespace plc_cell {
+namespace temp {
+
+struct AnalogInputDef {
+  std::string name;
+  bool current = false;
+  double value = 0;        // a fixed signal, V or mA
+  std::string plant;       // or a transmitter on a thermal plant ...
+  double plant_lo = 0, plant_hi = 100;  // ... spanning these degC over the range
+  bool offset = false;     // ... as 4-20 mA (live zero) instead of 0-20 mA
+};
+struct AnalogOutputDef {
+  std::string name;
+  bool current = false;
+};
+struct AnalogModuleDef {
+  std::string type;  // 6AD, 4A2D, 4DA, 2DA
+  bool bipolar_code = true, bipolar_signal = true, span10 = true;
+  std::vector<AnalogInputDef> inputs;
+  std::vector<AnalogOutputDef> outputs;
+};
+struct AnalogConfig {
+  uint32_t first_ir = 0, first_or = 0;
+  std::vector<AnalogModuleDef> modules;
+};
+
+AnalogConfig parse_analog_config(const YAML::Node& analog, const std::string& file);
+
+class AnalogModules {
+ public:
+  // plant_temperature(name) -> degC of a thermal plant (for transmitters).
+  AnalogModules(AnalogConfig cfg, Memory& mem, std::function<double(const std::string&)> plant_temperature);
+
+  void before_inputs(uint64_t now_us);   // output watchdog
+  void before_program(uint64_t now_us);  // inputs -> IR
+  void after_program(uint64_t now_us);   // OR -> outputs (the CPU services the modules)
+
+  struct Output {
+    std::string name;
+    uint32_t or_index;
+    AnalogRange range;
+    bool bipolar_code;
+    double signal = 0;  // V or mA
+    bool watchdog = true;  // forced to zero: not serviced for 0.5 s
+  };
+  const std::vector<Output>& outputs() const { return outputs_; }
+
+ private:
+  struct Input {
+    AnalogInputDef def;
+    uint32_t ir_index;
+    AnalogRange range;
+    bool bipolar_code;
+    int32_t window[16] = {};
+    uint32_t count = 0, next = 0;
+  };
+  AnalogConfig cfg_;
+  Memory& mem_;
+  std::function<double(const std::string&)> plant_temperature_;
+  std::vector<Input> inputs_;
+  std::vector<Output> outputs_;
+  bool serviced_ = false;
+  uint64_t last_service_us_ = 0;
+};
+
+}  // namespace temp
+}  // namespace plc_cell

@@ -1,0 +1,106 @@
+#pragma once
+// The `modules:` section as one ScanHook: the FBs temperature modules, the thermal
+// plants behind them, and the analog I/O modules (analog_modules.h). plants advance and modules sample in virtual time before each scan's input
+// image; readings, working registers and the configuration table are written into PLC
+// memory before the program runs. docs/analog-and-temperature.md.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/memory.h"
+#include "plc_cell/core/scan_engine.h"
+#include "plc_cell/temp/temperature_config.h"
+#include "plc_cell/temp/thermal_plant.h"
+
+namespace plc_cell {
+namespace temp {
+
+// What the readings register holds for a broken line (the manual has "the line broken
+// value" without a number; plc_cell's choice).
+constexpr int16_t kLineBrokenValue = 32767;
+constexpr uint16_t kExecMeasuring = 0x56;  // WR+0 high byte: all channels read
+
+// The special registers of FBs temperature measurement and FUN86 (manual A:6941, A:7165).
+namespace treg {
+constexpr uint32_t kPvFromR4004 = 4003, kPvStart = 4004, kIntervals = 4005, kLargePower = 4006,
+                   kLargePowerTime = 4007, kHighAlarm = 4008, kInstalled = 4010, kPidEnable = 4012;
+}
+
+struct ChannelState {
+  std::string name;
+  int module = 0;
+  double value_c = 0;   // averaged reading, degC; NaN before the first sample
+  bool open = false;    // broken line (sensor or wire)
+  bool out_of_range = false;
+  std::vector<double> window;  // the moving average's samples
+  size_t next = 0;
+  double resolution_c = 0.1;
+};
+
+class TemperatureCell : public ScanHook {
+ public:
+  TemperatureCell(TemperatureConfig cfg, Memory& mem);
+  ~TemperatureCell() override;
+  TemperatureCell(const TemperatureCell&) = delete;
+  TemperatureCell& operator=(const TemperatureCell&) = delete;
+
+  void before_inputs(uint64_t now_us) override;   // plants and sampling
+  void before_program(uint64_t now_us) override;  // readings and registers into memory
+  void after_program(uint64_t now_us) override;   // analog outputs take the OR values
+
+  // The analog I/O modules of modules.analog, or nullptr.
+  const AnalogModules* analog() const { return analog_.get(); }
+
+  const TemperatureConfig& config() const { return cfg_; }
+  const std::vector<ChannelState>& channels() const { return channels_; }
+  ThermalPlant* plant(const std::string& name);
+  bool all_read() const { return all_read_; }
+  // Breaks or mends a channel's sensor line (tests, fault injection).
+  void set_open(size_t channel, bool open) { wired_open_.at(channel) = open; }
+  // The engineering value a reading register holds for degC (unit, resolution, rounding).
+  int16_t register_value(double c, double resolution_c) const;
+
+ private:
+  double true_temperature(size_t ch) const;
+  double sense(const ModuleDef& m, double true_c, bool* out_of_range) const;
+  void sample(size_t ch);
+  void write_registers();
+
+  TemperatureConfig cfg_;
+  Memory& mem_;
+  std::vector<ThermalPlant> plants_;
+  std::vector<PlantDef> plant_defs_;
+  std::vector<int> plant_of_;  // per channel, -1 = fixed temperature
+  std::vector<ChannelState> channels_;
+  std::vector<bool> wired_open_;
+  struct ModuleState {
+    size_t first = 0;   // global channel index
+    int count = 0;
+    uint64_t slot_us = 0;  // one channel's share of the update period
+    uint64_t next_slot = 0;  // index of the next slot to sample
+    int current = 0;
+    uint32_t reads = 0;
+  };
+  std::vector<ModuleState> modules_;
+  std::unique_ptr<AnalogModules> analog_;
+  bool all_read_ = false;
+  bool have_time_ = false;
+  uint64_t last_us_ = 0;
+};
+
+// The cell's temperature subsystem from its config document (nullptr when the cell
+// has no modules section).
+std::unique_ptr<TemperatureCell> make_temperature_cell(const YAML::Node& document, const std::string& file,
+                                                       Memory& mem);
+
+}  // namespace temp
+}  // namespace plc_cell
+
+namespace plc_cell {
+namespace temp {
+// The temperature subsystem attached to a PLC's memory, for FUN86 (which must find
+// the readings and know when all channels have been read); nullptr if none.
+const TemperatureCell* temperature_cell_of(const Memory& mem);
+}  // namespace temp
+}  // namespace plc_cell

@@ -1,0 +1,207 @@
+#include "plc_cell/temp/analog_modules.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+namespace temp {
+namespace {
+
+constexpr uint64_t kWatchdogUs = 500000;  // "not serviced by CPU for 0.5 second" (A:6218)
+
+struct Kind {
+  const char* name;
+  int ai, ao;
+};
+const Kind kKinds[] = {{"6AD", 6, 0}, {"4A2D", 4, 2}, {"4DA", 0, 4}, {"2DA", 0, 2}};
+
+[[noreturn]] void fail(const std::string& file, const YAML::Node& n, const std::string& key, const std::string& msg) {
+  const YAML::Mark m = n.Mark();
+  throw SourceError::at(file, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
+                        "key '" + key + "': " + msg);
+}
+
+void only(const std::string& file, const YAML::Node& n, const std::string& key, const std::set<std::string>& ok) {
+  if (!n.IsMap()) fail(file, n, key, "expected a mapping");
+  for (const auto& kv : n) {
+    const std::string k = kv.first.as<std::string>();
+    if (!ok.count(k)) {
+      std::string list;
+      for (const auto& a : ok) list += (list.empty() ? "" : ", ") + a;
+      fail(file, kv.first, key + "." + k, "unknown key (expected one of: " + list + ")");
+    }
+  }
+}
+
+double num(const std::string& file, const YAML::Node& n, const std::string& key, double lo, double hi) {
+  double v = 0;
+  try {
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+    fail(file, n, key, "expected a number");
+  }
+  if (!(v >= lo && v <= hi)) fail(file, n, key, "value " + n.as<std::string>() + " out of range");
+  return v;
+}
+
+bool flag(const std::string& file, const YAML::Node& n, const std::string& key) {
+  try {
+    return n.as<bool>();
+  } catch (const YAML::Exception&) {
+    fail(file, n, key, "expected true or false");
+  }
+}
+
+std::string choice(const std::string& file, const YAML::Node& n, const std::string& key, const std::set<std::string>& ok) {
+  const std::string v = n.IsScalar() ? n.as<std::string>() : "";
+  if (!ok.count(v)) {
+    std::string list;
+    for (const auto& a : ok) list += (list.empty() ? "" : ", ") + a;
+    fail(file, n, key, "expected one of: " + list);
+  }
+  return v;
+}
+
+}  // namespace
+
+AnalogConfig parse_analog_config(const YAML::Node& node, const std::string& file) {
+  AnalogConfig c;
+  const std::string k = "modules.analog";
+  only(file, node, k, {"first_ir", "first_or", "modules"});
+  if (node["first_ir"]) c.first_ir = uint32_t(num(file, node["first_ir"], k + ".first_ir", 0, 63));
+  if (node["first_or"]) c.first_or = uint32_t(num(file, node["first_or"], k + ".first_or", 0, 63));
+  const YAML::Node ms = node["modules"];
+  if (!ms) return c;
+  if (!ms.IsSequence()) fail(file, ms, k + ".modules", "expected a list");
+  uint32_t irs = c.first_ir, ors = c.first_or;
+  for (size_t i = 0; i < ms.size(); ++i) {
+    const std::string mk = k + ".modules[" + std::to_string(i) + "]";
+    const YAML::Node m = ms[i];
+    only(file, m, mk, {"type", "code", "signal", "span", "inputs", "outputs"});
+    AnalogModuleDef d;
+    if (!m["type"]) fail(file, m, mk + ".type", "missing");
+    d.type = choice(file, m["type"], mk + ".type", {"6AD", "4A2D", "4DA", "2DA"});
+    int ai = 0, ao = 0;
+    for (const auto& kd : kKinds)
+      if (d.type == kd.name) ai = kd.ai, ao = kd.ao;
+    if (m["code"]) d.bipolar_code = choice(file, m["code"], mk + ".code", {"unipolar", "bipolar"}) == "bipolar";
+    if (m["signal"]) d.bipolar_signal = choice(file, m["signal"], mk + ".signal", {"unipolar", "bipolar"}) == "bipolar";
+    if (m["span"]) d.span10 = num(file, m["span"], mk + ".span", 5, 10) == 10;
+    if (m["span"] && !d.span10 && num(file, m["span"], mk + ".span", 5, 10) != 5) fail(file, m["span"], mk + ".span", "5 or 10");
+    if (const YAML::Node in = m["inputs"]) {
+      if (!in.IsSequence() || int(in.size()) > ai)
+        fail(file, in, mk + ".inputs", "a list of at most " + std::to_string(ai) + " inputs for a " + d.type);
+      for (size_t j = 0; j < in.size(); ++j) {
+        const std::string ik = mk + ".inputs[" + std::to_string(j) + "]";
+        only(file, in[j], ik, {"name", "current", "value", "plant", "plant_range", "offset"});
+        AnalogInputDef a;
+        if (in[j]["name"]) a.name = in[j]["name"].as<std::string>();
+        if (in[j]["current"]) a.current = flag(file, in[j]["current"], ik + ".current");
+        if (in[j]["value"]) a.value = num(file, in[j]["value"], ik + ".value", -30, 30);
+        if (in[j]["plant"]) a.plant = in[j]["plant"].as<std::string>();
+        if (in[j]["offset"]) a.offset = flag(file, in[j]["offset"], ik + ".offset");
+        if (const YAML::Node pr = in[j]["plant_range"]) {
+          if (!pr.IsSequence() || pr.size() != 2) fail(file, pr, ik + ".plant_range", "expected [low, high] in degC");
+          a.plant_lo = num(file, pr[0], ik + ".plant_range", -273, 3000);
+          a.plant_hi = num(file, pr[1], ik + ".plant_range", -273, 3000);
+          if (a.plant_hi <= a.plant_lo) fail(file, pr, ik + ".plant_range", "high must exceed low");
+        }
+        d.inputs.push_back(a);
+      }
+    }
+    if (const YAML::Node out = m["outputs"]) {
+      if (!out.IsSequence() || int(out.size()) > ao)
+        fail(file, out, mk + ".outputs", "a list of at most " + std::to_string(ao) + " outputs for a " + d.type);
+      for (size_t j = 0; j < out.size(); ++j) {
+        const std::string ok = mk + ".outputs[" + std::to_string(j) + "]";
+        only(file, out[j], ok, {"name", "current"});
+        AnalogOutputDef o;
+        if (out[j]["name"]) o.name = out[j]["name"].as<std::string>();
+        if (out[j]["current"]) o.current = flag(file, out[j]["current"], ok + ".current");
+        d.outputs.push_back(o);
+      }
+    }
+    irs += uint32_t(ai);
+    ors += uint32_t(ao);
+    if (irs > 64) fail(file, m, mk, "more than 64 analog inputs (IR R3840-R3903)");
+    if (ors > 64) fail(file, m, mk, "more than 64 analog outputs (OR R3904-R3967)");
+    c.modules.push_back(d);
+  }
+  return c;
+}
+
+AnalogModules::AnalogModules(AnalogConfig cfg, Memory& mem, std::function<double(const std::string&)> plant)
+    : cfg_(std::move(cfg)), mem_(mem), plant_temperature_(std::move(plant)) {
+  uint32_t ir = cfg_.first_ir, orr = cfg_.first_or;
+  for (const auto& m : cfg_.modules) {
+    int ai = 0, ao = 0;
+    for (const auto& kd : kKinds)
+      if (m.type == kd.name) ai = kd.ai, ao = kd.ao;
+    // Every channel of the module occupies its IR/OR, listed or not (unlisted inputs read 0 V).
+    for (int j = 0; j < ai; ++j) {
+      Input in;
+      if (j < int(m.inputs.size())) in.def = m.inputs[size_t(j)];
+      in.ir_index = ir++;
+      in.range = AnalogRange{m.bipolar_signal, m.span10, in.def.current};
+      in.bipolar_code = m.bipolar_code;
+      inputs_.push_back(in);
+    }
+    for (int j = 0; j < ao; ++j) {
+      Output o;
+      if (j < int(m.outputs.size())) o.name = m.outputs[size_t(j)].name;
+      o.or_index = orr++;
+      o.range = AnalogRange{m.bipolar_signal, m.span10, j < int(m.outputs.size()) && m.outputs[size_t(j)].current};
+      o.bipolar_code = m.bipolar_code;
+      outputs_.push_back(o);
+    }
+  }
+}
+
+void AnalogModules::before_inputs(uint64_t now_us) {
+  if (serviced_ && now_us - last_service_us_ < kWatchdogUs) return;
+  for (auto& o : outputs_) o.signal = 0, o.watchdog = true;  // 0 V / 0 mA
+}
+
+void AnalogModules::before_program(uint64_t) {
+  const bool twelve = mem_.reg(Area::D, 4042) == 0x5612;
+  for (auto& in : inputs_) {
+    double x = in.def.value;
+    if (!in.def.plant.empty()) {
+      const double frac = (plant_temperature_(in.def.plant) - in.def.plant_lo) / (in.def.plant_hi - in.def.plant_lo);
+      // A transmitter: 0..full of the range, or 4..20 mA (live zero) with offset.
+      x = in.def.offset ? 4.0 + 16.0 * frac : in.range.lo() + frac * (in.range.hi() - in.range.lo());
+    }
+    const int32_t code = ai_code14(in.range, x, in.bipolar_code);
+    const uint32_t n = in.ir_index;
+    const bool valid14 = !twelve && (mem_.reg(Area::D, 4006 + n / 16) >> (n % 16) & 1u);
+    // D4010 + n/2: low byte even channels, high byte odd; illegal -> 1 (valid 12) or 8 (valid 14).
+    const uint16_t avg_reg = mem_.reg(Area::D, 4010 + n / 2);
+    uint32_t avg = n % 2 ? avg_reg >> 8 : avg_reg & 0xFF;
+    if (avg < 1 || avg > 16) avg = valid14 ? 8 : 1;
+    // Moving average over the last avg per-scan samples.
+    in.window[in.next] = code;
+    in.next = (in.next + 1) % 16;
+    in.count = std::min<uint32_t>(in.count + 1, 16);
+    const uint32_t k = std::min(avg, in.count);
+    int64_t sum = 0;
+    for (uint32_t s = 0; s < k; ++s) sum += in.window[(in.next + 16 - 1 - s) % 16];
+    const int32_t mean = int32_t(std::floor(double(sum) / k + 0.5));
+    const AiFormat f = twelve ? AiFormat::Bits12 : valid14 ? AiFormat::Valid14 : AiFormat::Valid12In14;
+    mem_.set_reg(Area::R, 3840 + n, uint16_t(int16_t(ai_register(mean, f))));
+  }
+}
+
+void AnalogModules::after_program(uint64_t now_us) {
+  serviced_ = true;
+  last_service_us_ = now_us;
+  for (auto& o : outputs_) {
+    o.signal = ao_signal(o.range, int16_t(mem_.reg(Area::R, 3904 + o.or_index)), o.bipolar_code);
+    o.watchdog = false;
+  }
+}
+
+}  // namespace temp
+}  // namespace plc_cell

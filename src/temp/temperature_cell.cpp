@@ -1,0 +1,263 @@
+#include "plc_cell/temp/temperature_cell.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+#include "plc_cell/core/area.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/temp/rtd.h"
+
+namespace plc_cell {
+namespace temp {
+namespace {
+
+std::mutex g_registry_mu;
+std::map<const Memory*, const TemperatureCell*>& registry() {
+  static std::map<const Memory*, const TemperatureCell*> m;
+  return m;
+}
+
+// Measurable ranges from the manual (A:6760, A:7214). NTC: none given; plc_cell's -40..150.
+void range_of(const ModuleDef& m, double* lo, double* hi) {
+  switch (m.sensor) {
+    case SensorKind::Pt100: *lo = -200, *hi = 850; return;
+    case SensorKind::Pt1000: *lo = -200, *hi = 600; return;
+    case SensorKind::Ntc: *lo = -40, *hi = 150; return;
+    case SensorKind::Thermocouple: break;
+  }
+  static const double r[8][2] = {{-200, 900}, {-190, 1300}, {-190, 1000}, {-190, 380},
+                                 {0, 1800},   {0, 1700},    {350, 1800},  {-200, 1000}};  // J K E T R S B N
+  *lo = r[static_cast<int>(m.tc)][0];
+  *hi = r[static_cast<int>(m.tc)][1];
+}
+
+// R/D register in the 1xxxx / 2xxxx form of R4004 (used for SR+2 and SR+3 too).
+uint16_t encode(const Address& a) { return static_cast<uint16_t>((a.area == Area::R ? 10000 : 20000) + a.index); }
+
+}  // namespace
+
+const TemperatureCell* temperature_cell_of(const Memory& mem) {
+  std::lock_guard<std::mutex> lk(g_registry_mu);
+  auto it = registry().find(&mem);
+  return it == registry().end() ? nullptr : it->second;
+}
+
+TemperatureCell::TemperatureCell(TemperatureConfig cfg, Memory& mem) : cfg_(std::move(cfg)), mem_(mem) {
+  if (cfg_.total_channels() > 32) throw Error("more than 32 temperature points (the FBs limit)");
+  for (const auto& p : cfg_.plants) {
+    plants_.emplace_back(p.params);
+    plant_defs_.push_back(p);
+  }
+  const double res = cfg_.fast ? 1.0 : 0.1;
+  for (size_t k = 0; k < cfg_.modules.size(); ++k) {
+    const ModuleDef& m = cfg_.modules[k];
+    const ModuleInfo& info = module_info(m.kind);
+    ModuleState s;
+    s.first = channels_.size();
+    s.count = info.channels;
+    s.slot_us = static_cast<uint64_t>((cfg_.fast ? info.fast_s : info.normal_s) * 1e6) / uint64_t(info.channels);
+    modules_.push_back(s);
+    for (int c = 0; c < info.channels; ++c) {
+      ChannelState ch;
+      ch.module = int(k);
+      ch.value_c = std::nan("");
+      ch.resolution_c = res;
+      ch.window.reserve(size_t(cfg_.averaging));
+      int plant = -1;
+      bool open = true;  // an unwired input reads as a broken line
+      if (c < int(m.channels.size())) {
+        const ChannelDef& d = m.channels[size_t(c)];
+        ch.name = d.name;
+        open = d.open;
+        for (size_t p = 0; p < plant_defs_.size(); ++p)
+          if (plant_defs_[p].name == d.plant) plant = int(p);
+      }
+      channels_.push_back(ch);
+      plant_of_.push_back(plant);
+      wired_open_.push_back(open);
+    }
+  }
+  if (cfg_.has_analog)
+    analog_ = std::make_unique<AnalogModules>(cfg_.analog, mem_, [this](const std::string& name) {
+      ThermalPlant* p = plant(name);
+      return p ? p->temperature_c() : 0.0;
+    });
+  std::lock_guard<std::mutex> lk(g_registry_mu);
+  registry()[&mem_] = this;
+}
+
+TemperatureCell::~TemperatureCell() {
+  std::lock_guard<std::mutex> lk(g_registry_mu);
+  auto it = registry().find(&mem_);
+  if (it != registry().end() && it->second == this) registry().erase(it);
+}
+
+ThermalPlant* TemperatureCell::plant(const std::string& name) {
+  for (size_t p = 0; p < plants_.size(); ++p)
+    if (plant_defs_[p].name == name) return &plants_[p];
+  return nullptr;
+}
+
+double TemperatureCell::true_temperature(size_t ch) const {
+  const int p = plant_of_[ch];
+  if (p >= 0) return plants_[size_t(p)].temperature_c();
+  const ModuleDef& m = cfg_.modules[size_t(channels_[ch].module)];
+  const size_t local = ch - modules_[size_t(channels_[ch].module)].first;
+  return local < m.channels.size() ? m.channels[local].fixed_c : 25.0;
+}
+
+// Temperature -> the sensor's signal -> what the module computes back from it.
+double TemperatureCell::sense(const ModuleDef& m, double t, bool* out_of_range) const {
+  double lo, hi;
+  range_of(m, &lo, &hi);
+  *out_of_range = t < lo || t > hi;
+  t = std::clamp(t, lo, hi);  // the converter saturates at the ends of its range
+  switch (m.sensor) {
+    case SensorKind::Thermocouple: {
+      const double emf = tc_measured_emf_mv(m.tc, t, m.cold_junction_c);  // at the terminals
+      return tc_compensated_c(m.tc, emf, m.cold_junction_c);
+    }
+    case SensorKind::Pt100:
+    case SensorKind::Pt1000: {
+      const RtdCurve k = rtd_curve(m.sensor == SensorKind::Pt100 ? 100 : 1000, m.alpha);
+      return rtd_temperature(k, rtd_resistance(k, t));
+    }
+    case SensorKind::Ntc:
+      if (m.use_sh) return ntc_temperature(m.sh, ntc_resistance(m.sh, t));
+      return ntc_temperature(m.ntc, ntc_resistance(m.ntc, t));
+  }
+  return t;
+}
+
+void TemperatureCell::sample(size_t i) {
+  ChannelState& ch = channels_[i];
+  ch.open = wired_open_[i];
+  if (ch.open) {  // a broken line restarts the average when it is mended
+    ch.window.clear();
+    ch.next = 0;
+    return;
+  }
+  const double v = sense(cfg_.modules[size_t(ch.module)], true_temperature(i), &ch.out_of_range);
+  if (ch.window.size() < size_t(cfg_.averaging)) {
+    ch.window.push_back(v);
+  } else {
+    ch.window[ch.next] = v;
+  }
+  ch.next = (ch.next + 1) % size_t(cfg_.averaging);
+  double sum = 0;
+  for (double s : ch.window) sum += s;
+  ch.value_c = sum / double(ch.window.size());
+}
+
+void TemperatureCell::after_program(uint64_t now_us) {
+  if (analog_) analog_->after_program(now_us);
+}
+
+void TemperatureCell::before_inputs(uint64_t now_us) {
+  if (analog_) analog_->before_inputs(now_us);
+  const uint64_t dt = have_time_ && now_us > last_us_ ? now_us - last_us_ : 0;
+  have_time_ = true;
+  last_us_ = now_us;
+  // Plants: the actuators as the previous scan left them, held over dt.
+  for (size_t p = 0; p < plants_.size(); ++p) {
+    const PlantDef& d = plant_defs_[p];
+    auto power = [&](bool has, bool analog, const Address& a) {
+      if (!has) return 0.0;
+      if (!analog) return mem_.bit(a.area, a.index) ? 1.0 : 0.0;
+      return double(mem_.reg(a.area, a.index)) / d.full_scale;
+    };
+    if (dt) plants_[p].step(dt, power(d.has_heater, d.heater_analog, d.heater),
+                            power(d.has_cooler, d.cooler_analog, d.cooler));
+  }
+  // Modules: each converts one channel per slot, round robin (time-domain multiplexing).
+  bool all = !modules_.empty();
+  for (auto& m : modules_) {
+    const uint64_t due = now_us / m.slot_us;  // slots that have started by now
+    if (due > m.next_slot + uint64_t(m.count)) m.next_slot = due - uint64_t(m.count);  // after a long gap
+    for (; m.next_slot <= due; ++m.next_slot) {
+      m.current = int(m.next_slot % uint64_t(m.count));
+      sample(m.first + size_t(m.current));
+      ++m.reads;
+    }
+    all &= m.reads >= uint32_t(m.count);
+  }
+  all_read_ = all;
+}
+
+int16_t TemperatureCell::register_value(double c, double resolution_c) const {
+  double v = cfg_.fahrenheit ? c * 9.0 / 5.0 + 32.0 : c;
+  const double step = resolution_c >= 1.0 ? 10.0 : 1.0;  // in 0.1 degree units
+  v = std::round(v * 10.0 / step) * step;
+  return static_cast<int16_t>(std::clamp(v, -32768.0, 32766.0));
+}
+
+void TemperatureCell::before_program(uint64_t now_us) {
+  if (mem_.bit(Area::M, special::kFirstScan)) {
+    // The manual's defaults (A:6945, A:7170-A:7177); the program may overwrite them.
+    mem_.set_reg(Area::R, treg::kIntervals, 0x0102);
+    mem_.set_reg(Area::R, treg::kLargePower, 90);
+    mem_.set_reg(Area::R, treg::kLargePowerTime, 600);
+    mem_.set_reg(Area::R, treg::kHighAlarm, 3500);
+    for (uint32_t r = 0; r < 4; ++r) mem_.set_reg(Area::R, treg::kInstalled + r, 0xFFFF);
+  }
+  if (!modules_.empty()) write_registers();
+  if (analog_) analog_->before_program(now_us);
+}
+
+void TemperatureCell::write_registers() {
+  const uint32_t n = uint32_t(channels_.size());
+  uint16_t abnormal[2] = {0, 0};
+  uint16_t* readings = mem_.words(cfg_.readings.area) + cfg_.readings.index;
+  const uint32_t installed = mem_.reg(Area::R, treg::kInstalled) | uint32_t(mem_.reg(Area::R, treg::kInstalled + 1)) << 16;
+  for (uint32_t i = 0; i < n; ++i) {
+    const ChannelState& ch = channels_[i];
+    int16_t v = 0;
+    if (installed >> i & 1u) {
+      if (ch.open) {
+        v = kLineBrokenValue;
+      } else if (!std::isnan(ch.value_c)) {
+        v = register_value(ch.value_c, ch.resolution_c);
+      }
+      if (ch.open || ch.out_of_range) abnormal[i / 16] |= uint16_t(1u << (i % 16));
+    }
+    readings[i] = static_cast<uint16_t>(v);
+  }
+  uint16_t* wr = mem_.words(cfg_.working.area) + cfg_.working.index;
+  wr[0] = static_cast<uint16_t>((all_read_ ? kExecMeasuring : 0) << 8);
+  wr[1] = abnormal[0];
+  wr[2] = abnormal[1];
+  wr[3] = static_cast<uint16_t>(n << 8 | modules_.size());
+  uint32_t ir = cfg_.first_ir;
+  for (size_t k = 0; k < modules_.size(); ++k) {
+    const ModuleDef& d = cfg_.modules[k];
+    const ModuleState& m = modules_[k];
+    uint16_t* w = wr + 4 + 4 * k;
+    w[0] = static_cast<uint16_t>(d.sensor_code() << 8 | (k & 0xFF));  // DO group: the module's index
+    w[1] = static_cast<uint16_t>(m.count << 8 | (ir & 0xFF));
+    w[2] = static_cast<uint16_t>(m.first);
+    w[3] = static_cast<uint16_t>(m.current);
+    // The module's IR shows the channel it is converting (the multiplexed input).
+    if (ir < 64) mem_.set_reg(Area::R, 3840 + ir, readings[m.first + size_t(m.current)]);
+    ir += uint32_t(module_info(d.kind).irs);
+  }
+  if (cfg_.has_table) {
+    uint16_t* sr = mem_.words(cfg_.table.area) + cfg_.table.index;
+    sr[0] = 0xA556;
+    sr[1] = static_cast<uint16_t>(modules_.size() << 8);
+    sr[2] = encode(cfg_.readings);
+    sr[3] = encode(cfg_.working);
+    for (size_t k = 0; k < modules_.size(); ++k)
+      sr[4 + k] = static_cast<uint16_t>(cfg_.modules[k].sensor_code() << 8 | module_info(cfg_.modules[k].kind).code);
+  }
+}
+
+std::unique_ptr<TemperatureCell> make_temperature_cell(const YAML::Node& document, const std::string& file,
+                                                       Memory& mem) {
+  if (!document.IsMap() || !document["modules"]) return nullptr;
+  return std::make_unique<TemperatureCell>(parse_temperature_config(document["modules"], file), mem);
+}
+
+}  // namespace temp
+}  // namespace plc_cell

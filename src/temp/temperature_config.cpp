@@ -1,0 +1,276 @@
+#include "plc_cell/temp/temperature_config.h"
+
+#include <cmath>
+#include <set>
+
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+namespace temp {
+namespace {
+
+// Codes for SR+4.. are plc_cell's: the manual names the modules but gives no numbers.
+const ModuleInfo kModules[] = {
+    {"2TC", 2, 1, 1, 2, 1},    {"6TC", 6, 2, 2, 4, 1},    {"16TC", 16, 3, 3, 6, 1},
+    {"6RTD", 6, 4, 1, 2, 1},   {"16RTD", 16, 5, 2, 4, 1}, {"6NTC", 6, 6, 1, 2, 1},
+    {"2A4TC", 4, 7, 2, 4, 2},  {"2A4RTD", 4, 8, 1, 2, 2},
+};
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
+    const YAML::Mark m = n.Mark();
+    throw SourceError::at(file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
+                          "key '" + key + "': " + msg);
+  }
+  void only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {
+    if (!map.IsMap()) fail(map, key, "expected a mapping");
+    for (const auto& kv : map) {
+      const std::string k = kv.first.as<std::string>();
+      if (allowed.count(k)) continue;
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      fail(kv.first, key + "." + k, "unknown key (expected one of: " + list + ")");
+    }
+  }
+  std::string str(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) fail(n, key, "expected a single value");
+    return n.as<std::string>();
+  }
+  double number(const YAML::Node& n, const std::string& key, double lo, double hi) const {
+    double v = 0;
+    try {
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(n, key, "expected a number");
+    }
+    if (!(v >= lo && v <= hi)) fail(n, key, "value " + n.as<std::string>() + " out of range");
+    return v;
+  }
+  bool boolean(const YAML::Node& n, const std::string& key) const {
+    try {
+      return n.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(n, key, "expected true or false");
+    }
+  }
+  Address address(const YAML::Node& n, const std::string& key) const {
+    Address a;
+    std::string why;
+    if (!try_parse_address(str(n, key), &a, &why)) fail(n, key, "bad address '" + n.as<std::string>() + "': " + why);
+    return a;
+  }
+  Address reg(const YAML::Node& n, const std::string& key) const {
+    const Address a = address(n, key);
+    if (a.width != Width::Word || (a.area != Area::R && a.area != Area::D))
+      fail(n, key, "expected an R or D register");
+    return a;
+  }
+
+ private:
+  std::string file_;
+};
+
+ChannelDef parse_channel(const Reader& r, const YAML::Node& n, const std::string& key) {
+  r.only(n, key, {"name", "plant", "temperature", "open"});
+  ChannelDef c;
+  if (n["name"]) c.name = r.str(n["name"], key + ".name");
+  if (n["plant"]) c.plant = r.str(n["plant"], key + ".plant");
+  if (n["temperature"]) c.fixed_c = r.number(n["temperature"], key + ".temperature", -273, 3000);
+  if (n["open"]) c.open = r.boolean(n["open"], key + ".open");
+  return c;
+}
+
+ModuleDef parse_module(const Reader& r, const YAML::Node& n, const std::string& key) {
+  r.only(n, key, {"type", "sensor", "alpha", "cold_junction", "r25", "beta", "steinhart_hart", "channels"});
+  ModuleDef m;
+  if (!n["type"]) r.fail(n, key + ".type", "missing");
+  const std::string type = r.str(n["type"], key + ".type");
+  bool found = false;
+  for (int k = 0; k < 8; ++k)
+    if (type == kModules[k].name) m.kind = static_cast<ModuleKind>(k), found = true;
+  if (!found) r.fail(n["type"], key + ".type", "unknown module '" + type + "' (2TC, 6TC, 16TC, 6RTD, 16RTD, 6NTC, 2A4TC, 2A4RTD)");
+  const bool tc = m.kind == ModuleKind::TC2 || m.kind == ModuleKind::TC6 || m.kind == ModuleKind::TC16 ||
+                  m.kind == ModuleKind::A4TC2;
+  const bool ntc = m.kind == ModuleKind::NTC6;
+  const std::string sensor = n["sensor"] ? r.str(n["sensor"], key + ".sensor") : (tc ? "K" : ntc ? "NTC" : "PT100");
+  if (tc) {
+    m.sensor = SensorKind::Thermocouple;
+    try {
+      m.tc = tc_type_from_string(sensor);
+    } catch (const Error& e) {
+      r.fail(n["sensor"], key + ".sensor", e.what());
+    }
+  } else if (ntc) {
+    if (sensor != "NTC") r.fail(n["sensor"], key + ".sensor", "a 6NTC takes NTC sensors");
+    m.sensor = SensorKind::Ntc;
+  } else if (sensor == "PT100" || sensor == "PT1000") {
+    m.sensor = sensor == "PT100" ? SensorKind::Pt100 : SensorKind::Pt1000;
+  } else {
+    r.fail(n["sensor"], key + ".sensor", "an RTD module takes PT100 or PT1000");
+  }
+  if (n["alpha"]) {
+    m.alpha = r.str(n["alpha"], key + ".alpha");
+    if (m.alpha != "DIN" && m.alpha != "JIS") r.fail(n["alpha"], key + ".alpha", "DIN or JIS");
+  }
+  if (n["cold_junction"]) m.cold_junction_c = r.number(n["cold_junction"], key + ".cold_junction", -20, 80);
+  if (n["r25"]) {
+    m.ntc.r25 = r.number(n["r25"], key + ".r25", 2000, 20000);
+    const double r25 = m.ntc.r25;
+    if (r25 != 2000 && r25 != 5000 && r25 != 10000 && r25 != 20000)
+      r.fail(n["r25"], key + ".r25", "the FBs-6NTC takes 2k, 5k, 10k or 20k at 25 degC");
+  }
+  if (n["beta"]) m.ntc.beta = r.number(n["beta"], key + ".beta", 1000, 10000);
+  if (const YAML::Node sh = n["steinhart_hart"]) {
+    if (!ntc) r.fail(sh, key + ".steinhart_hart", "only for a 6NTC");
+    if (!sh.IsSequence() || sh.size() != 3) r.fail(sh, key + ".steinhart_hart", "expected [a, b, c]");
+    m.sh = {r.number(sh[0], key + ".steinhart_hart", -1, 1), r.number(sh[1], key + ".steinhart_hart", -1, 1),
+            r.number(sh[2], key + ".steinhart_hart", -1, 1)};
+    m.use_sh = true;
+  }
+  if (n["channels"]) {
+    const YAML::Node& ch = n["channels"];
+    if (!ch.IsSequence()) r.fail(ch, key + ".channels", "expected a list");
+    if (int(ch.size()) > module_info(m.kind).channels)
+      r.fail(ch, key + ".channels", "a " + type + " has " + std::to_string(module_info(m.kind).channels) + " channels");
+    for (size_t i = 0; i < ch.size(); ++i)
+      m.channels.push_back(parse_channel(r, ch[i], key + ".channels[" + std::to_string(i) + "]"));
+  }
+  return m;
+}
+
+PlantDef parse_plant(const Reader& r, const YAML::Node& n, const std::string& key) {
+  r.only(n, key, {"name", "ambient", "initial", "gain", "cooling_gain", "time_constant", "dead_time", "heater",
+                  "cooler", "full_scale"});
+  PlantDef p;
+  if (!n["name"]) r.fail(n, key + ".name", "missing");
+  p.name = r.str(n["name"], key + ".name");
+  auto& q = p.params;
+  if (n["ambient"]) q.ambient_c = r.number(n["ambient"], key + ".ambient", -200, 1500);
+  q.initial_c = q.ambient_c;
+  if (n["initial"]) q.initial_c = r.number(n["initial"], key + ".initial", -273, 3000);
+  if (n["gain"]) q.gain_c = r.number(n["gain"], key + ".gain", 0, 3000);
+  if (n["cooling_gain"]) q.cooling_gain_c = r.number(n["cooling_gain"], key + ".cooling_gain", 0, 3000);
+  if (n["time_constant"]) q.tau_s = r.number(n["time_constant"], key + ".time_constant", 0.1, 1e6);
+  if (n["dead_time"]) q.dead_time_s = r.number(n["dead_time"], key + ".dead_time", 0, 3600);
+  if (n["full_scale"]) p.full_scale = r.number(n["full_scale"], key + ".full_scale", 1, 65535);
+  auto actuator = [&](const char* k, bool* has, bool* analog, Address* a) {
+    if (!n[k]) return;
+    *a = r.address(n[k], key + "." + k);
+    *has = true;
+    *analog = a->width != Width::Bit;
+    if (*analog && a->width != Width::Word) r.fail(n[k], key + "." + k, "a bit or a 16-bit register");
+  };
+  actuator("heater", &p.has_heater, &p.heater_analog, &p.heater);
+  actuator("cooler", &p.has_cooler, &p.cooler_analog, &p.cooler);
+  return p;
+}
+
+}  // namespace
+
+const ModuleInfo& module_info(ModuleKind k) { return kModules[static_cast<int>(k)]; }
+
+int ModuleDef::sensor_code() const {
+  switch (sensor) {
+    case SensorKind::Thermocouple: return static_cast<int>(tc);  // J K E T R S B N = 0..7
+    case SensorKind::Pt100: return alpha == "JIS" ? 0x12 : 0x10;
+    case SensorKind::Pt1000: return alpha == "JIS" ? 0x13 : 0x11;
+    case SensorKind::Ntc: return 0x20;
+  }
+  return 0;
+}
+
+int TemperatureConfig::total_channels() const {
+  int n = 0;
+  for (const auto& m : modules) n += module_info(m.kind).channels;
+  return n;
+}
+
+TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::string& file) {
+  Reader r(file);
+  TemperatureConfig c;
+  if (!node) return c;
+  r.only(node, "modules", {"temperature", "plants", "analog"});
+  if (node["analog"]) c.analog = parse_analog_config(node["analog"], file), c.has_analog = true;
+  if (const YAML::Node t = node["temperature"]) {
+    const std::string k = "modules.temperature";
+    r.only(t, k, {"scan", "unit", "averaging", "readings", "working", "table", "first_ir", "modules", "loops"});
+    if (const YAML::Node ls = t["loops"]) {
+      if (!ls.IsSequence()) r.fail(ls, k + ".loops", "expected a list");
+      for (size_t i = 0; i < ls.size(); ++i) {
+        const std::string lk = k + ".loops[" + std::to_string(i) + "]";
+        r.only(ls[i], lk, {"name", "sv", "kc", "ki", "td"});
+        LoopDef l;
+        if (!ls[i]["name"] || !ls[i]["sv"]) r.fail(ls[i], lk, "a loop needs name and sv");
+        l.name = r.str(ls[i]["name"], lk + ".name");
+        l.sv = r.reg(ls[i]["sv"], lk + ".sv");
+        if (ls[i]["kc"]) l.kc = r.reg(ls[i]["kc"], lk + ".kc"), l.has_kc = true;
+        if (ls[i]["ki"]) l.ki = r.reg(ls[i]["ki"], lk + ".ki"), l.has_ki = true;
+        if (ls[i]["td"]) l.td = r.reg(ls[i]["td"], lk + ".td"), l.has_td = true;
+        c.loops.push_back(l);
+      }
+    }
+    if (t["scan"]) {
+      const std::string s = r.str(t["scan"], k + ".scan");
+      if (s != "normal" && s != "fast") r.fail(t["scan"], k + ".scan", "normal or fast");
+      c.fast = s == "fast";
+    }
+    if (t["unit"]) {
+      const std::string u = r.str(t["unit"], k + ".unit");
+      if (u != "C" && u != "F") r.fail(t["unit"], k + ".unit", "C or F");
+      c.fahrenheit = u == "F";
+    }
+    if (t["readings"]) c.readings = r.reg(t["readings"], k + ".readings");
+    if (t["working"]) c.working = r.reg(t["working"], k + ".working");
+    if (t["table"]) c.table = r.reg(t["table"], k + ".table"), c.has_table = true;
+    if (t["first_ir"]) c.first_ir = static_cast<uint32_t>(r.number(t["first_ir"], k + ".first_ir", 0, 63));
+    if (t["modules"]) {
+      const YAML::Node& ms = t["modules"];
+      if (!ms.IsSequence() || ms.size() == 0 || ms.size() > 8) r.fail(ms, k + ".modules", "a list of 1 to 8 modules");
+      for (size_t i = 0; i < ms.size(); ++i)
+        c.modules.push_back(parse_module(r, ms[i], k + ".modules[" + std::to_string(i) + "]"));
+    }
+    if (c.total_channels() > 32)
+      r.fail(t["modules"], k + ".modules", "more than 32 temperature points (the FBs limit)");
+    if (t["averaging"]) {
+      const int a = static_cast<int>(r.number(t["averaging"], k + ".averaging", 1, 16));
+      bool ntc_only = true;
+      for (const auto& m : c.modules) ntc_only &= m.kind == ModuleKind::NTC6;
+      if (a != 1 && a != 2 && a != 4 && a != 8 && !(a == 16 && ntc_only))
+        r.fail(t["averaging"], k + ".averaging", "1, 2, 4 or 8 (16 with NTC modules only)");
+      c.averaging = a;
+    }
+    // Everything must fit in its area.
+    try {
+      check_span(c.readings, std::max(1, c.total_channels()));
+      check_span(c.working, 4 + 4 * uint32_t(c.modules.size()));
+      if (c.has_table) check_span(c.table, 4 + uint32_t(c.modules.size()));
+    } catch (const Error& e) {
+      r.fail(t, k, e.what());
+    }
+  }
+  if (const YAML::Node ps = node["plants"]) {
+    if (!ps.IsSequence()) r.fail(ps, "modules.plants", "expected a list");
+    for (size_t i = 0; i < ps.size(); ++i) c.plants.push_back(parse_plant(r, ps[i], "modules.plants[" + std::to_string(i) + "]"));
+  }
+  for (const auto& m : c.analog.modules)
+    for (const auto& in : m.inputs) {
+      if (in.plant.empty()) continue;
+      bool ok = false;
+      for (const auto& p : c.plants) ok |= p.name == in.plant;
+      if (!ok) r.fail(node["analog"], "modules.analog", "input '" + in.name + "' names an unknown plant '" + in.plant + "'");
+    }
+  for (const auto& m : c.modules)
+    for (const auto& ch : m.channels) {
+      if (ch.plant.empty()) continue;
+      bool ok = false;
+      for (const auto& p : c.plants) ok |= p.name == ch.plant;
+      if (!ok) r.fail(node["temperature"], "modules.temperature", "channel '" + ch.name + "' names an unknown plant '" + ch.plant + "'");
+    }
+  return c;
+}
+
+}  // namespace temp
+}  // namespace plc_cell

@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""rostest for plc_node's temperature topics, module diagnostics and ~set_pid_loop."""
+import math
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from sensor_msgs.msg import Temperature
+
+from plc_cell.srv import ReadMemory, SetPidLoop
+
+NS = "/plc_node/"
+TIMEOUT = 15.0
+
+
+class Latest(object):
+    def __init__(self, topic, msg_type):
+        self.msg = None
+        self.cond = threading.Condition()
+        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
+
+    def _cb(self, msg):
+        with self.cond:
+            self.msg = msg
+            self.cond.notify_all()
+
+    def wait_for(self, pred, timeout=TIMEOUT):
+        deadline = time.monotonic() + timeout
+        with self.cond:
+            while self.msg is None or not pred(self.msg):
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    return self.msg
+                self.cond.wait(left)
+            return self.msg
+
+
+def module_status(arr, name):
+    for s in arr.status:
+        if name in s.name:
+            return s
+    return None
+
+
+class TemperatureTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("temperature_test", anonymous=True)
+        for s in ["read", "set_pid_loop"]:
+            rospy.wait_for_service(NS + s, timeout=30)
+        cls.read = rospy.ServiceProxy(NS + "read", ReadMemory)
+        cls.set_loop = rospy.ServiceProxy(NS + "set_pid_loop", SetPidLoop)
+        cls.oven = Latest(NS + "temperature/oven_temp", Temperature)
+        cls.broken = Latest(NS + "temperature/broken", Temperature)
+        cls.room = Latest(NS + "temperature/room", Temperature)
+        cls.diag = Latest("/diagnostics", DiagnosticArray)
+
+    def test_channels(self):
+        room = self.room.wait_for(lambda m: not math.isnan(m.temperature))
+        self.assertIsNotNone(room)
+        self.assertEqual(room.header.frame_id, "room")
+        self.assertAlmostEqual(room.temperature, 21.5, places=6)
+        self.assertAlmostEqual(room.variance, 0.01 / 12, places=9)  # 0.1 degC steps
+        oven = self.oven.wait_for(lambda m: not math.isnan(m.temperature))
+        self.assertEqual(oven.header.frame_id, "oven_temp")
+        self.assertGreaterEqual(oven.temperature, 24.9)
+        self.assertLess(oven.temperature, 60.0)
+
+    def test_open_circuit_is_nan(self):
+        m = self.broken.wait_for(lambda m: True)
+        self.assertIsNotNone(m)
+        self.assertEqual(m.header.frame_id, "broken")
+        self.assertTrue(math.isnan(m.temperature))
+
+    def test_module_diagnostics(self):
+        arr = self.diag.wait_for(lambda a: module_status(a, "temperature module 1") is not None and
+                                 "abnormal" in module_status(a, "temperature module 1").message)
+        s = module_status(arr, "temperature module 1")
+        self.assertIsNotNone(s)
+        self.assertIn("FBs-2TC", s.name)
+        self.assertEqual(s.level, DiagnosticStatus.WARN)
+        self.assertIn("broken", s.message)
+
+    def test_set_pid_loop(self):
+        # The program writes its settings on the first scan; wait until they are there.
+        deadline = time.monotonic() + TIMEOUT
+        while time.monotonic() < deadline and self.read("R100", 1).values[0] != 2000:
+            time.sleep(0.05)
+        r = self.set_loop("oven", 180.5, 90, -1, 0)
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(list(self.read("R100", 1).values), [1805])
+        self.assertEqual(list(self.read("R120", 1).values), [90])
+        self.assertEqual(list(self.read("R130", 1).values), [40])  # unchanged
+        self.assertEqual(list(self.read("R140", 1).values), [0])
+        r = self.set_loop("oven", float("nan"), 0, -1, -1)
+        self.assertFalse(r.success)
+        self.assertIn("kc", r.message)
+        r = self.set_loop("nope", 100.0, -1, -1, -1)
+        self.assertFalse(r.success)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("plc_cell", "temperature_test", TemperatureTest)

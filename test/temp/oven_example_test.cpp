@@ -1,0 +1,50 @@
+// examples/oven run through the plc_cell tool as a user would (built by catkin only:
+// it needs PLC_CELL_TOOL and PLC_CELL_SOURCE_DIR).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+namespace {
+
+std::string run(const std::string& args, int* status) {
+  const std::string cmd = std::string(PLC_CELL_TOOL) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  if (!p) return out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int st = pclose(p);
+  *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return out;
+}
+
+TEST(OvenExample, SimHoldsTheSetPoint) {
+  int status = -1;
+  const std::string out = run(std::string("sim --config ") + PLC_CELL_SOURCE_DIR +
+                                  "/examples/oven/oven.yaml --duration 1800s --scan 10ms "
+                                  "--watch R0,in_zone,pid_error,pid_alarm,R5000",
+                              &status);
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("180000 scans of 10000 us"), std::string::npos) << out;
+  const size_t at = out.find("R0 = ");
+  ASSERT_NE(at, std::string::npos) << out;
+  const int r0 = std::stoi(out.substr(at + 5));
+  EXPECT_NEAR(r0, 2000, 10) << out;  // 200.0 degC within 1 degC
+  EXPECT_NE(out.find("in_zone = 1"), std::string::npos) << out;
+  EXPECT_NE(out.find("pid_error = 0"), std::string::npos) << out;
+  EXPECT_NE(out.find("pid_alarm = 0"), std::string::npos) << out;
+  EXPECT_NE(out.find("R5000 = 42326"), std::string::npos) << out;  // A556H: the table is valid
+}
+
+TEST(OvenExample, CheckKnowsTheTemperatureFunctions) {
+  int status = -1;
+  const std::string out =
+      run(std::string("check --program ") + PLC_CELL_SOURCE_DIR + "/examples/oven/oven.il", &status);
+  EXPECT_EQ(status, 0) << out;
+}
+
+}  // namespace
