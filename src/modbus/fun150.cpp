@@ -329,8 +329,8 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
         s.error = true;
         if (++s.tx >= s.n_tx) finish(c, o, s, wr, true);
       } else {
-        Area a;
-        uint32_t max;
+        Area a = Area::R;  // check() above accepted t.mtype
+        uint32_t max = 0;
         master_range(t.mtype, &a, &max);
         Job nj;
         nj.station = t.station;
