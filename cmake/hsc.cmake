@@ -7,7 +7,9 @@ target_sources(plc_cell_core PRIVATE
   src/hsc/hsc_config.cpp
   src/hsc/interrupts.cpp
   src/hsc/hsc_unit.cpp
-  src/hsc/hsc_functions.cpp)
+  src/hsc/hsc_functions.cpp
+  src/hsc/input_filter.cpp
+  src/hsc/scan_debounce.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB HSC_TESTS test/hsc/*_test.cpp)

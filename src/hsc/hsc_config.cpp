@@ -1,7 +1,5 @@
 #include "plc_cell/hsc/hsc_config.h"
 
-#include "plc_cell/config/yaml_reader.h"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -47,6 +45,20 @@ class Parse : public YamlReader {
     const int x = std::stoi(s.substr(1));
     if (x > 15) fail(n, key, "'" + s + "': only X0-X15 are high-speed inputs");
     return x;
+  }
+
+  // "X17" -> 17 for the inputs with capture and filter settings (X0-X35).
+  int main_input(const YAML::Node& n, const std::string& key) const {
+    std::string s = upper(str(n, key));
+    if (s.size() < 2 || s.size() > 3 || s[0] != 'X' || !std::all_of(s.begin() + 1, s.end(), ::isdigit) ||
+        std::stoi(s.substr(1)) >= kFilteredInputs)
+      fail(n, key, "'" + s + "' is not an input X0-X35 of the main unit");
+    return std::stoi(s.substr(1));
+  }
+
+  static std::string upper(std::string s) {
+    for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return s;
   }
 
   // Each of X0-X15 serves one function (manual §10.2).
@@ -154,6 +166,29 @@ void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
   if (d.pin_clear != kNoPin) p.use(d.pin_clear, at("clear"), key + ".clear", "the CLEAR input of " + who);
 }
 
+// One group's setting: a cut-off frequency by name (X0-X15) or a time, 1-15 ms
+// (every group) or 0.1-1.5 ms in 0.1 ms steps (X0-X15).
+uint64_t parse_filter(const Parse& p, const YAML::Node& v, const std::string& key, const FilterGroup& g) {
+  const std::string s = p.str(v, key);
+  std::string names;
+  for (const auto& f : filter_frequencies()) {
+    if (Parse::upper(s) == Parse::upper(f.name)) {
+      if (!g.frequency) p.fail(v, key, std::string(g.name) + " has a time-domain filter only (1ms ... 15ms)");
+      return frequency_filter_ns(f.hz);
+    }
+    names += std::string(names.empty() ? "" : ", ") + f.name;
+  }
+  if (Parse::upper(s).find("HZ") != std::string::npos)
+    p.fail(v, key, "'" + s + "': the frequency selections are " + names);
+  const uint64_t us = p.duration_us(v, key);
+  const bool ms = us % 1000 == 0 && us >= 1000 && us <= 15000;
+  const bool tenths = g.tenths && us % 100 == 0 && us >= 100 && us <= 1500;
+  if (!ms && !tenths)
+    p.fail(v, key, "'" + s + "': " + g.name + " takes 1ms ... 15ms" +
+                       (g.tenths ? ", 0.1ms ... 1.5ms (0.1ms steps) or a frequency: " + names : ""));
+  return us * 1000;
+}
+
 }  // namespace
 
 HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
@@ -161,7 +196,7 @@ HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
   if (!node || node.IsNull()) return cfg;
   Parse p(file);
   p.only(node, "counters", {"hsc0", "hsc1", "hsc2", "hsc3", "hsc4", "hsc5", "hsc6", "hsc7", "interrupts",
-                            "sources", "edges", "frequency_window", "publish_rate"});
+                            "sources", "edges", "frequency_window", "publish_rate", "capture", "filters"});
   for (int n = 0; n < 8; ++n) {
     const YAML::Node c = node["hsc" + std::to_string(n)];
     if (c && !c.IsNull()) parse_counter(p, n, c, cfg.counters[n]);
@@ -179,6 +214,32 @@ HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
       if (!pins.count(x)) p.use(x, e, "counters.interrupts", "an external interrupt input");
       pins.insert(x);
       cfg.edge_interrupts.push_back(2 * x + (falling ? 1 : 0));
+    }
+  }
+  if (node["capture"]) {
+    const YAML::Node l = node["capture"];
+    if (!l.IsSequence()) p.fail(l, "counters.capture", "expected a list of inputs such as [X3, X17]");
+    for (const auto& e : l) {
+      const int x = p.main_input(e, "counters.capture");
+      if (cfg.capture[x]) p.fail(e, "counters.capture", "X" + std::to_string(x) + " is listed twice");
+      cfg.capture[x] = true;
+    }
+  }
+  if (node["filters"]) {
+    const YAML::Node m = node["filters"];
+    if (!m.IsMap()) p.fail(m, "counters.filters", "expected a mapping such as {X0-X3: 28kHz, X16-X23: 2ms}");
+    for (const auto& kv : m) {
+      const std::string name = Parse::upper(p.str(kv.first, "counters.filters"));
+      const FilterGroup* g = nullptr;
+      std::string groups;
+      for (const auto& fg : filter_groups()) {
+        if (name == fg.name) g = &fg;
+        groups += std::string(groups.empty() ? "" : ", ") + fg.name;
+      }
+      if (!g) p.fail(kv.first, "counters.filters", "'" + name + "' is not a filter group; the groups are " + groups);
+      const std::string key = "counters.filters." + std::string(g->name);
+      const uint64_t ns = parse_filter(p, kv.second, key, *g);
+      for (int x = g->first; x <= g->last; ++x) cfg.filter_ns[x] = ns;
     }
   }
   if (node["frequency_window"]) {

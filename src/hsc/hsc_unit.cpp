@@ -1,6 +1,7 @@
 #include "plc_cell/hsc/hsc_unit.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
@@ -51,6 +52,7 @@ HscUnit::HscUnit(Plc& plc, HscConfig cfg)
                     " is a MASK/CLEAR input; pulse sources drive counting or interrupt inputs only");
     if (n >= 4) irq_.set_priority(counter_source(n), x_edge_source(c.def.pin_a, false) + 1);
   }
+  for (int x = 16; x < kFilteredInputs; ++x) scan_filter_[x - 16] = ScanDebounce(cfg_.filter_ns[x]);
   for (const auto& e : cfg_.edges) schedule_edge(e.x, e.t_ns, e.level);
   plc_.locked([this](ScanEngine& e, Memory&) {
     e.add_hook(this);
@@ -75,8 +77,23 @@ HscUnit* HscUnit::of(ScanEngine* engine) {
 // ---- levels and counting ------------------------------------------------------
 
 bool HscUnit::term(int x, uint64_t t) const {
-  if (pin_src_[x]) return phase_level(pin_phase_[x], pin_src_[x]->quarter(t));
+  if (pin_src_[x]) return !blocked(x) && phase_level(pin_phase_[x], pin_src_[x]->quarter(t));
   return term_[x];
+}
+
+// A source's pulses on x last half a period (50 % duty); shorter than the filter
+// width they are all lost, and the filtered input stays OFF.
+bool HscUnit::blocked(int x) const {
+  const uint64_t w = cfg_.filter_ns[x];
+  return pin_src_[x] && w > 0 && 2.0 * std::abs(pin_src_[x]->rate_hz()) * double(w) > 1e9;
+}
+
+bool HscUnit::blocked(const Counter& c) const {
+  for (int k = 0; k < 2; ++k) {
+    const int x = k == 0 ? c.def.pin_a : c.def.pin_b;
+    if (c.phase[k] >= 0 && blocked(x)) return true;
+  }
+  return false;
 }
 
 bool HscUnit::cleared(const Counter& c) const {
@@ -141,7 +158,7 @@ void HscUnit::advance_counters(uint64_t t) {
     if (!c.src) continue;
     const int64_t q1 = c.src->quarter(t);
     if (q1 == c.q) continue;
-    if (counting(c)) {
+    if (counting(c) && !blocked(c)) {
       std::array<int, 4> seq;
       weights(c, &seq);
       const int64_t k = q1 > c.q ? q1 - c.q : c.q - q1;
@@ -158,7 +175,8 @@ void HscUnit::advance_counters(uint64_t t) {
 // the source crosses, solved in O(1) from the 4-periodic weights.
 uint64_t HscUnit::next_match(const Counter& c) const {
   const int s = counter_source(c.n);
-  if (!c.src || c.src->direction() == 0 || !irq_.present(s) || !irq_.enabled(s) || !counting(c)) return kNever;
+  if (!c.src || c.src->direction() == 0 || !irq_.present(s) || !irq_.enabled(s) || !counting(c) || blocked(c))
+    return kNever;
   std::array<int, 4> seq;
   weights(c, &seq);
   const int64_t target = static_cast<int32_t>(get_pv(c) - get_cv(c));
@@ -213,7 +231,7 @@ int HscUnit::active_time_base() const {
 uint64_t HscUnit::next_pin_edge(int x, bool rising) const {
   const PulseSource* s = pin_src_[x];
   const int dir = s->direction();
-  if (dir == 0) return kNever;
+  if (dir == 0 || blocked(x)) return kNever;
   const int64_t q = s->quarter(cur_ns_);
   for (int i = 1; i <= 4; ++i) {
     const bool a = phase_level(pin_phase_[x], q + (i - 1) * dir), b = phase_level(pin_phase_[x], q + i * dir);
@@ -240,8 +258,13 @@ void HscUnit::start(uint64_t t) {
   hsta_t0_ = t;
   for (int s = 0; s < kSourceCount; ++s) irq_.set_enabled(s, true);
   irq_.reset();
-  for (int x = 0; x < 16; ++x)
-    if (!pin_src_[x]) term_[x] = engine_.input(x);
+  for (int x = 0; x < 16; ++x) {
+    if (!pin_src_[x]) term_[x] = raw_[x] = engine_.input(x);
+    else cap_q_[x] = pin_src_[x]->quarter(t);
+    ++gen_[x];  // filter outputs pending from the last run are void
+    latch_[x] = false;
+  }
+  for (auto& f : scan_filter_) f.reset();
   running_ = true;
 }
 
@@ -292,8 +315,9 @@ void HscUnit::advance(uint64_t to) {
       if (tr.next_after(prev, &up) == t) group.push_back({tr.x, up});
     }
     while (!edges_.empty() && edges_.top().t <= t) {
-      group.push_back({edges_.top().x, edges_.top().level});
+      const Edge e = edges_.top();
       edges_.pop();
+      raw_edge(e, &group);
     }
     if (!group.empty()) {
       // Edges at one instant act together: simultaneous U and D edges cancel.
@@ -302,7 +326,7 @@ void HscUnit::advance(uint64_t to) {
         if (c.def.used && !c.def.timer) before[c.n] = pins_at(c, c.q);
       std::array<bool, 16> old = term_;
       for (const auto& g : group)
-        if (!pin_src_[g.first]) term_[g.first] = g.second;
+        if (!pin_src_[g.first]) term_[g.first] = raw_[g.first] = g.second;
       std::array<bool, 16> now = term_;
       for (auto& c : counters_) {
         if (!c.def.used || c.def.timer) continue;
@@ -315,12 +339,33 @@ void HscUnit::advance(uint64_t to) {
       for (int x = 0; x < 16; ++x) {
         if (old[x] == now[x]) continue;
         engine_.set_input(x, now[x]);
+        if (now[x]) latch_[x] = true;
         fired_.push_back(x_edge_source(x, !now[x]));  // ignored unless configured with a routine
       }
     }
     fire_pending();
     if (!running_ || t >= to) return;
   }
+}
+
+// An edge at the terminal. Unfiltered it acts now; filtered, it acts once the
+// level has held for the filter width (a debounce: shorter pulses are lost, longer
+// ones arrive that much late), unless the terminal changes back before.
+void HscUnit::raw_edge(const Edge& e, std::vector<std::pair<int, bool>>* group) {
+  const uint64_t w = cfg_.filter_ns[e.x];
+  if (e.commit) {
+    if (e.gen == gen_[e.x]) group->push_back({e.x, e.level});
+    return;
+  }
+  if (w == 0 || pin_src_[e.x]) {
+    group->push_back({e.x, e.level});
+    return;
+  }
+  if (e.level == raw_[e.x]) return;
+  raw_[e.x] = e.level;
+  engine_.set_input(e.x, e.level);
+  ++gen_[e.x];
+  if (e.level != term_[e.x]) edges_.push({e.t + w, edge_seq_++, e.x, e.level, true, gen_[e.x]});
 }
 
 void HscUnit::fire_pending() {
@@ -357,6 +402,17 @@ void HscUnit::add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint
   if (width_ns >= period_ns) {
     schedule_edge(x, delay_ns, true);  // on for good
     return;
+  }
+  // The filter, in O(1) for the whole train: it loses ON pulses shorter than its
+  // width, bridges OFF gaps shorter than it, and delays the rest by its width.
+  const uint64_t w = cfg_.filter_ns[x];
+  if (w > 0) {
+    if (width_ns < w) return;
+    if (period_ns - width_ns < w) {
+      schedule_edge(x, delay_ns, true);  // on for good, once the filter has seen it
+      return;
+    }
+    delay_ns += w;
   }
   trains_.push_back({x, period_ns, width_ns, delay_ns});
 }
@@ -396,7 +452,7 @@ void HscUnit::before_inputs(uint64_t now_us) {
   if (!running_) return;
   // Levels that the simulation or a ROS topic set since the last scan change now.
   for (int x = 0; x < 16; ++x)
-    if (!pin_src_[x] && engine_.input(x) != term_[x]) schedule_edge(x, cur_ns_, engine_.input(x));
+    if (!pin_src_[x] && engine_.input(x) != raw_[x]) schedule_edge(x, cur_ns_, engine_.input(x));
   if (!edges_.empty() && edges_.top().t <= cur_ns_) advance(cur_ns_);
   if (!running_) return;
   for (int x = 0; x < 16; ++x)
@@ -407,6 +463,38 @@ void HscUnit::before_inputs(uint64_t now_us) {
     const uint64_t w = cfg_.frequency_window_us * 1000;
     while (c.hist.size() > 2 && c.hist[1].first + w <= cur_ns_) c.hist.pop_front();
   }
+}
+
+// After the input image is taken: the filtered levels of X0-X15, the capture
+// latches (ON at some instant since the last image) and the scan filter of X16-X35.
+void HscUnit::before_program(uint64_t now_us) {
+  if (!running_) return;
+  for (int x = 0; x < 16; ++x) {
+    bool on = false;
+    if (pin_src_[x]) {
+      if (cfg_.capture[x]) on = source_was_on(x);
+      cap_q_[x] = pin_src_[x]->quarter(cur_ns_);
+    } else {
+      if (cfg_.filter_ns[x] > 0) mem_.set_bit(Area::X, x, term_[x]);  // the terminal shows the raw level
+      on = latch_[x] && cfg_.capture[x];
+      latch_[x] = term_[x];  // ON now: ON just after this image, too
+    }
+    if (on) mem_.set_bit(Area::X, x, true);
+  }
+  for (int x = 16; x < kFilteredInputs; ++x)
+    if (cfg_.filter_ns[x] > 0) mem_.set_bit(Area::X, x, scan_filter_[x - 16].sample(mem_.bit(Area::X, x), now_us * 1000));
+}
+
+// Some quarter between the last image and now put x ON (a pulse phase is ON in 2
+// of any 4 consecutive quarters, so 3 quarters always contain one).
+bool HscUnit::source_was_on(int x) const {
+  if (blocked(x)) return false;
+  const int64_t q1 = pin_src_[x]->quarter(cur_ns_);
+  const int64_t lo = std::min(cap_q_[x], q1), hi = std::max(cap_q_[x], q1);
+  if (hi - lo >= 3) return true;
+  for (int64_t q = lo; q <= hi; ++q)
+    if (phase_level(pin_phase_[x], q)) return true;
+  return false;
 }
 
 void HscUnit::after_program(uint64_t) {

@@ -4,7 +4,23 @@
 
 namespace plc_cell {
 
-bool StepSignal::level(uint64_t t, const Memory&) {
+// The last pulse that starts before t1 is the only candidate: earlier ones end earlier.
+bool PulseSignal::on_between(uint64_t t0, uint64_t t1) const {
+  if (period_ == 0 || width_ == 0 || t1 <= delay_) return false;
+  const uint64_t start = delay_ + (t1 - 1 - delay_) / period_ * period_;
+  return start + width_ > t0;
+}
+
+bool StepSignal::level(uint64_t t, const Memory&) { return at(t); }
+
+bool StepSignal::on_between(uint64_t t0, uint64_t t1) const {
+  if (at(t0)) return true;  // ON from t0 on, until the next step
+  for (const auto& s : steps_)
+    if (s.first > t0 && s.first < t1 && s.second) return true;
+  return false;
+}
+
+bool StepSignal::at(uint64_t t) const {
   bool v = false;
   for (const auto& s : steps_) {
     if (s.first > t) break;

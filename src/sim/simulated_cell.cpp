@@ -14,7 +14,14 @@ void SimulatedCell::release(uint32_t x) {
 }
 
 void SimulatedCell::before_inputs(uint64_t now_us) {
-  for (auto& d : drivers_) engine_.set_input(d.x, d.signal->level(now_us, mem_));
+  for (auto& d : drivers_) {
+    bool v = d.signal->level(now_us, mem_);
+    if (!v && scanned_ && std::find(captured_.begin(), captured_.end(), d.x) != captured_.end())
+      v = d.signal->on_between(last_us_, now_us);
+    engine_.set_input(d.x, v);
+  }
+  scanned_ = true;
+  last_us_ = now_us;
 }
 
 }  // namespace plc_cell

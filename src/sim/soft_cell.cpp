@@ -50,6 +50,12 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
     }
     return 0;
   });
+  // Capture inputs beyond X15 are sampled at the scans: the simulation latches them.
+  plc_.locked([&](ScanEngine&, Memory&) {
+    for (uint32_t x = 16; x < hsc::kFilteredInputs; ++x)
+      if (hsc_->config().capture[x]) sim_->capture(x);
+    return 0;
+  });
   plc_.load_program_file(program_path_);
 }
 

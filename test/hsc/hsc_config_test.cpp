@@ -96,6 +96,39 @@ TEST(HscConfig, InterruptsSourcesAndEdges) {
   EXPECT_FALSE(c.edges[0].level);
 }
 
+TEST(HscConfig, CaptureAndFilters) {
+  const HscConfig c = parse(
+      "counters:\n  capture: [X3, x17]\n"
+      "  filters: {X0-X3: 28kHz, x4-x7: 0.3ms, X12-X15: 1.8MHz, X16-X23: 2ms, X24-X35: 15ms}\n");
+  EXPECT_TRUE(c.capture[3] && c.capture[17]);
+  EXPECT_FALSE(c.capture[4]);
+  for (int x = 0; x < 4; ++x) EXPECT_EQ(c.filter_ns[x], 17778u);  // 1/(2 x 28125 Hz), rounded
+  EXPECT_EQ(c.filter_ns[7], 300000u);
+  EXPECT_EQ(c.filter_ns[8], 0u);
+  EXPECT_EQ(c.filter_ns[15], 278u);
+  EXPECT_EQ(c.filter_ns[23], 2000000u);
+  EXPECT_EQ(c.filter_ns[35], 15000000u);
+}
+
+TEST(HscConfig, CaptureAndFilterErrorsNameTheLine) {
+  std::string e = error_of("counters:\n  capture: [X3, X36]\n");
+  EXPECT_NE(e.find("cell.yaml:2:"), std::string::npos) << e;
+  EXPECT_NE(e.find("'X36' is not an input X0-X35"), std::string::npos) << e;
+  e = error_of("counters:\n  capture: [X3, X3]\n");
+  EXPECT_NE(e.find("X3 is listed twice"), std::string::npos) << e;
+  e = error_of("counters:\n  filters:\n    X16-X23: 28kHz\n");
+  EXPECT_NE(e.find("cell.yaml:3:"), std::string::npos) << e;
+  EXPECT_NE(e.find("X16-X23 has a time-domain filter only"), std::string::npos) << e;
+  e = error_of("counters:\n  filters: {X0-X3: 40kHz}\n");
+  EXPECT_NE(e.find("14kHz, 28kHz, 56kHz, 112kHz, 225kHz, 450kHz, 900kHz, 1.8MHz"), std::string::npos) << e;
+  e = error_of("counters:\n  filters: {X0-X3: 0.25ms}\n");
+  EXPECT_NE(e.find("X0-X3 takes 1ms ... 15ms, 0.1ms ... 1.5ms"), std::string::npos) << e;
+  e = error_of("counters:\n  filters: {X16-X23: 0.5ms}\n");
+  EXPECT_NE(e.find("X16-X23 takes 1ms ... 15ms"), std::string::npos) << e;
+  e = error_of("counters:\n  filters: {X0-X4: 2ms}\n");
+  EXPECT_NE(e.find("'X0-X4' is not a filter group"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace hsc
 }  // namespace plc_cell

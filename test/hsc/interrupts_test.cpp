@@ -3,6 +3,8 @@
 // way a hardware event does, from inside a routine.
 #include "hsc_fixture.h"
 
+#include "plc_cell/core/error.h"
+#include "plc_cell/core/il_parser.h"
 #include "plc_cell/core/interpreter.h"
 
 namespace plc_cell {
@@ -126,6 +128,32 @@ TEST(Interrupts, LabelsAndOldNames) {
   EXPECT_EQ(source_of_label("X3+I"), x_edge_source(3, false));
   EXPECT_EQ(source_of_label("HSC7I"), kHsc4I + 3);
   EXPECT_EQ(source_of_label("LOOP"), -1);
+}
+
+// A reserved label names an interrupt routine (after END, ended by RTI): the
+// parser refuses it as a JMP/CALL target or as a label in the main program.
+std::string parse_error(const std::string& il) {
+  try {
+    parse_program(il, "p.il", FunctionTable::with_core_functions());
+  } catch (const SourceError& e) {
+    return e.diagnostics().at(0).to_string();
+  }
+  return "";
+}
+
+TEST(Interrupts, ReservedLabelsAreNoJumpTargets) {
+  EXPECT_EQ(parse_error("ORG X0\nCALL HSC0I\nEND\nLBL HSC0I\nORG M1925\nOUT M0\nRTI\n"),
+            "p.il:2:6: error: CALL HSC0I: HSC0I is an interrupt label; its routine runs on the interrupt, not by CALL");
+  EXPECT_EQ(parse_error("ORG X0\nJMP x0+i\nEND\n"),
+            "p.il:2:5: error: JMP X0+I: X0+I is an interrupt label; its routine runs on the interrupt, not by JMP");
+  EXPECT_NE(parse_error("ORG X0\nCALL 1MS\nEND\n").find("1MS is an interrupt label"), std::string::npos);
+  EXPECT_NE(parse_error("ORG X0\nJMP INT3-\nEND\n").find("INT3- is an interrupt label"), std::string::npos);
+  EXPECT_EQ(parse_error("ORG X0\nOUT Y0\nLBL 1MSI\nORG X1\nOUT Y1\nEND\n"),
+            "p.il:3:5: error: 1MSI is an interrupt label: its routine belongs after END (LBL 1MSI ... RTI)");
+  // Ordinary labels and the routines themselves are fine.
+  EXPECT_EQ(parse_error("ORG X0\nCALL SUB1\nEND\nLBL SUB1\nORG M1925\nOUT M0\nRTS\n"
+                        "LBL HSTAI\nORG M1925\nOUT M1\nRTI\n"),
+            "");
 }
 
 }  // namespace

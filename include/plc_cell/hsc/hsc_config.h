@@ -1,6 +1,7 @@
 #pragma once
-// The `counters:` section of the cell YAML: HSC0-HSC7, external edge interrupts
-// and the simulated pulse sources that drive counter inputs.
+// The `counters:` section of the cell YAML: HSC0-HSC7, external edge interrupts,
+// capture inputs, the digital input filter and the simulated pulse sources that
+// drive counter inputs.
 // docs/counters-and-interrupts.md describes every key.
 #include <array>
 #include <cstdint>
@@ -11,6 +12,7 @@
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/hsc/count_rule.h"
+#include "plc_cell/hsc/input_filter.h"
 
 namespace plc_cell {
 namespace hsc {
@@ -49,6 +51,10 @@ struct HscConfig {
   std::vector<int> edge_interrupts;  // 2*x + (falling ? 1 : 0)
   std::vector<SourceDef> sources;
   std::vector<ScheduledEdge> edges;  // exact-time switch signals on X0-X15
+  // Digital input filter (§9.7): minimum ON/OFF pulse width per input X0-X35, 0 = none.
+  std::array<uint64_t, kFilteredInputs> filter_ns{};
+  // Capture inputs (§9.6): an ON pulse between two scans is seen for one scan.
+  std::array<bool, kFilteredInputs> capture{};
   uint64_t frequency_window_us = 100000;
   double publish_rate_hz = 10;
 };

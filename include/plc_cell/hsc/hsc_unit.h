@@ -10,6 +10,8 @@
 // At each event the ISRs run at the event's instant, with arbitration, pre-emption
 // and nesting by priority. The next issue's pulse-output axes add their own event
 // times (PSOnI) the same way: next_event() + fire().
+// The unit also applies the capture inputs and the digital input filter (§9.6-9.7):
+// on the exact edges of X0-X15 and on the scan's samples of X16-X35.
 #include <array>
 #include <cstdint>
 #include <deque>
@@ -24,6 +26,7 @@
 #include "plc_cell/hsc/hsc_config.h"
 #include "plc_cell/hsc/interrupts.h"
 #include "plc_cell/hsc/pulse_source.h"
+#include "plc_cell/hsc/scan_debounce.h"
 
 namespace plc_cell {
 
@@ -44,6 +47,7 @@ class HscUnit : public ScanHook {
 
   void before_inputs(uint64_t now_us) override;
   void after_program(uint64_t now_us) override;
+  void before_program(uint64_t now_us) override;
   void on_stop() override;
 
   // ---- instructions (called from the interpreter, lock held) ----
@@ -54,7 +58,8 @@ class HscUnit : public ScanHook {
   void raise(int source);               // an interrupt request from a subsystem (PSO axes)
 
   // ---- simulation and observation (hold the Plc lock) ----
-  void schedule_edge(int x, uint64_t t_ns, bool level);  // an exact-time switch edge
+  // An exact-time switch edge at the terminal; a filtered input sees it through its filter.
+  void schedule_edge(int x, uint64_t t_ns, bool level);
   // A periodic switch on X0-X15 (the cell YAML's simulation pulse): on for width of
   // every period from delay, as exact edges (one event per edge: for fast signals
   // use a PulseSource, whose edges cost nothing).
@@ -96,6 +101,8 @@ class HscUnit : public ScanHook {
     uint64_t seq;
     int x;
     bool level;
+    bool commit = false;  // the filter's output: valid only if gen is still the pin's
+    uint64_t gen = 0;
     bool operator>(const Edge& o) const { return t != o.t ? t > o.t : seq > o.seq; }
   };
 
@@ -122,6 +129,10 @@ class HscUnit : public ScanHook {
   uint64_t hsta_next() const;
   int active_time_base() const;
   uint64_t next_pin_edge(int x, bool rising) const;
+  bool blocked(int x) const;                 // an analytic source too fast for x's filter
+  bool blocked(const Counter& c) const;      // one of its counting inputs is
+  void raw_edge(const Edge& e, std::vector<std::pair<int, bool>>* group);
+  bool source_was_on(int x) const;           // capture of an analytic pin since the last image
 
   ScanEngine& engine_;
   Memory& mem_;
@@ -130,7 +141,12 @@ class HscUnit : public ScanHook {
   std::vector<std::unique_ptr<PulseSource>> sources_;
   std::array<PulseSource*, 16> pin_src_{};  // analytic driver of each X0-X15
   std::array<int, 16> pin_phase_{};
-  std::array<bool, 16> term_{};              // explicit terminal levels
+  std::array<bool, 16> term_{};              // explicit terminal levels after the filter
+  std::array<bool, 16> raw_{};               // ... before the filter (what the terminal shows)
+  std::array<uint64_t, 16> gen_{};           // filter: a raw change cancels the pending output
+  std::array<bool, 16> latch_{};             // capture: ON at some instant since the last image
+  std::array<int64_t, 16> cap_q_{};          // capture of an analytic pin: quarter at the last image
+  std::array<ScanDebounce, kFilteredInputs - 16> scan_filter_;  // X16-X35
   std::array<Counter, 8> counters_;
   struct Train {
     int x;

@@ -17,6 +17,10 @@ class InputSignal {
   virtual ~InputSignal() = default;
   // Level at time t_us; may read PLC memory (outputs the signal follows).
   virtual bool level(uint64_t t_us, const Memory& mem) = 0;
+  // Was the level ON at some instant in the open interval (t0_us, t1_us)? For a
+  // capture input, which sees a pulse between two scans. Signals that change only
+  // when evaluated (at the scans) never are.
+  virtual bool on_between(uint64_t /*t0_us*/, uint64_t /*t1_us*/) const { return false; }
 };
 
 // On for width_us out of every period_us, starting at delay_us.
@@ -27,6 +31,7 @@ class PulseSignal : public InputSignal {
   bool level(uint64_t t, const Memory&) override {
     return t >= delay_ && (t - delay_) % period_ < width_;
   }
+  bool on_between(uint64_t t0, uint64_t t1) const override;
 
  private:
   uint64_t period_, width_, delay_;
@@ -37,8 +42,10 @@ class StepSignal : public InputSignal {
  public:
   explicit StepSignal(std::vector<std::pair<uint64_t, bool>> steps) : steps_(std::move(steps)) {}
   bool level(uint64_t t, const Memory&) override;
+  bool on_between(uint64_t t0, uint64_t t1) const override;
 
  private:
+  bool at(uint64_t t) const;
   std::vector<std::pair<uint64_t, bool>> steps_;
 };
 

@@ -16,6 +16,8 @@ class SimulatedCell : public ScanHook {
   void drive(uint32_t x, std::unique_ptr<InputSignal> signal);
   // Stops simulating input x (something else, e.g. a ROS topic, now drives it).
   void release(uint32_t x);
+  // Input x is a capture input: a pulse between two scans is seen ON at the next scan.
+  void capture(uint32_t x) { captured_.push_back(x); }
   void before_inputs(uint64_t now_us) override;
   bool empty() const { return drivers_.empty(); }
 
@@ -27,6 +29,9 @@ class SimulatedCell : public ScanHook {
   ScanEngine& engine_;
   const Memory& mem_;
   std::vector<Driver> drivers_;
+  std::vector<uint32_t> captured_;
+  bool scanned_ = false;
+  uint64_t last_us_ = 0;  // the previous scan
 };
 
 }  // namespace plc_cell
