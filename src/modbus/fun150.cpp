@@ -45,6 +45,10 @@ constexpr uint32_t kTimeoutReg[5] = {0, 4147, 4159, 4045, 4048};
 struct Job {
   int station = 0, fc = 0;
   uint32_t address = 0, count = 0;
+  // Where read data goes in the PLC, fixed (and checked) when the job is submitted: the
+  // program may rewrite its table while the transaction is on the line.
+  Area master_area = Area::R;
+  uint32_t master_start = 0;
   std::vector<uint16_t> data;  // write data in, read data out (bits as 0/1)
   int timeout_ms = 500;
   int result = kOk;
@@ -303,11 +307,8 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
     Job j;
     if (s.in_flight && w->take(&j)) {  // apply the finished transaction
       s.in_flight = false;
-      const uint32_t b = 2 + 7 * s.tx;
-      Area a;
-      uint32_t max;
-      master_range(table(b + 3), &a, &max);
-      const uint32_t mstart = table(b + 4);
+      const Area a = j.master_area;
+      const uint32_t mstart = j.master_start;
       if (j.result == kOk && (j.fc >= 1 && j.fc <= 4)) {
         for (uint32_t i = 0; i < j.count; ++i) {
           if (is_discrete(a)) c.mem.set_bit(a, mstart + i, j.data[i] != 0);
@@ -337,6 +338,8 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
         nj.fc = fc;
         nj.address = t.sref - 1;  // references are 1-based (spec §5 item 11)
         nj.count = (fc == 5 || fc == 6) ? 1 : uint32_t(t.len);
+        nj.master_area = a;
+        nj.master_start = uint32_t(t.mstart);
         nj.data.resize(nj.count);
         if (fc == 5 || fc == 6 || fc == 15 || fc == 16)  // write data taken now, in this scan
           for (uint32_t i = 0; i < nj.count; ++i)

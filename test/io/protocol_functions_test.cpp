@@ -104,3 +104,37 @@ TEST(ProtocolFunctions, ABadPortSectionNamesTheFile) {
     EXPECT_NE(std::string(e.what()).find("ports 1..4"), std::string::npos) << e.what();
   }
 }
+
+TEST(ProtocolFunctions, Fun150KeepsTheDestinationItSubmittedWith) {
+  // The program rewrites its table while a read is on the line: the reply still goes
+  // where the table said when the transaction was sent, and nothing else is touched.
+  Plc slave;
+  slave.write(parse_address("R7"), {4321});
+  modbus::SlaveOptions so;
+  so.tcp = "127.0.0.1:0";
+  auto servers = modbus::make_slave_servers(slave, so);
+  servers[0]->start();
+  const std::string where = servers[0]->describe();
+  const int port = std::stoi(where.substr(where.rfind(':') + 1));
+  const std::string prog =
+      write_file("mbus2.il", "ORG M100\nLD M101\nLD M102\nFUN 150 Pt=1 SR=R100 WR=R200 ACT=M110 ERR=M111 DN=M112\nEND\n");
+  const std::string cfg = write_file("mbus2.yaml", "cell: {program: " + prog + "}\nmodbus:\n  ports:\n    1: {tcp: 127.0.0.1:" +
+                                                       std::to_string(port) + "}\n");
+  SoftCell cell(cfg, "", install_protocol_functions);
+  Plc& master = cell.plc();
+  ASSERT_TRUE(master.set_mode(RunMode::Run));
+  master.write(parse_address("R100"), {0xA550, 0x0701, 1, 1, 1, 12, 20, 4, 8});
+  master.write(parse_address("M100"), {1});
+  master.scan(1000);  // submits the read of R7 into R20
+  master.write(parse_address("R105"), {99});    // master type: invalid now
+  master.write(parse_address("R106"), {8000});  // and a start far away
+  uint64_t now = 1000;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (get(master, "M112") == 0 && get(master, "M111") == 0 && std::chrono::steady_clock::now() < deadline) {
+    master.scan(now += 1000);
+    std::this_thread::yield();
+  }
+  EXPECT_EQ(get(master, "R20"), 4321u);
+  EXPECT_EQ(get(master, "R8000"), 0u);
+  servers[0]->stop();
+}
