@@ -38,6 +38,29 @@ bool scan_until(Plc& plc, const std::function<bool()>& pred) {
 
 uint32_t get(Plc& plc, const char* a) { return plc.read(parse_address(a), 1)[0]; }
 
+// slave's Modbus/TCP server on a free loopback port.
+struct ModbusSlave {
+  explicit ModbusSlave(Plc& slave) {
+    modbus::SlaveOptions so;
+    so.tcp = "127.0.0.1:0";
+    servers = modbus::make_slave_servers(slave, so);
+    servers.at(0)->start();
+    const std::string where = servers[0]->describe();  // "Modbus TCP 127.0.0.1:PORT"
+    port = std::stoi(where.substr(where.rfind(':') + 1));
+  }
+  ~ModbusSlave() { servers[0]->stop(); }
+  std::vector<std::unique_ptr<Server>> servers;
+  int port = 0;
+};
+
+// A cell whose FUN150 port 1 talks to 127.0.0.1:port.
+std::string mbus_cell(const std::string& name, int port) {
+  const std::string prog = write_file(
+      name + ".il", "ORG M100\nLD M101\nLD M102\nFUN 150 Pt=1 SR=R100 WR=R200 ACT=M110 ERR=M111 DN=M112\nEND\n");
+  return write_file(name + ".yaml", "cell: {program: " + prog + "}\nmodbus:\n  ports:\n    1: {tcp: 127.0.0.1:" +
+                                        std::to_string(port) + "}\n");
+}
+
 }  // namespace
 
 TEST(ProtocolFunctions, Fun151ReadsAnotherPlcThroughTheCellsFatekPort) {
@@ -68,19 +91,8 @@ TEST(ProtocolFunctions, Fun151ReadsAnotherPlcThroughTheCellsFatekPort) {
 TEST(ProtocolFunctions, Fun150ReadsAModbusSlaveThroughTheCellsModbusPort) {
   Plc slave;
   slave.write(parse_address("R7"), {1234, 5678});
-  modbus::SlaveOptions so;
-  so.tcp = "127.0.0.1:0";
-  auto servers = modbus::make_slave_servers(slave, so);
-  ASSERT_EQ(servers.size(), 1u);
-  servers[0]->start();
-  const std::string where = servers[0]->describe();  // "... 127.0.0.1:PORT ..."
-  const auto colon = where.rfind(':');
-  ASSERT_NE(colon, std::string::npos);
-  const int port = std::stoi(where.substr(colon + 1));
-  const std::string prog =
-      write_file("mbus.il", "ORG M100\nLD M101\nLD M102\nFUN 150 Pt=1 SR=R100 WR=R200 ACT=M110 ERR=M111 DN=M112\nEND\n");
-  const std::string cfg = write_file("mbus.yaml", "cell: {program: " + prog + "}\nmodbus:\n  ports:\n    1: {tcp: 127.0.0.1:" +
-                                                      std::to_string(port) + "}\n");
+  ModbusSlave server(slave);
+  const std::string cfg = mbus_cell("mbus", server.port);
   SoftCell cell(cfg, "", install_protocol_functions);
   Plc& master = cell.plc();
   ASSERT_TRUE(master.set_mode(RunMode::Run));
@@ -90,7 +102,6 @@ TEST(ProtocolFunctions, Fun150ReadsAModbusSlaveThroughTheCellsModbusPort) {
   ASSERT_TRUE(scan_until(master, [&] { return get(master, "M112") == 1 || get(master, "M111") == 1; }));
   EXPECT_EQ(get(master, "M111"), 0u) << "WR+0 = " << get(master, "R200");
   EXPECT_EQ(master.read(parse_address("R20"), 2), (std::vector<uint32_t>{1234, 5678}));
-  servers[0]->stop();
 }
 
 TEST(ProtocolFunctions, ABadPortSectionNamesTheFile) {
@@ -110,16 +121,8 @@ TEST(ProtocolFunctions, Fun150KeepsTheDestinationItSubmittedWith) {
   // where the table said when the transaction was sent, and nothing else is touched.
   Plc slave;
   slave.write(parse_address("R7"), {4321});
-  modbus::SlaveOptions so;
-  so.tcp = "127.0.0.1:0";
-  auto servers = modbus::make_slave_servers(slave, so);
-  servers[0]->start();
-  const std::string where = servers[0]->describe();
-  const int port = std::stoi(where.substr(where.rfind(':') + 1));
-  const std::string prog =
-      write_file("mbus2.il", "ORG M100\nLD M101\nLD M102\nFUN 150 Pt=1 SR=R100 WR=R200 ACT=M110 ERR=M111 DN=M112\nEND\n");
-  const std::string cfg = write_file("mbus2.yaml", "cell: {program: " + prog + "}\nmodbus:\n  ports:\n    1: {tcp: 127.0.0.1:" +
-                                                       std::to_string(port) + "}\n");
+  ModbusSlave server(slave);
+  const std::string cfg = mbus_cell("mbus2", server.port);
   SoftCell cell(cfg, "", install_protocol_functions);
   Plc& master = cell.plc();
   ASSERT_TRUE(master.set_mode(RunMode::Run));
@@ -136,5 +139,4 @@ TEST(ProtocolFunctions, Fun150KeepsTheDestinationItSubmittedWith) {
   }
   EXPECT_EQ(get(master, "R20"), 4321u);
   EXPECT_EQ(get(master, "R8000"), 0u);
-  servers[0]->stop();
 }

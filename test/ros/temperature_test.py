@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """rostest for plc_node's temperature topics, module diagnostics and ~set_pid_loop."""
 import math
-import threading
+import os
+import sys
 import time
 import unittest
 
@@ -12,30 +13,13 @@ from sensor_msgs.msg import Temperature
 
 from plc_cell.srv import ReadMemory, SetPidLoop
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from latest_message import Latest  # noqa: E402
+
 NS = "/plc_node/"
 TIMEOUT = 15.0
 
 
-class Latest(object):
-    def __init__(self, topic, msg_type):
-        self.msg = None
-        self.cond = threading.Condition()
-        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
-
-    def _cb(self, msg):
-        with self.cond:
-            self.msg = msg
-            self.cond.notify_all()
-
-    def wait_for(self, pred, timeout=TIMEOUT):
-        deadline = time.monotonic() + timeout
-        with self.cond:
-            while self.msg is None or not pred(self.msg):
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    return self.msg
-                self.cond.wait(left)
-            return self.msg
 
 
 def module_status(arr, name):
@@ -53,10 +37,10 @@ class TemperatureTest(unittest.TestCase):
             rospy.wait_for_service(NS + s, timeout=30)
         cls.read = rospy.ServiceProxy(NS + "read", ReadMemory)
         cls.set_loop = rospy.ServiceProxy(NS + "set_pid_loop", SetPidLoop)
-        cls.oven = Latest(NS + "temperature/oven_temp", Temperature)
-        cls.broken = Latest(NS + "temperature/broken", Temperature)
-        cls.room = Latest(NS + "temperature/room", Temperature)
-        cls.diag = Latest("/diagnostics", DiagnosticArray)
+        cls.oven = Latest(NS + "temperature/oven_temp", Temperature, timeout=TIMEOUT)
+        cls.broken = Latest(NS + "temperature/broken", Temperature, timeout=TIMEOUT)
+        cls.room = Latest(NS + "temperature/room", Temperature, timeout=TIMEOUT)
+        cls.diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
 
     def test_channels(self):
         room = self.room.wait_for(lambda m: not math.isnan(m.temperature))
