@@ -11,7 +11,10 @@ target_sources(plc_cell_core PRIVATE
   src/temp/analog_modules.cpp
   src/temp/tpctl.cpp
   src/temp/pid.cpp
-  src/temp/temp_functions.cpp)
+  src/temp/temp_functions.cpp
+  src/temp/rtc_calendar.cpp
+  src/temp/rtc_calibration.cpp
+  src/temp/rtc.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS test/temp/*_test.cpp)

@@ -32,6 +32,8 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
     e.add_hook(sim_.get());
     temperature_ = temp::make_temperature_cell(config_.document, config_.file, m);
     if (temperature_) e.add_hook(temperature_.get());
+    rtc_ = temp::make_rtc(config_.document, config_.file, m);
+    e.add_hook(rtc_.get());
     return 0;
   });
   const YAML::Node& doc = config_.document;
@@ -59,6 +61,7 @@ SoftCell::~SoftCell() {
   plc_.locked([&](ScanEngine& e, Memory&) {
     e.remove_hook(sim_.get());
     if (temperature_) e.remove_hook(temperature_.get());
+    e.remove_hook(rtc_.get());
     return 0;
   });
 }
