@@ -14,7 +14,8 @@ target_sources(plc_cell_core PRIVATE
   src/temp/temp_functions.cpp
   src/temp/rtc_calendar.cpp
   src/temp/rtc_calibration.cpp
-  src/temp/rtc.cpp)
+  src/temp/rtc.cpp
+  src/temp/linear_conversion.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS test/temp/*_test.cpp)
