@@ -15,7 +15,9 @@ target_sources(plc_cell_core PRIVATE
   src/temp/rtc_calendar.cpp
   src/temp/rtc_calibration.cpp
   src/temp/rtc.cpp
-  src/temp/linear_conversion.cpp)
+  src/temp/linear_conversion.cpp
+  src/temp/hspwm.cpp
+  src/temp/pwmda.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS test/temp/*_test.cpp)

@@ -192,7 +192,7 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
   Reader r(file);
   TemperatureConfig c;
   if (!node) return c;
-  r.only(node, "modules", {"temperature", "plants", "analog", "rtc"});  // rtc: rtc.cpp
+  r.only(node, "modules", {"temperature", "plants", "analog", "rtc", "pwmda"});  // rtc.cpp, pwmda.cpp
   if (node["analog"]) c.analog = parse_analog_config(node["analog"], file), c.has_analog = true;
   if (const YAML::Node t = node["temperature"]) {
     const std::string k = "modules.temperature";
