@@ -17,7 +17,8 @@ target_sources(plc_cell_core PRIVATE
   src/temp/rtc.cpp
   src/temp/linear_conversion.cpp
   src/temp/hspwm.cpp
-  src/temp/pwmda.cpp)
+  src/temp/pwmda.cpp
+  src/temp/fb_tc_scaling.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS test/temp/*_test.cpp)
