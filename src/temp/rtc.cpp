@@ -47,12 +47,20 @@ Rtc::Rtc(RtcConfig cfg, Memory& mem) : cfg_(cfg), mem_(mem) {
   us_ = to_seconds(cfg_.has_start ? cfg_.start : host_local_time()) * kUsPerS;
 }
 
+const DateTime& Rtc::calendar() {
+  // The calendar walks years and months: only when the second changes.
+  if (seconds() != calendar_s_) calendar_s_ = seconds(), calendar_ = from_seconds(calendar_s_);
+  return calendar_;
+}
+
 int Rtc::week() const { return (weekday(seconds()) + week_offset_) % 7; }
 
 void Rtc::before_inputs(uint64_t now_us) {
   if (!started_) {
     started_ = true;
     last_us_ = now_us;
+    // The host's time when the cell starts scanning, not when it was built.
+    if (!cfg_.has_start) us_ = to_seconds(host_local_time()) * kUsPerS;
     return;
   }
   if (now_us <= last_us_) return;
@@ -113,7 +121,7 @@ void Rtc::before_program(uint64_t) {
   prev_stop_read_ = stop_read;
   prev_round_ = round;
   if (stop_read) return;  // the program owns R4128-R4135 while it sets the clock
-  const DateTime t = now();
+  const DateTime& t = calendar();
   mem_.set_reg(Area::R, rtcreg::kSecond, static_cast<uint16_t>(t.second));
   mem_.set_reg(Area::R, rtcreg::kMinute, static_cast<uint16_t>(t.minute));
   mem_.set_reg(Area::R, rtcreg::kHour, static_cast<uint16_t>(t.hour));

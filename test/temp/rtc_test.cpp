@@ -1,6 +1,8 @@
 // The FBs real-time clock (R4128-R4135, M1952-M1955, D4053/D4054) in virtual time.
 #include <gtest/gtest.h>
 
+#include <ctime>
+
 #include "../core/plc_fixture.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/temp/rtc.h"
@@ -222,6 +224,17 @@ TEST_F(RtcTest, ASlowClockCorrectedBy5603H) {
   const int64_t before = rtc->seconds();
   scans(10 * 86400, 1000000);
   EXPECT_EQ(rtc->seconds() - before, 10 * 86400);
+}
+
+TEST_F(RtcTest, WithoutAStartItReadsTheHostsLocalTime) {
+  setup("cell: {name: x}\n", kIdle);
+  scans(1);
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  localtime_r(&now, &tm);
+  const int64_t host = to_seconds({tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec});
+  EXPECT_NEAR(double(rtc->seconds()), double(host), 5.0);  // where it starts, not how fast it runs
+  EXPECT_EQ(get("R4133"), uint32_t(rtc->now().year - 2000));
 }
 
 TEST(RtcConfig, KeysAreChecked) {

@@ -47,6 +47,7 @@ class Rtc : public ScanHook {
  private:
   void set_from_registers();
   void round_to_minute();
+  const DateTime& calendar();
 
   RtcConfig cfg_;
   Memory& mem_;
@@ -57,6 +58,8 @@ class Rtc : public ScanHook {
   int week_offset_ = 0;     // the program's week minus the calendar's
   bool prev_stop_read_ = false;
   bool prev_round_ = false;
+  int64_t calendar_s_ = -1;  // the second calendar_ shows
+  DateTime calendar_;
 };
 
 // The cell's RTC (every FBs MC/MN main unit has one), configured by modules.rtc.
