@@ -11,7 +11,14 @@ target_sources(plc_cell_core PRIVATE
   src/temp/analog_modules.cpp
   src/temp/tpctl.cpp
   src/temp/pid.cpp
-  src/temp/temp_functions.cpp)
+  src/temp/temp_functions.cpp
+  src/temp/rtc_calendar.cpp
+  src/temp/rtc_calibration.cpp
+  src/temp/rtc.cpp
+  src/temp/linear_conversion.cpp
+  src/temp/hspwm.cpp
+  src/temp/pwmda.cpp
+  src/temp/fb_tc_scaling.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS test/temp/*_test.cpp)

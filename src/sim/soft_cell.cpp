@@ -2,6 +2,7 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/temp/hspwm.h"
 #include "plc_cell/temp/temp_functions.h"
 
 namespace plc_cell {
@@ -32,6 +33,10 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
     e.add_hook(sim_.get());
     temperature_ = temp::make_temperature_cell(config_.document, config_.file, m);
     if (temperature_) e.add_hook(temperature_.get());
+    rtc_ = temp::make_rtc(config_.document, config_.file, m);
+    e.add_hook(rtc_.get());
+    pwmda_ = temp::make_pwmda_outputs(config_.document, config_.file, m);
+    if (pwmda_) e.add_hook(pwmda_.get());
     return 0;
   });
   const YAML::Node& doc = config_.document;
@@ -62,9 +67,12 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
 SoftCell::~SoftCell() {
   installed_.clear();
   hsc_.reset();
-  plc_.locked([&](ScanEngine& e, Memory&) {
+  plc_.locked([&](ScanEngine& e, Memory& m) {
     e.remove_hook(sim_.get());
     if (temperature_) e.remove_hook(temperature_.get());
+    e.remove_hook(rtc_.get());
+    if (pwmda_) e.remove_hook(pwmda_.get());
+    temp::hspwm_reset(m);  // FUN139's generators belong to this PLC
     return 0;
   });
 }

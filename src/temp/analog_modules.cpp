@@ -17,6 +17,7 @@ struct Kind {
   int ai, ao;
 };
 const Kind kKinds[] = {{"6AD", 6, 0}, {"4A2D", 4, 2}, {"4DA", 0, 4}, {"2DA", 0, 2}};
+const Kind kBoards[] = {{"B4AD", 4, 0}, {"B2DA", 0, 2}, {"B2A1D", 2, 1}};
 
 [[noreturn]] void fail(const std::string& file, const YAML::Node& n, const std::string& key, const std::string& msg) {
   const YAML::Mark m = n.Mark();
@@ -65,12 +66,68 @@ std::string choice(const std::string& file, const YAML::Node& n, const std::stri
   return v;
 }
 
+// The inputs and outputs lists of a module or board with ai inputs and ao outputs.
+void parse_channels(const std::string& file, const YAML::Node& m, const std::string& mk, const std::string& type,
+                    int ai, int ao, std::vector<AnalogInputDef>* ins, std::vector<AnalogOutputDef>* outs) {
+  if (const YAML::Node in = m["inputs"]) {
+    if (!in.IsSequence() || int(in.size()) > ai)
+      fail(file, in, mk + ".inputs", "a list of at most " + std::to_string(ai) + " inputs for a " + type);
+    for (size_t j = 0; j < in.size(); ++j) {
+      const std::string ik = mk + ".inputs[" + std::to_string(j) + "]";
+      only(file, in[j], ik, {"name", "current", "value", "plant", "plant_range", "offset"});
+      AnalogInputDef a;
+      if (in[j]["name"]) a.name = in[j]["name"].as<std::string>();
+      if (in[j]["current"]) a.current = flag(file, in[j]["current"], ik + ".current");
+      if (in[j]["value"]) a.value = num(file, in[j]["value"], ik + ".value", -30, 30);
+      if (in[j]["plant"]) a.plant = in[j]["plant"].as<std::string>();
+      if (in[j]["offset"]) a.offset = flag(file, in[j]["offset"], ik + ".offset");
+      if (const YAML::Node pr = in[j]["plant_range"]) {
+        if (!pr.IsSequence() || pr.size() != 2) fail(file, pr, ik + ".plant_range", "expected [low, high] in degC");
+        a.plant_lo = num(file, pr[0], ik + ".plant_range", -273, 3000);
+        a.plant_hi = num(file, pr[1], ik + ".plant_range", -273, 3000);
+        if (a.plant_hi <= a.plant_lo) fail(file, pr, ik + ".plant_range", "high must exceed low");
+      }
+      ins->push_back(a);
+    }
+  }
+  if (const YAML::Node out = m["outputs"]) {
+    if (!out.IsSequence() || int(out.size()) > ao)
+      fail(file, out, mk + ".outputs", "a list of at most " + std::to_string(ao) + " outputs for a " + type);
+    for (size_t j = 0; j < out.size(); ++j) {
+      const std::string ok = mk + ".outputs[" + std::to_string(j) + "]";
+      only(file, out[j], ok, {"name", "current"});
+      AnalogOutputDef o;
+      if (out[j]["name"]) o.name = out[j]["name"].as<std::string>();
+      if (out[j]["current"]) o.current = flag(file, out[j]["current"], ok + ".current");
+      outs->push_back(o);
+    }
+  }
+}
+
 }  // namespace
+
+int32_t board_input_code(double signal, bool current) {
+  const double frac = std::clamp(signal / (current ? 20.0 : 10.0), 0.0, 1.0);
+  return 4 * int32_t(std::floor(frac * 4095 + 0.5));
+}
+
+double board_output_signal(int32_t code, bool current) {
+  const int32_t c = std::clamp(code, 0, kBoardFullCode) / 4;
+  return c / 4095.0 * (current ? 20.0 : 10.0);
+}
 
 AnalogConfig parse_analog_config(const YAML::Node& node, const std::string& file) {
   AnalogConfig c;
   const std::string k = "modules.analog";
-  only(file, node, k, {"first_ir", "first_or", "modules"});
+  only(file, node, k, {"first_ir", "first_or", "modules", "board"});
+  if (const YAML::Node b = node["board"]) {
+    const std::string bk = k + ".board";
+    only(file, b, bk, {"type", "inputs", "outputs"});
+    if (!b["type"]) fail(file, b, bk + ".type", "missing");
+    c.board.type = choice(file, b["type"], bk + ".type", {"B4AD", "B2DA", "B2A1D"});
+    for (const auto& kd : kBoards)
+      if (c.board.type == kd.name) parse_channels(file, b, bk, c.board.type, kd.ai, kd.ao, &c.board.inputs, &c.board.outputs);
+  }
   if (node["first_ir"]) c.first_ir = uint32_t(num(file, node["first_ir"], k + ".first_ir", 0, 63));
   if (node["first_or"]) c.first_or = uint32_t(num(file, node["first_or"], k + ".first_or", 0, 63));
   const YAML::Node ms = node["modules"];
@@ -91,39 +148,7 @@ AnalogConfig parse_analog_config(const YAML::Node& node, const std::string& file
     if (m["signal"]) d.bipolar_signal = choice(file, m["signal"], mk + ".signal", {"unipolar", "bipolar"}) == "bipolar";
     if (m["span"]) d.span10 = num(file, m["span"], mk + ".span", 5, 10) == 10;
     if (m["span"] && !d.span10 && num(file, m["span"], mk + ".span", 5, 10) != 5) fail(file, m["span"], mk + ".span", "5 or 10");
-    if (const YAML::Node in = m["inputs"]) {
-      if (!in.IsSequence() || int(in.size()) > ai)
-        fail(file, in, mk + ".inputs", "a list of at most " + std::to_string(ai) + " inputs for a " + d.type);
-      for (size_t j = 0; j < in.size(); ++j) {
-        const std::string ik = mk + ".inputs[" + std::to_string(j) + "]";
-        only(file, in[j], ik, {"name", "current", "value", "plant", "plant_range", "offset"});
-        AnalogInputDef a;
-        if (in[j]["name"]) a.name = in[j]["name"].as<std::string>();
-        if (in[j]["current"]) a.current = flag(file, in[j]["current"], ik + ".current");
-        if (in[j]["value"]) a.value = num(file, in[j]["value"], ik + ".value", -30, 30);
-        if (in[j]["plant"]) a.plant = in[j]["plant"].as<std::string>();
-        if (in[j]["offset"]) a.offset = flag(file, in[j]["offset"], ik + ".offset");
-        if (const YAML::Node pr = in[j]["plant_range"]) {
-          if (!pr.IsSequence() || pr.size() != 2) fail(file, pr, ik + ".plant_range", "expected [low, high] in degC");
-          a.plant_lo = num(file, pr[0], ik + ".plant_range", -273, 3000);
-          a.plant_hi = num(file, pr[1], ik + ".plant_range", -273, 3000);
-          if (a.plant_hi <= a.plant_lo) fail(file, pr, ik + ".plant_range", "high must exceed low");
-        }
-        d.inputs.push_back(a);
-      }
-    }
-    if (const YAML::Node out = m["outputs"]) {
-      if (!out.IsSequence() || int(out.size()) > ao)
-        fail(file, out, mk + ".outputs", "a list of at most " + std::to_string(ao) + " outputs for a " + d.type);
-      for (size_t j = 0; j < out.size(); ++j) {
-        const std::string ok = mk + ".outputs[" + std::to_string(j) + "]";
-        only(file, out[j], ok, {"name", "current"});
-        AnalogOutputDef o;
-        if (out[j]["name"]) o.name = out[j]["name"].as<std::string>();
-        if (out[j]["current"]) o.current = flag(file, out[j]["current"], ok + ".current");
-        d.outputs.push_back(o);
-      }
-    }
+    parse_channels(file, m, mk, d.type, ai, ao, &d.inputs, &d.outputs);
     irs += uint32_t(ai);
     ors += uint32_t(ao);
     if (irs > 64) fail(file, m, mk, "more than 64 analog inputs (IR R3840-R3903)");
@@ -158,6 +183,28 @@ AnalogModules::AnalogModules(AnalogConfig cfg, Memory& mem, std::function<double
       outputs_.push_back(o);
     }
   }
+  for (const auto& kd : kBoards) {
+    if (cfg_.board.type != kd.name) continue;
+    const AnalogBoardDef& b = cfg_.board;
+    for (int j = 0; j < kd.ai; ++j) {
+      Input in;
+      if (j < int(b.inputs.size())) in.def = b.inputs[size_t(j)];
+      in.ir_index = uint32_t(j);
+      in.board = true;
+      in.range = AnalogRange{false, true, in.def.current};  // 0-10 V / 0-20 mA
+      in.bipolar_code = false;
+      inputs_.push_back(in);
+    }
+    for (int j = 0; j < kd.ao; ++j) {
+      Output o;
+      if (j < int(b.outputs.size())) o.name = b.outputs[size_t(j)].name;
+      o.or_index = uint32_t(j);
+      o.board = true;
+      o.range = AnalogRange{false, true, j < int(b.outputs.size()) && b.outputs[size_t(j)].current};
+      o.bipolar_code = false;
+      outputs_.push_back(o);
+    }
+  }
 }
 
 void AnalogModules::before_inputs(uint64_t now_us) {
@@ -173,6 +220,10 @@ void AnalogModules::before_program(uint64_t) {
       const double frac = (plant_temperature_(in.def.plant) - in.def.plant_lo) / (in.def.plant_hi - in.def.plant_lo);
       // A transmitter: 0..full of the range, or 4..20 mA (live zero) with offset.
       x = in.def.offset ? 4.0 + 16.0 * frac : in.range.lo() + frac * (in.range.hi() - in.range.lo());
+    }
+    if (in.board) {  // no formats, no averaging: the board's 12 bits every scan
+      mem_.set_reg(Area::D, kBoardFirstIn + in.ir_index, uint16_t(board_input_code(x, in.def.current)));
+      continue;
     }
     const int32_t code = ai_code14(in.range, x, in.bipolar_code);
     const uint32_t n = in.ir_index;
@@ -198,7 +249,8 @@ void AnalogModules::after_program(uint64_t now_us) {
   serviced_ = true;
   last_service_us_ = now_us;
   for (auto& o : outputs_) {
-    o.signal = ao_signal(o.range, int16_t(mem_.reg(Area::R, 3904 + o.or_index)), o.bipolar_code);
+    o.signal = o.board ? board_output_signal(int16_t(mem_.reg(Area::D, kBoardFirstOut + o.or_index)), o.range.current)
+                       : ao_signal(o.range, int16_t(mem_.reg(Area::R, 3904 + o.or_index)), o.bipolar_code);
     o.watchdog = false;
   }
 }

@@ -1,6 +1,8 @@
 #include "plc_cell/temp/temp_functions.h"
 
 #include "plc_cell/core/function_table.h"
+#include "plc_cell/temp/hspwm.h"
+#include "plc_cell/temp/linear_conversion.h"
 #include "plc_cell/temp/pid.h"
 #include "plc_cell/temp/tpctl.h"
 
@@ -10,6 +12,8 @@ namespace temp {
 void add_temperature_functions(FunctionTable& t) {
   add_tpctl_function(t);
   add_pid_function(t);
+  add_linear_conversion_functions(t);  // FUN32 ADCNV, FUN33 LCNV
+  add_hspwm_function(t);               // FUN139 HSPWM
 }
 
 }  // namespace temp

@@ -192,7 +192,7 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
   Reader r(file);
   TemperatureConfig c;
   if (!node) return c;
-  r.only(node, "modules", {"temperature", "plants", "analog"});
+  r.only(node, "modules", {"temperature", "plants", "analog", "rtc", "pwmda"});  // rtc.cpp, pwmda.cpp
   if (node["analog"]) c.analog = parse_analog_config(node["analog"], file), c.has_analog = true;
   if (const YAML::Node t = node["temperature"]) {
     const std::string k = "modules.temperature";
@@ -255,8 +255,10 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
     if (!ps.IsSequence()) r.fail(ps, "modules.plants", "expected a list");
     for (size_t i = 0; i < ps.size(); ++i) c.plants.push_back(parse_plant(r, ps[i], "modules.plants[" + std::to_string(i) + "]"));
   }
-  for (const auto& m : c.analog.modules)
-    for (const auto& in : m.inputs) {
+  std::vector<const std::vector<AnalogInputDef>*> analog_inputs{&c.analog.board.inputs};
+  for (const auto& m : c.analog.modules) analog_inputs.push_back(&m.inputs);
+  for (const auto* ins : analog_inputs)
+    for (const auto& in : *ins) {
       if (in.plant.empty()) continue;
       bool ok = false;
       for (const auto& p : c.plants) ok |= p.name == in.plant;

@@ -5,12 +5,16 @@
 #include <string>
 
 #include "plc_cell/core/address.h"
+#include "plc_cell/core/function_table.h"
 #include "plc_cell/core/plc.h"
 
 namespace plc_cell {
 
 class PlcFixture : public ::testing::Test {
  protected:
+  // Subsystem tests pass a table with their FUN instructions.
+  explicit PlcFixture(FunctionTable functions = FunctionTable::with_core_functions()) : plc(std::move(functions)) {}
+
   void load(const std::string& text) {
     plc.load_program_text(text, "test.il");
     ASSERT_TRUE(plc.set_mode(RunMode::Run));

@@ -9,6 +9,8 @@
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/simulated_cell.h"
+#include "plc_cell/temp/pwmda.h"
+#include "plc_cell/temp/rtc.h"
 #include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
@@ -42,6 +44,8 @@ class SoftCell {
   const std::string& program_path() const { return program_path_; }
   // The temperature modules and thermal plants of `modules:`, or nullptr.
   temp::TemperatureCell* temperature() { return temperature_.get(); }
+  temp::Rtc* rtc() { return rtc_.get(); }
+  temp::PwmdaOutputs* pwmda() { return pwmda_.get(); }
 
  private:
   static FunctionTable functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
@@ -54,6 +58,8 @@ class SoftCell {
   std::unique_ptr<SimulatedCell> sim_;
   std::unique_ptr<hsc::HscUnit> hsc_;  // after sim_: its hook sees the simulated inputs
   std::unique_ptr<temp::TemperatureCell> temperature_;
+  std::unique_ptr<temp::Rtc> rtc_;
+  std::unique_ptr<temp::PwmdaOutputs> pwmda_;  // nullptr without modules.pwmda
 };
 
 }  // namespace plc_cell

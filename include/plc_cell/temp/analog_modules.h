@@ -1,5 +1,6 @@
 #pragma once
-// FBs analog I/O modules (6AD, 4A2D, 4DA, 2DA) of the `modules.analog` section: input
+// FBs analog I/O modules (6AD, 4A2D, 4DA, 2DA) and the B4AD/B2DA/B2A1D expansion
+// board of the `modules.analog` section: input
 // signals become IR codes (R3840 + n) each scan with the D4006-D4042 format and
 // averaging settings; OR codes (R3904 + n) become output signals, forced to zero when
 // the CPU has not serviced them for 0.5 s. Owned by the TemperatureCell (the hook of
@@ -35,9 +36,25 @@ struct AnalogModuleDef {
   std::vector<AnalogInputDef> inputs;
   std::vector<AnalogOutputDef> outputs;
 };
+// An FBs-B4AD / B2DA / B2A1D expansion board (manual A:6573-A:6750): in the main
+// unit, 0-10 V or 0-20 mA per channel (V or I terminal), 12 bits as 0..16380 in
+// D4072-D4075 (inputs) and D4076-D4077 (outputs), every scan, no jumpers.
+struct AnalogBoardDef {
+  std::string type;  // empty: no board
+  std::vector<AnalogInputDef> inputs;
+  std::vector<AnalogOutputDef> outputs;
+};
+constexpr uint32_t kBoardFirstIn = 4072, kBoardFirstOut = 4076;  // D registers
+constexpr int32_t kBoardFullCode = 16380;
+// Board codes: signal / span x 4095 rounded, x 4 (0..16380, steps of 4, saturating);
+// an output code is clamped to 0..16380 and its two low bits are dropped.
+int32_t board_input_code(double signal, bool current);
+double board_output_signal(int32_t code, bool current);
+
 struct AnalogConfig {
   uint32_t first_ir = 0, first_or = 0;
   std::vector<AnalogModuleDef> modules;
+  AnalogBoardDef board;
 };
 
 AnalogConfig parse_analog_config(const YAML::Node& analog, const std::string& file);
@@ -53,7 +70,8 @@ class AnalogModules {
 
   struct Output {
     std::string name;
-    uint32_t or_index;
+    uint32_t or_index;  // R3904 + or_index; for a board's output D4076 + or_index
+    bool board = false;
     AnalogRange range;
     bool bipolar_code;
     double signal = 0;  // V or mA
@@ -64,7 +82,8 @@ class AnalogModules {
  private:
   struct Input {
     AnalogInputDef def;
-    uint32_t ir_index;
+    uint32_t ir_index;  // R3840 + ir_index; for a board's input D4072 + ir_index
+    bool board = false;
     AnalogRange range;
     bool bipolar_code;
     int32_t window[16] = {};

@@ -1,5 +1,6 @@
 #pragma once
-// Registers the temperature and PID instructions (FUN86 TPCTL, FUN30 PID).
+// Registers the temperature, PID and analog instructions (FUN86 TPCTL, FUN30 PID,
+// FUN32 ADCNV, FUN33 LCNV, FUN139 HSPWM).
 namespace plc_cell {
 class FunctionTable;
 namespace temp {

@@ -1,0 +1,142 @@
+#include "plc_cell/temp/rtc.h"
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+#include "plc_cell/config/yaml_reader.h"
+#include "plc_cell/core/area.h"
+#include "plc_cell/temp/rtc_calibration.h"
+
+namespace plc_cell {
+namespace temp {
+namespace {
+
+constexpr int64_t kUsPerS = 1000000;
+constexpr int64_t kEnd = int64_t(36525) * 86400 * kUsPerS;  // 2100-01-01: 100 years, 25 of them leap
+
+DateTime host_local_time() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  localtime_r(&t, &tm);
+  DateTime d;
+  d.year = tm.tm_year + 1900, d.month = tm.tm_mon + 1, d.day = tm.tm_mday;
+  d.hour = tm.tm_hour, d.minute = tm.tm_min, d.second = tm.tm_sec;
+  if (!valid(d)) d = DateTime{};  // a host clock outside the RTC's century
+  return d;
+}
+
+}  // namespace
+
+RtcConfig parse_rtc_config(const YAML::Node& node, const std::string& file) {
+  RtcConfig c;
+  if (!node || node.IsNull()) return c;  // no modules.rtc: the host's time
+  YamlReader r(file);
+  r.only(node, "modules.rtc", {"start", "drift"});
+  if (const YAML::Node s = node["start"]) {
+    const auto t = parse_date_time(r.str(s, "modules.rtc.start"));
+    if (!t) r.fail(s, "modules.rtc.start", "expected a date-time 2000-01-01T00:00:00 .. 2099-12-31T23:59:59");
+    c.has_start = true;
+    c.start = *t;
+  }
+  if (node["drift"]) c.drift_s_per_day = r.number(node["drift"], "modules.rtc.drift", -100, 100);
+  return c;
+}
+
+Rtc::Rtc(RtcConfig cfg, Memory& mem) : cfg_(cfg), mem_(mem) {
+  us_ = to_seconds(cfg_.has_start ? cfg_.start : host_local_time()) * kUsPerS;
+}
+
+const DateTime& Rtc::calendar() {
+  // The calendar walks years and months: only when the second changes.
+  if (seconds() != calendar_s_) calendar_s_ = seconds(), calendar_ = from_seconds(calendar_s_);
+  return calendar_;
+}
+
+int Rtc::week() const { return (weekday(seconds()) + week_offset_) % 7; }
+
+void Rtc::before_inputs(uint64_t now_us) {
+  if (!started_) {
+    started_ = true;
+    last_us_ = now_us;
+    // The host's time when the cell starts scanning, not when it was built.
+    if (!cfg_.has_start) us_ = to_seconds(host_local_time()) * kUsPerS;
+    return;
+  }
+  if (now_us <= last_us_) return;
+  const uint64_t dt = now_us - last_us_;
+  last_us_ = now_us;
+  // The crystal's error minus what D4054 corrects (the S35390A's digital calibration).
+  double rate = cfg_.drift_s_per_day;
+  if (const auto corr = rtc_calibration_rate(mem_.reg(Area::D, rtcreg::kCalibration))) rate -= *corr;
+  residual_us_ += static_cast<double>(dt) * rate / 86400.0;
+  const double whole = std::trunc(residual_us_);
+  residual_us_ -= whole;
+  us_ += static_cast<int64_t>(dt) + static_cast<int64_t>(whole);
+  if (us_ >= kEnd) us_ -= kEnd;  // the two-digit year wraps to 2000 (plc_cell's choice)
+  if (us_ < 0) us_ = 0;
+}
+
+void Rtc::on_stop() {
+  // STOP -> RUN clears M1952/M1953: no edge may come from before the STOP.
+  prev_stop_read_ = false;
+  prev_round_ = false;
+}
+
+void Rtc::set_from_registers() {
+  DateTime t;
+  t.second = mem_.reg(Area::R, rtcreg::kSecond);
+  t.minute = mem_.reg(Area::R, rtcreg::kMinute);
+  t.hour = mem_.reg(Area::R, rtcreg::kHour);
+  t.day = mem_.reg(Area::R, rtcreg::kDay);
+  t.month = mem_.reg(Area::R, rtcreg::kMonth);
+  const uint16_t year = mem_.reg(Area::R, rtcreg::kYear);
+  const uint16_t week = mem_.reg(Area::R, rtcreg::kWeek);
+  t.year = 2000 + year;
+  if (year > 99 || week > 6 || !valid(t)) {
+    mem_.set_bit(Area::M, rtcreg::kSetError, true);  // and the clock keeps its time
+    return;
+  }
+  mem_.set_bit(Area::M, rtcreg::kSetError, false);
+  us_ = to_seconds(t) * kUsPerS;
+  residual_us_ = 0;
+  // The chip keeps the week it is given and counts it on at midnight.
+  week_offset_ = (week - weekday(seconds()) + 7) % 7;
+}
+
+void Rtc::round_to_minute() {
+  const int64_t s = seconds();
+  const int64_t minute = s - s % 60;
+  us_ = (s % 60 < 30 ? minute : minute + 60) * kUsPerS;
+  residual_us_ = 0;
+}
+
+void Rtc::before_program(uint64_t) {
+  mem_.set_reg(Area::D, rtcreg::kChipType, rtcreg::kChipS35390A);
+  mem_.set_bit(Area::M, rtcreg::kInstalled, true);
+  const bool stop_read = mem_.bit(Area::M, rtcreg::kStopRead);
+  const bool round = mem_.bit(Area::M, rtcreg::kRound30s);
+  if (prev_stop_read_ && !stop_read) set_from_registers();
+  if (round && !prev_round_) round_to_minute();
+  prev_stop_read_ = stop_read;
+  prev_round_ = round;
+  if (stop_read) return;  // the program owns R4128-R4135 while it sets the clock
+  const DateTime& t = calendar();
+  mem_.set_reg(Area::R, rtcreg::kSecond, static_cast<uint16_t>(t.second));
+  mem_.set_reg(Area::R, rtcreg::kMinute, static_cast<uint16_t>(t.minute));
+  mem_.set_reg(Area::R, rtcreg::kHour, static_cast<uint16_t>(t.hour));
+  mem_.set_reg(Area::R, rtcreg::kDay, static_cast<uint16_t>(t.day));
+  mem_.set_reg(Area::R, rtcreg::kMonth, static_cast<uint16_t>(t.month));
+  mem_.set_reg(Area::R, rtcreg::kYear, static_cast<uint16_t>(t.year - 2000));
+  mem_.set_reg(Area::R, rtcreg::kWeek, static_cast<uint16_t>(week()));
+  mem_.set_reg(Area::R, rtcreg::kHourMinute, static_cast<uint16_t>(t.hour << 8 | t.minute));
+}
+
+std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem) {
+  const YAML::Node modules = document.IsMap() ? document["modules"] : YAML::Node();
+  const YAML::Node node = modules && modules.IsMap() ? modules["rtc"] : YAML::Node();
+  return std::make_unique<Rtc>(parse_rtc_config(node, file), mem);
+}
+
+}  // namespace temp
+}  // namespace plc_cell
