@@ -28,6 +28,10 @@ def expected_results():
 
 
 def count(xml_path):
+    """(passed, failed, names of failures) of one JUnit file.
+
+    A suite can report errors that belong to no test case (a failing setUpClass, a test
+    node that died): they count as failures, and so does a file with no test case at all."""
     passed, failed, names = 0, 0, []
     root = ET.parse(xml_path).getroot()
     for case in root.iter("testcase"):
@@ -38,6 +42,14 @@ def count(xml_path):
             names.append(case.get("classname", "") + "." + case.get("name", ""))
         else:
             passed += 1
+    suites = [root] if root.tag == "testsuite" else list(root.iter("testsuite"))
+    reported = sum(int(s.get("errors", "0") or 0) + int(s.get("failures", "0") or 0) for s in suites)
+    if reported > failed:
+        names.append("%d error(s) outside any test case (setUpClass, a crashed test node)" % (reported - failed))
+        failed = reported
+    if passed + failed == 0:
+        failed = 1
+        names.append("no test case ran")
     return passed, failed, names
 
 
