@@ -1,0 +1,13 @@
+# Pulse-output positioning (issue 6): FUN140/141/142/143, the axes PSO0-PSO3 and their
+# profiles. Part of plc_cell_core: SoftCell creates the motion unit for every cell.
+target_sources(plc_cell_core PRIVATE
+  src/motion/params.cpp
+  src/motion/table_text.cpp
+  src/motion/table_regs.cpp
+  src/motion/profile.cpp)
+
+if(CATKIN_ENABLE_TESTING)
+  file(GLOB MOTION_TESTS test/motion/*_test.cpp)
+  catkin_add_gtest(motion_tests test/core/test_main.cpp ${MOTION_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  target_link_libraries(motion_tests plc_cell_core)
+endif()
