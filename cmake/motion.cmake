@@ -4,7 +4,10 @@ target_sources(plc_cell_core PRIVATE
   src/motion/params.cpp
   src/motion/table_text.cpp
   src/motion/table_regs.cpp
-  src/motion/profile.cpp)
+  src/motion/profile.cpp
+  src/motion/axis.cpp
+  src/motion/motion_unit.cpp
+  src/motion/motion_functions.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB MOTION_TESTS test/motion/*_test.cpp)

@@ -15,6 +15,9 @@ namespace plc_cell {
 namespace hsc {
 class HscUnit;
 }
+namespace motion {
+class MotionUnit;
+}
 
 // Adds FUN instructions that need the cell's config (FUN150/151 and their ports) before
 // the program is parsed. What it returns (port threads, engines) lives as long as the cell.
@@ -36,6 +39,8 @@ class SoftCell {
   // High-speed counters, timers and interrupts (the config's counters: section).
   // Only touch it under plc().locked().
   hsc::HscUnit& counters() { return *hsc_; }
+  // Pulse-output axes PSO0-PSO3 and FUN140 programs. Only touch it under plc().locked().
+  motion::MotionUnit& motion() { return *motion_; }
   const std::string& program_path() const { return program_path_; }
 
  private:
@@ -48,6 +53,7 @@ class SoftCell {
   Plc plc_;
   std::unique_ptr<SimulatedCell> sim_;
   std::unique_ptr<hsc::HscUnit> hsc_;  // after sim_: its hook sees the simulated inputs
+  std::unique_ptr<motion::MotionUnit> motion_;
 };
 
 }  // namespace plc_cell

@@ -1,0 +1,437 @@
+// FUN140 positioning programs on the PSO axes, in virtual time (docs/motion.md).
+#include "plc_cell/motion/motion_unit.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "plc_cell/core/memory.h"
+#include "plc_cell/core/plc.h"
+#include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/hsc/interrupts.h"
+
+namespace plc_cell {
+namespace motion {
+
+namespace {
+ScanEngine& engine_of(Plc& p) { return *p.locked([](ScanEngine& e, Memory&) { return &e; }); }
+Memory& memory_of(Plc& p) { return *p.locked([](ScanEngine&, Memory& m) { return &m; }); }
+
+constexpr uint32_t kDecelRelay = 1991;  // M1991: stop/pause with deceleration
+constexpr uint32_t kReadyRelay = 1992;  // M1992+n: axis ready
+constexpr uint32_t kLastStepRelay = 1996;  // M1996+n: last step finished
+constexpr uint32_t kErrReg = 4060, kStepReg = 4064, kRemainReg = 4072, kFreqReg = 4080, kPosReg = 4088;
+constexpr uint64_t kTimeUnitNs = 10000000;  // WAIT/ACT times are in 0.01 s
+constexpr int kMaxStepsPerInstant = 1000;   // GOTO loops of empty moves must not hang a scan
+
+constexpr uint16_t kWrPaused = 1u << 8, kWrWaiting = 1u << 9, kWrEndless = 1u << 10, kWrAct = 1u << 12,
+                   kWrErr = 1u << 13, kWrDn = 1u << 14;
+}  // namespace
+
+MotionUnit::MotionUnit(Plc& plc) : plc_(plc), engine_(engine_of(plc)), mem_(memory_of(plc)) {
+  plc_.locked([this](ScanEngine& e, Memory&) { e.add_hook(this); });
+}
+
+MotionUnit::~MotionUnit() {
+  plc_.locked([this](ScanEngine& e, Memory&) { e.remove_hook(this); });
+}
+
+MotionUnit* MotionUnit::of(ScanEngine* engine) {
+  if (!engine) return nullptr;
+  for (ScanHook* h : engine->hooks())
+    if (auto* u = dynamic_cast<MotionUnit*>(h)) return u;
+  return nullptr;
+}
+
+// ---- memory helpers -------------------------------------------------------------
+
+int32_t MotionUnit::read32(Operand::Kind k, int32_t i) const {
+  const Area a = k == Operand::D ? Area::D : Area::R;
+  return static_cast<int32_t>(uint32_t(mem_.reg(a, i)) | (uint32_t(mem_.reg(a, i + 1)) << 16));
+}
+
+uint16_t MotionUnit::read16(Operand::Kind k, int32_t i) const { return mem_.reg(k == Operand::D ? Area::D : Area::R, i); }
+
+bool MotionUnit::contact(const Step& s) const {
+  static const Area areas[] = {Area::X, Area::Y, Area::M, Area::S};
+  return mem_.bit(areas[static_cast<int>(s.contact_area)], s.contact);
+}
+
+// ---- scan hook ------------------------------------------------------------------
+
+void MotionUnit::before_program(uint64_t now_us) {
+  const uint64_t t = now_us * 1000;
+  // A ladder write of DR4088 on an idle axis sets its position (homing by ladder).
+  for (int n = 0; n < kAxes; ++n) {
+    AxisState& a = axes_[n];
+    const int64_t reg = static_cast<int32_t>(uint32_t(mem_.reg(Area::R, kPosReg + 2 * n)) |
+                                             (uint32_t(mem_.reg(Area::R, kPosReg + 2 * n + 1)) << 16));
+    if (reg != a.written_pos && !a.axis.moving()) a.axis.set_position(reg);
+  }
+  advance(t);
+  write_status(t);
+}
+
+void MotionUnit::after_program(uint64_t now_us) { write_status(now_us * 1000); }
+
+void MotionUnit::on_stop() {
+  for (auto& a : axes_) {
+    a.axis.cut(now_ns_);
+    a.owner = UINT32_MAX;
+  }
+  programs_.clear();
+}
+
+void MotionUnit::advance(uint64_t t) {
+  for (auto& kv : programs_) advance(kv.second, t);
+  now_ns_ = std::max(now_ns_, t);
+}
+
+// ---- the program state machine ----------------------------------------------------
+
+void MotionUnit::advance(Program& p, uint64_t t) {
+  Axis& ax = axes_[p.call.ps].axis;
+  for (int guard = 0; guard < kMaxStepsPerInstant; ++guard) {
+    uint64_t next = kNever;
+    if (p.phase == Phase::Moving || p.phase == Phase::Stopping) next = ax.end_ns();
+    const bool act_first = p.phase == Phase::Moving && p.act_deadline < next;
+    if (act_first) next = p.act_deadline;
+    if (p.phase == Phase::Waiting) next = p.wait_until;
+    if (next == kNever || next > t) return;
+    if (act_first) {  // ACT: the time is up, go on even if the output is not finished
+      p.paused_left = ax.remaining(next);
+      axes_[p.call.ps].rest = p.paused_left;
+      ax.cut(next);
+      step_done(p, next);
+      go_to(p, -1, next);
+    } else if (p.phase == Phase::Moving) {
+      ax.settle(next);
+      p.paused_left = 0;
+      axes_[p.call.ps].rest = 0;
+      step_done(p, next);
+      transfer(p, next);
+    } else if (p.phase == Phase::Stopping) {
+      p.paused_left = ax.remaining(next);
+      axes_[p.call.ps].rest = p.paused_left;
+      ax.settle(next);
+      p.phase = p.after_stop;
+      if (p.phase != Phase::Paused) axes_[p.call.ps].owner = UINT32_MAX;
+    } else {  // Waiting: WAIT Time, or the ACT time after an early end
+      go_to(p, -1, next);
+    }
+  }
+  fail(p, 34, t);  // a GOTO loop of empty steps
+}
+
+void MotionUnit::step_done(Program& p, uint64_t t) {
+  p.dn = true;
+  mem_.set_reg(Area::R, kStepReg + p.call.ps, static_cast<uint16_t>(p.step));
+  write_wr(p);
+  for (auto& f : step_obs_) f(p.call.ps, p.step, t);
+  if (auto* h = hsc::HscUnit::of(&engine_)) h->raise(hsc::kPso0I + p.call.ps);
+}
+
+void MotionUnit::transfer(Program& p, uint64_t t) {
+  const Step& s = p.table.steps[p.step - 1];
+  switch (s.transfer) {
+    case Transfer::None:
+      return go_to(p, -1, t);
+    case Transfer::WaitTime:
+      p.phase = Phase::Waiting;
+      p.wait_until = t + uint64_t(read_time(s)) * kTimeUnitNs;
+      return;
+    case Transfer::Act:
+      if (p.act_deadline != kNever && p.act_deadline > t) {
+        p.phase = Phase::Waiting;
+        p.wait_until = p.act_deadline;
+        return;
+      }
+      return go_to(p, -1, t);
+    case Transfer::WaitContact:
+    case Transfer::Ext:
+      if (contact(s)) return go_to(p, -1, t);
+      p.phase = Phase::Waiting;
+      p.wait_until = kNever;  // the contact is looked at every scan
+      return;
+  }
+}
+
+uint16_t MotionUnit::read_time(const Step& s) const {
+  return s.time.kind == Operand::Const ? static_cast<uint16_t>(s.time.value) : read16(s.time.kind, s.time.value);
+}
+
+void MotionUnit::go_to(Program& p, int target, uint64_t t) {
+  const Step& s = p.table.steps[p.step - 1];
+  const int n = static_cast<int>(p.table.steps.size());
+  if (target < 0) {
+    switch (s.goto_kind) {
+      case Step::Next: target = p.step + 1; break;
+      case Step::Number: target = s.goto_value; break;
+      default: target = static_cast<int16_t>(read16(s.goto_kind == Step::R ? Operand::R : Operand::D, s.goto_value));
+    }
+    if (s.goto_kind != Step::Next && (target < 1 || target > n)) return fail(p, 34, t);
+  }
+  if (target > n) {  // past the last step: the program is finished
+    p.phase = Phase::Done;
+    p.chain = false;
+    axes_[p.call.ps].finished = true;
+    axes_[p.call.ps].owner = UINT32_MAX;
+    return;
+  }
+  start_step(p, target, t);
+}
+
+void MotionUnit::start_step(Program& p, int k, uint64_t t) {
+  p.step = k;
+  p.wait_until = kNever;
+  mem_.write({p.call.wr.area, Width::Word, p.call.wr.index}, static_cast<uint16_t>(k));
+  const Step& s = p.table.steps[k - 1];
+  p.act_deadline = s.transfer == Transfer::Act ? t + uint64_t(read_time(s)) * kTimeUnitNs : kNever;
+  start_move(p, s, t);
+}
+
+void MotionUnit::start_move(Program& p, const Step& s, uint64_t t) {
+  AxisState& a = axes_[p.call.ps];
+  const AxisParams& par = a.params;
+  const int64_t v = s.speed.kind == Operand::Const ? s.speed.value : read32(s.speed.kind, s.speed.value);
+  if (v == 0) {  // SPD 0: wait until the speed register becomes non-zero
+    p.phase = Phase::SpeedWait;
+    return;
+  }
+  const double hz = par.speed_hz(v);
+  if (v < 0 || hz > kMaxHz || hz < 1) return fail(p, 31, t);
+  p.speed_hz = std::min(hz, par.max_hz());
+  if (s.motion == Motion::Drvz) return fail(p, 50, t);  // homing: see docs/motion.md (not modelled yet)
+
+  const int64_t stroke = s.stroke.kind == Operand::Const ? s.stroke.value : read32(s.stroke.kind, s.stroke.value);
+  if (stroke < -99999999 || stroke > 99999999) return fail(p, 33, t);
+  const int64_t pulses = s.ut ? par.ut_to_pulses(stroke) : stroke;
+  const bool rot = par.p9_rot != 0;
+  int64_t delta;  // change of the logical position
+  bool forward;
+  bool endless = false;
+  if (s.abs) {
+    delta = pulses - a.axis.position(t);
+    forward = (delta > 0) != rot;
+  } else {
+    endless = pulses == 0;
+    forward = s.dir > 0 || (s.dir == 0 && pulses >= 0);
+    if (p.chain) forward = p.chain_forward;
+    const int64_t len = pulses < 0 ? -pulses : pulses;
+    delta = forward != rot ? len : -len;
+    if (endless) delta = forward != rot ? 1 : -1;  // the direction only
+  }
+  if (std::llabs(delta) > 2147483647LL) return fail(p, 40, t);
+  const int64_t comp = forward ? par.p10_fwd_comp : int64_t(par.p7_backlash) + par.p11_bwd_comp;
+  const int64_t n = endless ? -1 : std::llabs(delta) + comp;
+  p.endless = endless;
+  if (!endless && (delta == 0 || n <= 0)) {  // already there: the step completes at once
+    p.chain = false;
+    p.paused_left = 0;
+    a.rest = 0;
+    step_done(p, t);
+    return transfer(p, t);
+  }
+  const double f0 = par.start_hz();
+  const double v_in = p.chain ? std::min(p.chain_speed, std::max(p.speed_hz, p.chain_speed)) : std::min(f0, p.speed_hz);
+  const double v_out = s.motion == Motion::Drvc ? p.speed_hz : f0;
+  const Profile prof = Profile::plan(n, v_in, p.speed_hz, v_out, par.acc_hz_per_s(), par.dec_hz_per_s());
+  a.axis.start(t, delta, endless ? 0 : comp, forward, prof);
+  p.phase = Phase::Moving;
+  p.move_forward = forward;
+  p.move_delta_sign = delta < 0 ? -1 : 1;
+  p.chain = s.motion == Motion::Drvc;
+  p.chain_forward = forward;
+  p.chain_speed = prof.end_speed();
+}
+
+void MotionUnit::stop(Program& p, uint64_t t, Phase then) {
+  Axis& ax = axes_[p.call.ps].axis;
+  p.chain = false;
+  if (ax.moving() && p.phase == Phase::Moving) {
+    if (mem_.bit(Area::M, kDecelRelay)) {
+      ax.decelerate(t, axes_[p.call.ps].params.start_hz(), axes_[p.call.ps].params.dec_hz_per_s());
+      if (ax.moving()) {
+        p.phase = Phase::Stopping;
+        p.after_stop = then;
+        return;
+      }
+    } else {
+      p.paused_left = ax.remaining(t);
+      axes_[p.call.ps].rest = p.paused_left;
+      ax.cut(t);
+    }
+  }
+  p.phase = then;
+  if (then != Phase::Paused) axes_[p.call.ps].owner = UINT32_MAX;
+}
+
+void MotionUnit::fail(Program& p, int code, uint64_t t) {
+  axes_[p.call.ps].axis.cut(t);
+  p.phase = Phase::Idle;
+  p.chain = false;
+  p.err = true;
+  axes_[p.call.ps].owner = UINT32_MAX;
+  mem_.set_reg(Area::R, kErrReg + p.call.ps, static_cast<uint16_t>(code));
+  write_wr(p);
+}
+
+bool MotionUnit::load(Program& p) {
+  const Address& sr = p.call.sr;
+  const size_t avail = Memory::word_count(sr.area) - sr.index;
+  TableError e;
+  Table t;
+  if (!decode_table(mem_.words(sr.area) + sr.index, avail, &t, &e)) {
+    p.table = {};
+    fail(p, e.code, now_ns_);
+    return false;
+  }
+  p.table = std::move(t);
+  return true;
+}
+
+Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
+  const uint64_t t = now_us * 1000;
+  if (c.ps < 0 || c.ps >= kAxes) return {};
+  Program& p = programs_[c.instance];
+  p.call = c;
+  AxisState& a = axes_[c.ps];
+  advance(p, t);
+  const uint16_t wr1 = mem_.read({c.wr.area, Width::Word, c.wr.index + 1});
+  if (!(wr1 & kWrDn)) p.dn = false;  // the user cleared WR+1 (DN off)
+  const bool active = p.phase == Phase::Moving || p.phase == Phase::Waiting || p.phase == Phase::SpeedWait ||
+                      p.phase == Phase::Paused || p.phase == Phase::Stopping;
+  if (c.abt) {
+    if (active && p.phase != Phase::Stopping) stop(p, t, Phase::Idle);
+    p.step = 0;
+    mem_.write({c.wr.area, Width::Word, c.wr.index}, 0);
+  } else if (!c.en) {
+    if (active && p.phase != Phase::Stopping) stop(p, t, Phase::Idle);
+  } else if (p.phase == Phase::Idle || p.phase == Phase::Done) {
+    // EN = 1: start at the next step once the axis is free (and EN was off since the last run).
+    if (p.armed && (a.owner == UINT32_MAX || a.owner == c.instance) && !a.axis.moving()) {
+      p.armed = false;
+      p.err = false;
+      a.finished = false;
+      if (load(p)) {
+        a.owner = c.instance;
+        const int n = static_cast<int>(p.table.steps.size());
+        const int cur = static_cast<int16_t>(mem_.read({c.wr.area, Width::Word, c.wr.index}));
+        p.chain = false;
+        start_step(p, cur <= 0 || cur >= n ? 1 : cur + 1, t);
+        advance(p, t);
+      }
+    }
+  } else if (c.pau && !p.prev_pau && p.phase == Phase::Moving) {
+    stop(p, t, Phase::Paused);
+  } else if (!c.pau && p.phase == Phase::Paused) {
+    // Resume the unfinished output from standstill.
+    const AxisParams& par = a.params;
+    const int64_t n = p.endless ? -1 : p.paused_left;
+    if (n == 0) {
+      step_done(p, t);
+      transfer(p, t);
+    } else {
+      const Profile prof = Profile::plan(n, std::min(par.start_hz(), p.speed_hz), p.speed_hz, par.start_hz(),
+                                         par.acc_hz_per_s(), par.dec_hz_per_s());
+      a.axis.start(t, p.endless ? p.move_delta_sign : p.move_delta_sign * n, 0, p.move_forward, prof);
+      p.phase = Phase::Moving;
+    }
+  } else if (p.phase == Phase::SpeedWait) {
+    start_move(p, p.table.steps[p.step - 1], t);
+  } else if (p.phase == Phase::Moving && !c.pau) {
+    const Step& s = p.table.steps[p.step - 1];
+    if (s.transfer == Transfer::Ext && contact(s)) {  // EXT: cut the move short, go on now
+      p.paused_left = a.axis.remaining(t);
+      a.rest = p.paused_left;
+      a.axis.cut(t);
+      step_done(p, t);
+      write_status(t);  // DR4072 holds the rest for the next step (manual example 1)
+      go_to(p, -1, t);
+      advance(p, t);
+    }
+  } else if (p.phase == Phase::Waiting && p.wait_until == kNever) {
+    if (contact(p.table.steps[p.step - 1])) {
+      go_to(p, -1, t);
+      advance(p, t);
+    }
+  }
+  if (!c.en) p.armed = true;
+  p.prev_en = c.en;
+  p.prev_pau = c.pau;
+  p.prev_abt = c.abt;
+  write_wr(p);
+  write_status(t);
+  Fun140Outputs o;
+  o.act = a.owner == c.instance && a.axis.moving();
+  o.err = p.err;
+  o.dn = p.dn;
+  return o;
+}
+
+void MotionUnit::write_wr(Program& p) {
+  const Address wr1{p.call.wr.area, Width::Word, p.call.wr.index + 1};
+  uint16_t w = static_cast<uint16_t>(p.table.steps.size() & 0xFF);
+  if (p.phase == Phase::Paused) w |= kWrPaused;
+  if (p.phase == Phase::Waiting) w |= kWrWaiting;
+  if (p.endless && (p.phase == Phase::Moving || p.phase == Phase::Paused)) w |= kWrEndless;
+  if (axes_[p.call.ps].axis.moving() && axes_[p.call.ps].owner == p.call.instance) w |= kWrAct;
+  if (p.err) w |= kWrErr;
+  if (p.dn) w |= kWrDn;
+  mem_.write(wr1, w);
+}
+
+void MotionUnit::write_status(uint64_t t) {
+  for (int n = 0; n < kAxes; ++n) {
+    AxisState& a = axes_[n];
+    const auto put32 = [&](uint32_t reg, int64_t v) {
+      mem_.set_reg(Area::R, reg, static_cast<uint16_t>(uint64_t(v) & 0xFFFF));
+      mem_.set_reg(Area::R, reg + 1, static_cast<uint16_t>((uint64_t(v) >> 16) & 0xFFFF));
+    };
+    a.written_pos = static_cast<int32_t>(a.axis.position(t));
+    put32(kPosReg + 2 * n, a.written_pos);
+    put32(kFreqReg + 2 * n, std::llround(a.axis.frequency(t)));
+    put32(kRemainReg + 2 * n, a.axis.moving() ? a.axis.remaining(t) : a.rest);
+    mem_.set_bit(Area::M, kReadyRelay + n, a.owner == UINT32_MAX);
+    mem_.set_bit(Area::M, kLastStepRelay + n, a.finished);
+  }
+}
+
+bool MotionUnit::fun141(int ps, const Address& sr) {
+  if (ps < 0 || ps >= kAxes) return false;
+  if (sr.index + kParamWords > Memory::word_count(sr.area)) return false;
+  const AxisParams p = AxisParams::from_registers(mem_.words(sr.area) + sr.index);
+  const int code = p.validate();
+  if (code != 0) {
+    mem_.set_reg(Area::R, kErrReg + ps, static_cast<uint16_t>(code));
+    return false;
+  }
+  axes_[ps].params = p;
+  return true;
+}
+
+void MotionUnit::fun142(int ps, uint64_t now_us) {
+  if (ps < 0 || ps >= kAxes) return;
+  const uint64_t t = now_us * 1000;
+  for (auto& kv : programs_) {
+    Program& p = kv.second;
+    if (p.call.ps != ps) continue;
+    advance(p, t);
+    if (p.phase == Phase::Moving || p.phase == Phase::Waiting || p.phase == Phase::SpeedWait || p.phase == Phase::Paused)
+      stop(p, t, Phase::Idle);
+  }
+  write_status(t);
+}
+
+int64_t MotionUnit::fun143(int ps) const { return axes_[ps].params.pulses_to_ut(axes_[ps].axis.position(now_ns_)); }
+
+int MotionUnit::step(int ps) const {
+  for (const auto& kv : programs_)
+    if (kv.second.call.ps == ps && axes_[ps].owner == kv.first) return kv.second.step;
+  return 0;
+}
+bool MotionUnit::busy(int ps) const { return axes_[ps].owner != UINT32_MAX; }
+bool MotionUnit::finished(int ps) const { return axes_[ps].finished; }
+int MotionUnit::error(int ps) const { return mem_.reg(Area::R, kErrReg + ps); }
+
+}  // namespace motion
+}  // namespace plc_cell
