@@ -6,6 +6,7 @@ target_sources(plc_cell_core PRIVATE
   src/motion/table_regs.cpp
   src/motion/profile.cpp
   src/motion/axis.cpp
+  src/motion/axis_config.cpp
   src/motion/motion_unit.cpp
   src/motion/motion_functions.cpp)
 

@@ -54,6 +54,18 @@ int64_t Axis::pulse_count(uint64_t t) const {
   return count0_ + (forward_ ? 1 : -1) * emitted(t);
 }
 
+uint64_t Axis::when_at(int64_t pos) const {
+  if (!active_) return kNever;
+  const int64_t k = (pos - pos0_) * sign_;  // logical pulses from t0
+  if (k <= 0) return kNever;
+  const int64_t e = comp_ > 0 ? k + comp_ : k;  // pulses to emit for it
+  if (!prof_.endless() && (k > len_ || e > prof_.pulses())) return kNever;
+  if (!prof_.endless() && e == prof_.pulses()) return end_ns();
+  const double secs = prof_.time_of(static_cast<double>(e));
+  if (!(secs < 1e9)) return kNever;  // beyond ~30 years of virtual time (an open-ended switch)
+  return t0_ + static_cast<uint64_t>(std::ceil(secs * 1e9 - 1e-6));
+}
+
 void Axis::settle(uint64_t t) {
   if (!active_) return;
   count0_ = pulse_count(t);

@@ -69,6 +69,7 @@ void MotionUnit::before_program(uint64_t now_us) {
   }
   advance(t);
   write_status(t);
+  write_switches(t);
 }
 
 void MotionUnit::after_program(uint64_t now_us) { write_status(now_us * 1000); }
@@ -96,8 +97,12 @@ void MotionUnit::advance(Program& p, uint64_t t) {
     const bool act_first = p.phase == Phase::Moving && p.act_deadline < next;
     if (act_first) next = p.act_deadline;
     if (p.phase == Phase::Waiting) next = p.wait_until;
+    if (p.phase == Phase::Homing) next = home_next_event(p);
     if (next == kNever || next > t) return;
-    if (act_first) {  // ACT: the time is up, go on even if the output is not finished
+    p.t_cur = next;
+    if (p.phase == Phase::Homing) {
+      home_check(p, next);
+    } else if (act_first) {  // ACT: the time is up, go on even if the output is not finished
       p.paused_left = ax.remaining(next);
       axes_[p.call.ps].rest = p.paused_left;
       ax.cut(next);
@@ -200,7 +205,7 @@ void MotionUnit::start_move(Program& p, const Step& s, uint64_t t) {
   const double hz = par.speed_hz(v);
   if (v < 0 || hz > kMaxHz || hz < 1) return fail(p, 31, t);
   p.speed_hz = std::min(hz, par.max_hz());
-  if (s.motion == Motion::Drvz) return fail(p, 50, t);  // homing: see docs/motion.md (not modelled yet)
+  if (s.motion == Motion::Drvz) return start_homing(p, s, t);
 
   const int64_t stroke = s.stroke.kind == Operand::Const ? s.stroke.value : read32(s.stroke.kind, s.stroke.value);
   if (stroke < -99999999 || stroke > 99999999) return fail(p, 33, t);
@@ -247,7 +252,7 @@ void MotionUnit::start_move(Program& p, const Step& s, uint64_t t) {
 void MotionUnit::stop(Program& p, uint64_t t, Phase then) {
   Axis& ax = axes_[p.call.ps].axis;
   p.chain = false;
-  if (ax.moving() && p.phase == Phase::Moving) {
+  if (ax.moving() && (p.phase == Phase::Moving || p.phase == Phase::Homing)) {
     if (mem_.bit(Area::M, kDecelRelay)) {
       ax.decelerate(t, axes_[p.call.ps].params.start_hz(), axes_[p.call.ps].params.dec_hz_per_s());
       if (ax.moving()) {
@@ -298,8 +303,9 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
   advance(p, t);
   const uint16_t wr1 = mem_.read({c.wr.area, Width::Word, c.wr.index + 1});
   if (!(wr1 & kWrDn)) p.dn = false;  // the user cleared WR+1 (DN off)
+  p.t_cur = t;
   const bool active = p.phase == Phase::Moving || p.phase == Phase::Waiting || p.phase == Phase::SpeedWait ||
-                      p.phase == Phase::Paused || p.phase == Phase::Stopping;
+                      p.phase == Phase::Paused || p.phase == Phase::Stopping || p.phase == Phase::Homing;
   if (c.abt) {
     if (active && p.phase != Phase::Stopping) stop(p, t, Phase::Idle);
     p.step = 0;
@@ -336,6 +342,9 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
       a.axis.start(t, p.endless ? p.move_delta_sign : p.move_delta_sign * n, 0, p.move_forward, prof);
       p.phase = Phase::Moving;
     }
+  } else if (p.phase == Phase::Homing) {
+    home_check(p, t);  // inputs that no axis position drives are seen at the scans
+    advance(p, t);
   } else if (p.phase == Phase::SpeedWait) {
     start_move(p, p.table.steps[p.step - 1], t);
   } else if (p.phase == Phase::Moving && !c.pau) {
@@ -361,6 +370,7 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
   p.prev_abt = c.abt;
   write_wr(p);
   write_status(t);
+  write_switches(t);
   Fun140Outputs o;
   o.act = a.owner == c.instance && a.axis.moving();
   o.err = p.err;
@@ -372,6 +382,7 @@ void MotionUnit::write_wr(Program& p) {
   const Address wr1{p.call.wr.area, Width::Word, p.call.wr.index + 1};
   uint16_t w = static_cast<uint16_t>(p.table.steps.size() & 0xFF);
   if (p.phase == Phase::Paused) w |= kWrPaused;
+  if (p.phase == Phase::Homing && (p.home == Home::Md1Delay || p.home == Home::Clr)) w |= kWrWaiting;
   if (p.phase == Phase::Waiting) w |= kWrWaiting;
   if (p.endless && (p.phase == Phase::Moving || p.phase == Phase::Paused)) w |= kWrEndless;
   if (axes_[p.call.ps].axis.moving() && axes_[p.call.ps].owner == p.call.instance) w |= kWrAct;
@@ -393,6 +404,179 @@ void MotionUnit::write_status(uint64_t t) {
     put32(kRemainReg + 2 * n, a.axis.moving() ? a.axis.remaining(t) : a.rest);
     mem_.set_bit(Area::M, kReadyRelay + n, a.owner == UINT32_MAX);
     mem_.set_bit(Area::M, kLastStepRelay + n, a.finished);
+  }
+}
+
+// ---- homing (DRVZ) ------------------------------------------------------------------
+
+void MotionUnit::configure(const AxesConfig& cfg) { cfg_ = cfg; }
+
+bool MotionUnit::input(int ps, int x, uint64_t t) const {
+  (void)ps;
+  bool driven = false, on = false;
+  for (int n = 0; n < kAxes; ++n)
+    for (const auto& sw : cfg_.axes[n].switches)
+      if (sw.x == x) {
+        driven = true;
+        on = on || sw.level(axes_[n].axis.position(t));
+      }
+  return driven ? on : mem_.bit(Area::X, x);
+}
+
+void MotionUnit::write_switches(uint64_t t) {
+  for (int n = 0; n < kAxes; ++n)
+    for (const auto& sw : cfg_.axes[n].switches) mem_.set_bit(Area::X, sw.x, input(n, sw.x, t));
+}
+
+void MotionUnit::run_endless(Program& p, uint64_t t, int sign, double hz) {
+  AxisState& a = axes_[p.call.ps];
+  const AxisParams& par = a.params;
+  double v_in = std::min(par.start_hz(), hz);
+  if (a.axis.moving()) {
+    if (a.axis.direction() == sign) v_in = a.axis.frequency(t);  // change speed on the fly
+    a.axis.cut(t);
+  }
+  const bool forward = (sign > 0) != (par.p9_rot != 0);
+  const Profile prof = Profile::plan(-1, v_in, hz, par.start_hz(), par.acc_hz_per_s(), par.dec_hz_per_s());
+  a.axis.start(t, sign, 0, forward, prof);
+}
+
+void MotionUnit::start_homing(Program& p, const Step& s, uint64_t t) {
+  const AxisParams& par = axes_[p.call.ps].params;
+  if (s.zero_mode < 0 || s.zero_mode > 2) return fail(p, 50, t);
+  if (par.dog_input() < 0 || par.dog_input() > 15) return fail(p, 51, t);
+  if (s.zero_mode == 2 && (par.pg0_input() < 0 || par.pg0_input() > 15)) return fail(p, 52, t);
+  if (par.clr_output() > 23) return fail(p, 53, t);
+  p.phase = Phase::Homing;
+  p.home = Home::Seek;
+  p.home_until = kNever;
+  p.pg0_count = 0;
+  p.counting = false;
+  p.dog_seen = false;
+  p.t_cur = t;
+  run_endless(p, t, par.p9_home ? -1 : 1, p.speed_hz);
+  home_check(p, t);  // starting on the DOG or the limit
+}
+
+uint64_t MotionUnit::home_next_event(const Program& p) const {
+  const AxisState& a = axes_[p.call.ps];
+  if (p.home == Home::Md1Delay || p.home == Home::Clr) return p.home_until;
+  if (p.home == Home::Md1Stop) return a.axis.end_ns();
+  if (!a.axis.moving()) return kNever;
+  const AxisParams& par = a.params;
+  const int dir = a.axis.direction();
+  const int64_t pos = a.axis.position(p.t_cur);
+  uint64_t next = kNever;
+  for (const int x : {par.dog_input(), par.limit_input(), par.pg0_input()}) {
+    if (x < 0) continue;
+    for (const auto& sw : cfg_.axes[p.call.ps].switches) {
+      if (sw.x != x) continue;
+      const int64_t at = sw.next_change(pos, dir);
+      if (at != INT64_MIN) next = std::min(next, a.axis.when_at(at));
+    }
+  }
+  return next;
+}
+
+void MotionUnit::home_check(Program& p, uint64_t t) {
+  AxisState& a = axes_[p.call.ps];
+  const AxisParams& par = a.params;
+  const Step& s = p.table.steps[p.step - 1];
+  const int home_sign = par.p9_home ? -1 : 1;
+  const bool dog = input(p.call.ps, par.dog_input(), t) != par.dog_nc();
+  const bool limit = par.limit_input() >= 0 && input(p.call.ps, par.limit_input(), t) != par.limit_nc();
+  const bool pg0 = par.pg0_input() >= 0 && input(p.call.ps, par.pg0_input(), t);
+  switch (p.home) {
+    case Home::Seek:
+      if (dog) {
+        if (s.zero_mode == 1) {  // MD1: slow down and stop on the DOG
+          a.axis.decelerate(t, par.start_hz(), par.dec_hz_per_s());
+          p.home = Home::Md1Stop;
+          if (!a.axis.moving()) {
+            p.home = Home::Md1Delay;
+            p.home_until = t + 500000000;
+          }
+          return;
+        }
+        run_endless(p, t, home_sign, par.creep_hz());
+        p.home = Home::Creep;
+        p.counting = s.zero_mode == 2 && !par.pg0_rear();
+        p.prev_pg0 = pg0;
+        p.pg0_count = 0;
+        if (p.counting && par.p17_pg0 == 0) return home_found(p, t);
+      } else if (limit) {  // in front of the DOG: back until the DOG has been passed
+        a.axis.cut(t);
+        run_endless(p, t, -home_sign, p.speed_hz);
+        p.home = Home::Escape;
+        p.dog_seen = false;
+      }
+      return;
+    case Home::Escape:
+      if (dog) p.dog_seen = true;
+      if (p.dog_seen && !dog) {
+        a.axis.cut(t);
+        run_endless(p, t, home_sign, p.speed_hz);
+        p.home = Home::Seek;
+      }
+      return;
+    case Home::Creep:
+      if (s.zero_mode == 0) {
+        if (!dog) home_found(p, t);
+        return;
+      }
+      if (!p.counting && !dog) {  // MD2 rear edge: count from leaving the DOG
+        p.counting = true;
+        p.prev_pg0 = pg0;
+        if (par.p17_pg0 == 0) return home_found(p, t);
+        return;
+      }
+      if (p.counting && pg0 && !p.prev_pg0 && ++p.pg0_count >= par.p17_pg0) return home_found(p, t);
+      p.prev_pg0 = pg0;
+      return;
+    case Home::Md1Stop:
+      if (a.axis.moving() && t >= a.axis.end_ns()) a.axis.settle(t);
+      if (!a.axis.moving() || t >= a.axis.end_ns()) {
+        a.axis.settle(t);
+        p.home = Home::Md1Delay;
+        p.home_until = t + 500000000;  // 0.5 s, then back out of the DOG
+      }
+      return;
+    case Home::Md1Delay:
+      if (t >= p.home_until) {
+        p.home_until = kNever;
+        run_endless(p, t, -home_sign, par.creep_hz());
+        p.home = Home::Md1Back;
+        if (!dog) home_found(p, t);
+      }
+      return;
+    case Home::Md1Back:
+      if (!dog) home_found(p, t);
+      return;
+    case Home::Clr:
+      if (t >= p.home_until) {
+        mem_.set_bit(Area::Y, par.clr_output(), false);
+        p.home_until = kNever;
+        a.axis.set_position(par.p16_zero);
+        p.phase = Phase::Moving;  // for the step bookkeeping
+        p.paused_left = 0;
+        a.rest = 0;
+        step_done(p, t);
+        transfer(p, t);
+      }
+      return;
+  }
+}
+
+void MotionUnit::home_found(Program& p, uint64_t t) {
+  AxisState& a = axes_[p.call.ps];
+  a.axis.cut(t);
+  p.home = Home::Clr;
+  p.home_until = t;
+  if (a.params.clr_output() >= 0) {
+    mem_.set_bit(Area::Y, a.params.clr_output(), true);
+    p.home_until = t + 20000000;  // CLR on for 20 ms, then done
+  } else {
+    home_check(p, t);
   }
 }
 

@@ -29,6 +29,7 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
   const YAML::Node& doc = config_.document;
   hsc_ = std::make_unique<hsc::HscUnit>(plc_, hsc::parse_hsc_config(doc["counters"], config_.file));
   motion_ = std::make_unique<motion::MotionUnit>(plc_);
+  motion_->configure(motion::parse_axes_config(doc["axes"], config_.file));
   // Pulse and step signals on the high-speed inputs X0-X15 become exact-time edges,
   // so counters and edge interrupts see every pulse, not the scan's samples.
   plc_.locked([&](ScanEngine&, Memory&) {

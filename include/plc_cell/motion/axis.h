@@ -37,6 +37,10 @@ class Axis {
   const Profile& profile() const { return prof_; }
   uint64_t start_ns() const { return t0_; }
 
+  // The instant the logical position reaches pos on this move (kNever if it does not).
+  uint64_t when_at(int64_t pos) const;
+  int direction() const { return sign_; }  // of the logical position
+
   void set_position(int64_t p) { pos0_ = p; }  // the ladder (or homing) writes DR4088
 
  private:

@@ -17,6 +17,7 @@
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/scan_engine.h"
 #include "plc_cell/motion/axis.h"
+#include "plc_cell/motion/axis_config.h"
 #include "plc_cell/motion/params.h"
 #include "plc_cell/motion/table.h"
 
@@ -59,6 +60,10 @@ class MotionUnit : public ScanHook {
   void fun142(int ps, uint64_t now_us);    // PSOFF: stop the output (M1991 decides how)
   int64_t fun143(int ps) const;            // PSCNV: position in Ut
 
+  // The cell YAML's axes: section (names, output modes, simulated switches).
+  void configure(const AxesConfig& cfg);
+  const AxesConfig& config() const { return cfg_; }
+
   // ---- observation and control (lock held) ----
   const Axis& axis(int ps) const { return axes_[ps].axis; }
   const AxisParams& params(int ps) const { return axes_[ps].params; }
@@ -75,7 +80,9 @@ class MotionUnit : public ScanHook {
   void on_step_done(StepObserver f) { step_obs_.push_back(std::move(f)); }
 
  private:
-  enum class Phase { Idle, Moving, Waiting, SpeedWait, Paused, Stopping, Done };
+  enum class Phase { Idle, Moving, Waiting, SpeedWait, Paused, Stopping, Done, Homing };
+  // DRVZ stages (docs/motion.md "Homing").
+  enum class Home { Seek, Escape, Creep, Md1Stop, Md1Delay, Md1Back, Clr };
   struct Program {
     Fun140Call call;
     Table table;
@@ -90,6 +97,11 @@ class MotionUnit : public ScanHook {
     bool prev_en = false, prev_pau = false, prev_abt = false;
     bool dn = false, err = false;
     bool endless = false;
+    Home home = Home::Seek;
+    uint64_t t_cur = 0;              // the instant this program was last brought to
+    uint64_t home_until = kNever;    // MD1 delay / CLR pulse end
+    int pg0_count = 0;
+    bool counting = false, dog_seen = false, prev_pg0 = false;
     bool armed = true;               // EN was off since the last start
     bool chain_forward = true;
     double chain_speed = 0;          // speed at the end of the previous DRVC section
@@ -120,6 +132,14 @@ class MotionUnit : public ScanHook {
   uint16_t read16(Operand::Kind k, int32_t idx) const;
   uint16_t read_time(const Step& s) const;
   void write_status(uint64_t t);
+  // Homing (DRVZ).
+  void start_homing(Program& p, const Step& s, uint64_t t);
+  void home_check(Program& p, uint64_t t);
+  uint64_t home_next_event(const Program& p) const;
+  void home_found(Program& p, uint64_t t);
+  void run_endless(Program& p, uint64_t t, int sign, double hz);
+  bool input(int ps, int x, uint64_t t) const;  // positional switch level, else the X image
+  void write_switches(uint64_t t);
   void write_wr(Program& p);
 
   Plc& plc_;
@@ -129,6 +149,7 @@ class MotionUnit : public ScanHook {
   std::map<uint32_t, Program> programs_;  // by FUN140 instance
   uint64_t now_ns_ = 0;
   std::vector<StepObserver> step_obs_;
+  AxesConfig cfg_;
 };
 
 }  // namespace motion

@@ -1,0 +1,119 @@
+// The cell YAML's axes: section.
+#include "plc_cell/motion/axis_config.h"
+
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+namespace motion {
+
+namespace {
+int64_t floor_mod(int64_t a, int64_t m) {
+  const int64_t r = a % m;
+  return r < 0 ? r + m : r;
+}
+
+[[noreturn]] void fail(const std::string& file, const YAML::Node& n, const std::string& msg) {
+  const YAML::Mark m = n.Mark();
+  throw SourceError::at(file, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0, msg);
+}
+
+template <typename T>
+T get(const YAML::Node& n, const std::string& file, const std::string& what) {
+  try {
+    return n.as<T>();
+  } catch (const YAML::Exception&) {
+    fail(file, n, "key '" + what + "': bad value");
+  }
+}
+}  // namespace
+
+bool SwitchDef::level(int64_t pos) const {
+  if (period > 0) return floor_mod(pos - offset, period) < width;
+  return pos >= from && pos <= to;
+}
+
+int64_t SwitchDef::next_change(int64_t pos, int dir) const {
+  if (period > 0) {
+    const int64_t r = floor_mod(pos - offset, period);
+    if (dir > 0) return r < width ? pos + (width - r) : pos + (period - r);
+    return r < width ? pos - r - 1 : pos - (r - (width - 1));
+  }
+  if (dir > 0) {
+    if (pos < from) return from;
+    if (pos <= to) return to + 1;
+    return INT64_MIN;
+  }
+  if (pos > to) return to;
+  if (pos >= from) return from - 1;
+  return INT64_MIN;
+}
+
+AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
+  AxesConfig cfg;
+  if (!axes || axes.IsNull()) return cfg;
+  if (!axes.IsMap()) fail(file, axes, "key 'axes': expected a map of pso0..pso3");
+  for (const auto& kv : axes) {
+    const std::string key = kv.first.as<std::string>();
+    if (key.size() != 4 || key.compare(0, 3, "pso") != 0 || key[3] < '0' || key[3] > '3')
+      fail(file, kv.first, "key 'axes." + key + "': expected pso0, pso1, pso2 or pso3");
+    const int n = key[3] - '0';
+    AxisDef& a = cfg.axes[n];
+    a.used = true;
+    a.name = key;
+    const std::string pre = "axes." + key + ".";
+    for (const auto& f : kv.second) {
+      const std::string k = f.first.as<std::string>();
+      const YAML::Node& v = f.second;
+      if (k == "name") {
+        a.name = get<std::string>(v, file, pre + k);
+      } else if (k == "output") {
+        const std::string m = get<std::string>(v, file, pre + k);
+        if (m == "UD") a.mode = OutputMode::UD;
+        else if (m == "PR") a.mode = OutputMode::PR;
+        else if (m == "AB") a.mode = OutputMode::AB;
+        else fail(file, v, "key '" + pre + k + "': expected UD, PR or AB");
+      } else if (k == "type") {
+        const std::string t = get<std::string>(v, file, pre + k);
+        if (t != "linear" && t != "rotary") fail(file, v, "key '" + pre + k + "': expected linear or rotary");
+        a.rotary = t == "rotary";
+      } else if (k == "units_per_pulse") {
+        a.units_per_pulse = get<double>(v, file, pre + k);
+        if (!(a.units_per_pulse > 0)) fail(file, v, "key '" + pre + k + "': must be > 0");
+      } else if (k == "switches") {
+        if (!v.IsSequence()) fail(file, v, "key '" + pre + k + "': expected a list");
+        for (const auto& s : v) {
+          SwitchDef d;
+          if (!s["x"]) fail(file, s, "key '" + pre + "switches': each switch needs x");
+          Address ad;
+          std::string why;
+          if (!try_parse_address(get<std::string>(s["x"], file, pre + "switches.x"), &ad, &why) ||
+              ad.area != Area::X || ad.width != Width::Bit)
+            fail(file, s["x"], "key '" + pre + "switches.x': expected an input X0-X255");
+          d.x = static_cast<int>(ad.index);
+          for (const auto& sf : s) {
+            const std::string sk = sf.first.as<std::string>();
+            if (sk == "x") continue;
+            const int64_t val = get<int64_t>(sf.second, file, pre + "switches." + sk);
+            if (sk == "from") d.from = val;
+            else if (sk == "to") d.to = val;
+            else if (sk == "period") d.period = val;
+            else if (sk == "offset") d.offset = val;
+            else if (sk == "width") d.width = val;
+            else fail(file, sf.first, "key '" + pre + "switches." + sk + "': unknown (x, from, to, period, offset, width)");
+          }
+          if (d.period < 0 || (d.period > 0 && (d.width < 1 || d.width >= d.period)))
+            fail(file, s, "key '" + pre + "switches': period > width >= 1");
+          if (d.from > d.to) fail(file, s, "key '" + pre + "switches': from must be <= to");
+          a.switches.push_back(d);
+        }
+      } else {
+        fail(file, f.first, "key '" + pre + k + "': unknown (name, output, type, units_per_pulse, switches)");
+      }
+    }
+  }
+  return cfg;
+}
+
+}  // namespace motion
+}  // namespace plc_cell
