@@ -21,7 +21,8 @@ constexpr uint32_t kReadyRelay = 1992;  // M1992+n: axis ready
 constexpr uint32_t kLastStepRelay = 1996;  // M1996+n: last step finished
 constexpr uint32_t kErrReg = 4060, kStepReg = 4064, kRemainReg = 4072, kFreqReg = 4080, kPosReg = 4088;
 constexpr uint64_t kTimeUnitNs = 10000000;  // WAIT/ACT times are in 0.01 s
-constexpr int kMaxStepsPerInstant = 1000;   // GOTO loops of empty moves must not hang a scan
+constexpr int kMaxStepsPerInstant = 1000;
+constexpr uint32_t kExternal = 0x80000000u;  // instance ids of unit-run programs (+ axis)   // GOTO loops of empty moves must not hang a scan
 
 constexpr uint16_t kWrPaused = 1u << 8, kWrWaiting = 1u << 9, kWrEndless = 1u << 10, kWrAct = 1u << 12,
                    kWrErr = 1u << 13, kWrDn = 1u << 14;
@@ -68,6 +69,8 @@ void MotionUnit::before_program(uint64_t now_us) {
     if (reg != a.written_pos && !a.axis.moving()) a.axis.set_position(reg);
   }
   advance(t);
+  for (auto& kv : programs_)
+    if (kv.second.external) fun140(kv.second.call, now_us);
   write_status(t);
   write_switches(t);
 }
@@ -188,7 +191,7 @@ void MotionUnit::go_to(Program& p, int target, uint64_t t) {
 void MotionUnit::start_step(Program& p, int k, uint64_t t) {
   p.step = k;
   p.wait_until = kNever;
-  mem_.write({p.call.wr.area, Width::Word, p.call.wr.index}, static_cast<uint16_t>(k));
+  if (!p.external) mem_.write({p.call.wr.area, Width::Word, p.call.wr.index}, static_cast<uint16_t>(k));
   const Step& s = p.table.steps[k - 1];
   p.act_deadline = s.transfer == Transfer::Act ? t + uint64_t(read_time(s)) * kTimeUnitNs : kNever;
   start_move(p, s, t);
@@ -249,11 +252,11 @@ void MotionUnit::start_move(Program& p, const Step& s, uint64_t t) {
   p.chain_speed = prof.end_speed();
 }
 
-void MotionUnit::stop(Program& p, uint64_t t, Phase then) {
+void MotionUnit::stop(Program& p, uint64_t t, Phase then, bool force_decel) {
   Axis& ax = axes_[p.call.ps].axis;
   p.chain = false;
   if (ax.moving() && (p.phase == Phase::Moving || p.phase == Phase::Homing)) {
-    if (mem_.bit(Area::M, kDecelRelay)) {
+    if (force_decel || mem_.bit(Area::M, kDecelRelay)) {
       ax.decelerate(t, axes_[p.call.ps].params.start_hz(), axes_[p.call.ps].params.dec_hz_per_s());
       if (ax.moving()) {
         p.phase = Phase::Stopping;
@@ -281,6 +284,7 @@ void MotionUnit::fail(Program& p, int code, uint64_t t) {
 }
 
 bool MotionUnit::load(Program& p) {
+  if (p.external) return !p.table.steps.empty();
   const Address& sr = p.call.sr;
   const size_t avail = Memory::word_count(sr.area) - sr.index;
   TableError e;
@@ -301,15 +305,17 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
   p.call = c;
   AxisState& a = axes_[c.ps];
   advance(p, t);
-  const uint16_t wr1 = mem_.read({c.wr.area, Width::Word, c.wr.index + 1});
-  if (!(wr1 & kWrDn)) p.dn = false;  // the user cleared WR+1 (DN off)
+  if (!p.external) {
+    const uint16_t wr1 = mem_.read({c.wr.area, Width::Word, c.wr.index + 1});
+    if (!(wr1 & kWrDn)) p.dn = false;  // the user cleared WR+1 (DN off)
+  }
   p.t_cur = t;
   const bool active = p.phase == Phase::Moving || p.phase == Phase::Waiting || p.phase == Phase::SpeedWait ||
                       p.phase == Phase::Paused || p.phase == Phase::Stopping || p.phase == Phase::Homing;
   if (c.abt) {
     if (active && p.phase != Phase::Stopping) stop(p, t, Phase::Idle);
     p.step = 0;
-    mem_.write({c.wr.area, Width::Word, c.wr.index}, 0);
+    if (!p.external) mem_.write({c.wr.area, Width::Word, c.wr.index}, 0);
   } else if (!c.en) {
     if (active && p.phase != Phase::Stopping) stop(p, t, Phase::Idle);
   } else if (p.phase == Phase::Idle || p.phase == Phase::Done) {
@@ -321,7 +327,7 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
       if (load(p)) {
         a.owner = c.instance;
         const int n = static_cast<int>(p.table.steps.size());
-        const int cur = static_cast<int16_t>(mem_.read({c.wr.area, Width::Word, c.wr.index}));
+        const int cur = p.external ? p.step : static_cast<int16_t>(mem_.read({c.wr.area, Width::Word, c.wr.index}));
         p.chain = false;
         start_step(p, cur <= 0 || cur >= n ? 1 : cur + 1, t);
         advance(p, t);
@@ -379,6 +385,7 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
 }
 
 void MotionUnit::write_wr(Program& p) {
+  if (p.external) return;
   const Address wr1{p.call.wr.area, Width::Word, p.call.wr.index + 1};
   uint16_t w = static_cast<uint16_t>(p.table.steps.size() & 0xFF);
   if (p.phase == Phase::Paused) w |= kWrPaused;
@@ -405,6 +412,70 @@ void MotionUnit::write_status(uint64_t t) {
     mem_.set_bit(Area::M, kReadyRelay + n, a.owner == UINT32_MAX);
     mem_.set_bit(Area::M, kLastStepRelay + n, a.finished);
   }
+}
+
+// ---- unit-run programs (ROS) -----------------------------------------------------
+
+bool MotionUnit::load_table(int ps, const Table& t, std::string* why) {
+  if (ps < 0 || ps >= kAxes) return *why = "axis must be 0-3", false;
+  const uint32_t id = kExternal + ps;
+  if (axes_[ps].owner != UINT32_MAX && axes_[ps].owner != id) return *why = "a ladder FUN140 holds the axis", false;
+  TableError e;
+  if (!check_table(t, &e)) return *why = e.message, false;
+  Program& p = programs_[id];
+  if (p.phase != Phase::Idle && p.phase != Phase::Done) return *why = "the axis is running a table", false;
+  p.external = true;
+  p.call.ps = ps;
+  p.call.instance = id;
+  p.table = t;
+  p.step = 0;
+  return true;
+}
+
+bool MotionUnit::has_table(int ps) const {
+  auto it = programs_.find(kExternal + ps);
+  return it != programs_.end() && !it->second.table.steps.empty();
+}
+
+bool MotionUnit::program_running(int ps) const {
+  auto it = programs_.find(kExternal + ps);
+  if (it == programs_.end()) return false;
+  const Phase ph = it->second.phase;
+  return ph != Phase::Idle && ph != Phase::Done;
+}
+
+bool MotionUnit::command(int ps, Command c, std::string* why) {
+  if (ps < 0 || ps >= kAxes) return *why = "axis must be 0-3", false;
+  auto it = programs_.find(kExternal + ps);
+  if (it == programs_.end() || it->second.table.steps.empty()) return *why = "no table loaded on this axis", false;
+  Program& p = it->second;
+  advance(p, now_ns_);
+  switch (c) {
+    case Command::Start:
+      if (axes_[ps].owner != UINT32_MAX && axes_[ps].owner != p.call.instance)
+        return *why = "a ladder FUN140 holds the axis", false;
+      if (program_running(ps)) return *why = "already running", false;
+      p.step = 0;  // from the first step
+      p.armed = true;
+      p.call.en = true;
+      p.call.pau = p.call.abt = false;
+      fun140(p.call, now_ns_ / 1000);
+      return true;
+    case Command::Pause:
+      p.call.pau = true;
+      return true;
+    case Command::Resume:
+      p.call.pau = false;
+      return true;
+    case Command::Abort:
+      if (p.phase != Phase::Idle && p.phase != Phase::Done && p.phase != Phase::Stopping)
+        stop(p, now_ns_, Phase::Idle, /*force_decel=*/true);
+      p.call.en = false;
+      p.call.pau = false;
+      p.step = 0;
+      return true;
+  }
+  return false;
 }
 
 // ---- homing (DRVZ) ------------------------------------------------------------------

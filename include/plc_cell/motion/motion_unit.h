@@ -60,6 +60,17 @@ class MotionUnit : public ScanHook {
   void fun142(int ps, uint64_t now_us);    // PSOFF: stop the output (M1991 decides how)
   int64_t fun143(int ps) const;            // PSCNV: position in Ut
 
+  // ---- control without a ladder FUN140 (ROS services and actions; lock held) ----
+  // A table run by the unit itself on axis ps, as if by a FUN140 whose EN/PAU/ABT
+  // are the commands below. False (with *why) if a ladder FUN140 holds the axis.
+  bool load_table(int ps, const Table& t, std::string* why);
+  enum class Command { Start, Pause, Resume, Abort };
+  // Abort decelerates to P5 whatever M1991 says (an operator's stop).
+  bool command(int ps, Command c, std::string* why);
+  bool has_table(int ps) const;
+  // State of the unit-run program: running, done (last step finished), error code.
+  bool program_running(int ps) const;
+
   // The cell YAML's axes: section (names, output modes, simulated switches).
   void configure(const AxesConfig& cfg);
   const AxesConfig& config() const { return cfg_; }
@@ -103,6 +114,7 @@ class MotionUnit : public ScanHook {
     int pg0_count = 0;
     bool counting = false, dog_seen = false, prev_pg0 = false;
     bool armed = true;               // EN was off since the last start
+    bool external = false;           // run by load_table/command, no registers
     bool chain_forward = true;
     double chain_speed = 0;          // speed at the end of the previous DRVC section
     bool move_forward = true;
@@ -124,7 +136,7 @@ class MotionUnit : public ScanHook {
   void go_to(Program& p, int target, uint64_t t);
   void start_step(Program& p, int k, uint64_t t);
   void start_move(Program& p, const Step& s, uint64_t t);
-  void stop(Program& p, uint64_t t, Phase then);
+  void stop(Program& p, uint64_t t, Phase then, bool force_decel = false);
   void fail(Program& p, int code, uint64_t t);
   bool load(Program& p);
   bool contact(const Step& s) const;
