@@ -15,3 +15,11 @@ if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(motion_tests test/core/test_main.cpp ${MOTION_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(motion_tests plc_cell_core)
 endif()
+
+# The axes on ROS (plc_node): JointState, status, services, the run action.
+list(APPEND PLC_CELL_NODE_SOURCES src/ros/motion_topics.cpp)
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/motion.test DEPENDENCIES plc_node)
+endif()
