@@ -29,11 +29,42 @@ constexpr uint16_t kWrPaused = 1u << 8, kWrWaiting = 1u << 9, kWrEndless = 1u <<
 }  // namespace
 
 MotionUnit::MotionUnit(Plc& plc) : plc_(plc), engine_(engine_of(plc)), mem_(memory_of(plc)) {
-  plc_.locked([this](ScanEngine& e, Memory&) { e.add_hook(this); });
+  plc_.locked([this](ScanEngine& e, Memory&) {
+    e.add_hook(this);
+    hsc_ = hsc::HscUnit::of(&e);
+    if (hsc_) hsc_->add_event_source(this);
+  });
 }
 
 MotionUnit::~MotionUnit() {
-  plc_.locked([this](ScanEngine& e, Memory&) { e.remove_hook(this); });
+  plc_.locked([this](ScanEngine& e, Memory&) {
+    if (hsc_ && hsc::HscUnit::of(&e) == hsc_) hsc_->remove_event_source(this);
+    e.remove_hook(this);
+  });
+}
+
+uint64_t MotionUnit::next_event(const Program& p) const {
+  const Axis& ax = axes_[p.call.ps].axis;
+  uint64_t next = kNever;
+  if (p.phase == Phase::Moving || p.phase == Phase::Stopping) next = ax.end_ns();
+  if (p.phase == Phase::Moving && p.act_deadline < next) next = p.act_deadline;
+  if (p.phase == Phase::Waiting) next = p.wait_until;
+  if (p.phase == Phase::Homing) next = home_next_event(p);
+  return next;
+}
+
+uint64_t MotionUnit::next_event_ns() const {
+  uint64_t next = kNever;
+  for (const auto& kv : programs_) next = std::min(next, next_event(kv.second));
+  return next;
+}
+
+void MotionUnit::at(uint64_t t, std::vector<int>* requests) {
+  adopt_ladder_positions();
+  requests_ = requests;
+  advance(t);
+  requests_ = nullptr;
+  write_status(t);  // the routines of this instant read its position, frequency, ...
 }
 
 MotionUnit* MotionUnit::of(ScanEngine* engine) {
@@ -61,6 +92,15 @@ bool MotionUnit::contact(const Step& s) const {
 
 void MotionUnit::before_program(uint64_t now_us) {
   const uint64_t t = now_us * 1000;
+  adopt_ladder_positions();
+  advance(t);
+  for (auto& kv : programs_)
+    if (kv.second.external) fun140(kv.second.call, now_us);
+  write_status(t);
+  write_switches(t);
+}
+
+void MotionUnit::adopt_ladder_positions() {
   // A ladder write of DR4088 on an idle axis sets its position (homing by ladder).
   for (int n = 0; n < kAxes; ++n) {
     AxisState& a = axes_[n];
@@ -68,11 +108,6 @@ void MotionUnit::before_program(uint64_t now_us) {
                                              (uint32_t(mem_.reg(Area::R, kPosReg + 2 * n + 1)) << 16));
     if (reg != a.written_pos && !a.axis.moving()) a.axis.set_position(reg);
   }
-  advance(t);
-  for (auto& kv : programs_)
-    if (kv.second.external) fun140(kv.second.call, now_us);
-  write_status(t);
-  write_switches(t);
 }
 
 void MotionUnit::after_program(uint64_t now_us) { write_status(now_us * 1000); }
@@ -95,12 +130,8 @@ void MotionUnit::advance(uint64_t t) {
 void MotionUnit::advance(Program& p, uint64_t t) {
   Axis& ax = axes_[p.call.ps].axis;
   for (int guard = 0; guard < kMaxStepsPerInstant; ++guard) {
-    uint64_t next = kNever;
-    if (p.phase == Phase::Moving || p.phase == Phase::Stopping) next = ax.end_ns();
-    const bool act_first = p.phase == Phase::Moving && p.act_deadline < next;
-    if (act_first) next = p.act_deadline;
-    if (p.phase == Phase::Waiting) next = p.wait_until;
-    if (p.phase == Phase::Homing) next = home_next_event(p);
+    const uint64_t next = next_event(p);
+    const bool act_first = p.phase == Phase::Moving && next == p.act_deadline && next < ax.end_ns();
     if (next == kNever || next > t) return;
     p.t_cur = next;
     if (p.phase == Phase::Homing) {
@@ -135,7 +166,8 @@ void MotionUnit::step_done(Program& p, uint64_t t) {
   mem_.set_reg(Area::R, kStepReg + p.call.ps, static_cast<uint16_t>(p.step));
   write_wr(p);
   for (auto& f : step_obs_) f(p.call.ps, p.step, t);
-  if (auto* h = hsc::HscUnit::of(&engine_)) h->raise(hsc::kPso0I + p.call.ps);
+  if (requests_) requests_->push_back(hsc::kPso0I + p.call.ps);  // dispatched at this instant
+  else if (hsc_) hsc_->raise(hsc::kPso0I + p.call.ps);
 }
 
 void MotionUnit::transfer(Program& p, uint64_t t) {

@@ -9,6 +9,7 @@
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/plc.h"
+#include "plc_cell/hsc/hsc_unit.h"
 #include "plc_cell/motion/motion_unit.h"
 #include "plc_cell/motion/params.h"
 #include "plc_cell/motion/table.h"
@@ -34,7 +35,12 @@ END
 
 class MotionCell {
  public:
-  explicit MotionCell(const std::string& il = kAxis0Program) {
+  // with_counters: the HSC unit too (as SoftCell makes it): PSOnI in its event loop.
+  explicit MotionCell(const std::string& il = kAxis0Program, bool with_counters = false) {
+    if (with_counters) {
+      counters = std::make_unique<hsc::HscUnit>(plc, hsc::HscConfig{});
+      counters->on_isr([this](uint64_t t, int s) { isrs.push_back({t, s}); });
+    }
     unit = std::make_unique<MotionUnit>(plc);
     unit->on_step_done([this](int ps, int step, uint64_t t) { done.push_back({ps, step, t}); });
     plc.load_program_text(il, "test.il");
@@ -79,7 +85,9 @@ class MotionCell {
   }
 
   Plc plc;
-  std::unique_ptr<MotionUnit> unit;
+  std::unique_ptr<hsc::HscUnit> counters;
+  std::unique_ptr<MotionUnit> unit;  // after counters: removed from its loop first
+  std::vector<std::pair<uint64_t, int>> isrs;
   std::vector<StepDone> done;
   uint64_t now_us = 0;
 };

@@ -16,6 +16,7 @@
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/scan_engine.h"
+#include "plc_cell/hsc/hsc_unit.h"
 #include "plc_cell/motion/axis.h"
 #include "plc_cell/motion/axis_config.h"
 #include "plc_cell/motion/params.h"
@@ -41,7 +42,7 @@ struct Fun140Outputs {
   bool act = false, err = false, dn = false;
 };
 
-class MotionUnit : public ScanHook {
+class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
  public:
   explicit MotionUnit(Plc& plc);
   ~MotionUnit() override;
@@ -53,6 +54,10 @@ class MotionUnit : public ScanHook {
   void before_program(uint64_t now_us) override;
   void after_program(uint64_t now_us) override;
   void on_stop() override;
+  // In the counters' event loop (if the engine has an HscUnit): step ends and
+  // WAIT/ACT times happen there, PSOnI is requested at the exact instant.
+  uint64_t next_event_ns() const override;
+  void at(uint64_t t_ns, std::vector<int>* requests) override;
 
   // ---- instructions (lock held) ----
   Fun140Outputs fun140(const Fun140Call& c, uint64_t now_us);
@@ -131,6 +136,7 @@ class MotionUnit : public ScanHook {
 
   void advance(uint64_t t);
   void advance(Program& p, uint64_t t);
+  uint64_t next_event(const Program& p) const;
   void step_done(Program& p, uint64_t t);
   void transfer(Program& p, uint64_t t);
   void go_to(Program& p, int target, uint64_t t);
@@ -144,6 +150,7 @@ class MotionUnit : public ScanHook {
   uint16_t read16(Operand::Kind k, int32_t idx) const;
   uint16_t read_time(const Step& s) const;
   void write_status(uint64_t t);
+  void adopt_ladder_positions();
   // Homing (DRVZ).
   void start_homing(Program& p, const Step& s, uint64_t t);
   void home_check(Program& p, uint64_t t);
@@ -162,6 +169,8 @@ class MotionUnit : public ScanHook {
   uint64_t now_ns_ = 0;
   std::vector<StepObserver> step_obs_;
   AxesConfig cfg_;
+  hsc::HscUnit* hsc_ = nullptr;           // the counters' unit we are a source of
+  std::vector<int>* requests_ = nullptr;  // inside at(): PSOnI requests go here
 };
 
 }  // namespace motion
