@@ -14,6 +14,10 @@ if(CATKIN_ENABLE_TESTING)
   file(GLOB MOTION_TESTS test/motion/*_test.cpp)
   catkin_add_gtest(motion_tests test/core/test_main.cpp ${MOTION_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(motion_tests plc_cell_core)
+  target_compile_definitions(motion_tests PRIVATE
+    PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+  add_dependencies(motion_tests plc_cell_tool)
 endif()
 
 # The axes on ROS (plc_node): JointState, status, services, the run action.

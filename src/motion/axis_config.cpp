@@ -107,8 +107,56 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
           if (d.from > d.to) fail(file, s, "key '" + pre + "switches': from must be <= to");
           a.switches.push_back(d);
         }
+      } else if (k == "table" || k == "params") {
+        Address at;
+        std::string why;
+        if (!v["at"] || !try_parse_address(get<std::string>(v["at"], file, pre + k + ".at"), &at, &why) ||
+            (at.area != Area::R && at.area != Area::D) || at.width != Width::Word)
+          fail(file, v, "key '" + pre + k + ".at': expected a register R or D");
+        if (k == "table") {
+          if (!v["text"]) fail(file, v, "key '" + pre + k + "': needs text (the manual's text form)");
+          TableError e;
+          if (!parse_table(get<std::string>(v["text"], file, pre + k + ".text"), &a.table, &e)) {
+            const YAML::Mark m = v["text"].Mark();
+            // A block scalar starts on the line after its key.
+            throw SourceError::at(file, m.line + 1 + (e.line > 0 ? e.line : 0), 1,
+                                  "key '" + pre + "table.text': error " + std::to_string(e.code) + ": " + e.message);
+          }
+          a.has_table = true;
+          a.table_at = at;
+        } else {
+          a.has_params = true;
+          a.params_at = at;
+          for (const auto& pf : v) {
+            const std::string pk = pf.first.as<std::string>();
+            if (pk == "at") continue;
+            const int64_t val = get<int64_t>(pf.second, file, pre + "params." + pk);
+            AxisParams& q = a.params;
+            if (pk == "p0") q.p0_unit = int(val);
+            else if (pk == "p1") q.p1_ppr = uint32_t(val);
+            else if (pk == "p2") q.p2_per_rev = int32_t(val);
+            else if (pk == "p3") q.p3_res = int(val);
+            else if (pk == "p4") q.p4_max = int32_t(val);
+            else if (pk == "p5") q.p5_start = int32_t(val);
+            else if (pk == "p6") q.p6_creep = int32_t(val);
+            else if (pk == "p7") q.p7_backlash = int32_t(val);
+            else if (pk == "p8") q.p8_acc_ms = int32_t(val);
+            else if (pk == "p9") { q.p9_rot = int(val & 0xFF); q.p9_home = int((val >> 8) & 0xFF); }
+            else if (pk == "p10") q.p10_fwd_comp = int32_t(val);
+            else if (pk == "p11") q.p11_bwd_comp = int32_t(val);
+            else if (pk == "p12") q.p12_dec_ms = int32_t(val);
+            else if (pk == "p13") q.p13_interp_ms = int32_t(val);
+            else if (pk == "p14") q.p14_ppr = int32_t(val);
+            else if (pk == "p15") q.p15_io = uint32_t(val);
+            else if (pk == "p16") q.p16_zero = int32_t(val);
+            else if (pk == "p17") q.p17_pg0 = int(val);
+            else fail(file, pf.first, "key '" + pre + "params." + pk + "': expected at, p0 ... p17");
+          }
+          const int code = a.params.validate();
+          if (code) fail(file, v, "key '" + pre + "params': parameter error " + std::to_string(code));
+        }
       } else {
-        fail(file, f.first, "key '" + pre + k + "': unknown (name, output, type, units_per_pulse, switches)");
+        fail(file, f.first, "key '" + pre + k + "': unknown (name, output, type, units_per_pulse, switches, table, params)");
       }
     }
   }

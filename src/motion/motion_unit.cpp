@@ -92,6 +92,7 @@ bool MotionUnit::contact(const Step& s) const {
 
 void MotionUnit::before_program(uint64_t now_us) {
   const uint64_t t = now_us * 1000;
+  if (!preloaded_) preload();
   adopt_ladder_positions();
   advance(t);
   for (auto& kv : programs_)
@@ -112,7 +113,28 @@ void MotionUnit::adopt_ladder_positions() {
 
 void MotionUnit::after_program(uint64_t now_us) { write_status(now_us * 1000); }
 
+void MotionUnit::preload() {
+  // The cell YAML's tables and parameter tables, as an MMI would write them at RUN.
+  preloaded_ = true;
+  for (const auto& a : cfg_.axes) {
+    const auto put = [&](const Address& at, const uint16_t* w, size_t n) {
+      for (size_t i = 0; i < n && at.index + i < Memory::word_count(at.area); ++i)
+        mem_.set_reg(at.area, static_cast<uint32_t>(at.index + i), w[i]);
+    };
+    if (a.has_table) {
+      const std::vector<uint16_t> r = encode_table(a.table);
+      put(a.table_at, r.data(), r.size());
+    }
+    if (a.has_params) {
+      uint16_t r[kParamWords];
+      a.params.to_registers(r);
+      put(a.params_at, r, kParamWords);
+    }
+  }
+}
+
 void MotionUnit::on_stop() {
+  preloaded_ = false;
   for (auto& a : axes_) {
     a.axis.cut(now_ns_);
     a.owner = UINT32_MAX;

@@ -10,6 +10,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "plc_cell/core/address.h"
+#include "plc_cell/motion/params.h"
+#include "plc_cell/motion/table.h"
+
 namespace plc_cell {
 namespace motion {
 
@@ -35,6 +39,13 @@ struct AxisDef {
   bool rotary = false;         // JointState position in rad (rotary) or m (linear)
   double units_per_pulse = 1;  // JointState units per pulse
   std::vector<SwitchDef> switches;
+  // Written into the registers at each STOP -> RUN (what an MMI would load):
+  bool has_table = false;
+  Address table_at{};          // table: {at: R0, text: ...} (text form, parsed at load)
+  Table table;
+  bool has_params = false;
+  Address params_at{};         // params: {at: R2000, p8: 100, ...} (defaults + these)
+  AxisParams params;
 };
 
 struct AxesConfig {

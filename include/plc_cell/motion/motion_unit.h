@@ -151,6 +151,7 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   uint16_t read_time(const Step& s) const;
   void write_status(uint64_t t);
   void adopt_ladder_positions();
+  void preload();
   // Homing (DRVZ).
   void start_homing(Program& p, const Step& s, uint64_t t);
   void home_check(Program& p, uint64_t t);
@@ -169,6 +170,7 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   uint64_t now_ns_ = 0;
   std::vector<StepObserver> step_obs_;
   AxesConfig cfg_;
+  bool preloaded_ = false;                // the YAML's tables written since RUN
   hsc::HscUnit* hsc_ = nullptr;           // the counters' unit we are a source of
   std::vector<int>* requests_ = nullptr;  // inside at(): PSOnI requests go here
 };
