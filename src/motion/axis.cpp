@@ -75,6 +75,23 @@ void Axis::settle(uint64_t t) {
 
 void Axis::cut(uint64_t t) { settle(t); }
 
+void Axis::retarget(uint64_t t, double v_target, double v_out, double acc, double dec) {
+  if (!active_) return;
+  const double v = frequency(t);
+  const int64_t e = emitted(t);
+  const bool endless = prof_.endless();
+  const int64_t left = endless ? -1 : prof_.pulses() - e;
+  const int64_t comp_left = std::max<int64_t>(0, comp_ - e);
+  const int64_t len_left = remaining(t);
+  settle(t);
+  if (left == 0) return;
+  active_ = true;
+  t0_ = t;
+  comp_ = comp_left;
+  len_ = len_left;
+  prof_ = Profile::plan(left, v > 0 ? v : std::min(v_out, v_target), v_target, v_out, acc, dec);
+}
+
 void Axis::decelerate(uint64_t t, double v_stop, double dec) {
   if (!active_) return;
   const double v = frequency(t);

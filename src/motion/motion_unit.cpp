@@ -19,6 +19,7 @@ Memory& memory_of(Plc& p) { return *p.locked([](ScanEngine&, Memory& m) { return
 constexpr uint32_t kDecelRelay = 1991;  // M1991: stop/pause with deceleration
 constexpr uint32_t kReadyRelay = 1992;  // M1992+n: axis ready
 constexpr uint32_t kLastStepRelay = 1996;  // M1996+n: last step finished
+constexpr uint32_t kDynamicReg = 4056;  // low byte 5AH: SPD registers followed during the output
 constexpr uint32_t kErrReg = 4060, kStepReg = 4064, kRemainReg = 4072, kFreqReg = 4080, kPosReg = 4088;
 constexpr uint64_t kTimeUnitNs = 10000000;  // WAIT/ACT times are in 0.01 s
 constexpr int kMaxStepsPerInstant = 1000;
@@ -409,6 +410,18 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
     start_move(p, p.table.steps[p.step - 1], t);
   } else if (p.phase == Phase::Moving && !c.pau) {
     const Step& s = p.table.steps[p.step - 1];
+    if ((mem_.reg(Area::R, kDynamicReg) & 0xFF) == 0x5A && s.speed.kind != Operand::Const &&
+        s.motion != Motion::Drvz) {
+      // R4056 low byte 5AH: the speed register is followed during the output.
+      const int64_t v = read32(s.speed.kind, s.speed.value);
+      const double hz = std::min(a.params.speed_hz(v), a.params.max_hz());
+      if (v > 0 && hz >= 1 && hz <= kMaxHz && hz != p.speed_hz) {
+        p.speed_hz = hz;
+        const double v_out = s.motion == Motion::Drvc ? hz : a.params.start_hz();
+        a.axis.retarget(t, hz, v_out, a.params.acc_hz_per_s(), a.params.dec_hz_per_s());
+        if (s.motion == Motion::Drvc) p.chain_speed = a.axis.profile().end_speed();
+      }
+    }
     if (s.transfer == Transfer::Ext && contact(s)) {  // EXT: cut the move short, go on now
       p.paused_left = a.axis.remaining(t);
       a.rest = p.paused_left;

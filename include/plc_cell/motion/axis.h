@@ -22,6 +22,9 @@ class Axis {
   void cut(uint64_t t);
   // Replaces the rest of the move by a deceleration at dec (Hz/s) to v_stop.
   void decelerate(uint64_t t, double v_stop, double dec);
+  // Changes the rest of the move at t to a new target speed (R4056 = 5AH): from the
+  // current speed toward v_target, ending at v_out, over the pulses left.
+  void retarget(uint64_t t, double v_target, double v_out, double acc, double dec);
   // Settles a finished move (call at or after end_ns()).
   void settle(uint64_t t);
 
