@@ -294,6 +294,7 @@ void HscUnit::advance(uint64_t to) {
       t = std::min(t, pin_edge[e]);
     }
     if (!edges_.empty()) t = std::min(t, std::max(edges_.top().t, cur_ns_));
+    for (const EventSource* es : ext_) t = std::min(t, std::max(es->next_event_ns(), cur_ns_));
     for (const auto& tr : trains_) {
       bool up;
       t = std::min(t, tr.next_after(cur_ns_, &up));
@@ -343,6 +344,8 @@ void HscUnit::advance(uint64_t to) {
         fired_.push_back(x_edge_source(x, !now[x]));  // ignored unless configured with a routine
       }
     }
+    for (EventSource* es : ext_)
+      if (es->next_event_ns() <= t) es->at(t, &fired_);
     fire_pending();
     if (!running_ || t >= to) return;
   }
@@ -389,6 +392,8 @@ bool HscUnit::run_isr(int source) {
   engine_.stop_with_fault("interrupt " + label + ": " + in.fault());
   return false;
 }
+
+void HscUnit::remove_event_source(EventSource* s) { ext_.erase(std::remove(ext_.begin(), ext_.end(), s), ext_.end()); }
 
 void HscUnit::raise(int source) {
   irq_.raise(source, [this](int s, const std::string&) { return run_isr(s); });

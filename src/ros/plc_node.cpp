@@ -52,6 +52,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
   pnh.param("counter_rate", counter_rate, counter_rate);
   counters_ = std::make_unique<CounterTopics>(nh, pnh, *cell_, counter_rate);
+  motion_ = std::make_unique<MotionTopics>(nh, pnh, *cell_, pnh.param("motion_rate", 50.0));
 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);

@@ -4,6 +4,7 @@
 #include "plc_cell/hsc/hsc_unit.h"
 #include "plc_cell/temp/hspwm.h"
 #include "plc_cell/temp/temp_functions.h"
+#include "plc_cell/motion/motion_unit.h"
 
 namespace plc_cell {
 
@@ -41,6 +42,8 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
   });
   const YAML::Node& doc = config_.document;
   hsc_ = std::make_unique<hsc::HscUnit>(plc_, hsc::parse_hsc_config(doc["counters"], config_.file));
+  motion_ = std::make_unique<motion::MotionUnit>(plc_);
+  motion_->configure(motion::parse_axes_config(doc["axes"], config_.file));
   // Pulse and step signals on the high-speed inputs X0-X15 become exact-time edges,
   // so counters and edge interrupts see every pulse, not the scan's samples.
   plc_.locked([&](ScanEngine&, Memory&) {
@@ -66,6 +69,7 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
 
 SoftCell::~SoftCell() {
   installed_.clear();
+  motion_.reset();
   hsc_.reset();
   plc_.locked([&](ScanEngine& e, Memory& m) {
     e.remove_hook(sim_.get());

@@ -36,6 +36,18 @@ namespace hsc {
 
 class HscUnit : public ScanHook {
  public:
+  // Another subsystem's events in the same virtual-time loop (the pulse-output
+  // axes): the loop takes its next instant with the others and, at that instant,
+  // lets it act and request interrupts (PSOnI) that are dispatched there.
+  class EventSource {
+   public:
+    virtual ~EventSource() = default;
+    virtual uint64_t next_event_ns() const = 0;  // UINT64_MAX: none
+    virtual void at(uint64_t t_ns, std::vector<int>* requests) = 0;
+  };
+  void add_event_source(EventSource* s) { ext_.push_back(s); }
+  void remove_event_source(EventSource* s);
+
   // Installs itself as a hook of plc's engine; throws Error if the config does not fit.
   HscUnit(Plc& plc, HscConfig cfg);
   ~HscUnit() override;
@@ -167,6 +179,7 @@ class HscUnit : public ScanHook {
   uint64_t hsta_t0_ = 0;
   std::vector<bool> phys_y_ = std::vector<bool>(256, false);
   std::vector<int> fired_;   // sources requested at the present instant
+  std::vector<EventSource*> ext_;
   std::vector<OutputObserver> output_obs_;
   std::vector<IsrObserver> isr_obs_;
 };

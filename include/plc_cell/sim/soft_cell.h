@@ -18,6 +18,9 @@ namespace plc_cell {
 namespace hsc {
 class HscUnit;
 }
+namespace motion {
+class MotionUnit;
+}
 
 // Adds FUN instructions that need the cell's config (FUN150/151 and their ports) before
 // the program is parsed. What it returns (port threads, engines) lives as long as the cell.
@@ -41,6 +44,8 @@ class SoftCell {
   // High-speed counters, timers and interrupts (the config's counters: section).
   // Only touch it under plc().locked().
   hsc::HscUnit& counters() { return *hsc_; }
+  // Pulse-output axes PSO0-PSO3 and FUN140 programs. Only touch it under plc().locked().
+  motion::MotionUnit& motion() { return *motion_; }
   const std::string& program_path() const { return program_path_; }
   // The temperature modules and thermal plants of `modules:`, or nullptr.
   temp::TemperatureCell* temperature() { return temperature_.get(); }
@@ -60,6 +65,7 @@ class SoftCell {
   std::unique_ptr<temp::TemperatureCell> temperature_;
   std::unique_ptr<temp::Rtc> rtc_;
   std::unique_ptr<temp::PwmdaOutputs> pwmda_;  // nullptr without modules.pwmda
+  std::unique_ptr<motion::MotionUnit> motion_;
 };
 
 }  // namespace plc_cell

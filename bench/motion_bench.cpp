@@ -1,0 +1,72 @@
+// Pulse-output benchmark: four axes PSO0-PSO3 each running a FUN140 program at up to
+// 921 600 Hz. One iteration = one 1 ms scan. Pulses are never generated one by one
+// (closed-form profiles), so the cost per scan must not grow with the frequency.
+// Family 1: endless rotation. Family 2: back-and-forth moves of 10 ms each (a step
+// completion per axis every 10 ms): the cost grows with the step rate, not the pulse rate.
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "plc_cell/core/plc.h"
+#include "plc_cell/motion/motion_unit.h"
+#include "plc_cell/motion/table.h"
+
+namespace {
+
+using namespace plc_cell;
+using motion::MotionUnit;
+
+void run(benchmark::State& state, bool moves) {
+  const int64_t hz = state.range(0);
+  Plc plc;
+  MotionUnit unit(plc);
+  std::string il;
+  for (int n = 0; n < 4; ++n)
+    il += "ORG M1925\nLD M1000\nLD M1001\nHSPSO Ps=" + std::to_string(n) + " SR=R" + std::to_string(100 * n) + " WR=R" +
+          std::to_string(1000 + 10 * n) + "\n";
+  plc.load_program_text(il + "END\n", "bench.il");
+  plc.set_mode(RunMode::Run);
+  const std::string n_pulses = std::to_string(hz / 100);
+  const std::string text = moves ? "SPD " + std::to_string(hz) + "\nDRV ADR,+," + n_pulses + ",Ps\nGOTO NEXT\nSPD " +
+                                       std::to_string(hz) + "\nDRV ADR,-," + n_pulses + ",Ps\nGOTO 1\nMEND\n"
+                                 : "SPD " + std::to_string(hz) + "\nDRV ADR,+,0,Ps\nGOTO NEXT\nMEND\n";
+  motion::Table t;
+  motion::TableError e;
+  if (!motion::parse_table(text, &t, &e)) std::abort();
+  const auto regs = motion::encode_table(t);
+  plc.locked([&](ScanEngine&, Memory& m) {
+    for (int n = 0; n < 4; ++n) {
+      motion::AxisParams p;
+      p.p4_max = 921600;
+      p.p8_acc_ms = 0;  // square profile: the position is hz * t exactly
+      unit.set_params(n, p);
+      for (size_t i = 0; i < regs.size(); ++i) m.set_reg(Area::R, 100 * n + i, regs[i]);
+    }
+    return 0;
+  });
+  uint64_t now = 0;
+  for (auto _ : state) {
+    plc.scan(now);
+    now += 1000;
+  }
+  const int64_t pos = plc.locked([&](ScanEngine&, Memory&) { return unit.position(0); });
+  const int64_t elapsed_us = int64_t(now - 1000);
+  const int64_t expect = moves ? -1 : hz * elapsed_us / 1000000;
+  if (!moves && (pos < expect - 1 || pos > expect)) {
+    std::fprintf(stderr, "PSO0 at %lld, expected %lld\n", (long long)pos, (long long)expect);
+    std::abort();
+  }
+  state.counters["pulses_per_scan"] = double(hz) / 1000.0 * 4;
+}
+
+void BM_FourAxesEndless(benchmark::State& state) { run(state, false); }
+void BM_FourAxesStepEvery10ms(benchmark::State& state) { run(state, true); }
+
+BENCHMARK(BM_FourAxesEndless)->Arg(1000)->Arg(20000)->Arg(460000)->Arg(921600);
+BENCHMARK(BM_FourAxesStepEvery10ms)->Arg(1000)->Arg(20000)->Arg(460000)->Arg(921600);
+
+}  // namespace
+
+BENCHMARK_MAIN();

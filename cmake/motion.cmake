@@ -1,0 +1,35 @@
+# Pulse-output positioning (issue 6): FUN140/141/142/143, the axes PSO0-PSO3 and their
+# profiles. Part of plc_cell_core: SoftCell creates the motion unit for every cell.
+target_sources(plc_cell_core PRIVATE
+  src/motion/params.cpp
+  src/motion/table_text.cpp
+  src/motion/table_regs.cpp
+  src/motion/profile.cpp
+  src/motion/axis.cpp
+  src/motion/axis_config.cpp
+  src/motion/motion_unit.cpp
+  src/motion/motion_functions.cpp)
+
+if(CATKIN_ENABLE_TESTING)
+  file(GLOB MOTION_TESTS test/motion/*_test.cpp)
+  catkin_add_gtest(motion_tests test/core/test_main.cpp ${MOTION_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  target_link_libraries(motion_tests plc_cell_core)
+  target_compile_definitions(motion_tests PRIVATE
+    PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+  add_dependencies(motion_tests plc_cell_tool)
+endif()
+
+# The axes on ROS (plc_node): JointState, status, services, the run action.
+list(APPEND PLC_CELL_NODE_SOURCES src/ros/motion_topics.cpp)
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/motion.test DEPENDENCIES plc_node)
+endif()
+
+find_package(benchmark QUIET)
+if(benchmark_FOUND AND EXISTS ${PROJECT_SOURCE_DIR}/bench/motion_bench.cpp)
+  add_executable(bench_motion bench/motion_bench.cpp)
+  target_link_libraries(bench_motion plc_cell_core benchmark::benchmark)
+endif()

@@ -1,0 +1,71 @@
+#pragma once
+// FUN141 MPARA: the 24-register positioning parameter table of one axis (manual §11.6,
+// spec §3.8), its validation with the manual's error codes 1-15, and the unit
+// conversions (Ut -> pulses, machine speed -> Hz). docs/motion.md has the choices.
+#include <cstdint>
+
+namespace plc_cell {
+namespace motion {
+
+constexpr int kParamWords = 24;
+constexpr int64_t kMaxHz = 921600;
+
+struct AxisParams {
+  int p0_unit = 1;            // 0 machine, 1 motor (pulses), 2 compound
+  uint32_t p1_ppr = 2000;     // pulses per revolution (A), unsigned 16-bit
+  int32_t p2_per_rev = 2000;  // movement per revolution (B): um, mDeg or 0.1 mInch
+  int p3_res = 2;             // stroke resolution 0-3
+  int32_t p4_max = 460000;    // limited speed (Hz, or cm/min etc. when P0 = 0)
+  int32_t p5_start = 141;     // start/stop speed
+  int32_t p6_creep = 1000;    // homing creep speed
+  int32_t p7_backlash = 0;    // pulses added to every backward move
+  int32_t p8_acc_ms = 5000;   // time from 0 to P4 (slope P4/P8)
+  int p9_rot = 0;             // P9-0: 1 = position decreases on forward pulses
+  int p9_home = 1;            // P9-1: homing toward 0 increasing, 1 decreasing position
+  int32_t p10_fwd_comp = 0;   // pulses added to forward moves
+  int32_t p11_bwd_comp = 0;   // pulses added to backward moves
+  int32_t p12_dec_ms = 0;     // deceleration time from P4 to 0; 0 = P8
+  int32_t p13_interp_ms = 500;
+  int32_t p14_ppr = 0;        // 32-bit pulses per revolution, overrides P1 when != 0
+  uint32_t p15_io = 0xFFFFFFFFu;  // DOG / limit / PG0 / CLR bytes
+  int32_t p16_zero = 0;       // position loaded at the end of homing
+  int p17_pg0 = 1;            // PG0 pulses to count (DRVZ MD2)
+
+  // Registers SR+0..SR+23, layout of the manual (32-bit values low word first).
+  static AxisParams from_registers(const uint16_t* r);
+  void to_registers(uint16_t* r) const;
+
+  // 0 if valid, else the manual's code: 1 + parameter number (P0 -> 1 ... P14 -> 15).
+  int validate() const;
+
+  uint32_t ppr() const { return p14_ppr != 0 ? static_cast<uint32_t>(p14_ppr) : p1_ppr; }
+  // Stroke in Ut -> pulses. P0 = 1: Ut is one pulse (AMBIG-20). P0 = 0/2:
+  // pulses = stroke * 10^(3 - P3) * A / B, rounded to the nearest pulse.
+  int64_t ut_to_pulses(int64_t stroke) const;
+  // Pulses -> Ut (FUN143 PSCNV), rounded to the nearest unit.
+  int64_t pulses_to_ut(int64_t pulses) const;
+  // A speed parameter or SPD value -> Hz: P0 = 0: f = V * 1000 * A / (6 * B); else V.
+  double speed_hz(int64_t v) const;
+  double max_hz() const { return speed_hz(p4_max); }
+  double start_hz() const { return speed_hz(p5_start); }
+  double creep_hz() const { return speed_hz(p6_creep); }
+  double acc_hz_per_s() const;  // P4/P8 in Hz/s; infinite when P8 = 0
+  double dec_hz_per_s() const;  // P4/P12 (P12 = 0: P4/P8)
+
+  int dog_input() const { return byte_in(0); }    // X number or -1
+  bool dog_nc() const { return (p15_io & 0x80u) != 0; }
+  int limit_input() const { return byte_in(1); }
+  bool limit_nc() const { return (p15_io & 0x8000u) != 0; }
+  int pg0_input() const { return byte_in(2); }
+  bool pg0_rear() const { return (p15_io & 0x800000u) != 0; }
+  int clr_output() const { return (p15_io >> 24) == 0xFF ? -1 : static_cast<int>(p15_io >> 24); }
+
+ private:
+  int byte_in(int b) const {
+    const uint32_t v = (p15_io >> (8 * b)) & 0xFF;
+    return v == 0xFF ? -1 : static_cast<int>(v & 0x7F);
+  }
+};
+
+}  // namespace motion
+}  // namespace plc_cell

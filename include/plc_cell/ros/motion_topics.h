@@ -1,0 +1,31 @@
+#pragma once
+// The pulse-output axes on ROS (docs/motion.md "ROS"): ~joint_states
+// (sensor_msgs/JointState, every axis of the cell YAML's axes: section),
+// ~motion/<axis>/status (AxisStatus), services ~motion/<axis>/load_table,
+// set_params, command, and the action ~motion/<axis>/run (RunMotionTable).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+
+#include "plc_cell/sim/soft_cell.h"
+
+namespace plc_cell {
+
+class MotionTopics {
+ public:
+  MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz);
+  ~MotionTopics();
+
+ private:
+  struct AxisRos;
+  void publish();
+
+  SoftCell& cell_;
+  std::vector<std::unique_ptr<AxisRos>> axes_;
+  ros::Publisher joints_pub_;
+  ros::Timer timer_;
+};
+
+}  // namespace plc_cell

@@ -1,0 +1,52 @@
+#!/usr/bin/python3
+"""Plots the axes of a bag of sensor_msgs/JointState (plc_node's ~joint_states):
+position and velocity of every joint over time, into a PNG.
+
+    rosbag record -O run.bag /plc_node/joint_states
+    scripts/plot_motion.py run.bag -o run.png [--topic /plc_node/joint_states]
+"""
+import argparse
+import collections
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import rosbag
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("bag")
+    ap.add_argument("-o", "--output", default="motion.png")
+    ap.add_argument("--topic", default="/plc_node/joint_states")
+    args = ap.parse_args()
+    t0 = None
+    series = collections.OrderedDict()
+    with rosbag.Bag(args.bag) as bag:
+        for _, msg, _ in bag.read_messages(topics=[args.topic]):
+            t = msg.header.stamp.to_sec()
+            t0 = t if t0 is None else t0
+            for i, name in enumerate(msg.name):
+                s = series.setdefault(name, ([], [], []))
+                s[0].append(t - t0)
+                s[1].append(msg.position[i] if i < len(msg.position) else float("nan"))
+                s[2].append(msg.velocity[i] if i < len(msg.velocity) else float("nan"))
+    if not series:
+        raise SystemExit("no %s messages in %s" % (args.topic, args.bag))
+    fig, (ax_p, ax_v) = plt.subplots(2, 1, sharex=True, figsize=(9, 6))
+    for name, (t, p, v) in series.items():
+        ax_p.plot(t, p, label=name)
+        ax_v.plot(t, v, label=name)
+    ax_p.set_ylabel("position")
+    ax_v.set_ylabel("velocity")
+    ax_v.set_xlabel("t (s)")
+    for a in (ax_p, ax_v):
+        a.grid(True)
+        a.legend()
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=90)
+    print("wrote %s (%d joints)" % (args.output, len(series)))
+
+
+if __name__ == "__main__":
+    main()

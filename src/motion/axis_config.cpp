@@ -1,0 +1,167 @@
+// The cell YAML's axes: section.
+#include "plc_cell/motion/axis_config.h"
+
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+namespace motion {
+
+namespace {
+int64_t floor_mod(int64_t a, int64_t m) {
+  const int64_t r = a % m;
+  return r < 0 ? r + m : r;
+}
+
+[[noreturn]] void fail(const std::string& file, const YAML::Node& n, const std::string& msg) {
+  const YAML::Mark m = n.Mark();
+  throw SourceError::at(file, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0, msg);
+}
+
+template <typename T>
+T get(const YAML::Node& n, const std::string& file, const std::string& what) {
+  try {
+    return n.as<T>();
+  } catch (const YAML::Exception&) {
+    fail(file, n, "key '" + what + "': bad value");
+  }
+}
+}  // namespace
+
+bool SwitchDef::level(int64_t pos) const {
+  if (period > 0) return floor_mod(pos - offset, period) < width;
+  return pos >= from && pos <= to;
+}
+
+int64_t SwitchDef::next_change(int64_t pos, int dir) const {
+  if (period > 0) {
+    const int64_t r = floor_mod(pos - offset, period);
+    if (dir > 0) return r < width ? pos + (width - r) : pos + (period - r);
+    return r < width ? pos - r - 1 : pos - (r - (width - 1));
+  }
+  if (dir > 0) {
+    if (pos < from) return from;
+    if (pos <= to) return to + 1;
+    return INT64_MIN;
+  }
+  if (pos > to) return to;
+  if (pos >= from) return from - 1;
+  return INT64_MIN;
+}
+
+AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
+  AxesConfig cfg;
+  if (!axes || axes.IsNull()) return cfg;
+  if (!axes.IsMap()) fail(file, axes, "key 'axes': expected a map of pso0..pso3");
+  for (const auto& kv : axes) {
+    const std::string key = kv.first.as<std::string>();
+    if (key.size() != 4 || key.compare(0, 3, "pso") != 0 || key[3] < '0' || key[3] > '3')
+      fail(file, kv.first, "key 'axes." + key + "': expected pso0, pso1, pso2 or pso3");
+    const int n = key[3] - '0';
+    AxisDef& a = cfg.axes[n];
+    a.used = true;
+    a.name = key;
+    const std::string pre = "axes." + key + ".";
+    for (const auto& f : kv.second) {
+      const std::string k = f.first.as<std::string>();
+      const YAML::Node& v = f.second;
+      if (k == "name") {
+        a.name = get<std::string>(v, file, pre + k);
+      } else if (k == "output") {
+        const std::string m = get<std::string>(v, file, pre + k);
+        if (m == "UD") a.mode = OutputMode::UD;
+        else if (m == "PR") a.mode = OutputMode::PR;
+        else if (m == "AB") a.mode = OutputMode::AB;
+        else fail(file, v, "key '" + pre + k + "': expected UD, PR or AB");
+      } else if (k == "type") {
+        const std::string t = get<std::string>(v, file, pre + k);
+        if (t != "linear" && t != "rotary") fail(file, v, "key '" + pre + k + "': expected linear or rotary");
+        a.rotary = t == "rotary";
+      } else if (k == "units_per_pulse") {
+        a.units_per_pulse = get<double>(v, file, pre + k);
+        if (!(a.units_per_pulse > 0)) fail(file, v, "key '" + pre + k + "': must be > 0");
+      } else if (k == "switches") {
+        if (!v.IsSequence()) fail(file, v, "key '" + pre + k + "': expected a list");
+        for (const auto& s : v) {
+          SwitchDef d;
+          if (!s["x"]) fail(file, s, "key '" + pre + "switches': each switch needs x");
+          Address ad;
+          std::string why;
+          if (!try_parse_address(get<std::string>(s["x"], file, pre + "switches.x"), &ad, &why) ||
+              ad.area != Area::X || ad.width != Width::Bit)
+            fail(file, s["x"], "key '" + pre + "switches.x': expected an input X0-X255");
+          d.x = static_cast<int>(ad.index);
+          for (const auto& sf : s) {
+            const std::string sk = sf.first.as<std::string>();
+            if (sk == "x") continue;
+            const int64_t val = get<int64_t>(sf.second, file, pre + "switches." + sk);
+            if (sk == "from") d.from = val;
+            else if (sk == "to") d.to = val;
+            else if (sk == "period") d.period = val;
+            else if (sk == "offset") d.offset = val;
+            else if (sk == "width") d.width = val;
+            else fail(file, sf.first, "key '" + pre + "switches." + sk + "': unknown (x, from, to, period, offset, width)");
+          }
+          if (d.period < 0 || (d.period > 0 && (d.width < 1 || d.width >= d.period)))
+            fail(file, s, "key '" + pre + "switches': period > width >= 1");
+          if (d.from > d.to) fail(file, s, "key '" + pre + "switches': from must be <= to");
+          a.switches.push_back(d);
+        }
+      } else if (k == "table" || k == "params") {
+        Address at;
+        std::string why;
+        if (!v["at"] || !try_parse_address(get<std::string>(v["at"], file, pre + k + ".at"), &at, &why) ||
+            (at.area != Area::R && at.area != Area::D) || at.width != Width::Word)
+          fail(file, v, "key '" + pre + k + ".at': expected a register R or D");
+        if (k == "table") {
+          if (!v["text"]) fail(file, v, "key '" + pre + k + "': needs text (the manual's text form)");
+          TableError e;
+          if (!parse_table(get<std::string>(v["text"], file, pre + k + ".text"), &a.table, &e)) {
+            const YAML::Mark m = v["text"].Mark();
+            // A block scalar starts on the line after its key.
+            throw SourceError::at(file, m.line + 1 + (e.line > 0 ? e.line : 0), 1,
+                                  "key '" + pre + "table.text': error " + std::to_string(e.code) + ": " + e.message);
+          }
+          a.has_table = true;
+          a.table_at = at;
+        } else {
+          a.has_params = true;
+          a.params_at = at;
+          for (const auto& pf : v) {
+            const std::string pk = pf.first.as<std::string>();
+            if (pk == "at") continue;
+            const int64_t val = get<int64_t>(pf.second, file, pre + "params." + pk);
+            AxisParams& q = a.params;
+            if (pk == "p0") q.p0_unit = int(val);
+            else if (pk == "p1") q.p1_ppr = uint32_t(val);
+            else if (pk == "p2") q.p2_per_rev = int32_t(val);
+            else if (pk == "p3") q.p3_res = int(val);
+            else if (pk == "p4") q.p4_max = int32_t(val);
+            else if (pk == "p5") q.p5_start = int32_t(val);
+            else if (pk == "p6") q.p6_creep = int32_t(val);
+            else if (pk == "p7") q.p7_backlash = int32_t(val);
+            else if (pk == "p8") q.p8_acc_ms = int32_t(val);
+            else if (pk == "p9") { q.p9_rot = int(val & 0xFF); q.p9_home = int((val >> 8) & 0xFF); }
+            else if (pk == "p10") q.p10_fwd_comp = int32_t(val);
+            else if (pk == "p11") q.p11_bwd_comp = int32_t(val);
+            else if (pk == "p12") q.p12_dec_ms = int32_t(val);
+            else if (pk == "p13") q.p13_interp_ms = int32_t(val);
+            else if (pk == "p14") q.p14_ppr = int32_t(val);
+            else if (pk == "p15") q.p15_io = uint32_t(val);
+            else if (pk == "p16") q.p16_zero = int32_t(val);
+            else if (pk == "p17") q.p17_pg0 = int(val);
+            else fail(file, pf.first, "key '" + pre + "params." + pk + "': expected at, p0 ... p17");
+          }
+          const int code = a.params.validate();
+          if (code) fail(file, v, "key '" + pre + "params': parameter error " + std::to_string(code));
+        }
+      } else {
+        fail(file, f.first, "key '" + pre + k + "': unknown (name, output, type, units_per_pulse, switches, table, params)");
+      }
+    }
+  }
+  return cfg;
+}
+
+}  // namespace motion
+}  // namespace plc_cell

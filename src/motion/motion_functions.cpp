@@ -1,0 +1,107 @@
+// FUN140 HSPSO, FUN141 MPARA, FUN142 PSOFF, FUN143 PSCNV: the positioning
+// instructions. They act on the MotionUnit installed on the engine (SoftCell
+// creates one for every cell); without one they do nothing.
+#include "plc_cell/core/function_table.h"
+#include "plc_cell/core/interpreter.h"
+#include "plc_cell/motion/motion_unit.h"
+
+namespace plc_cell {
+namespace motion {
+
+namespace {
+std::string check_ps(const std::vector<plc_cell::Operand>& o) {
+  return o[0].k >= 0 && o[0].k <= 3 ? "" : "Ps must be 0-3 (PSO0-PSO3)";
+}
+std::string check_area(const plc_cell::Operand& o, const char* what) {
+  if (o.addr.area != Area::R && o.addr.area != Area::D) return std::string(what) + " must be an R or D register";
+  return "";
+}
+}  // namespace
+
+void install_functions(FunctionTable& t) {
+  using R = OperandRole;
+  FunctionSpec s;
+
+  s = {};
+  s.number = 140; s.mnemonic = "HSPSO";  // run a positioning program on axis Ps
+  s.inputs = {"EN", "PAU", "ABT"};
+  s.operands = {{"Ps", R::Const}, {"SR", R::Register}, {"WR", R::Register},
+                {"ACT", R::BitOut, true}, {"ERR", R::BitOut, true}, {"DN", R::BitOut, true}};
+  s.allow_32 = false;
+  s.allow_pulse = false;
+  s.always_runs = true;  // EN = 0 stops the output
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    auto* u = MotionUnit::of(c.engine);
+    if (!u) return;
+    Fun140Call call;
+    call.ps = static_cast<int>(o[0].k);
+    call.sr = o[1].addr;
+    call.wr = o[2].addr;
+    call.en = c.inputs[0];
+    call.pau = c.inputs[1];
+    call.abt = c.inputs[2];
+    call.instance = c.instance;
+    const Fun140Outputs r = u->fun140(call, c.now_us);
+    c.flag(o[3], r.act);
+    c.flag(o[4], r.err);
+    c.flag(o[5], r.dn);
+  };
+  s.check = [](const std::vector<plc_cell::Operand>& o) {
+    std::string e = check_ps(o);
+    if (e.empty()) e = check_area(o[1], "SR");
+    if (e.empty()) e = check_area(o[2], "WR");
+    return e;
+  };
+  t.add(s);
+
+  s = {};
+  s.number = 141; s.mnemonic = "MPARA";  // the axis's parameter table (runs whether EN is 0 or 1)
+  s.operands = {{"Ps", R::Const}, {"SR", R::Register}, {"ERR", R::BitOut, true}};
+  s.allow_32 = false;
+  s.allow_pulse = false;
+  s.always_runs = true;
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    auto* u = MotionUnit::of(c.engine);
+    if (!u) return;
+    c.flag(o[2], !u->fun141(static_cast<int>(o[0].k), o[1].addr));
+  };
+  s.check = [](const std::vector<plc_cell::Operand>& o) {
+    std::string e = check_ps(o);
+    return e.empty() ? check_area(o[1], "SR") : e;
+  };
+  t.add(s);
+
+  s = {};
+  s.number = 142; s.mnemonic = "PSOFF";  // force the pulse output of axis N to stop
+  s.operands = {{"N", R::Const}};
+  s.allow_32 = false;
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    if (auto* u = MotionUnit::of(c.engine)) u->fun142(static_cast<int>(o[0].k), c.now_us);
+  };
+  s.check = check_ps;
+  t.add(s);
+
+  s = {};
+  s.number = 143; s.mnemonic = "PSCNV";  // current position -> Ut, 32-bit D
+  s.operands = {{"Ps", R::Const}, {"D", R::Register}};
+  s.allow_32 = false;
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    auto* u = MotionUnit::of(c.engine);
+    if (!u) return;
+    const uint32_t v = static_cast<uint32_t>(u->fun143(static_cast<int>(o[0].k)));
+    c.mem.write({o[1].addr.area, Width::Word, o[1].addr.index}, v & 0xFFFF);
+    c.mem.write({o[1].addr.area, Width::Word, o[1].addr.index + 1}, v >> 16);
+  };
+  s.check = [](const std::vector<plc_cell::Operand>& o) {
+    std::string e = check_ps(o);
+    return e.empty() ? check_area(o[1], "D") : e;
+  };
+  t.add(s);
+}
+
+namespace {
+const bool installed = (FunctionTable::add_installer(&install_functions), true);
+}  // namespace
+
+}  // namespace motion
+}  // namespace plc_cell

@@ -1,0 +1,243 @@
+// The pulse-output axes on ROS: JointState, status, services and the run action.
+#include "plc_cell/ros/motion_topics.h"
+
+#include <actionlib/server/simple_action_server.h>
+#include <sensor_msgs/JointState.h>
+
+#include "plc_cell/AxisStatus.h"
+#include "plc_cell/LoadMotionTable.h"
+#include "plc_cell/MotionCommand.h"
+#include "plc_cell/RunMotionTableAction.h"
+#include "plc_cell/SetMotionParams.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/motion/motion_unit.h"
+
+namespace plc_cell {
+
+using motion::MotionUnit;
+using RunServer = actionlib::SimpleActionServer<RunMotionTableAction>;
+
+struct MotionTopics::AxisRos {
+  int n = 0;
+  std::string name;
+  double upp = 1;
+  ros::Publisher status_pub;
+  std::vector<ros::ServiceServer> services;
+  std::unique_ptr<RunServer> run;
+};
+
+namespace {
+bool parse(const std::string& text, motion::Table* t, std::string* msg, int* code, int* line) {
+  motion::TableError e;
+  if (motion::parse_table(text, t, &e)) return true;
+  *code = e.code;
+  *line = e.line;
+  *msg = "line " + std::to_string(e.line) + ": error " + std::to_string(e.code) + ": " + e.message;
+  return false;
+}
+}  // namespace
+
+MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz) : cell_(cell) {
+  if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~motion_rate must be in (0, 1000] Hz");
+  const motion::AxesConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.motion().config(); });
+  const auto locked = [this](auto&& f) {
+    return cell_.plc().locked([&](ScanEngine&, Memory&) { return f(cell_.motion()); });
+  };
+  for (int n = 0; n < motion::kAxes; ++n) {
+    if (!cfg.axes[n].used) continue;
+    auto a = std::make_unique<AxisRos>();
+    a->n = n;
+    a->name = cfg.axes[n].name;
+    a->upp = cfg.axes[n].units_per_pulse;
+    const std::string base = "motion/" + a->name;
+    a->status_pub = pnh.advertise<AxisStatus>(base + "/status", 10);
+    a->services.push_back(pnh.advertiseService<LoadMotionTable::Request, LoadMotionTable::Response>(
+        base + "/load_table", [n, locked](LoadMotionTable::Request& req, LoadMotionTable::Response& res) {
+          motion::Table t;
+          int code = 0, line = 0;
+          if (!parse(req.table, &t, &res.message, &code, &line)) {
+            res.success = false;
+            res.error_code = code;
+            res.line = line;
+            return true;
+          }
+          std::string why;
+          res.success = locked([&](MotionUnit& u) { return u.load_table(n, t, &why); });
+          res.steps = res.success ? static_cast<int32_t>(t.steps.size()) : 0;
+          res.message = why;
+          return true;
+        }));
+    a->services.push_back(pnh.advertiseService<SetMotionParams::Request, SetMotionParams::Response>(
+        base + "/set_params", [n, locked](SetMotionParams::Request& req, SetMotionParams::Response& res) {
+          if (req.values.size() != 18) {
+            res.success = false;
+            res.message = "give the 18 values P0..P17";
+            return true;
+          }
+          const auto& v = req.values;
+          motion::AxisParams p;
+          p.p0_unit = static_cast<int>(v[0]);
+          p.p1_ppr = static_cast<uint32_t>(v[1]);
+          p.p2_per_rev = static_cast<int32_t>(v[2]);
+          p.p3_res = static_cast<int>(v[3]);
+          p.p4_max = static_cast<int32_t>(v[4]);
+          p.p5_start = static_cast<int32_t>(v[5]);
+          p.p6_creep = static_cast<int32_t>(v[6]);
+          p.p7_backlash = static_cast<int32_t>(v[7]);
+          p.p8_acc_ms = static_cast<int32_t>(v[8]);
+          p.p9_rot = static_cast<int>(v[9] & 0xFF);
+          p.p9_home = static_cast<int>((v[9] >> 8) & 0xFF);
+          p.p10_fwd_comp = static_cast<int32_t>(v[10]);
+          p.p11_bwd_comp = static_cast<int32_t>(v[11]);
+          p.p12_dec_ms = static_cast<int32_t>(v[12]);
+          p.p13_interp_ms = static_cast<int32_t>(v[13]);
+          p.p14_ppr = static_cast<int32_t>(v[14]);
+          p.p15_io = static_cast<uint32_t>(v[15]);
+          p.p16_zero = static_cast<int32_t>(v[16]);
+          p.p17_pg0 = static_cast<int>(v[17]);
+          res.error_code = p.validate();
+          res.success = res.error_code == 0;
+          if (res.success) {
+            locked([&](MotionUnit& u) {
+              u.set_params(n, p);
+              return 0;
+            });
+          } else {
+            res.message = "parameter error " + std::to_string(res.error_code);
+          }
+          return true;
+        }));
+    a->services.push_back(pnh.advertiseService<MotionCommand::Request, MotionCommand::Response>(
+        base + "/command", [n, locked](MotionCommand::Request& req, MotionCommand::Response& res) {
+          std::string why;
+          if (req.command == "home") {
+            motion::Table t;
+            int code = 0, line = 0;
+            const std::string text = "SPD " + std::to_string(req.speed) + "\nDRVZ MD" + std::to_string(req.home_mode) +
+                                     "\nGOTO NEXT\nMEND\n";
+            if (!parse(text, &t, &res.message, &code, &line)) {
+              res.success = false;
+              return true;
+            }
+            res.success = locked([&](MotionUnit& u) {
+              return u.load_table(n, t, &why) && u.command(n, MotionUnit::Command::Start, &why);
+            });
+          } else {
+            MotionUnit::Command c;
+            if (req.command == "start") c = MotionUnit::Command::Start;
+            else if (req.command == "pause") c = MotionUnit::Command::Pause;
+            else if (req.command == "resume") c = MotionUnit::Command::Resume;
+            else if (req.command == "abort") c = MotionUnit::Command::Abort;
+            else {
+              res.success = false;
+              res.message = "command must be start, pause, resume, abort or home";
+              return true;
+            }
+            res.success = locked([&](MotionUnit& u) { return u.command(n, c, &why); });
+          }
+          res.message = why;
+          return true;
+        }));
+    AxisRos* ar = a.get();
+    a->run = std::make_unique<RunServer>(
+        pnh, base + "/run",
+        [ar, locked](const RunMotionTableGoalConstPtr& goal) {
+          RunServer& srv = *ar->run;
+          RunMotionTableResult result;
+          std::string why;
+          motion::Table t;
+          int code = 0, line = 0;
+          if (!goal->table.empty() && !parse(goal->table, &t, &result.message, &code, &line)) {
+            result.error_code = code;
+            srv.setAborted(result, result.message);
+            return;
+          }
+          const bool ok = locked([&](MotionUnit& u) {
+            if (!goal->table.empty() && !u.load_table(ar->n, t, &why)) return false;
+            return u.command(ar->n, MotionUnit::Command::Start, &why);
+          });
+          if (!ok) {
+            result.message = why;
+            srv.setAborted(result, why);
+            return;
+          }
+          ros::Rate rate(50);
+          for (;;) {
+            RunMotionTableFeedback fb;
+            bool running = false;
+            int err = 0;
+            int64_t pulses = 0;
+            locked([&](MotionUnit& u) {
+              running = u.program_running(ar->n);
+              err = u.error(ar->n);
+              pulses = u.position(ar->n);
+              fb.step = u.step(ar->n);
+              fb.velocity = u.frequency(ar->n) * ar->upp * u.axis(ar->n).direction();
+              return 0;
+            });
+            fb.position = static_cast<double>(pulses) * ar->upp;
+            result.pulses = pulses;
+            result.position = fb.position;
+            if (srv.isPreemptRequested() || !ros::ok()) {
+              locked([&](MotionUnit& u) { return u.command(ar->n, MotionUnit::Command::Abort, &why); });
+              result.message = "cancelled: decelerated stop";
+              srv.setPreempted(result, result.message);
+              return;
+            }
+            if (!running) {
+              result.error_code = err;
+              result.success = err == 0;
+              if (result.success) srv.setSucceeded(result);
+              else srv.setAborted(result, "error " + std::to_string(err));
+              return;
+            }
+            srv.publishFeedback(fb);
+            rate.sleep();
+          }
+        },
+        false);
+    a->run->start();
+    axes_.push_back(std::move(a));
+  }
+  if (axes_.empty()) return;
+  joints_pub_ = pnh.advertise<sensor_msgs::JointState>("joint_states", 10);
+  timer_ = nh.createTimer(ros::Duration(1.0 / rate_hz), [this](const ros::TimerEvent&) { publish(); });
+}
+
+MotionTopics::~MotionTopics() {
+  for (auto& a : axes_) a->run->shutdown();
+}
+
+void MotionTopics::publish() {
+  sensor_msgs::JointState js;
+  js.header.stamp = ros::Time::now();
+  js.header.frame_id = cell_.config().name;
+  std::vector<AxisStatus> st;
+  cell_.plc().locked([&](ScanEngine&, Memory&) {
+    MotionUnit& u = cell_.motion();
+    for (const auto& a : axes_) {
+      AxisStatus s;
+      s.header = js.header;
+      s.name = a->name;
+      s.number = static_cast<uint8_t>(a->n);
+      s.pulses = u.position(a->n);
+      s.position = static_cast<double>(s.pulses) * a->upp;
+      s.frequency = u.frequency(a->n) * u.axis(a->n).direction();
+      s.remaining = static_cast<int32_t>(u.axis(a->n).moving() ? u.axis(a->n).remaining(u.now_ns()) : 0);
+      s.step = u.step(a->n);
+      s.busy = u.busy(a->n);
+      s.running = u.program_running(a->n);
+      s.finished = u.finished(a->n);
+      s.error = u.error(a->n);
+      st.push_back(s);
+      js.name.push_back(a->name);
+      js.position.push_back(s.position);
+      js.velocity.push_back(s.frequency * a->upp);
+    }
+    return 0;
+  });
+  joints_pub_.publish(js);
+  for (size_t i = 0; i < axes_.size(); ++i) axes_[i]->status_pub.publish(st[i]);
+}
+
+}  // namespace plc_cell

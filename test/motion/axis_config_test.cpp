@@ -1,0 +1,72 @@
+// The cell YAML's axes: section and the positional switches.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/motion/axis_config.h"
+
+namespace plc_cell {
+namespace motion {
+namespace {
+
+TEST(AxisConfig, ParsesNamesModesMechanicsAndSwitches) {
+  const YAML::Node doc = YAML::Load(R"(axes:
+  pso0:
+    name: slide
+    output: UD
+    type: linear
+    units_per_pulse: 0.00001
+    switches:
+      - {x: X2, from: -5000, to: -3000}
+      - {x: X4, period: 200, width: 5}
+  pso2: {name: table, type: rotary, units_per_pulse: 0.0031416}
+)");
+  const AxesConfig c = parse_axes_config(doc["axes"], "cell.yaml");
+  EXPECT_TRUE(c.axes[0].used);
+  EXPECT_FALSE(c.axes[1].used);
+  EXPECT_EQ(c.axes[0].name, "slide");
+  EXPECT_EQ(c.axes[0].mode, OutputMode::UD);
+  EXPECT_DOUBLE_EQ(c.axes[0].units_per_pulse, 1e-5);
+  ASSERT_EQ(c.axes[0].switches.size(), 2u);
+  EXPECT_EQ(c.axes[0].switches[1].x, 4);
+  EXPECT_TRUE(c.axes[2].rotary);
+  EXPECT_EQ(c.axes[2].mode, OutputMode::PR);  // default
+}
+
+TEST(AxisConfig, BadKeysNameTheirLine) {
+  try {
+    parse_axes_config(YAML::Load("axes:\n  pso0:\n    name: a\n    outputs: UD\n")["axes"], "cell.yaml");
+    FAIL() << "no error";
+  } catch (const SourceError& e) {
+    EXPECT_NE(std::string(e.what()).find("cell.yaml:4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("axes.pso0.outputs"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse_axes_config(YAML::Load("axes:\n  pso4: {}\n")["axes"], "c"), SourceError);
+  EXPECT_THROW(parse_axes_config(YAML::Load("axes:\n  pso0: {switches: [{x: Y2}]}\n")["axes"], "c"), SourceError);
+  EXPECT_THROW(parse_axes_config(YAML::Load("axes:\n  pso0: {units_per_pulse: 0}\n")["axes"], "c"), SourceError);
+}
+
+TEST(AxisConfig, SwitchLevelsAndNextChanges) {
+  SwitchDef w;
+  w.from = -5000;
+  w.to = -3000;
+  EXPECT_FALSE(w.level(-2999));
+  EXPECT_TRUE(w.level(-3000));
+  EXPECT_EQ(w.next_change(0, -1), -3000);
+  EXPECT_EQ(w.next_change(-3000, -1), -5001);
+  EXPECT_EQ(w.next_change(-5001, +1), -5000);
+  EXPECT_EQ(w.next_change(-4000, +1), -2999);
+  SwitchDef pg;
+  pg.period = 200;
+  pg.width = 5;
+  EXPECT_TRUE(pg.level(-200));
+  EXPECT_TRUE(pg.level(-196));
+  EXPECT_FALSE(pg.level(-195));
+  EXPECT_EQ(pg.next_change(-3000, -1), -3001);   // leaves the pulse at -3000
+  EXPECT_EQ(pg.next_change(-3001, -1), -3196);   // next rising edge moving down
+  EXPECT_EQ(pg.next_change(-3196, +1), -3195);
+}
+
+}  // namespace
+}  // namespace motion
+}  // namespace plc_cell

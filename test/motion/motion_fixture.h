@@ -1,0 +1,103 @@
+#pragma once
+// A soft PLC with the motion unit on a virtual clock; every step completion is
+// logged with its exact instant.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/plc.h"
+#include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/motion/motion_unit.h"
+#include "plc_cell/motion/params.h"
+#include "plc_cell/motion/table.h"
+
+namespace plc_cell {
+namespace motion {
+
+struct StepDone {
+  int ps, step;
+  uint64_t t_ns;
+};
+
+// FUN141 at R2000 (axis 0), the table at R0, working registers R100; M1 = EN,
+// M2 = PAU, M3 = ABT; ACT/ERR/DN on M10/M11/M12.
+constexpr const char* kAxis0Program = R"(ORG M1925
+MPARA Ps=0 SR=R2000 ERR=M13
+ORG M1
+LD M2
+LD M3
+HSPSO Ps=0 SR=R0 WR=R100 ACT=M10 ERR=M11 DN=M12
+END
+)";
+
+class MotionCell {
+ public:
+  // with_counters: the HSC unit too (as SoftCell makes it): PSOnI in its event loop.
+  explicit MotionCell(const std::string& il = kAxis0Program, bool with_counters = false) {
+    if (with_counters) {
+      counters = std::make_unique<hsc::HscUnit>(plc, hsc::HscConfig{});
+      counters->on_isr([this](uint64_t t, int s) { isrs.push_back({t, s}); });
+    }
+    unit = std::make_unique<MotionUnit>(plc);
+    unit->on_step_done([this](int ps, int step, uint64_t t) { done.push_back({ps, step, t}); });
+    plc.load_program_text(il, "test.il");
+    EXPECT_TRUE(plc.set_mode(RunMode::Run));
+  }
+  void params(const AxisParams& p, uint32_t sr = 2000) {
+    uint16_t r[kParamWords];
+    p.to_registers(r);
+    for (int i = 0; i < kParamWords; ++i) put("R" + std::to_string(sr + i), r[i]);
+  }
+  void table(const std::string& text, uint32_t sr = 0) {
+    Table t;
+    TableError e;
+    ASSERT_TRUE(parse_table(text, &t, &e)) << e.line << ": " << e.message;
+    const auto r = encode_table(t);
+    for (size_t i = 0; i < r.size(); ++i) put("R" + std::to_string(sr + i), r[i]);
+  }
+  void run(uint64_t duration_us, uint64_t period_us = 1000) {
+    const uint64_t end = now_us + duration_us;
+    while (now_us < end) {
+      plc.scan(now_us);
+      now_us += period_us;
+    }
+  }
+  // Scans until cond() holds (at most limit_us of virtual time).
+  template <typename F>
+  bool run_until(F cond, uint64_t limit_us, uint64_t period_us = 1000) {
+    const uint64_t end = now_us + limit_us;
+    while (now_us < end) {
+      plc.scan(now_us);
+      now_us += period_us;
+      if (cond()) return true;
+    }
+    return false;
+  }
+  uint32_t get(const std::string& a) { return plc.read(parse_address(a), 1).at(0); }
+  int32_t get32(const std::string& a) { return static_cast<int32_t>(get(a)); }
+  void put(const std::string& a, uint32_t v) { plc.write(parse_address(a), {v}); }
+  template <typename F>
+  auto with(F&& f) {
+    return plc.locked([&](ScanEngine&, Memory&) { return f(*unit); });
+  }
+
+  Plc plc;
+  std::unique_ptr<hsc::HscUnit> counters;
+  std::unique_ptr<MotionUnit> unit;  // after counters: removed from its loop first
+  std::vector<std::pair<uint64_t, int>> isrs;
+  std::vector<StepDone> done;
+  uint64_t now_us = 0;
+};
+
+// Test parameters: P8 = 100 ms (4.6 MHz/s), everything else the manual's default.
+inline AxisParams fast_params() {
+  AxisParams p;
+  p.p8_acc_ms = 100;
+  return p;
+}
+
+}  // namespace motion
+}  // namespace plc_cell

@@ -1,0 +1,101 @@
+// FUN141: register layout, defaults, the manual's error codes, unit conversion.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "plc_cell/motion/params.h"
+
+namespace plc_cell {
+namespace motion {
+namespace {
+
+TEST(Params, ManualExample3TableRoundTrips) {
+  // Example 3 (R500-R523): R519 = A802H (limit X40 NC, DOG X2 NO), R520 = 0804H (CLR Y8, PG0 X4).
+  uint16_t r[kParamWords] = {1, 2000, 2000, 0, 2, 0x04E0, 0x0007, 141, 0, 1000, 0, 5000, 0x0100,
+                             0, 0, 0, 500, 0, 0, 0xA802, 0x0804, 100, 0, 10};
+  const AxisParams p = AxisParams::from_registers(r);
+  EXPECT_EQ(p.validate(), 0);
+  EXPECT_EQ(p.p4_max, 460000);
+  EXPECT_EQ(p.p9_rot, 0);
+  EXPECT_EQ(p.p9_home, 1);
+  EXPECT_EQ(p.dog_input(), 2);
+  EXPECT_FALSE(p.dog_nc());
+  EXPECT_EQ(p.limit_input(), 40);
+  EXPECT_TRUE(p.limit_nc());
+  EXPECT_EQ(p.pg0_input(), 4);
+  EXPECT_FALSE(p.pg0_rear());
+  EXPECT_EQ(p.clr_output(), 8);
+  EXPECT_EQ(p.p16_zero, 100);
+  EXPECT_EQ(p.p17_pg0, 10);
+  uint16_t back[kParamWords];
+  p.to_registers(back);
+  for (int i = 0; i < kParamWords; ++i) EXPECT_EQ(back[i], r[i]) << "SR+" << i;
+}
+
+TEST(Params, DefaultsAreTheManuals) {
+  const AxisParams p;
+  EXPECT_EQ(p.validate(), 0);
+  EXPECT_DOUBLE_EQ(p.acc_hz_per_s(), 92000.0);  // 460000 Hz in 5 s
+  EXPECT_DOUBLE_EQ(p.dec_hz_per_s(), 92000.0);  // P12 = 0: P8
+  EXPECT_EQ(p.dog_input(), -1);
+  EXPECT_EQ(p.clr_output(), -1);
+}
+
+TEST(Params, EachOutOfRangeValueGivesTheManualsCode) {
+  struct Case { void (*set)(AxisParams&); int code; };
+  const Case cases[] = {
+      {[](AxisParams& p) { p.p0_unit = 3; }, 1},
+      {[](AxisParams& p) { p.p1_ppr = 0; }, 2},
+      {[](AxisParams& p) { p.p2_per_rev = 0; }, 3},
+      {[](AxisParams& p) { p.p2_per_rev = 1000000; }, 3},
+      {[](AxisParams& p) { p.p3_res = 4; }, 4},
+      {[](AxisParams& p) { p.p4_max = 921601; }, 5},
+      {[](AxisParams& p) { p.p4_max = 0; }, 5},
+      {[](AxisParams& p) { p.p5_start = -1; }, 6},
+      {[](AxisParams& p) { p.p5_start = 921601; }, 6},
+      {[](AxisParams& p) { p.p6_creep = 0; }, 7},
+      {[](AxisParams& p) { p.p7_backlash = -1; }, 8},
+      {[](AxisParams& p) { p.p8_acc_ms = 30001; }, 9},
+      {[](AxisParams& p) { p.p9_home = 2; }, 10},
+      {[](AxisParams& p) { p.p12_dec_ms = -5; }, 13},
+      {[](AxisParams& p) { p.p13_interp_ms = 30001; }, 14},
+      {[](AxisParams& p) { p.p14_ppr = 2000000; }, 15},
+  };
+  for (const auto& c : cases) {
+    AxisParams p;
+    c.set(p);
+    EXPECT_EQ(p.validate(), c.code);
+  }
+  // Machine units: P4 = 153000 cm/min is in range but with A/B = 1 exceeds 921600 Hz.
+  AxisParams m;
+  m.p0_unit = 0;
+  m.p1_ppr = 1000;
+  m.p2_per_rev = 1000;
+  m.p4_max = 5529;  // 5529 * 1000 / 6 = 921500 Hz
+  m.p5_start = 10;
+  EXPECT_EQ(m.validate(), 0);
+  m.p4_max = 5530;  // 921667 Hz
+  EXPECT_EQ(m.validate(), 5);
+}
+
+TEST(Params, UtToPulses) {
+  AxisParams p;
+  EXPECT_EQ(p.ut_to_pulses(12345), 12345);  // P0 = 1: Ut is one pulse
+  p.p0_unit = 2;  // compound: stroke in mm
+  p.p1_ppr = 2000;
+  p.p2_per_rev = 5000;  // 5 mm per revolution
+  p.p3_res = 2;         // Ut = 0.01 mm
+  EXPECT_EQ(p.ut_to_pulses(500), 2000);   // 5.00 mm = one revolution
+  EXPECT_EQ(p.ut_to_pulses(-250), -1000);
+  EXPECT_EQ(p.pulses_to_ut(2000), 500);
+  p.p3_res = 0;  // Ut = 1 mm
+  EXPECT_EQ(p.ut_to_pulses(10), 4000);
+  p.p14_ppr = 10000;  // P14 overrides P1
+  EXPECT_EQ(p.ut_to_pulses(10), 20000);
+  p.p0_unit = 0;  // machine: speed 60 cm/min = 10 mm/s = 2 rev/s = 20000 Hz
+  EXPECT_DOUBLE_EQ(p.speed_hz(60), 20000.0);
+}
+
+}  // namespace
+}  // namespace motion
+}  // namespace plc_cell
