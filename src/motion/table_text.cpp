@@ -308,7 +308,7 @@ const char* contact_prefix(ContactArea a) { return a == ContactArea::X ? "X" : a
 
 std::string format_table(const Table& t) {
   std::ostringstream o;
-  char num[8];
+  char num[24];
   for (size_t i = 0; i < t.steps.size(); ++i) {
     const Step& s = t.steps[i];
     std::snprintf(num, sizeof num, "%03zu", i + 1);
