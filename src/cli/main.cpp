@@ -26,6 +26,8 @@ const char* kUsage =
     "         talk to a FATEK FBs-PLC (or plc_cell run --fatek-tcp/--fatek-serial)\n"
     "  run    ... [--fatek-tcp HOST:PORT] [--fatek-serial DEV[:BAUD[:FMT]]] [--station N]\n"
     "         also serve the FATEK protocol as slave station N (default 1)\n"
+    "  run    ... [--persist FILE] [--persist-interval DURATION]\n"
+    "         keep the retentive ranges in FILE across restarts and crashes (default 100ms)\n"
 
     "\n"
     "exit status: 0 ok, 1 program/config/runtime error, 2 usage error\n";

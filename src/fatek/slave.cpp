@@ -127,6 +127,8 @@ ErrorCode Slave::execute(const Request& req, Response* rsp) {
     }
     return 0;
   });
+  // The reply is built after this returns: a write is durable before it is acknowledged.
+  if (req.cmd == Cmd::WriteDiscretes || req.cmd == Cmd::WriteRegisters || req.cmd == Cmd::MixedWrite) plc_.commit();
   return ErrorCode::Ok;
 }
 

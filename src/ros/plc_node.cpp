@@ -66,6 +66,20 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
     publish(s, false);
   });
 
+  // Retentive memory from the last run, before the first scan and the first request.
+  PersistSettings keep = cfg.persist;
+  pnh.param<std::string>("persist_file", keep.file, keep.file);
+  double persist_interval = double(keep.interval_us) / 1e6;
+  pnh.param("persist_interval", persist_interval, persist_interval);
+  if (!(persist_interval >= 0.001 && persist_interval <= 60)) throw Error("~persist_interval must be in [0.001, 60] s");
+  keep.interval_us = uint64_t(persist_interval * 1e6);
+  if (!keep.file.empty()) {
+    persister_ = std::make_unique<persist::Persister>(cell_->plc(), keep, [](const std::string& l) {
+      ROS_INFO("plc_node: %s", l.c_str());
+    });
+    updater_.add("persistence", this, &PlcNode::diagnose_persist);
+  }
+
   // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
   add_fatek_servers(cell_->plc(), pnh, &servers_);
   add_modbus_servers(cell_->plc(), pnh, &servers_);
@@ -88,6 +102,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
 PlcNode::~PlcNode() {
   for (auto& s : servers_) s->stop();
   if (loop_) loop_->stop();
+  services_.clear();
+  persister_.reset();  // after every writer stopped: the newest image goes to disk
   {
     std::lock_guard<std::mutex> lk(snap_mu_);
     stopping_ = true;
@@ -183,6 +199,19 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("wake latency avg (us)", v.st.wake_latency.avg_ns() / 1000.0);
   stat.add("wake latency max (us)", v.st.wake_latency.max_ns / 1000.0);
   stat.add("overruns", v.st.overruns);
+}
+
+void PlcNode::diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  const persist::PersistStatus p = persister_->status();
+  if (!p.error.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, p.error);
+  else if (!p.problems.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "started from a fallback copy");
+  else stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "retentive ranges persisted");
+  stat.add("file", p.file);
+  stat.add("restored", p.restored);
+  for (size_t i = 0; i < p.problems.size(); ++i) stat.add("store problem " + std::to_string(i + 1), p.problems[i]);
+  stat.add("sequence", p.seq);
+  stat.add("durable sequence", p.durable_seq);
+  stat.add("flushes", p.flushes);
 }
 
 // ---- services: every failure is a reply with a message, never an exception ----

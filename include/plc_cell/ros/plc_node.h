@@ -20,6 +20,7 @@
 #include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/ros/counter_topics.h"
 #include "plc_cell/io/server.h"
+#include "plc_cell/persist/persister.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
@@ -44,6 +45,7 @@ class PlcNode {
   void publisher_loop();
   void publish(const Snapshot& s, bool all_signals);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
   bool on_read(ReadMemory::Request& req, ReadMemory::Response& res);
   bool on_write(WriteMemory::Request& req, WriteMemory::Response& res);
@@ -52,6 +54,7 @@ class PlcNode {
   bool on_load(LoadProgram::Request& req, LoadProgram::Response& res);
 
   std::unique_ptr<SoftCell> cell_;
+  std::unique_ptr<persist::Persister> persister_;  // ~persist_file / plc.persist; may be null
   std::unique_ptr<RealTimeLoop> loop_;
   std::vector<std::unique_ptr<Server>> servers_;  // protocol servers on this PLC
   std::unique_ptr<CounterTopics> counters_;        // high-speed counters on topics

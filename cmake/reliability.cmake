@@ -1,0 +1,19 @@
+# Reliability subsystem (issue 8): retentive memory that survives restarts and crashes.
+add_library(plc_cell_persist STATIC
+  src/persist/crc32.cpp
+  src/persist/retentive_image.cpp
+  src/persist/slot_file.cpp
+  src/persist/persister.cpp)
+target_link_libraries(plc_cell_persist PUBLIC plc_cell_core)
+set_target_properties(plc_cell_persist PROPERTIES POSITION_INDEPENDENT_CODE ON)
+list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_persist)
+
+if(CATKIN_ENABLE_TESTING)
+  file(GLOB RELIABILITY_TESTS ${PROJECT_SOURCE_DIR}/test/reliability/*_test.cpp)
+  catkin_add_gtest(reliability_tests test/core/test_main.cpp ${RELIABILITY_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  target_link_libraries(reliability_tests plc_cell_persist plc_cell_fatek plc_cell_modbus)
+  target_compile_definitions(reliability_tests PRIVATE
+    PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+  add_dependencies(reliability_tests plc_cell_tool)
+endif()
