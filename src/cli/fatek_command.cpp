@@ -4,6 +4,8 @@
 #include <memory>
 
 #include "args.h"
+#include "plc_cell/config/cell_config.h"
+#include "plc_cell/core/writable_ranges.h"
 #include "commands.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
@@ -128,8 +130,17 @@ int cmd_fatek(const std::vector<std::string>& argv) {
 
 void add_fatek_servers(const Args& args, Plc& plc, std::vector<std::unique_ptr<Server>>* servers) {
   const int station = parse_int(args.get("station", "1"), "--station", 1, 254);
-  for (const auto& hp : args.all("fatek-tcp")) servers->push_back(fatek::make_tcp_server(plc, hp, station));
-  for (const auto& dev : args.all("fatek-serial")) servers->push_back(fatek::make_serial_server(plc, dev, station));
+  fatek::ServerPolicy p;
+  if (args.has("fatek-writable")) p.writable = WritableRanges::parse(args.get("fatek-writable"));
+  if (args.has("fatek-max-connections"))
+    p.max_connections = parse_int(args.get("fatek-max-connections"), "--fatek-max-connections", 1, 1024);
+  if (args.has("fatek-idle-timeout")) {
+    const uint64_t us = parse_duration_us(args.get("fatek-idle-timeout"));
+    if (us < 1000 || us > 86400000000ull) throw UsageError("--fatek-idle-timeout must be between 1ms and 24h");
+    p.idle_timeout_ms = int(us / 1000);
+  }
+  for (const auto& hp : args.all("fatek-tcp")) servers->push_back(fatek::make_tcp_server(plc, hp, station, p));
+  for (const auto& dev : args.all("fatek-serial")) servers->push_back(fatek::make_serial_server(plc, dev, station, p));
 }
 
 }  // namespace cli

@@ -26,6 +26,9 @@ const char* kUsage =
     "         talk to a FATEK FBs-PLC (or plc_cell run --fatek-tcp/--fatek-serial)\n"
     "  run    ... [--fatek-tcp HOST:PORT] [--fatek-serial DEV[:BAUD[:FMT]]] [--station N]\n"
     "         also serve the FATEK protocol as slave station N (default 1)\n"
+    "  run    ... [--fatek-writable RANGES] [--fatek-max-connections N] [--fatek-idle-timeout DURATION]\n"
+    "         [--modbus-writable RANGES] [--modbus-max-connections N] [--modbus-idle-timeout DURATION]\n"
+    "         RANGES: D0-D99,M800-M899 | none | all (default); writes elsewhere are refused\n"
     "  run    ... [--persist FILE] [--persist-interval DURATION]\n"
     "         keep the retentive ranges in FILE across restarts and crashes (default 100ms)\n"
 

@@ -24,6 +24,8 @@ int cmd_run(const std::vector<std::string>& argv) {
   // @run-options: subsystems append their option names (e.g. "fatek-tcp") here
   options.insert(options.end(), {"fatek-tcp", "fatek-serial", "station"});
   options.insert(options.end(), {"persist", "persist-interval"});
+  options.insert(options.end(), {"fatek-writable", "fatek-max-connections", "fatek-idle-timeout"});
+  options.insert(options.end(), {"modbus-writable", "modbus-max-connections", "modbus-idle-timeout"});
   options.insert(options.end(), {"modbus-tcp", "modbus-rtu", "modbus-id", "modbus-gateway", "modbus-gateway-wait", "modbus-gateway-retries"});
   Args args(argv, options);
   SoftCell cell(args.get("config"), args.get("program"), install_protocol_functions);

@@ -53,7 +53,9 @@ struct Conn {
 
 // ---- TCP -----------------------------------------------------------------------
 
-TcpServer::TcpServer(Plc& plc, TcpServerOptions opt) : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {}
+TcpServer::TcpServer(Plc& plc, TcpServerOptions opt) : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {
+  slave_.set_writable(opt_.writable);
+}
 
 TcpServer::~TcpServer() { stop(); }
 
@@ -193,7 +195,9 @@ void TcpServer::loop() {
 // ---- serial ----------------------------------------------------------------------
 
 SerialServer::SerialServer(Plc& plc, SerialServerOptions opt)
-    : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {}
+    : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {
+  slave_.set_writable(opt_.writable);
+}
 
 SerialServer::~SerialServer() { stop(); }
 
@@ -267,15 +271,23 @@ void SerialServer::loop() {
   }
 }
 
-std::unique_ptr<Server> make_tcp_server(Plc& plc, const std::string& host_port, int station) {
+std::unique_ptr<Server> make_tcp_server(Plc& plc, const std::string& host_port, int station,
+                                        const ServerPolicy& policy) {
   TcpServerOptions o;
   parse_host_port(host_port, &o.host, &o.port);
   o.station = station;
+  o.writable = policy.writable;
+  if (policy.max_connections < 1) throw Error("FATEK TCP: max connections must be at least 1");
+  if (policy.idle_timeout_ms < 1) throw Error("FATEK TCP: idle timeout must be positive");
+  o.max_connections = policy.max_connections;
+  o.idle_timeout_ms = policy.idle_timeout_ms;
   return std::make_unique<TcpServer>(plc, o);
 }
 
-std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_spec, int station) {
+std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_spec, int station,
+                                           const ServerPolicy& policy) {
   SerialServerOptions o;
+  o.writable = policy.writable;
   o.line = parse_serial_settings(device_spec, "7E1");
   o.station = station;
   return std::make_unique<SerialServer>(plc, o);
@@ -283,9 +295,10 @@ std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_s
 
 }  // namespace fatek
 
-std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station) {
-  if (kind == "tcp") return fatek::make_tcp_server(plc, where, station);
-  if (kind == "serial") return fatek::make_serial_server(plc, where, station);
+std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station,
+                                          const fatek::ServerPolicy& policy) {
+  if (kind == "tcp") return fatek::make_tcp_server(plc, where, station, policy);
+  if (kind == "serial") return fatek::make_serial_server(plc, where, station, policy);
   throw Error("FATEK server kind '" + kind + "' (expected tcp or serial)");
 }
 

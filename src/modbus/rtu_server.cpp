@@ -10,7 +10,8 @@
 namespace plc_cell {
 namespace modbus {
 
-RtuServer::RtuServer(Plc& plc, SerialSettings port, int slave_id) : plc_(plc), port_(std::move(port)), id_(slave_id) {
+RtuServer::RtuServer(Plc& plc, SerialSettings port, int slave_id, WritableRanges writable)
+    : plc_(plc), port_(std::move(port)), id_(slave_id), writable_(std::move(writable)) {
   if (id_ < 1 || id_ > 247) throw Error("Modbus RTU slave id " + std::to_string(id_) + " outside 1..247");
 }
 
@@ -78,7 +79,7 @@ void RtuServer::run() {
       continue;
     }
     const bool ok = supported_function(req[1]);
-    const int r = handle_request(ctx_, plc_, req, rc);
+    const int r = handle_request(ctx_, plc_, req, rc, &writable_);
     std::lock_guard<std::mutex> lk(mu_);
     (ok && r >= 0 ? st_.requests : st_.rejected)++;
     if (r < 0) st_.last_error = modbus_strerror(errno);

@@ -87,6 +87,16 @@ class HeldReply {
   int sv_[2] = {-1, -1};
 };
 
+// Word-store index of RC back to the counter it belongs to (C200.. take two words).
+uint32_t rc_counter(uint32_t w) { return w < kFirst32BitCounter ? w : kFirst32BitCounter + (w - kFirst32BitCounter) / 2; }
+
+bool may_write(const WritableRanges* w, const Range& r) {
+  if (!w || w->everything()) return true;
+  if (r.run.area != Area::RC) return w->allows(r.run.area, r.run.index, r.count);
+  const uint32_t first = rc_counter(r.run.index), last = rc_counter(r.run.index + r.count - 1);
+  return w->allows(Area::RC, first, last - first + 1);
+}
+
 }  // namespace
 
 bool supported_function(uint8_t fc) {
@@ -96,7 +106,7 @@ bool supported_function(uint8_t fc) {
   }
 }
 
-int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len) {
+int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable) {
   const int h = modbus_get_header_length(ctx);
   if (len < h + 1) return -1;
   const uint8_t fc = req[h];
@@ -133,7 +143,7 @@ int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len) {
   }
   const int replied = plc.locked([&](ScanEngine&, Memory& m) {
     if (has_rd) rd.ok = resolve(m, rd.table, rd.addr, rd.count, &rd.run);
-    if (has_wr) wr.ok = resolve(m, wr.table, wr.addr, wr.count, &wr.run);
+    if (has_wr) wr.ok = resolve(m, wr.table, wr.addr, wr.count, &wr.run) && may_write(writable, wr);
     // An unmapped range leaves the table empty in the mapping: libmodbus then
     // checks the quantity first (exception 03) and the address next (02).
     modbus_mapping_t mp{};

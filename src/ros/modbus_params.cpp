@@ -24,6 +24,9 @@ void add_modbus_servers(Plc& plc, ros::NodeHandle& pnh, ServerList* servers) {
   pnh.param("modbus_gateway_wait_ms", o.gateway_wait_ms, o.gateway_wait_ms);
   pnh.param("modbus_gateway_retries", o.gateway_retries, o.gateway_retries);
   o.idle_timeout_ms = int(idle * 1000);
+  std::string writable = "all";
+  pnh.param<std::string>("modbus_writable", writable, writable);
+  o.writable = WritableRanges::parse(writable);
   for (auto& s : modbus::make_slave_servers(plc, o)) servers->push_back(std::move(s));
 }
 
