@@ -17,3 +17,26 @@ if(CATKIN_ENABLE_TESTING)
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
   add_dependencies(reliability_tests plc_cell_tool)
 endif()
+
+# ---- libFuzzer targets (test/fuzz/): a clang sub-build, run briefly by fuzz_tests -------
+# clang comes from the Makefile's DEB_PACKAGES (clang, libclang-rt-14-dev). Without it
+# this step fails and so does the build: the fuzz tests fail, they never skip.
+include(ExternalProject)
+find_program(PLC_CELL_CLANGXX NAMES clang++ clang++-14)
+if(NOT PLC_CELL_CLANGXX)
+  set(PLC_CELL_CLANGXX clang++)  # the sub-build then fails with "clang++ not found"
+endif()
+set(PLC_CELL_FUZZ_DIR ${CMAKE_CURRENT_BINARY_DIR}/fuzz)
+ExternalProject_Add(plc_cell_fuzzers
+  SOURCE_DIR ${PROJECT_SOURCE_DIR}/test/fuzz
+  BINARY_DIR ${PLC_CELL_FUZZ_DIR}
+  CMAKE_ARGS -DCMAKE_CXX_COMPILER=${PLC_CELL_CLANGXX} -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  BUILD_ALWAYS ON
+  INSTALL_COMMAND "")
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(fuzz_tests test/core/test_main.cpp test/reliability/fuzz/fuzz_runs.cpp)
+  target_compile_definitions(fuzz_tests PRIVATE
+    PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}" PLC_CELL_FUZZ_DIR="${PLC_CELL_FUZZ_DIR}")
+  add_dependencies(fuzz_tests plc_cell_fuzzers)
+endif()
