@@ -228,9 +228,30 @@ ServerStatus SerialServer::status() const {
   s.running = running_;
   s.requests = slave_.requests();
   s.rejected = slave_.rejected() + framing_errors_;
+  s.link_up = link_up_;
+  s.reopened = reopened_;
   std::lock_guard<std::mutex> lk(err_mu_);
   s.last_error = last_error_;
   return s;
+}
+
+// A device that went away (USB adapter unplugged, pty master closed) is reopened by
+// path until it is back; meanwhile the server runs, link_up is false and says why.
+bool SerialServer::wait_for_device() {
+  while (running_) {
+    try {
+      fd_ = open_serial_port(opt_.line);
+      link_up_ = true;
+      ++reopened_;
+      std::lock_guard<std::mutex> lk(err_mu_);
+      last_error_ = "serial device back";
+      return true;
+    } catch (const Error&) {
+      pollfd w{wake_[0], POLLIN, 0};
+      ::poll(&w, 1, 200);  // retry period; stop() wakes us at once
+    }
+  }
+  return false;
 }
 
 void SerialServer::loop() {
@@ -242,7 +263,15 @@ void SerialServer::loop() {
     std::lock_guard<std::mutex> lk(err_mu_);
     last_error_ = e;
   };
+  auto lost = [&](const std::string& why) {
+    close_fd(fd_);
+    fd_ = -1;
+    link_up_ = false;
+    dec = Decoder();
+    note("serial device lost: " + why);
+  };
   while (running_) {
+    if (fd_ < 0 && !wait_for_device()) break;
     pollfd p[2] = {{wake_[0], POLLIN, 0}, {fd_, POLLIN, 0}};
     const int r = ::poll(p, 2, dec.in_frame() ? opt_.frame_timeout_ms : 200);
     if (!running_) break;
@@ -252,13 +281,21 @@ void SerialServer::loop() {
       note("framing: frame cut short by timeout");
       continue;
     }
-    if (p[1].revents & (POLLHUP | POLLERR) && !(p[1].revents & POLLIN)) {
-      // A pty whose other end is closed reports HUP until it reopens; do not spin.
-      ::poll(p, 1, 50);
+    if (p[1].revents & (POLLHUP | POLLERR | POLLNVAL) && !(p[1].revents & POLLIN)) {
+      // The other end of the line is gone (a pty's master closed, a device removed).
+      lost(p[1].revents & POLLHUP ? "hang-up" : "I/O error");
       continue;
     }
     if (!(p[1].revents & POLLIN)) continue;
     const ssize_t n = ::read(fd_, buf, sizeof buf);
+    if (n < 0 && errno != EAGAIN && errno != EINTR) {
+      lost(std::strerror(errno));
+      continue;
+    }
+    if (n == 0 && (p[1].revents & POLLHUP)) {  // a tty hang-up reads as end of file
+      lost("hang-up");
+      continue;
+    }
     if (n <= 0) continue;
     last_rx = Clock::now();
     out.clear();

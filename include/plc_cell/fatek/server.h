@@ -70,10 +70,13 @@ class SerialServer : public Server {
 
  private:
   void loop();
+  bool wait_for_device();  // false once stopping
   Plc& plc_;
   SerialServerOptions opt_;
   Slave slave_;
   int fd_ = -1;
+  std::atomic<bool> link_up_{true};
+  std::atomic<uint64_t> reopened_{0};
   int wake_[2] = {-1, -1};
   std::thread thread_;
   std::atomic<bool> running_{false};

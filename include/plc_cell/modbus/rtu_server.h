@@ -30,6 +30,7 @@ class RtuServer : public Server {
 
  private:
   void run();
+  void reopen(const std::string& why);
 
   Plc& plc_;
   SerialSettings port_;
