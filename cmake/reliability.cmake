@@ -40,3 +40,7 @@ if(CATKIN_ENABLE_TESTING)
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}" PLC_CELL_FUZZ_DIR="${PLC_CELL_FUZZ_DIR}")
   add_dependencies(fuzz_tests plc_cell_fuzzers)
 endif()
+
+if(CATKIN_ENABLE_TESTING)
+  add_rostest(test/reliability/two_cells.test DEPENDENCIES plc_node)
+endif()

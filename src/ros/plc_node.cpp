@@ -87,6 +87,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
     s->start();
     ROS_INFO("plc_node: serving %s", s->describe().c_str());
   }
+  if (!servers_.empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
 
   if (autostart && !cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program");
   publisher_ = std::thread([this] { publisher_loop(); });
@@ -199,6 +200,25 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("wake latency avg (us)", v.st.wake_latency.avg_ns() / 1000.0);
   stat.add("wake latency max (us)", v.st.wake_latency.max_ns / 1000.0);
   stat.add("overruns", v.st.overruns);
+}
+
+// A lost serial device or a stopped server is a fault on /diagnostics; it clears itself
+// when the server recovers (it reopens the device by itself).
+void PlcNode::diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  std::string down;
+  for (const auto& s : servers_) {
+    const ServerStatus st = s->status();
+    const std::string name = s->describe();
+    if (!st.running || !st.link_up) down += (down.empty() ? "" : "; ") + name + ": " + st.last_error;
+    stat.add(name + " requests", st.requests);
+    stat.add(name + " rejected", st.rejected);
+    stat.add(name + " connections", st.connections);
+    stat.add(name + " link", st.link_up ? "up" : "down");
+    stat.add(name + " reopened", st.reopened);
+    stat.add(name + " last error", st.last_error);
+  }
+  if (down.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "serving");
+  else stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, down);
 }
 
 void PlcNode::diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat) {

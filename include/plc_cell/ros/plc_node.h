@@ -46,6 +46,7 @@ class PlcNode {
   void publish(const Snapshot& s, bool all_signals);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
   bool on_read(ReadMemory::Request& req, ReadMemory::Response& res);
   bool on_write(WriteMemory::Request& req, WriteMemory::Response& res);
