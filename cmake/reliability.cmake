@@ -44,3 +44,9 @@ endif()
 if(CATKIN_ENABLE_TESTING)
   add_rostest(test/reliability/two_cells.test DEPENDENCIES plc_node)
 endif()
+
+# plc_node's virtual-time mode (deterministic replay of bags).
+list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/ros/plc_node_virtual_time.cpp)
+if(CATKIN_ENABLE_TESTING)
+  add_rostest(test/reliability/replay.test DEPENDENCIES plc_node)
+endif()

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "plc_cell/IoState.h"
+#include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/ros/server_params.h"
 
@@ -32,9 +33,13 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   io_pub_ = pnh.advertise<IoState>("io", 10);
   for (const auto& s : cfg.signals) {
     signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s.first, 1, /*latch=*/true));
+    stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s.first, 100, /*latch=*/true));
     if (s.second.area != Area::X) continue;
     const uint32_t x = s.second.index;
     const std::string name = s.first;
+    input_subs_.push_back(pnh.subscribe<Signal>("inputs_stamped/" + name, 100, [this, x](const Signal::ConstPtr& m) {
+      on_stamped_input(x, m->header.stamp.toNSec() / 1000, m->data);
+    }));
     input_subs_.push_back(pnh.subscribe<std_msgs::Bool>(
         "inputs/" + name, 10, [this, x, name](const std_msgs::Bool::ConstPtr& m) {
           cell_->plc().locked([&](ScanEngine& e, Memory&) {
@@ -56,7 +61,10 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
-  io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {
+  pnh.param("virtual_time", virtual_time_, false);
+  // Virtual time publishes every change with its scan's stamp, and nothing else: the
+  // periodic republish would add wall-clock stamps to a replay.
+  if (!virtual_time_) io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {
     Snapshot s;
     {
       std::lock_guard<std::mutex> lk(snap_mu_);
@@ -90,6 +98,12 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   if (!servers_.empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
 
   if (autostart && !cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program");
+  if (virtual_time_) {
+    start_virtual_time(pnh, uint64_t(scan_period * 1e6 + 0.5));
+    ROS_INFO("plc_node: cell '%s', program %s, scan %.3f ms of virtual time, %s", cfg.name.c_str(),
+             program_path_.c_str(), scan_period * 1e3, autostart ? "RUN" : "STOP");
+    return;
+  }
   publisher_ = std::thread([this] { publisher_loop(); });
   loop_ = std::make_unique<RealTimeLoop>(cell_->plc(),
                                          std::chrono::nanoseconds(int64_t(scan_period * 1e9)));
@@ -159,7 +173,10 @@ void PlcNode::publisher_loop() {
 
 void PlcNode::publish(const Snapshot& s, bool all_signals) {
   IoState msg;
-  msg.header.stamp = ros::Time::now();
+  ros::Time stamp;
+  if (virtual_time_) stamp.fromNSec(s.scan_us * 1000);
+  else stamp = ros::Time::now();
+  msg.header.stamp = stamp;
   msg.header.frame_id = cell_->config().name;
   msg.run = s.run;
   msg.x.assign(s.x.begin(), s.x.end());
@@ -175,6 +192,11 @@ void PlcNode::publish(const Snapshot& s, bool all_signals) {
     std_msgs::Bool b;
     b.data = s.signals[i];
     signal_pubs_[i].publish(b);
+    Signal st;
+    st.header.stamp = stamp;
+    st.header.frame_id = cell_->config().name;
+    st.data = s.signals[i];
+    stamped_pubs_[i].publish(st);
   }
 }
 
