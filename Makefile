@@ -18,14 +18,14 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 \
   python3-rosservice python3-roslaunch python3-rosnode python3-rosmsg \
   libyaml-cpp-dev googletest libgtest-dev libgmock-dev libbenchmark-dev \
   libmodbus-dev socat mbpoll python3-pymodbus python3-matplotlib \
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev zlib1g-dev
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
 export PATH := /usr/bin:$(PATH)
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build test demo bench clean fuzz
+.PHONY: all deps build test demo bench clean fuzz soak
 
 all: build
 
@@ -73,6 +73,11 @@ fuzz: build
 	  $(WS)/build/plc_cell/fuzz/fuzz_$$n -max_total_time=$(FUZZ_TIME) -max_len=512 -timeout=20 \
 	    -artifact_prefix=$(BUILD)/fuzz-corpus/ $(BUILD)/fuzz-corpus/$$c test/fuzz/corpus/$$c || exit 1; \
 	done
+
+# Soak: plc_cell run hammered by FATEK and Modbus clients with faults for SOAK_TIME s (default 60).
+SOAK_TIME ?= 60
+soak: build
+	$(WS)/devel/lib/plc_cell/plc_cell_soak $(SOAK_TIME)
 
 clean:
 	rm -rf $(BUILD)

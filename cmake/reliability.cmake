@@ -4,7 +4,8 @@ add_library(plc_cell_persist STATIC
   src/persist/retentive_image.cpp
   src/persist/slot_file.cpp
   src/persist/persister.cpp)
-target_link_libraries(plc_cell_persist PUBLIC plc_cell_core)
+find_package(ZLIB REQUIRED)
+target_link_libraries(plc_cell_persist PUBLIC plc_cell_core PRIVATE ZLIB::ZLIB)
 set_target_properties(plc_cell_persist PROPERTIES POSITION_INDEPENDENT_CODE ON)
 list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_persist)
 
@@ -50,3 +51,9 @@ list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/ros/plc_node_virtual
 if(CATKIN_ENABLE_TESTING)
   add_rostest(test/reliability/replay.test DEPENDENCIES plc_node)
 endif()
+
+# make soak (not part of make test): see docs/reliability.md.
+add_executable(plc_cell_soak test/reliability/soak/soak_main.cpp)
+target_link_libraries(plc_cell_soak plc_cell_fatek plc_cell_modbus)
+target_compile_definitions(plc_cell_soak PRIVATE PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+add_dependencies(plc_cell_soak plc_cell_tool)

@@ -1,5 +1,7 @@
 #include "plc_cell/persist/retentive_image.h"
 
+#include <cstring>
+
 #include "plc_cell/core/area.h"
 #include "plc_cell/core/error.h"
 
@@ -7,9 +9,6 @@ namespace plc_cell {
 namespace persist {
 namespace {
 
-void put32(std::vector<uint8_t>* o, uint32_t v) {
-  for (int k = 0; k < 4; ++k) o->push_back(uint8_t(v >> (8 * k)));
-}
 uint32_t get32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 
 // Register ranges store words; RC n >= 200 takes two (Memory::word_index).
@@ -24,21 +23,32 @@ bool inside(const std::vector<AreaRange>& rs, Area a, uint32_t i) {
 
 }  // namespace
 
+// Runs every scan under the PLC lock: sized once, then filled with plain copies.
 void encode_retentive(const std::vector<AreaRange>& ranges, const Memory& m, std::vector<uint8_t>* out) {
-  out->clear();
+  size_t n = 0;
+  for (const auto& r : ranges)
+    n += 9 + (is_discrete(r.area) ? r.last - r.first + 1 : 2 * size_t(end_word(r.area, r.last) - first_word(r.area, r.first)));
+  out->resize(n);
+  uint8_t* p = out->data();
   for (const auto& r : ranges) {
-    out->push_back(uint8_t(r.area));
-    put32(out, r.first);
-    put32(out, r.last);
+    *p++ = uint8_t(r.area);
+    for (int k = 0; k < 4; ++k) *p++ = uint8_t(r.first >> (8 * k));
+    for (int k = 0; k < 4; ++k) *p++ = uint8_t(r.last >> (8 * k));
     if (is_discrete(r.area)) {
       const uint8_t* b = m.bits(r.area);
-      for (uint32_t i = r.first; i <= r.last; ++i) out->push_back(b[i] & kBitState);
+      for (uint32_t i = r.first; i <= r.last; ++i) *p++ = b[i] & kBitState;
     } else {
       const uint16_t* w = m.words(r.area);
-      for (uint32_t i = first_word(r.area, r.first); i < end_word(r.area, r.last); ++i) {
-        out->push_back(uint8_t(w[i]));
-        out->push_back(uint8_t(w[i] >> 8));
+      const uint32_t w0 = first_word(r.area, r.first), w1 = end_word(r.area, r.last);
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+      std::memcpy(p, w + w0, 2 * size_t(w1 - w0));  // the stored form is little-endian
+      p += 2 * size_t(w1 - w0);
+#else
+      for (uint32_t i = w0; i < w1; ++i) {
+        *p++ = uint8_t(w[i]);
+        *p++ = uint8_t(w[i] >> 8);
       }
+#endif
     }
   }
 }

@@ -67,6 +67,7 @@ class RunChild {
     return log;
   }
 
+  pid_t pid() const { return pid_; }
   std::vector<int> ports;
   std::string log;
 
