@@ -5,6 +5,7 @@
 
 #include "args.h"
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/server_settings.h"
 #include "plc_cell/core/writable_ranges.h"
 #include "commands.h"
 #include "plc_cell/modbus/slave_servers.h"
@@ -12,10 +13,16 @@
 namespace plc_cell {
 namespace cli {
 
-void add_modbus_servers(const Args& args, Plc& plc, std::vector<std::unique_ptr<Server>>* servers) {
+void add_modbus_servers(const Args& args, const ServerSettings& yaml, Plc& plc,
+                        std::vector<std::unique_ptr<Server>>* servers) {
   modbus::SlaveOptions o;
-  o.tcp = args.get("modbus-tcp");
-  o.rtu = args.get("modbus-rtu");
+  const auto& y = yaml.modbus;
+  o.tcp = args.has("modbus-tcp") ? args.get("modbus-tcp") : y.tcp;
+  o.rtu = args.has("modbus-rtu") ? args.get("modbus-rtu") : y.rtu;
+  o.id = y.id;
+  o.max_connections = y.max_connections;
+  o.idle_timeout_ms = y.idle_timeout_ms;
+  o.writable = WritableRanges::parse(y.writable);
   o.gateway = args.get("modbus-gateway");
   if (args.has("modbus-id")) {
     try {

@@ -9,6 +9,7 @@
 #include "plc_cell/io/protocol_functions.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/realtime_loop.h"
+#include "plc_cell/config/server_settings.h"
 #include "plc_cell/io/server.h"
 #include "plc_cell/persist/persister.h"
 #include "plc_cell/sim/soft_cell.h"
@@ -44,8 +45,9 @@ int cmd_run(const std::vector<std::string>& argv) {
 
   std::vector<std::unique_ptr<Server>> servers;
   // @run-servers: subsystems create their servers from args here (servers.push_back(...))
-  add_fatek_servers(args, cell.plc(), &servers);
-  add_modbus_servers(args, cell.plc(), &servers);
+  const ServerSettings from_yaml = parse_server_settings(cell.config());
+  add_fatek_servers(args, from_yaml, cell.plc(), &servers);
+  add_modbus_servers(args, from_yaml, cell.plc(), &servers);
   for (auto& s : servers) {
     s->start();
     std::cerr << "plc_cell run: serving " << s->describe() << "\n";

@@ -122,7 +122,7 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
   }
   cfg.document = doc;
   if (doc.IsNull()) return cfg;
-  r.only(doc, "", {"cell", "plc", "signals", "simulation", "counters", "axes", "modules", "fatek", "modbus"});
+  r.only(doc, "", {"cell", "plc", "signals", "simulation", "counters", "axes", "modules", "fatek", "modbus", "servers"});
 
   if (const auto cell = doc["cell"]) {
     r.only(cell, "cell", {"name", "program"});

@@ -6,15 +6,16 @@
 
 namespace plc_cell {
 
-void add_fatek_servers(Plc& plc, ros::NodeHandle& pnh, ServerList* servers) {
+void add_fatek_servers(Plc& plc, ros::NodeHandle& pnh, const ServerSettings& yaml, ServerList* servers) {
   std::string tcp, serial;
-  int station = 1;
-  pnh.param<std::string>("fatek_tcp", tcp, "");
-  pnh.param<std::string>("fatek_serial", serial, "");
+  int station = yaml.fatek.station;
+  pnh.param<std::string>("fatek_tcp", tcp, yaml.fatek.tcp);
+  pnh.param<std::string>("fatek_serial", serial, yaml.fatek.serial);
   pnh.param("fatek_station", station, station);
   fatek::ServerPolicy p;
-  std::string writable = "all";
-  double idle = p.idle_timeout_ms / 1000.0;
+  p.max_connections = yaml.fatek.max_connections;
+  std::string writable = yaml.fatek.writable;
+  double idle = yaml.fatek.idle_timeout_ms / 1000.0;
   pnh.param<std::string>("fatek_writable", writable, writable);
   pnh.param("fatek_max_connections", p.max_connections, p.max_connections);
   pnh.param("fatek_idle_timeout", idle, idle);

@@ -89,8 +89,9 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   }
 
   // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
-  add_fatek_servers(cell_->plc(), pnh, &servers_);
-  add_modbus_servers(cell_->plc(), pnh, &servers_);
+  const ServerSettings from_yaml = parse_server_settings(cfg);
+  add_fatek_servers(cell_->plc(), pnh, from_yaml, &servers_);
+  add_modbus_servers(cell_->plc(), pnh, from_yaml, &servers_);
   for (auto& s : servers_) {
     s->start();
     ROS_INFO("plc_node: serving %s", s->describe().c_str());
