@@ -35,6 +35,9 @@ bool until_answered(fatek::Client& c, int n) {
       c.status();
       return true;
     } catch (const fatek::CommError&) {
+      c.transport().close();  // as fatek_bridge does: reopen on the next try
+    } catch (const Error&) {
+      c.transport().close();  // the device path is not there (yet)
     }
   }
   return false;
@@ -122,6 +125,29 @@ TEST(LinkFaults, FatekSerialServerReopensARemovedDevice) {
   EXPECT_EQ(c->read(d(2), 1)[0], 77u);
   c->write(d(3), {1});
   EXPECT_EQ(plc.read(d(3), 1)[0], 1u);
+}
+
+// The master's side (what fatek_bridge does): on a dead line it closes the transport, and the
+// next request opens the path again.
+TEST(LinkFaults, FatekSerialClientReopensItsRemovedDevice) {
+  TempDir dir;
+  PtyProxy proxy(dir.path(), 5);
+  Plc plc;
+  fatek::SerialServerOptions so;
+  so.line = parse_serial_settings(proxy.device_link() + ":9600:7E1");
+  fatek::SerialServer server(plc, so);
+  server.start();
+  auto c = serial_client(proxy.client_link(), 0, 200);
+  c->write(d(4), {44});
+  proxy.unplug_client();
+  EXPECT_THROW(c->write(d(4), {45}), fatek::CommError);
+  c->transport().close();
+  EXPECT_THROW(c->status(), fatek::CommError);  // still gone: the open fails
+  c->transport().close();
+  proxy.replug_client();
+  ASSERT_TRUE(until_answered(*c, 20));
+  EXPECT_EQ(c->read(d(4), 1)[0], 44u);  // the write sent into the void changed nothing
+  EXPECT_TRUE(server.status().link_up);  // the server's side never went away
 }
 
 TEST(LinkFaults, ModbusRtuServerReopensARemovedDevice) {

@@ -37,8 +37,8 @@ class PtyProxy {
     stop_ = true;
     (void)!::write(wake_[1], "x", 1);
     thread_.join();
-    ::close(client_master_);
-    ::close(client_hold_);
+    if (client_master_ >= 0) ::close(client_master_);
+    if (client_hold_ >= 0) ::close(client_hold_);
     if (dev_master_ >= 0) ::close(dev_master_);
     if (dev_hold_ >= 0) ::close(dev_hold_);
     ::close(wake_[0]);
@@ -64,6 +64,20 @@ class PtyProxy {
   void replug() {
     std::lock_guard<std::mutex> lk(mu_);
     open_pty(&dev_master_, &dev_hold_, device_link());
+    (void)!::write(wake_[1], "x", 1);
+  }
+  // The same on the client side (a master's own USB adapter pulled and plugged back).
+  void unplug_client() {
+    std::lock_guard<std::mutex> lk(mu_);
+    ::unlink(client_link().c_str());
+    ::close(client_master_);
+    ::close(client_hold_);
+    client_master_ = client_hold_ = -1;
+    (void)!::write(wake_[1], "x", 1);
+  }
+  void replug_client() {
+    std::lock_guard<std::mutex> lk(mu_);
+    open_pty(&client_master_, &client_hold_, client_link());
     (void)!::write(wake_[1], "x", 1);
   }
   uint64_t faults_injected() const { return injected_; }
@@ -111,19 +125,21 @@ class PtyProxy {
 
   void run() {
     while (!stop_) {
-      int dev;
+      int dev, cli;
       {
         std::lock_guard<std::mutex> lk(mu_);
         dev = dev_master_;
+        cli = client_master_;
       }
-      pollfd p[3] = {{wake_[0], POLLIN, 0}, {client_master_, POLLIN, 0}, {dev, POLLIN, 0}};
-      ::poll(p, dev >= 0 ? 3 : 2, 1000);
+      // A negative fd is ignored by poll: an unplugged side simply has no events.
+      pollfd p[3] = {{wake_[0], POLLIN, 0}, {cli, POLLIN, 0}, {dev, POLLIN, 0}};
+      ::poll(p, 3, 1000);
       char c[16];
       while (::read(wake_[0], c, sizeof c) > 0) {
       }
       std::lock_guard<std::mutex> lk(mu_);
-      if (dev != dev_master_) continue;  // unplugged or replugged meanwhile
-      if (p[1].revents & POLLIN) forward(client_master_, dev_master_);
+      if (dev != dev_master_ || cli != client_master_) continue;  // unplugged or replugged meanwhile
+      if (cli >= 0 && (p[1].revents & POLLIN)) forward(client_master_, dev_master_);
       if (dev >= 0 && (p[2].revents & POLLIN)) forward(dev_master_, client_master_);
     }
   }
