@@ -17,14 +17,15 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 \
   catkin python3-catkin-pkg python3-rostest python3-rosbag python3-rospy python3-rostopic \
   python3-rosservice python3-roslaunch python3-rosnode python3-rosmsg \
   libyaml-cpp-dev googletest libgtest-dev libgmock-dev libbenchmark-dev \
-  libmodbus-dev socat mbpoll python3-pymodbus python3-matplotlib
+  libmodbus-dev socat mbpoll python3-pymodbus python3-matplotlib \
+  clang libclang-rt-14-dev zlib1g-dev
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
 export PATH := /usr/bin:$(PATH)
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build test demo bench clean
+.PHONY: all deps build test demo bench clean fuzz soak
 
 all: build
 
@@ -62,6 +63,21 @@ demo: build
 
 bench: build
 	$(PY) scripts/run_bench.py --workspace $(WS)
+
+# Longer fuzzing (FUZZ_TIME seconds per target, default 60); new inputs land in $(BUILD)/fuzz-corpus.
+FUZZ_TIME ?= 60
+fuzz: build
+	@for t in fatek_decoder:fatek il_parser:il address:address config:config; do \
+	  n=$${t%%:*}; c=$${t##*:}; mkdir -p $(BUILD)/fuzz-corpus/$$c; \
+	  echo "== fuzz_$$n for $(FUZZ_TIME) s"; \
+	  $(WS)/build/plc_cell/fuzz/fuzz_$$n -max_total_time=$(FUZZ_TIME) -max_len=512 -timeout=20 \
+	    -artifact_prefix=$(BUILD)/fuzz-corpus/ $(BUILD)/fuzz-corpus/$$c test/fuzz/corpus/$$c || exit 1; \
+	done
+
+# Soak: plc_cell run hammered by FATEK and Modbus clients with faults for SOAK_TIME s (default 60).
+SOAK_TIME ?= 60
+soak: build
+	$(WS)/devel/lib/plc_cell/plc_cell_soak $(SOAK_TIME)
 
 clean:
 	rm -rf $(BUILD)

@@ -29,6 +29,11 @@ const char* kUsage =
     "  run    ... [--modbus-tcp HOST:PORT] [--modbus-rtu DEV[:BAUD[:FMT]]] [--modbus-id N]\n"
     "         [--modbus-gateway DEV[:BAUD[:FMT]] --modbus-gateway-wait MS --modbus-gateway-retries N]\n"
     "         also serve Modbus (FBs address map) and forward other unit ids to RTU\n"
+    "  run    ... [--fatek-writable RANGES] [--fatek-max-connections N] [--fatek-idle-timeout DURATION]\n"
+    "         [--modbus-writable RANGES] [--modbus-max-connections N] [--modbus-idle-timeout DURATION]\n"
+    "         RANGES: D0-D99,M800-M899 | none | all (default); writes elsewhere are refused\n"
+    "  run    ... [--persist FILE] [--persist-interval DURATION]\n"
+    "         keep the retentive ranges in FILE across restarts and crashes (default 100ms)\n"
 
     "\n"
     "exit status: 0 ok, 1 program/config/runtime error, 2 usage error\n";

@@ -46,7 +46,7 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
   }
   cfg.document = doc;
   if (doc.IsNull()) return cfg;
-  r.only(doc, "", {"cell", "plc", "signals", "simulation", "counters", "axes", "modules", "fatek", "modbus"});
+  r.only(doc, "", {"cell", "plc", "signals", "simulation", "counters", "axes", "modules", "fatek", "modbus", "servers"});
 
   if (const auto cell = doc["cell"]) {
     r.only(cell, "cell", {"name", "program"});
@@ -57,7 +57,7 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
     }
   }
   if (const auto plc = doc["plc"]) {
-    r.only(plc, "plc", {"scan_period", "watchdog", "retentive", "timer_bases"});
+    r.only(plc, "plc", {"scan_period", "watchdog", "retentive", "timer_bases", "persist"});
     if (plc["scan_period"]) cfg.scan_period_us = r.seconds_us(plc["scan_period"], "plc.scan_period", 0.0001, 1.0);
     if (plc["watchdog"]) cfg.watchdog_us = r.seconds_us(plc["watchdog"], "plc.watchdog", 0.001, 10.0);
     if (const auto ret = plc["retentive"]) {
@@ -65,6 +65,21 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
       cfg.retentive.clear();
       for (size_t i = 0; i < ret.size(); ++i)
         cfg.retentive.push_back(r.range(ret[i], "plc.retentive[" + std::to_string(i) + "]"));
+    }
+    if (const auto ps = plc["persist"]) {
+      // "store.bin" or {file: store.bin, interval: 0.1, sync_writes: true}
+      const YAML::Node f = ps.IsMap() ? ps["file"] : ps;
+      if (ps.IsMap()) r.only(ps, "plc.persist", {"file", "interval", "sync_writes"});
+      if (!f) r.fail(ps, "plc.persist", "expected a file name or {file: ..., interval: ..., sync_writes: ...}");
+      cfg.persist.file = r.str(f, "plc.persist.file");
+      if (!cfg.persist.file.empty() && cfg.persist.file[0] != '/') cfg.persist.file = folder_of(file) + cfg.persist.file;
+      if (ps.IsMap() && ps["interval"])
+        cfg.persist.interval_us = r.seconds_us(ps["interval"], "plc.persist.interval", 0.001, 60.0);
+      if (ps.IsMap() && ps["sync_writes"]) {
+        const std::string v = r.str(ps["sync_writes"], "plc.persist.sync_writes");
+        if (v != "true" && v != "false") r.fail(ps["sync_writes"], "plc.persist.sync_writes", "expected true or false");
+        cfg.persist.sync_writes = v == "true";
+      }
     }
     if (const auto tb = plc["timer_bases"]) {
       if (!tb.IsMap()) r.fail(tb, "plc.timer_bases", "expected a mapping such as {T0-T49: 0.01}");

@@ -49,12 +49,31 @@ void Plc::write(const Address& start, const std::vector<uint32_t>& values) {
                   " at position " + std::to_string(i) + " does not fit the address width");
   std::vector<Address> targets;
   for (uint32_t i = 0; i < values.size(); ++i) targets.push_back(offset_address(start, i));
-  std::lock_guard<std::mutex> lk(mu_);
-  for (size_t i = 0; i < values.size(); ++i) write_unlocked(targets[i], values[i]);
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    for (size_t i = 0; i < values.size(); ++i) write_unlocked(targets[i], values[i]);
+  }
+  commit();
+}
+
+void Plc::commit() {
+  Durability* d = durability_.load();
+  if (!d) return;
+  uint64_t ticket;
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    ticket = d->capture(engine_, memory_);
+  }
+  d->wait(ticket);
 }
 
 void Plc::force(const Address& a, ForceAction action) {
   if (a.width != Width::Bit) throw Error("force " + format_address(a) + ": only a single discrete can be forced");
+  force_apply(a, action);
+  commit();
+}
+
+void Plc::force_apply(const Address& a, ForceAction action) {
   std::lock_guard<std::mutex> lk(mu_);
   switch (action) {
     case ForceAction::Disable: memory_.set_disabled(a.area, a.index, true); break;

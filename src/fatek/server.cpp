@@ -53,7 +53,9 @@ struct Conn {
 
 // ---- TCP -----------------------------------------------------------------------
 
-TcpServer::TcpServer(Plc& plc, TcpServerOptions opt) : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {}
+TcpServer::TcpServer(Plc& plc, TcpServerOptions opt) : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {
+  slave_.set_writable(opt_.writable);
+}
 
 TcpServer::~TcpServer() { stop(); }
 
@@ -193,7 +195,9 @@ void TcpServer::loop() {
 // ---- serial ----------------------------------------------------------------------
 
 SerialServer::SerialServer(Plc& plc, SerialServerOptions opt)
-    : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {}
+    : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {
+  slave_.set_writable(opt_.writable);
+}
 
 SerialServer::~SerialServer() { stop(); }
 
@@ -224,9 +228,30 @@ ServerStatus SerialServer::status() const {
   s.running = running_;
   s.requests = slave_.requests();
   s.rejected = slave_.rejected() + framing_errors_;
+  s.link_up = link_up_;
+  s.reopened = reopened_;
   std::lock_guard<std::mutex> lk(err_mu_);
   s.last_error = last_error_;
   return s;
+}
+
+// A device that went away (USB adapter unplugged, pty master closed) is reopened by
+// path until it is back; meanwhile the server runs, link_up is false and says why.
+bool SerialServer::wait_for_device() {
+  while (running_) {
+    try {
+      fd_ = open_serial_port(opt_.line);
+      link_up_ = true;
+      ++reopened_;
+      std::lock_guard<std::mutex> lk(err_mu_);
+      last_error_ = "serial device back";
+      return true;
+    } catch (const Error&) {
+      pollfd w{wake_[0], POLLIN, 0};
+      ::poll(&w, 1, 200);  // retry period; stop() wakes us at once
+    }
+  }
+  return false;
 }
 
 void SerialServer::loop() {
@@ -238,7 +263,15 @@ void SerialServer::loop() {
     std::lock_guard<std::mutex> lk(err_mu_);
     last_error_ = e;
   };
+  auto lost = [&](const std::string& why) {
+    close_fd(fd_);
+    fd_ = -1;
+    link_up_ = false;
+    dec = Decoder();
+    note("serial device lost: " + why);
+  };
   while (running_) {
+    if (fd_ < 0 && !wait_for_device()) break;
     pollfd p[2] = {{wake_[0], POLLIN, 0}, {fd_, POLLIN, 0}};
     const int r = ::poll(p, 2, dec.in_frame() ? opt_.frame_timeout_ms : 200);
     if (!running_) break;
@@ -248,13 +281,21 @@ void SerialServer::loop() {
       note("framing: frame cut short by timeout");
       continue;
     }
-    if (p[1].revents & (POLLHUP | POLLERR) && !(p[1].revents & POLLIN)) {
-      // A pty whose other end is closed reports HUP until it reopens; do not spin.
-      ::poll(p, 1, 50);
+    if (p[1].revents & (POLLHUP | POLLERR | POLLNVAL) && !(p[1].revents & POLLIN)) {
+      // The other end of the line is gone (a pty's master closed, a device removed).
+      lost(p[1].revents & POLLHUP ? "hang-up" : "I/O error");
       continue;
     }
     if (!(p[1].revents & POLLIN)) continue;
     const ssize_t n = ::read(fd_, buf, sizeof buf);
+    if (n < 0 && errno != EAGAIN && errno != EINTR) {
+      lost(std::strerror(errno));
+      continue;
+    }
+    if (n == 0 && (p[1].revents & POLLHUP)) {  // a tty hang-up reads as end of file
+      lost("hang-up");
+      continue;
+    }
     if (n <= 0) continue;
     last_rx = Clock::now();
     out.clear();
@@ -267,15 +308,23 @@ void SerialServer::loop() {
   }
 }
 
-std::unique_ptr<Server> make_tcp_server(Plc& plc, const std::string& host_port, int station) {
+std::unique_ptr<Server> make_tcp_server(Plc& plc, const std::string& host_port, int station,
+                                        const ServerPolicy& policy) {
   TcpServerOptions o;
   parse_host_port(host_port, &o.host, &o.port);
   o.station = station;
+  o.writable = policy.writable;
+  if (policy.max_connections < 1) throw Error("FATEK TCP: max connections must be at least 1");
+  if (policy.idle_timeout_ms < 1) throw Error("FATEK TCP: idle timeout must be positive");
+  o.max_connections = policy.max_connections;
+  o.idle_timeout_ms = policy.idle_timeout_ms;
   return std::make_unique<TcpServer>(plc, o);
 }
 
-std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_spec, int station) {
+std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_spec, int station,
+                                           const ServerPolicy& policy) {
   SerialServerOptions o;
+  o.writable = policy.writable;
   o.line = parse_serial_settings(device_spec, "7E1");
   o.station = station;
   return std::make_unique<SerialServer>(plc, o);
@@ -283,9 +332,10 @@ std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_s
 
 }  // namespace fatek
 
-std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station) {
-  if (kind == "tcp") return fatek::make_tcp_server(plc, where, station);
-  if (kind == "serial") return fatek::make_serial_server(plc, where, station);
+std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station,
+                                          const fatek::ServerPolicy& policy) {
+  if (kind == "tcp") return fatek::make_tcp_server(plc, where, station, policy);
+  if (kind == "serial") return fatek::make_serial_server(plc, where, station, policy);
   throw Error("FATEK server kind '" + kind + "' (expected tcp or serial)");
 }
 

@@ -21,6 +21,29 @@ void write_point(ScanEngine& e, Memory& m, const Address& a, uint32_t v) {
     if (!m.disabled(Area::X, a.index + k)) e.set_input(a.index + k, (v >> k) & 1u);
 }
 
+// The elements a request writes: WY8 is Y8..Y23, DR0 is R0 and R1.
+bool may_write(const WritableRanges& w, const Address& a, uint32_t count) {
+  uint32_t per = 1;
+  if (is_discrete(a.area)) per = a.width == Width::Word ? 16 : a.width == Width::DWord ? 32 : 1;
+  else if (a.width == Width::DWord && a.area != Area::RC) per = 2;
+  return w.allows(a.area, a.index, count * per);
+}
+
+ErrorCode check_writable(const WritableRanges& w, const Request& req) {
+  if (w.everything()) return ErrorCode::Ok;
+  switch (req.cmd) {
+    case Cmd::RunStop: return ErrorCode::Format;  // "command cannot execute"
+    case Cmd::Control: return may_write(w, req.start, 1) ? ErrorCode::Ok : ErrorCode::IllegalAddress;
+    case Cmd::WriteDiscretes:
+    case Cmd::WriteRegisters: return may_write(w, req.start, req.count) ? ErrorCode::Ok : ErrorCode::IllegalAddress;
+    case Cmd::MixedWrite:
+      for (const auto& p : req.points)
+        if (!may_write(w, p, 1)) return ErrorCode::IllegalAddress;
+      return ErrorCode::Ok;
+    default: return ErrorCode::Ok;
+  }
+}
+
 uint8_t status1(ScanEngine& e) {
   uint8_t s = 0;
   if (e.mode() == RunMode::Run) s |= kStatusRun;
@@ -47,6 +70,7 @@ bool Slave::handle(const Frame& f, std::string& out) {
   Response rsp;
   rsp.station = uint8_t(station_);
   ErrorCode e = parse_request(f, &req);
+  if (e == ErrorCode::Ok) e = check_writable(writable_, req);
   if (broadcast) {
     // Broadcast: execute write-type commands, never answer (spec 1.6).
     if (e == ErrorCode::Ok && is_write(req.cmd)) e = execute(req, &rsp);
@@ -136,6 +160,8 @@ ErrorCode Slave::execute(const Request& req, Response* rsp) {
     }
     return 0;
   });
+  // The reply is built after this returns: a write is durable before it is acknowledged.
+  if (req.cmd == Cmd::WriteDiscretes || req.cmd == Cmd::WriteRegisters || req.cmd == Cmd::MixedWrite) plc_.commit();
   return ErrorCode::Ok;
 }
 

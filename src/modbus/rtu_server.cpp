@@ -1,6 +1,10 @@
 #include "plc_cell/modbus/rtu_server.h"
 
 #include <cerrno>
+#include <chrono>
+#include <string>
+
+#include <cerrno>
 
 #include <modbus/modbus.h>
 
@@ -10,7 +14,8 @@
 namespace plc_cell {
 namespace modbus {
 
-RtuServer::RtuServer(Plc& plc, SerialSettings port, int slave_id) : plc_(plc), port_(std::move(port)), id_(slave_id) {
+RtuServer::RtuServer(Plc& plc, SerialSettings port, int slave_id, WritableRanges writable)
+    : plc_(plc), port_(std::move(port)), id_(slave_id), writable_(std::move(writable)) {
   if (id_ < 1 || id_ > 247) throw Error("Modbus RTU slave id " + std::to_string(id_) + " outside 1..247");
 }
 
@@ -64,13 +69,38 @@ ServerStatus RtuServer::status() const {
   return st_;
 }
 
+// A device that went away (USB adapter unplugged, pty master closed) is reopened by path
+// every 200 ms until it is back; meanwhile link_up is false and last_error says why.
+void RtuServer::reopen(const std::string& why) {
+  modbus_close(ctx_);
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    st_.link_up = false;
+    st_.last_error = "serial device lost: " + why;
+  }
+  while (!stop_) {
+    if (modbus_connect(ctx_) == 0) {
+      std::lock_guard<std::mutex> lk(mu_);
+      st_.link_up = true;
+      st_.reopened++;
+      st_.last_error = "serial device back";
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // retry period, not a test wait
+  }
+}
+
 void RtuServer::run() {
   uint8_t req[MODBUS_RTU_MAX_ADU_LENGTH];
   while (!stop_) {
     const int rc = modbus_receive(ctx_, req);
     if (rc == 0) continue;  // for another slave
     if (rc < 0) {
-      if (errno == ETIMEDOUT) continue;
+      if (errno == ETIMEDOUT || errno == EINTR) continue;
+      if (errno < MODBUS_ENOBASE) {  // an OS error, not a bad frame: the device is gone
+        reopen(modbus_strerror(errno));
+        continue;
+      }
       std::lock_guard<std::mutex> lk(mu_);
       st_.rejected++;
       st_.last_error = modbus_strerror(errno);
@@ -78,7 +108,7 @@ void RtuServer::run() {
       continue;
     }
     const bool ok = supported_function(req[1]);
-    const int r = handle_request(ctx_, plc_, req, rc);
+    const int r = handle_request(ctx_, plc_, req, rc, &writable_);
     std::lock_guard<std::mutex> lk(mu_);
     (ok && r >= 0 ? st_.requests : st_.rejected)++;
     if (r < 0) st_.last_error = modbus_strerror(errno);

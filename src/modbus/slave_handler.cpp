@@ -1,6 +1,11 @@
 #include "plc_cell/modbus/slave_handler.h"
 
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <memory>
+#include <cerrno>
 #include <vector>
 
 #include "plc_cell/core/plc.h"
@@ -49,6 +54,49 @@ void store_words(Memory& m, const Range& r, const uint16_t* src) {
     if (w[i] != src[i]) w[i] = src[i];
 }
 
+// libmodbus applies a write to the mapping and sends the reply in one call. With
+// persistence on, the reply must wait until the write is durable: modbus_reply then
+// writes into one end of a socket pair, and the bytes go to the peer after commit().
+class HeldReply {
+ public:
+  explicit HeldReply(modbus_t* ctx) : ctx_(ctx), real_(modbus_get_socket(ctx)) {
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv_) != 0) sv_[0] = sv_[1] = -1;
+    else modbus_set_socket(ctx_, sv_[0]);
+  }
+  ~HeldReply() {
+    restore();
+    for (int fd : sv_)
+      if (fd >= 0) ::close(fd);
+  }
+  bool ok() const { return sv_[0] >= 0; }
+  void restore() { modbus_set_socket(ctx_, real_); }
+  // Sends what modbus_reply wrote. A socket gets MSG_NOSIGNAL; a serial line plain write().
+  int release() {
+    restore();
+    uint8_t buf[MODBUS_MAX_ADU_LENGTH];
+    const ssize_t n = ::recv(sv_[1], buf, sizeof buf, MSG_DONTWAIT);
+    if (n <= 0) return n == 0 || errno == EAGAIN ? 0 : -1;
+    ssize_t w = ::send(real_, buf, size_t(n), MSG_NOSIGNAL);
+    if (w < 0 && errno == ENOTSOCK) w = ::write(real_, buf, size_t(n));
+    return w == n ? int(n) : -1;
+  }
+
+ private:
+  modbus_t* ctx_;
+  int real_;
+  int sv_[2] = {-1, -1};
+};
+
+// Word-store index of RC back to the counter it belongs to (C200.. take two words).
+uint32_t rc_counter(uint32_t w) { return w < kFirst32BitCounter ? w : kFirst32BitCounter + (w - kFirst32BitCounter) / 2; }
+
+bool may_write(const WritableRanges* w, const Range& r) {
+  if (!w || w->everything()) return true;
+  if (r.run.area != Area::RC) return w->allows(r.run.area, r.run.index, r.count);
+  const uint32_t first = rc_counter(r.run.index), last = rc_counter(r.run.index + r.count - 1);
+  return w->allows(Area::RC, first, last - first + 1);
+}
+
 }  // namespace
 
 bool supported_function(uint8_t fc) {
@@ -58,7 +106,7 @@ bool supported_function(uint8_t fc) {
   }
 }
 
-int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len) {
+int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable) {
   const int h = modbus_get_header_length(ctx);
   if (len < h + 1) return -1;
   const uint8_t fc = req[h];
@@ -88,9 +136,14 @@ int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len) {
   thread_local std::vector<uint8_t> bits(kMaxSpan);
   thread_local std::vector<uint16_t> words(kMaxSpan);
 
-  return plc.locked([&](ScanEngine&, Memory& m) {
+  std::unique_ptr<HeldReply> held;
+  if (has_wr && plc.has_durability()) {
+    held = std::make_unique<HeldReply>(ctx);
+    if (!held->ok()) return -1;
+  }
+  const int replied = plc.locked([&](ScanEngine&, Memory& m) {
     if (has_rd) rd.ok = resolve(m, rd.table, rd.addr, rd.count, &rd.run);
-    if (has_wr) wr.ok = resolve(m, wr.table, wr.addr, wr.count, &wr.run);
+    if (has_wr) wr.ok = resolve(m, wr.table, wr.addr, wr.count, &wr.run) && may_write(writable, wr);
     // An unmapped range leaves the table empty in the mapping: libmodbus then
     // checks the quantity first (exception 03) and the address next (02).
     modbus_mapping_t mp{};
@@ -126,6 +179,10 @@ int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len) {
     }
     return modbus_reply(ctx, req, len, &mp);
   });
+  if (!held) return replied;
+  if (replied < 0) return replied;
+  plc.commit();
+  return held->release();
 }
 
 }  // namespace modbus

@@ -16,6 +16,9 @@ std::vector<std::unique_ptr<Server>> make_slave_servers(Plc& plc, const SlaveOpt
     parse_host_port(o.tcp, &t.host, &t.port);
     t.max_connections = o.max_connections;
     t.idle_timeout_ms = o.idle_timeout_ms;
+    t.writable = o.writable;
+    if (o.max_connections < 1) throw Error("Modbus TCP: max connections must be at least 1");
+    if (o.idle_timeout_ms < 1) throw Error("Modbus TCP: idle timeout must be positive");
     if (o.gateway.empty()) {
       out.push_back(std::make_unique<TcpServer>(plc, t));
     } else {
@@ -31,7 +34,7 @@ std::vector<std::unique_ptr<Server>> make_slave_servers(Plc& plc, const SlaveOpt
     throw Error("Modbus gateway " + o.gateway + ": needs a Modbus/TCP endpoint too");
   }
   if (!o.rtu.empty())
-    out.push_back(std::make_unique<RtuServer>(plc, parse_serial_settings(o.rtu, "8E1"), o.id));
+    out.push_back(std::make_unique<RtuServer>(plc, parse_serial_settings(o.rtu, "8E1"), o.id, o.writable));
   return out;
 }
 

@@ -237,7 +237,7 @@ void TcpServer::run() {
         to_close.push_back(c.fd);
         continue;
       }
-      if (handle_request(ctx_, plc_, req, rc) < 0) {
+      if (handle_request(ctx_, plc_, req, rc, &opt_.writable) < 0) {
         count(false, std::string("reply: ") + modbus_strerror(errno));
         to_close.push_back(c.fd);
         continue;

@@ -37,6 +37,7 @@ CounterTopics::CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell
             cell_.counters().preset(n, req.value);
             return 0;
           });
+          cell_.plc().commit();  // a retentive counter is on disk before the reply
           res.success = true;
           return true;
         }));
@@ -46,6 +47,7 @@ CounterTopics::CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell
             cell_.counters().preset(n, 0);
             return 0;
           });
+          cell_.plc().commit();
           res.success = true;
           return true;
         }));

@@ -12,11 +12,14 @@
 
 namespace plc_cell {
 
-void add_modbus_servers(Plc& plc, ros::NodeHandle& pnh, ServerList* servers) {
+void add_modbus_servers(Plc& plc, ros::NodeHandle& pnh, const ServerSettings& yaml, ServerList* servers) {
   modbus::SlaveOptions o;
+  o.id = yaml.modbus.id;
+  o.max_connections = yaml.modbus.max_connections;
+  o.idle_timeout_ms = yaml.modbus.idle_timeout_ms;
   double idle = o.idle_timeout_ms / 1000.0;
-  pnh.param<std::string>("modbus_tcp", o.tcp, "");
-  pnh.param<std::string>("modbus_rtu", o.rtu, "");
+  pnh.param<std::string>("modbus_tcp", o.tcp, yaml.modbus.tcp);
+  pnh.param<std::string>("modbus_rtu", o.rtu, yaml.modbus.rtu);
   pnh.param("modbus_id", o.id, o.id);
   pnh.param("modbus_max_connections", o.max_connections, o.max_connections);
   pnh.param("modbus_idle_timeout", idle, idle);
@@ -24,6 +27,9 @@ void add_modbus_servers(Plc& plc, ros::NodeHandle& pnh, ServerList* servers) {
   pnh.param("modbus_gateway_wait_ms", o.gateway_wait_ms, o.gateway_wait_ms);
   pnh.param("modbus_gateway_retries", o.gateway_retries, o.gateway_retries);
   o.idle_timeout_ms = int(idle * 1000);
+  std::string writable = yaml.modbus.writable;
+  pnh.param<std::string>("modbus_writable", writable, writable);
+  o.writable = WritableRanges::parse(writable);
   for (auto& s : modbus::make_slave_servers(plc, o)) servers->push_back(std::move(s));
 }
 

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "plc_cell/IoState.h"
+#include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/ros/server_params.h"
 
@@ -32,9 +33,13 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   io_pub_ = pnh.advertise<IoState>("io", 10);
   for (const auto& s : cfg.signals) {
     signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s.first, 1, /*latch=*/true));
+    stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s.first, 100, /*latch=*/true));
     if (s.second.area != Area::X) continue;
     const uint32_t x = s.second.index;
     const std::string name = s.first;
+    input_subs_.push_back(pnh.subscribe<Signal>("inputs_stamped/" + name, 100, [this, x](const Signal::ConstPtr& m) {
+      on_stamped_input(x, m->header.stamp.toNSec() / 1000, m->data);
+    }));
     input_subs_.push_back(pnh.subscribe<std_msgs::Bool>(
         "inputs/" + name, 10, [this, x, name](const std_msgs::Bool::ConstPtr& m) {
           cell_->plc().locked([&](ScanEngine& e, Memory&) {
@@ -57,7 +62,10 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
-  io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {
+  pnh.param("virtual_time", virtual_time_, false);
+  // Virtual time publishes every change with its scan's stamp, and nothing else: the
+  // periodic republish would add wall-clock stamps to a replay.
+  if (!virtual_time_) io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {
     Snapshot s;
     {
       std::lock_guard<std::mutex> lk(snap_mu_);
@@ -67,16 +75,38 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
     publish(s, false);
   });
 
+  // Retentive memory from the last run, before the first scan and the first request.
+  PersistSettings keep = cfg.persist;
+  pnh.param<std::string>("persist_file", keep.file, keep.file);
+  double persist_interval = double(keep.interval_us) / 1e6;
+  pnh.param("persist_interval", persist_interval, persist_interval);
+  if (!(persist_interval >= 0.001 && persist_interval <= 60)) throw Error("~persist_interval must be in [0.001, 60] s");
+  keep.interval_us = uint64_t(persist_interval * 1e6);
+  if (!keep.file.empty()) {
+    persister_ = std::make_unique<persist::Persister>(cell_->plc(), keep, [](const std::string& l) {
+      ROS_INFO("plc_node: %s", l.c_str());
+    });
+    updater_.add("persistence", this, &PlcNode::diagnose_persist);
+  }
+
   // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
-  add_fatek_servers(cell_->plc(), pnh, &servers_);
-  add_modbus_servers(cell_->plc(), pnh, &servers_);
+  const ServerSettings from_yaml = parse_server_settings(cfg);
+  add_fatek_servers(cell_->plc(), pnh, from_yaml, &servers_);
+  add_modbus_servers(cell_->plc(), pnh, from_yaml, &servers_);
   if (cell_->temperature()) temperature_ = std::make_unique<TemperatureRos>(nh, pnh, *cell_, updater_);
   for (auto& s : servers_) {
     s->start();
     ROS_INFO("plc_node: serving %s", s->describe().c_str());
   }
+  if (!servers_.empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
 
   if (autostart && !cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program");
+  if (virtual_time_) {
+    start_virtual_time(pnh, uint64_t(scan_period * 1e6 + 0.5));
+    ROS_INFO("plc_node: cell '%s', program %s, scan %.3f ms of virtual time, %s", cfg.name.c_str(),
+             program_path_.c_str(), scan_period * 1e3, autostart ? "RUN" : "STOP");
+    return;
+  }
   publisher_ = std::thread([this] { publisher_loop(); });
   loop_ = std::make_unique<RealTimeLoop>(cell_->plc(),
                                          std::chrono::nanoseconds(int64_t(scan_period * 1e9)));
@@ -90,6 +120,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
 PlcNode::~PlcNode() {
   for (auto& s : servers_) s->stop();
   if (loop_) loop_->stop();
+  services_.clear();
+  persister_.reset();  // after every writer stopped: the newest image goes to disk
   {
     std::lock_guard<std::mutex> lk(snap_mu_);
     stopping_ = true;
@@ -144,7 +176,10 @@ void PlcNode::publisher_loop() {
 
 void PlcNode::publish(const Snapshot& s, bool all_signals) {
   IoState msg;
-  msg.header.stamp = ros::Time::now();
+  ros::Time stamp;
+  if (virtual_time_) stamp.fromNSec(s.scan_us * 1000);
+  else stamp = ros::Time::now();
+  msg.header.stamp = stamp;
   msg.header.frame_id = cell_->config().name;
   msg.run = s.run;
   msg.x.assign(s.x.begin(), s.x.end());
@@ -160,6 +195,11 @@ void PlcNode::publish(const Snapshot& s, bool all_signals) {
     std_msgs::Bool b;
     b.data = s.signals[i];
     signal_pubs_[i].publish(b);
+    Signal st;
+    st.header.stamp = stamp;
+    st.header.frame_id = cell_->config().name;
+    st.data = s.signals[i];
+    stamped_pubs_[i].publish(st);
   }
 }
 
@@ -185,6 +225,38 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("wake latency avg (us)", v.st.wake_latency.avg_ns() / 1000.0);
   stat.add("wake latency max (us)", v.st.wake_latency.max_ns / 1000.0);
   stat.add("overruns", v.st.overruns);
+}
+
+// A lost serial device or a stopped server is a fault on /diagnostics; it clears itself
+// when the server recovers (it reopens the device by itself).
+void PlcNode::diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  std::string down;
+  for (const auto& s : servers_) {
+    const ServerStatus st = s->status();
+    const std::string name = s->describe();
+    if (!st.running || !st.link_up) down += (down.empty() ? "" : "; ") + name + ": " + st.last_error;
+    stat.add(name + " requests", st.requests);
+    stat.add(name + " rejected", st.rejected);
+    stat.add(name + " connections", st.connections);
+    stat.add(name + " link", st.link_up ? "up" : "down");
+    stat.add(name + " reopened", st.reopened);
+    stat.add(name + " last error", st.last_error);
+  }
+  if (down.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "serving");
+  else stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, down);
+}
+
+void PlcNode::diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  const persist::PersistStatus p = persister_->status();
+  if (!p.error.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, p.error);
+  else if (!p.problems.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "started from a fallback copy");
+  else stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "retentive ranges persisted");
+  stat.add("file", p.file);
+  stat.add("restored", p.restored);
+  for (size_t i = 0; i < p.problems.size(); ++i) stat.add("store problem " + std::to_string(i + 1), p.problems[i]);
+  stat.add("sequence", p.seq);
+  stat.add("durable sequence", p.durable_seq);
+  stat.add("flushes", p.flushes);
 }
 
 // ---- services: every failure is a reply with a message, never an exception ----

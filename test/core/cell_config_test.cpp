@@ -60,7 +60,7 @@ TEST(CellConfig, ReadsEveryKey) {
 
 TEST(CellConfig, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(error_of("plc:\n  scan_perod: 0.001\n"),
-            "cell.yaml:2:3: error: key 'plc.scan_perod': unknown key (expected one of: retentive, "
+            "cell.yaml:2:3: error: key 'plc.scan_perod': unknown key (expected one of: persist, retentive, "
             "scan_period, timer_bases, watchdog)");
   EXPECT_NE(error_of("signals:\n  a: Q1\n").find("cell.yaml:2:6: error: key 'signals.a': bad address 'Q1'"),
             std::string::npos);

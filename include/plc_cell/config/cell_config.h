@@ -31,6 +31,13 @@ struct TimerBaseRange {
   uint32_t first, last, base_us;
 };
 
+// plc.persist: where the retentive ranges survive restarts (docs/reliability.md).
+struct PersistSettings {
+  std::string file;                // "" = off
+  uint64_t interval_us = 100000;   // power-cut window: fdatasync at least this often
+  bool sync_writes = true;         // client writes are acknowledged only once on disk
+};
+
 struct CellConfig {
   std::string file;  // where it was read from ("" for text)
   std::string name = "cell";
@@ -39,6 +46,7 @@ struct CellConfig {
   uint64_t watchdog_us = 200000;
   std::vector<AreaRange> retentive = default_retentive();
   std::vector<TimerBaseRange> timer_bases;
+  PersistSettings persist;
   std::vector<std::pair<std::string, Address>> signals;  // in file order
   std::vector<SimInputDef> sim_inputs;
   YAML::Node document;  // the whole file, for subsystems that read their own sections

@@ -1,6 +1,7 @@
 #pragma once
 // The soft PLC as servers and nodes see it: memory, engine and program behind one
 // mutex, so that every request is atomic with respect to the scan.
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <mutex>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "plc_cell/core/address.h"
+#include "plc_cell/core/durability.h"
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/memory.h"
 #include "plc_cell/core/scan_engine.h"
@@ -54,13 +56,23 @@ class Plc {
 
   const FunctionTable& functions() const { return functions_; }
 
+  // Persistence of acknowledged writes. write() and force() commit by themselves; a
+  // server that changes memory through locked() calls commit() before it replies.
+  // Without a Durability attached commit() does nothing. The Durability must outlive
+  // its attachment (detach with nullptr first).
+  void set_durability(Durability* d) { durability_.store(d); }
+  void commit();
+  bool has_durability() const { return durability_.load() != nullptr; }
+
  private:
   void write_unlocked(const Address& a, uint32_t v);
+  void force_apply(const Address& a, ForceAction action);  // takes the lock, no commit
 
   mutable std::mutex mu_;
   FunctionTable functions_;
   Memory memory_;
   ScanEngine engine_;
+  std::atomic<Durability*> durability_{nullptr};
 };
 
 }  // namespace plc_cell

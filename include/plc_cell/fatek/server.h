@@ -23,6 +23,7 @@ struct TcpServerOptions {
   int idle_timeout_ms = 60000;    // a silent connection is closed
   int frame_timeout_ms = 1000;    // a frame not finished in time is dropped
   size_t max_pending_output = 64 * 1024;  // a client that does not read is dropped
+  WritableRanges writable;        // what clients may write (default everything)
 };
 
 class TcpServer : public Server {
@@ -55,6 +56,7 @@ struct SerialServerOptions {
   SerialSettings line;
   int station = 1;
   int frame_timeout_ms = 500;  // inter-byte gap that drops an unfinished frame
+  WritableRanges writable;
 };
 
 class SerialServer : public Server {
@@ -68,10 +70,13 @@ class SerialServer : public Server {
 
  private:
   void loop();
+  bool wait_for_device();  // false once stopping
   Plc& plc_;
   SerialServerOptions opt_;
   Slave slave_;
   int fd_ = -1;
+  std::atomic<bool> link_up_{true};
+  std::atomic<uint64_t> reopened_{0};
   int wake_[2] = {-1, -1};
   std::thread thread_;
   std::atomic<bool> running_{false};
@@ -81,12 +86,21 @@ class SerialServer : public Server {
 };
 
 // Builders for `plc_cell run` and plc_node: "HOST:PORT" and "DEVICE[:BAUD[:FORMAT]]".
-std::unique_ptr<Server> make_tcp_server(Plc& plc, const std::string& host_port, int station);
-std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_spec, int station);
+// Settings shared by the command line, plc_node parameters and tests (docs/security.md).
+struct ServerPolicy {
+  WritableRanges writable;
+  int max_connections = 8;      // TCP only
+  int idle_timeout_ms = 60000;  // TCP only
+};
+std::unique_ptr<Server> make_tcp_server(Plc& plc, const std::string& host_port, int station,
+                                        const ServerPolicy& policy = {});
+std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_spec, int station,
+                                           const ServerPolicy& policy = {});
 
 }  // namespace fatek
 
 // kind "tcp" or "serial"; for plc_node, which declares it at its @node-servers anchor.
-std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station);
+std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station,
+                                          const fatek::ServerPolicy& policy = {});
 
 }  // namespace plc_cell

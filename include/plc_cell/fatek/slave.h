@@ -6,6 +6,7 @@
 #include <string>
 
 #include "plc_cell/core/plc.h"
+#include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/fatek/protocol.h"
 
 namespace plc_cell {
@@ -26,6 +27,11 @@ class Slave {
   // A rejected request changes nothing: it is validated completely before it is applied.
   bool handle(const Frame& f, std::string& out);
 
+  // Network clients may write only these (default: everything). A write elsewhere is
+  // answered with error A (illegal address), RUN/STOP with error 4 (cannot execute).
+  void set_writable(WritableRanges w) { writable_ = std::move(w); }
+  const WritableRanges& writable() const { return writable_; }
+
   int station() const { return station_; }
   uint64_t requests() const { return requests_; }
   uint64_t rejected() const { return rejected_; }
@@ -35,6 +41,7 @@ class Slave {
 
   Plc& plc_;
   int station_;
+  WritableRanges writable_;
   std::atomic<uint64_t> requests_{0};
   std::atomic<uint64_t> rejected_{0};
 };

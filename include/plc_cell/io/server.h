@@ -12,6 +12,8 @@ struct ServerStatus {
   uint64_t rejected = 0;     // malformed or refused requests
   uint64_t connections = 0;  // open connections now (TCP)
   std::string last_error;
+  bool link_up = true;       // serial: the device is open (false while it is gone)
+  uint64_t reopened = 0;     // serial: times the device came back after it was lost
 };
 
 class Server {

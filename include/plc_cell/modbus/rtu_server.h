@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "plc_cell/io/serial_settings.h"
+#include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/io/server.h"
 
 typedef struct _modbus modbus_t;
@@ -19,7 +20,7 @@ namespace modbus {
 
 class RtuServer : public Server {
  public:
-  RtuServer(Plc& plc, SerialSettings port, int slave_id);
+  RtuServer(Plc& plc, SerialSettings port, int slave_id, WritableRanges writable = {});
   ~RtuServer() override;
 
   void start() override;
@@ -29,10 +30,12 @@ class RtuServer : public Server {
 
  private:
   void run();
+  void reopen(const std::string& why);
 
   Plc& plc_;
   SerialSettings port_;
   int id_;
+  WritableRanges writable_;
   modbus_t* ctx_ = nullptr;
   std::atomic<bool> stop_{false};
   std::thread thread_;

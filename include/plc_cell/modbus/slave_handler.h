@@ -4,6 +4,8 @@
 // exactly the requested range, filled from memory under the PLC lock.
 #include <cstdint>
 
+#include "plc_cell/core/writable_ranges.h"
+
 #include <modbus/modbus.h>
 
 namespace plc_cell {
@@ -18,7 +20,9 @@ bool supported_function(uint8_t fc);
 // req/len as modbus_receive returned them. The whole request runs inside one
 // plc.locked(): it sees one scan's state and a rejected request changes nothing.
 // Returns modbus_reply's result (-1 when the reply could not be sent).
-int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len);
+// A write outside `writable` (null: everything writable) is answered with exception 02,
+// as an unmapped address, and changes nothing.
+int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable = nullptr);
 
 }  // namespace modbus
 }  // namespace plc_cell

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/io/server.h"
 
 namespace plc_cell {
@@ -23,6 +24,7 @@ struct SlaveOptions {
   std::string gateway;  // DEVICE[:BAUD[:FORMAT]], "" = off
   int gateway_wait_ms = 150;
   int gateway_retries = 2;
+  WritableRanges writable;  // what clients may write, TCP and RTU alike (docs/security.md)
 };
 
 // Throws plc_cell::Error on a bad option.

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/io/server.h"
 
 typedef struct _modbus modbus_t;
@@ -32,6 +33,7 @@ struct TcpServerOptions {
   // without a forwarder every unit id is answered from the PLC.
   int own_unit = 1;
   Forwarder* forwarder = nullptr;
+  WritableRanges writable;  // what clients may write (default everything); else exception 02
 };
 
 class TcpServer : public Server {

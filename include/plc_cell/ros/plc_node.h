@@ -22,6 +22,7 @@
 #include "plc_cell/ros/motion_topics.h"
 #include "plc_cell/io/server.h"
 #include "plc_cell/ros/temperature_ros.h"
+#include "plc_cell/persist/persister.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
@@ -34,6 +35,7 @@ class PlcNode {
 
  private:
   struct Snapshot {
+    uint64_t scan_us = 0;  // virtual time: the scan it was taken after
     bool run = false;
     std::vector<uint8_t> x, y, signals;
     bool operator==(const Snapshot& o) const {
@@ -45,7 +47,13 @@ class PlcNode {
   void after_scan();
   void publisher_loop();
   void publish(const Snapshot& s, bool all_signals);
+  // Virtual time (plc_node_virtual_time.cpp): scans driven by ~clock_topic.
+  void start_virtual_time(ros::NodeHandle& pnh, uint64_t period_us);
+  void on_clock(uint64_t now_us);
+  void on_stamped_input(uint32_t x, uint64_t stamp_us, bool v);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
   bool on_read(ReadMemory::Request& req, ReadMemory::Response& res);
   bool on_write(WriteMemory::Request& req, WriteMemory::Response& res);
@@ -54,6 +62,7 @@ class PlcNode {
   bool on_load(LoadProgram::Request& req, LoadProgram::Response& res);
 
   std::unique_ptr<SoftCell> cell_;
+  std::unique_ptr<persist::Persister> persister_;  // ~persist_file / plc.persist; may be null
   std::unique_ptr<RealTimeLoop> loop_;
   std::vector<std::unique_ptr<Server>> servers_;  // protocol servers on this PLC
   std::unique_ptr<CounterTopics> counters_;        // high-speed counters on topics
@@ -64,6 +73,22 @@ class PlcNode {
   ros::Publisher io_pub_;
   std::vector<ros::Publisher> signal_pubs_;
   std::vector<ros::Subscriber> input_subs_;
+  std::vector<ros::Publisher> stamped_pubs_;  // plc_cell/Signal, beside signal_pubs_
+
+  // Virtual time: inputs wait in pending_ until the scan at or after their stamp.
+  struct PendingInput {
+    uint64_t stamp_us;
+    uint64_t seq;  // arrival order breaks ties
+    uint32_t x;
+    bool v;
+  };
+  bool virtual_time_ = false;
+  uint64_t period_us_ = 1000, lag_us_ = 0, next_scan_us_ = 0, input_seq_ = 0, late_inputs_ = 0;
+  std::mutex virtual_mu_;
+  std::vector<PendingInput> pending_;
+  ros::Subscriber clock_sub_;
+  Snapshot virtual_last_;
+  bool virtual_published_ = false;
   std::vector<ros::ServiceServer> services_;
   ros::Timer io_timer_, diag_timer_;
   diagnostic_updater::Updater updater_;

@@ -1,0 +1,59 @@
+# Reliability subsystem (issue 8): retentive memory that survives restarts and crashes.
+add_library(plc_cell_persist STATIC
+  src/persist/crc32.cpp
+  src/persist/retentive_image.cpp
+  src/persist/slot_file.cpp
+  src/persist/persister.cpp)
+find_package(ZLIB REQUIRED)
+target_link_libraries(plc_cell_persist PUBLIC plc_cell_core PRIVATE ZLIB::ZLIB)
+set_target_properties(plc_cell_persist PROPERTIES POSITION_INDEPENDENT_CODE ON)
+list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_persist)
+
+if(CATKIN_ENABLE_TESTING)
+  file(GLOB RELIABILITY_TESTS ${PROJECT_SOURCE_DIR}/test/reliability/*_test.cpp)
+  catkin_add_gtest(reliability_tests test/core/test_main.cpp ${RELIABILITY_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  target_link_libraries(reliability_tests plc_cell_persist plc_cell_fatek plc_cell_modbus)
+  target_compile_definitions(reliability_tests PRIVATE
+    PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+  add_dependencies(reliability_tests plc_cell_tool)
+endif()
+
+# ---- libFuzzer targets (test/fuzz/): a clang sub-build, run briefly by fuzz_tests -------
+# clang comes from the Makefile's DEB_PACKAGES (clang, libclang-rt-14-dev). Without it
+# this step fails and so does the build: the fuzz tests fail, they never skip.
+include(ExternalProject)
+find_program(PLC_CELL_CLANGXX NAMES clang++ clang++-14)
+if(NOT PLC_CELL_CLANGXX)
+  set(PLC_CELL_CLANGXX clang++)  # the sub-build then fails with "clang++ not found"
+endif()
+set(PLC_CELL_FUZZ_DIR ${CMAKE_CURRENT_BINARY_DIR}/fuzz)
+ExternalProject_Add(plc_cell_fuzzers
+  SOURCE_DIR ${PROJECT_SOURCE_DIR}/test/fuzz
+  BINARY_DIR ${PLC_CELL_FUZZ_DIR}
+  CMAKE_ARGS -DCMAKE_CXX_COMPILER=${PLC_CELL_CLANGXX} -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  BUILD_ALWAYS ON
+  INSTALL_COMMAND "")
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(fuzz_tests test/core/test_main.cpp test/reliability/fuzz/fuzz_runs.cpp)
+  target_compile_definitions(fuzz_tests PRIVATE
+    PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}" PLC_CELL_FUZZ_DIR="${PLC_CELL_FUZZ_DIR}")
+  add_dependencies(fuzz_tests plc_cell_fuzzers)
+endif()
+
+if(CATKIN_ENABLE_TESTING)
+  add_rostest(test/reliability/two_cells.test DEPENDENCIES plc_node)
+endif()
+
+# plc_node's virtual-time mode (deterministic replay of bags).
+list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/ros/plc_node_virtual_time.cpp)
+if(CATKIN_ENABLE_TESTING)
+  add_rostest(test/reliability/replay.test DEPENDENCIES plc_node)
+endif()
+
+# make soak (not part of make test): see docs/reliability.md.
+add_executable(plc_cell_soak test/reliability/soak/soak_main.cpp)
+target_link_libraries(plc_cell_soak plc_cell_fatek plc_cell_modbus)
+target_compile_definitions(plc_cell_soak PRIVATE PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+add_dependencies(plc_cell_soak plc_cell_tool)

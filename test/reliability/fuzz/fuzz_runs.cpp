@@ -1,0 +1,50 @@
+// Each libFuzzer target (test/fuzz/) runs a bounded number of inputs from its seed corpus:
+// exit 0 = no crash, leak, sanitizer report or timeout. `make fuzz` runs them for longer.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <string>
+
+namespace {
+
+struct Run {
+  int status;
+  std::string out;
+};
+
+// New inputs go to a scratch folder (the first corpus argument), never into the source tree.
+Run fuzz(const std::string& target, const std::string& corpus, int runs) {
+  const char* t = std::getenv("TMPDIR");
+  std::string tmp = std::string(t && *t ? t : "/tmp") + "/plc_cell_fuzz_XXXXXX";
+  if (!::mkdtemp(&tmp[0])) return {-1, "mkdtemp"};
+  const std::string bin = std::string(PLC_CELL_FUZZ_DIR) + "/fuzz_" + target;
+  const std::string seeds = std::string(PLC_CELL_SOURCE_DIR) + "/test/fuzz/corpus/" + corpus;
+  const std::string cmd = bin + " -runs=" + std::to_string(runs) + " -seed=1 -max_len=512 -timeout=20 -rss_limit_mb=1024" +
+                          " -artifact_prefix=" + tmp + "/ " + tmp + " " + seeds + " 2>&1";
+  Run r{-1, ""};
+  if (FILE* p = ::popen(cmd.c_str(), "r")) {
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+    const int st = ::pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  }
+  (void)std::system(("rm -rf '" + tmp + "'").c_str());
+  if (r.out.size() > 6000) r.out = "..." + r.out.substr(r.out.size() - 6000);
+  return r;
+}
+
+void expect_clean(const std::string& target, const std::string& corpus, int runs) {
+  const Run r = fuzz(target, corpus, runs);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("Done " + std::to_string(runs) + " runs"), std::string::npos) << r.out;
+}
+
+}  // namespace
+
+TEST(Fuzz, FatekDecoderAndSlave) { expect_clean("fatek_decoder", "fatek", 100000); }
+TEST(Fuzz, IlParser) { expect_clean("il_parser", "il", 5000); }
+TEST(Fuzz, AddressParser) { expect_clean("address", "address", 50000); }
+TEST(Fuzz, CellConfigLoader) { expect_clean("config", "config", 3000); }

@@ -1,0 +1,77 @@
+#pragma once
+// `plc_cell run` as a child process that a test can kill -9. The port is read back from
+// its "serving ... 127.0.0.1:PORT" log line (it binds port 0), so no sleeping and no guessing.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+class RunChild {
+ public:
+  // Waits (up to timeout_ms) until every one of `servers` log lines appeared.
+  explicit RunChild(const std::vector<std::string>& args, int servers = 1, int timeout_ms = 20000) {
+    int p[2];
+    if (::pipe2(p, O_CLOEXEC) != 0) throw std::runtime_error("pipe");
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(p[1], 2);
+      std::vector<char*> av{const_cast<char*>(PLC_CELL_TOOL), const_cast<char*>("run")};
+      for (const auto& a : args) av.push_back(const_cast<char*>(a.c_str()));
+      av.push_back(nullptr);
+      ::execv(PLC_CELL_TOOL, av.data());
+      _exit(127);
+    }
+    ::close(p[1]);
+    fd_ = p[0];
+    while (int(ports.size()) < servers) {
+      pollfd pf{fd_, POLLIN, 0};
+      if (::poll(&pf, 1, timeout_ms) <= 0) throw std::runtime_error("plc_cell run did not start: " + log);
+      char buf[512];
+      const ssize_t n = ::read(fd_, buf, sizeof buf);
+      if (n <= 0) throw std::runtime_error("plc_cell run exited: " + log);
+      log.append(buf, size_t(n));
+      ports.clear();
+      for (size_t k = log.find("serving "); k != std::string::npos; k = log.find("serving ", k + 1)) {
+        const auto h = log.find("127.0.0.1:", k);
+        const auto eol = log.find('\n', k);
+        if (h == std::string::npos || eol == std::string::npos || h > eol) continue;
+        ports.push_back(std::stoi(log.substr(h + 10)));
+      }
+    }
+  }
+  ~RunChild() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    ::close(fd_);
+  }
+  void kill9() {
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+  // Rest of the log after SIGTERM and exit (blocks until the child closed stderr).
+  std::string terminate() {
+    ::kill(pid_, SIGTERM);
+    char buf[512];
+    ssize_t n;
+    while ((n = ::read(fd_, buf, sizeof buf)) > 0) log.append(buf, size_t(n));
+    ::waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+    return log;
+  }
+
+  pid_t pid() const { return pid_; }
+  std::vector<int> ports;
+  std::string log;
+
+ private:
+  pid_t pid_ = -1;
+  int fd_ = -1;
+};

@@ -1,0 +1,88 @@
+// The cell YAML's servers: section: parsed with file:line errors, used by `plc_cell run`,
+// each field overridden by its command-line option.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "plc_cell/config/server_settings.h"
+#include "plc_cell/core/address.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/fatek/client.h"
+#include "run_child.h"
+#include "temp_dir.h"
+
+using namespace plc_cell;
+
+namespace {
+
+ServerSettings parse(const std::string& yaml) { return parse_server_settings(parse_cell_config(yaml, "cell.yaml")); }
+
+std::string error_of(const std::string& yaml) {
+  try {
+    parse(yaml);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(ServerSettings, ParsesBothProtocols) {
+  const auto s = parse(
+      "servers:\n"
+      "  fatek: {tcp: ':500', station: 3, writable: [D0-D9, M800], max_connections: 2, idle_timeout: 5s}\n"
+      "  modbus: {tcp: '0.0.0.0:502', rtu: /dev/ttyS1, id: 7, writable: none, idle_timeout: 250ms}\n");
+  EXPECT_EQ(s.fatek.tcp, ":500");
+  EXPECT_EQ(s.fatek.station, 3);
+  EXPECT_EQ(s.fatek.writable, "D0-D9,M800");
+  EXPECT_EQ(s.fatek.max_connections, 2);
+  EXPECT_EQ(s.fatek.idle_timeout_ms, 5000);
+  EXPECT_EQ(s.modbus.tcp, "0.0.0.0:502");
+  EXPECT_EQ(s.modbus.rtu, "/dev/ttyS1");
+  EXPECT_EQ(s.modbus.id, 7);
+  EXPECT_EQ(s.modbus.writable, "none");
+  EXPECT_EQ(s.modbus.max_connections, 16);
+  EXPECT_EQ(s.modbus.idle_timeout_ms, 250);
+  const auto none = parse("cell: {name: x}\n");
+  EXPECT_TRUE(none.fatek.tcp.empty() && none.fatek.serial.empty() && none.modbus.tcp.empty() && none.modbus.rtu.empty());
+  EXPECT_EQ(none.fatek.writable, "all");
+}
+
+TEST(ServerSettings, ErrorsNameTheLineAndKey) {
+  EXPECT_EQ(error_of("servers:\n  fatek: {tcp: ':500', statoin: 2}\n"),
+            "cell.yaml:2:24: error: key 'servers.fatek.statoin': unknown key (expected one of: idle_timeout, "
+            "max_connections, serial, station, tcp, writable)");
+  EXPECT_NE(error_of("servers:\n  modbus:\n    writable: D9-D0\n").find("cell.yaml:3:15: error: key 'servers.modbus.writable'"),
+            std::string::npos);
+  EXPECT_NE(error_of("servers:\n  modbus: {id: 300}\n").find("servers.modbus.id"), std::string::npos);
+  EXPECT_NE(error_of("servers:\n  fatek: {idle_timeout: forever}\n").find("servers.fatek.idle_timeout"), std::string::npos);
+}
+
+TEST(ServerSettings, PlcCellRunServesWhatTheYamlSaysAndOptionsOverride) {
+  TempDir dir;
+  std::ofstream(dir.path() + "/p.il") << "ORG M1925\nOUT Y0\nEND\n";
+  std::ofstream(dir.path() + "/cell.yaml") << "cell: {program: p.il}\n"
+                                              "servers:\n  fatek: {tcp: ':0', writable: [D0-D9]}\n";
+  const auto code_of = [](int port, uint32_t reg) {
+    fatek::ClientOptions o;
+    o.retries = 0;
+    fatek::Client c(fatek::tcp_transport("127.0.0.1:" + std::to_string(port)), o);
+    try {
+      c.write(Address{Area::D, Width::Word, reg}, {1});
+    } catch (const fatek::PlcError& e) {
+      return char(e.code);
+    }
+    return '0';
+  };
+  {
+    RunChild child({"--config", dir.path() + "/cell.yaml"});
+    EXPECT_NE(child.log.find("serving FATEK TCP 127.0.0.1:"), std::string::npos) << child.log;  // ':0' is loopback
+    EXPECT_EQ(code_of(child.ports.at(0), 5), '0');
+    EXPECT_EQ(code_of(child.ports.at(0), 20), 'A');
+  }
+  {
+    RunChild child({"--config", dir.path() + "/cell.yaml", "--fatek-writable", "all"});
+    EXPECT_EQ(code_of(child.ports.at(0), 20), '0');
+  }
+}

@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""rostest: two plc_nodes in namespaces do not see each other's memory, inputs or outputs."""
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray
+from std_msgs.msg import Bool
+
+from plc_cell.srv import ReadMemory, WriteMemory
+
+TIMEOUT = 15.0
+
+
+class Latest(object):
+    def __init__(self, topic, msg_type):
+        self.msg = None
+        self.cond = threading.Condition()
+        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
+
+    def _cb(self, msg):
+        with self.cond:
+            self.msg = msg
+            self.cond.notify_all()
+
+    def wait_for(self, pred, timeout=TIMEOUT):
+        deadline = time.monotonic() + timeout
+        with self.cond:
+            while self.msg is None or not pred(self.msg):
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    return self.msg
+                self.cond.wait(left)
+            return self.msg
+
+
+def status_named(arr, part):
+    for s in arr.status:
+        if part in s.name:
+            return s
+    return None
+
+
+class TwoCellsTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("two_cells_test", anonymous=True)
+        cls.srv = {}
+        for c in ["cell_a", "cell_b"]:
+            ns = "/%s/plc_node/" % c
+            rospy.wait_for_service(ns + "write", timeout=30)
+            cls.srv[c] = (rospy.ServiceProxy(ns + "read", ReadMemory), rospy.ServiceProxy(ns + "write", WriteMemory))
+        cls.motor = {c: Latest("/%s/plc_node/signals/motor" % c, Bool) for c in ["cell_a", "cell_b"]}
+        cls.start = {c: rospy.Publisher("/%s/plc_node/inputs/start" % c, Bool, queue_size=1, latch=True)
+                     for c in ["cell_a", "cell_b"]}
+        cls.diag = Latest("/diagnostics", DiagnosticArray)
+
+    def read(self, cell, addr):
+        r = self.srv[cell][0](addr, 1)
+        self.assertTrue(r.success, r.message)
+        return r.values[0]
+
+    def test_memory_is_per_cell(self):
+        self.assertTrue(self.srv["cell_a"][1]("R11", [20]).success)
+        self.assertTrue(self.srv["cell_b"][1]("R11", [1]).success)
+        self.assertEqual(self.read("cell_a", "R11"), 20)
+        self.assertEqual(self.read("cell_b", "R11"), 1)
+
+    def test_inputs_and_outputs_are_per_cell(self):
+        self.start["cell_b"].publish(Bool(False))
+        self.start["cell_a"].publish(Bool(True))
+        m = self.motor["cell_a"].wait_for(lambda m: m.data)
+        self.assertTrue(m is not None and m.data)
+        b = self.motor["cell_b"].wait_for(lambda m: m is not None)
+        self.assertFalse(b.data)
+        self.start["cell_a"].publish(Bool(False))
+        m = self.motor["cell_a"].wait_for(lambda m: not m.data)
+        self.assertFalse(m.data)
+
+    def test_persistence_of_cell_a_is_on_diagnostics(self):
+        self.assertTrue(self.srv["cell_a"][1]("D7", [1234]).success)
+        arr = self.diag.wait_for(lambda a: status_named(a, "cell_a") is not None and
+                                 status_named(a, "persistence") is not None)
+        s = status_named(arr, "persistence")
+        self.assertIsNotNone(s)
+        self.assertEqual(s.level, 0, s.message)
+        self.assertIn("cell_a", s.name)
+        keys = dict((kv.key, kv.value) for kv in s.values)
+        self.assertTrue(keys["file"].endswith("two_cells_a_store.bin"))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("plc_cell", "two_cells_test", TwoCellsTest)
