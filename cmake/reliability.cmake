@@ -50,6 +50,7 @@ endif()
 list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/ros/plc_node_virtual_time.cpp)
 if(CATKIN_ENABLE_TESTING)
   add_rostest(test/reliability/replay.test DEPENDENCIES plc_node)
+  add_rostest(test/reliability/node_restart.test DEPENDENCIES plc_node)
 endif()
 
 # make soak (not part of make test): see docs/reliability.md.

@@ -48,3 +48,4 @@ TEST(Fuzz, FatekDecoderAndSlave) { expect_clean("fatek_decoder", "fatek", 100000
 TEST(Fuzz, IlParser) { expect_clean("il_parser", "il", 5000); }
 TEST(Fuzz, AddressParser) { expect_clean("address", "address", 50000); }
 TEST(Fuzz, CellConfigLoader) { expect_clean("config", "config", 3000); }
+TEST(Fuzz, MotionTableParserAndDecoder) { expect_clean("motion_table", "motion", 20000); }
