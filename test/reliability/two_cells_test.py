@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rostest: two plc_nodes in namespaces do not see each other's memory, inputs or outputs."""
-import threading
-import time
+import os
+import sys
 import unittest
 
 import rospy
@@ -11,29 +11,10 @@ from std_msgs.msg import Bool
 
 from plc_cell.srv import ReadMemory, WriteMemory
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from latest_message import Latest  # noqa: E402
+
 TIMEOUT = 15.0
-
-
-class Latest(object):
-    def __init__(self, topic, msg_type):
-        self.msg = None
-        self.cond = threading.Condition()
-        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
-
-    def _cb(self, msg):
-        with self.cond:
-            self.msg = msg
-            self.cond.notify_all()
-
-    def wait_for(self, pred, timeout=TIMEOUT):
-        deadline = time.monotonic() + timeout
-        with self.cond:
-            while self.msg is None or not pred(self.msg):
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    return self.msg
-                self.cond.wait(left)
-            return self.msg
 
 
 def status_named(arr, part):
@@ -52,10 +33,10 @@ class TwoCellsTest(unittest.TestCase):
             ns = "/%s/plc_node/" % c
             rospy.wait_for_service(ns + "write", timeout=30)
             cls.srv[c] = (rospy.ServiceProxy(ns + "read", ReadMemory), rospy.ServiceProxy(ns + "write", WriteMemory))
-        cls.motor = {c: Latest("/%s/plc_node/signals/motor" % c, Bool) for c in ["cell_a", "cell_b"]}
+        cls.motor = {c: Latest("/%s/plc_node/signals/motor" % c, Bool, timeout=TIMEOUT) for c in ["cell_a", "cell_b"]}
         cls.start = {c: rospy.Publisher("/%s/plc_node/inputs/start" % c, Bool, queue_size=1, latch=True)
                      for c in ["cell_a", "cell_b"]}
-        cls.diag = Latest("/diagnostics", DiagnosticArray)
+        cls.diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
 
     def read(self, cell, addr):
         r = self.srv[cell][0](addr, 1)
