@@ -1,6 +1,8 @@
 // The cell YAML's axes: section.
 #include "plc_cell/motion/axis_config.h"
 
+#include <cctype>
+
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/error.h"
 
@@ -131,26 +133,12 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
             const std::string pk = pf.first.as<std::string>();
             if (pk == "at") continue;
             const int64_t val = get<int64_t>(pf.second, file, pre + "params." + pk);
-            AxisParams& q = a.params;
-            if (pk == "p0") q.p0_unit = int(val);
-            else if (pk == "p1") q.p1_ppr = uint32_t(val);
-            else if (pk == "p2") q.p2_per_rev = int32_t(val);
-            else if (pk == "p3") q.p3_res = int(val);
-            else if (pk == "p4") q.p4_max = int32_t(val);
-            else if (pk == "p5") q.p5_start = int32_t(val);
-            else if (pk == "p6") q.p6_creep = int32_t(val);
-            else if (pk == "p7") q.p7_backlash = int32_t(val);
-            else if (pk == "p8") q.p8_acc_ms = int32_t(val);
-            else if (pk == "p9") { q.p9_rot = int(val & 0xFF); q.p9_home = int((val >> 8) & 0xFF); }
-            else if (pk == "p10") q.p10_fwd_comp = int32_t(val);
-            else if (pk == "p11") q.p11_bwd_comp = int32_t(val);
-            else if (pk == "p12") q.p12_dec_ms = int32_t(val);
-            else if (pk == "p13") q.p13_interp_ms = int32_t(val);
-            else if (pk == "p14") q.p14_ppr = int32_t(val);
-            else if (pk == "p15") q.p15_io = uint32_t(val);
-            else if (pk == "p16") q.p16_zero = int32_t(val);
-            else if (pk == "p17") q.p17_pg0 = int(val);
-            else fail(file, pf.first, "key '" + pre + "params." + pk + "': expected at, p0 ... p17");
+            // "p0" .. "p17"
+            int n = -1;
+            if (pk.size() >= 2 && pk.size() <= 3 && pk[0] == 'p' && std::isdigit(static_cast<unsigned char>(pk[1])) &&
+                (pk.size() == 2 || std::isdigit(static_cast<unsigned char>(pk[2]))) && !(pk.size() == 3 && pk[1] == '0'))
+              n = std::stoi(pk.substr(1));
+            if (!a.params.set(n, val)) fail(file, pf.first, "key '" + pre + "params." + pk + "': expected at, p0 ... p17");
           }
           const int code = a.params.validate();
           if (code) fail(file, v, "key '" + pre + "params': parameter error " + std::to_string(code));

@@ -44,6 +44,31 @@ AxisParams AxisParams::from_registers(const uint16_t* r) {
   return p;
 }
 
+bool AxisParams::set(int n, int64_t v) {
+  switch (n) {
+    case 0: p0_unit = int(v); break;
+    case 1: p1_ppr = uint32_t(v); break;
+    case 2: p2_per_rev = int32_t(v); break;
+    case 3: p3_res = int(v); break;
+    case 4: p4_max = int32_t(v); break;
+    case 5: p5_start = int32_t(v); break;
+    case 6: p6_creep = int32_t(v); break;
+    case 7: p7_backlash = int32_t(v); break;
+    case 8: p8_acc_ms = int32_t(v); break;
+    case 9: p9_rot = int(v & 0xFF); p9_home = int((v >> 8) & 0xFF); break;
+    case 10: p10_fwd_comp = int32_t(v); break;
+    case 11: p11_bwd_comp = int32_t(v); break;
+    case 12: p12_dec_ms = int32_t(v); break;
+    case 13: p13_interp_ms = int32_t(v); break;
+    case 14: p14_ppr = int32_t(v); break;
+    case 15: p15_io = uint32_t(v); break;
+    case 16: p16_zero = int32_t(v); break;
+    case 17: p17_pg0 = int(v); break;
+    default: return false;
+  }
+  return true;
+}
+
 void AxisParams::to_registers(uint16_t* r) const {
   r[0] = static_cast<uint16_t>(p0_unit);
   r[1] = static_cast<uint16_t>(p1_ppr);

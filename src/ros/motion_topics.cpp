@@ -74,27 +74,8 @@ MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& 
             res.message = "give the 18 values P0..P17";
             return true;
           }
-          const auto& v = req.values;
           motion::AxisParams p;
-          p.p0_unit = static_cast<int>(v[0]);
-          p.p1_ppr = static_cast<uint32_t>(v[1]);
-          p.p2_per_rev = static_cast<int32_t>(v[2]);
-          p.p3_res = static_cast<int>(v[3]);
-          p.p4_max = static_cast<int32_t>(v[4]);
-          p.p5_start = static_cast<int32_t>(v[5]);
-          p.p6_creep = static_cast<int32_t>(v[6]);
-          p.p7_backlash = static_cast<int32_t>(v[7]);
-          p.p8_acc_ms = static_cast<int32_t>(v[8]);
-          p.p9_rot = static_cast<int>(v[9] & 0xFF);
-          p.p9_home = static_cast<int>((v[9] >> 8) & 0xFF);
-          p.p10_fwd_comp = static_cast<int32_t>(v[10]);
-          p.p11_bwd_comp = static_cast<int32_t>(v[11]);
-          p.p12_dec_ms = static_cast<int32_t>(v[12]);
-          p.p13_interp_ms = static_cast<int32_t>(v[13]);
-          p.p14_ppr = static_cast<int32_t>(v[14]);
-          p.p15_io = static_cast<uint32_t>(v[15]);
-          p.p16_zero = static_cast<int32_t>(v[16]);
-          p.p17_pg0 = static_cast<int>(v[17]);
+          for (int k = 0; k < 18; ++k) p.set(k, req.values[size_t(k)]);
           res.error_code = p.validate();
           res.success = res.error_code == 0;
           if (res.success) {

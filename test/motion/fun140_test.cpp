@@ -108,24 +108,7 @@ MEND
 TEST(Fun140, ManualExampleA_ExtLeavesTheRestInDR4072AndStep4SendsIt) {
   MotionCell c;
   c.params(fast_params());
-  c.table(R"(001 SPD 5000
-    DRV ADR,+,10000,Ut
-    WAIT Time,100
-    GOTO NEXT
-002 SPD R1000
-    DRV ADR+,D100,Ut
-    WAIT Time,R500
-    GOTO NEXT
-003 SPD R1002
-    DRV ADR-,D102,Ut
-    EXT X0
-    GOTO NEXT
-004 SPD 2000
-    DRV ADR,-,R4072,Ps
-    WAIT X1
-    GOTO 1
-MEND
-)");
+  c.table(kExample1);
   c.put("DR1000", 8000);
   c.put("DD100", 3000);
   c.put("R500", 50);  // 0.5 s

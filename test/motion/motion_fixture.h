@@ -17,6 +17,27 @@
 namespace plc_cell {
 namespace motion {
 
+// The manual's positioning program example 1 (section 11.6), used by several tests.
+inline const char* const kExample1 = R"(; manual 11.6 positioning program example 1
+001 SPD 5000
+    DRV ADR,+,10000,Ut
+    WAIT Time,100
+    GOTO NEXT
+002 SPD R1000
+    DRV ADR+,D100,Ut
+    WAIT Time,R500
+    GOTO NEXT
+003 SPD R1002
+    DRV ADR-,D102,Ut
+    EXT X0
+    GOTO NEXT
+004 SPD 2000
+    DRV ADR,-,R4072,Ps
+    WAIT X1
+    GOTO 1
+MEND
+)";
+
 struct StepDone {
   int ps, step;
   uint64_t t_ns;

@@ -1,6 +1,8 @@
 // FUN141: register layout, defaults, the manual's error codes, unit conversion.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "plc_cell/motion/params.h"
@@ -99,3 +101,25 @@ TEST(Params, UtToPulses) {
 }  // namespace
 }  // namespace motion
 }  // namespace plc_cell
+
+using plc_cell::motion::AxisParams;
+
+TEST(Params, SetByNumberMatchesTheRegisterLayout) {
+  // Pn written through set() lands where FUN141's register table puts Pn.
+  AxisParams p;
+  const int64_t v[18] = {2, 2000, 5000, 1, 200000, 100, 1000, 3, 250, 0x0101, 2, 4, 300, 700, 4000, 0x01020304, -77, 5};
+  for (int n = 0; n < 18; ++n) ASSERT_TRUE(p.set(n, v[n])) << n;
+  EXPECT_FALSE(p.set(18, 1));
+  EXPECT_FALSE(p.set(-1, 1));
+  EXPECT_EQ(p.p9_rot, 1);
+  EXPECT_EQ(p.p9_home, 1);
+  uint16_t r[24] = {};
+  p.to_registers(r);
+  const AxisParams q = AxisParams::from_registers(r);
+  uint16_t r2[24] = {};
+  q.to_registers(r2);
+  EXPECT_TRUE(std::equal(r, r + 24, r2));
+  EXPECT_EQ(q.p16_zero, -77);
+  EXPECT_EQ(q.p15_io, 0x01020304u);
+  EXPECT_EQ(q.p14_ppr, 4000);
+}

@@ -1,31 +1,13 @@
 // FUN140 motion tables: the manual's text, line-precise errors, register form.
 #include <gtest/gtest.h>
 
+#include "motion_fixture.h"
 #include "plc_cell/motion/table.h"
 
 namespace plc_cell {
 namespace motion {
 namespace {
 
-const char* kExample1 = R"(; manual 11.6 positioning program example 1
-001 SPD 5000
-    DRV ADR,+,10000,Ut
-    WAIT Time,100
-    GOTO NEXT
-002 SPD R1000
-    DRV ADR+,D100,Ut
-    WAIT Time,R500
-    GOTO NEXT
-003 SPD R1002
-    DRV ADR-,D102,Ut
-    EXT X0
-    GOTO NEXT
-004 SPD 2000
-    DRV ADR,-,R4072,Ps
-    WAIT X1
-    GOTO 1
-MEND
-)";
 
 TEST(Table, ManualExample1Parses) {
   Table t;

@@ -112,7 +112,11 @@ class PlcNodeTest(unittest.TestCase):
         self.assertTrue(self.motor.wait_for(lambda m: m.data).data)
         # The program writes Y0 = X0 = 0 every scan, but a disabled point keeps its state.
         self.assertTrue(self.read_until("Y0", [1]))
-        rospy.sleep(0.05)
+        # Two more ~io images (each taken after a scan) still show Y0 on, X0 off.
+        seq = self.io.wait_for(lambda m: True).header.seq
+        io = self.io.wait_for(lambda m: m.header.seq >= seq + 2)
+        self.assertGreaterEqual(io.header.seq, seq + 2)
+        self.assertTrue(io.y[0] and not io.x[0])
         self.assertEqual(list(self.read("Y0", 1).values), [1])
         self.assertTrue(self.force("Y0", "enable").success)
         self.assertFalse(self.motor.wait_for(lambda m: not m.data).data)

@@ -1,6 +1,8 @@
 // FBs-B4AD / B2DA / B2A1D expansion boards: D4072-D4077 (manual A:6573-A:6750).
 #include <gtest/gtest.h>
 
+#include "config_error.h"
+
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/temp/temperature_cell.h"
@@ -97,14 +99,7 @@ modules:
 }
 
 TEST(AnalogBoardConfig, Errors) {
-  const auto bad = [](const std::string& y) {
-    try {
-      parse_temperature_config(YAML::Load(y)["modules"], "c.yaml");
-    } catch (const SourceError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto bad = config_error;
   EXPECT_NE(bad("modules: {analog: {board: {type: B8AD}}}").find("B4AD"), std::string::npos);
   EXPECT_NE(bad("modules: {analog: {board: {type: B2DA, inputs: [{value: 1}]}}}").find("at most 0"), std::string::npos);
   EXPECT_NE(bad("modules: {analog: {board: {type: B2A1D, outputs: [{}, {}]}}}").find("at most 1"), std::string::npos);

@@ -1,6 +1,8 @@
 // Analog I/O modules in PLC memory: IR/OR allocation, formats, averaging, watchdog.
 #include <gtest/gtest.h>
 
+#include "config_error.h"
+
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/temp/temperature_cell.h"
@@ -141,14 +143,7 @@ TEST_F(AnalogTest, OutputsAndWatchdog) {
 }
 
 TEST(AnalogConfig, Errors) {
-  const auto bad = [](const std::string& y) {
-    try {
-      parse_temperature_config(YAML::Load(y)["modules"], "c.yaml");
-    } catch (const SourceError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto bad = config_error;
   EXPECT_NE(bad("modules: {analog: {modules: [{type: 8AD}]}}").find("6AD"), std::string::npos);
   EXPECT_NE(bad("modules: {analog: {modules: [{type: 2DA, inputs: [{value: 1}]}]}}").find("at most 0"),
             std::string::npos);

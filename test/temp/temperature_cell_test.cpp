@@ -1,6 +1,8 @@
 // Temperature modules in PLC memory, in virtual time.
 #include <gtest/gtest.h>
 
+#include "config_error.h"
+
 #include <cmath>
 
 #include "../core/plc_fixture.h"
@@ -180,14 +182,7 @@ modules:
 }
 
 TEST_F(TemperatureCellTest, ConfigErrorsNameTheKey) {
-  const auto bad = [](const std::string& y) {
-    try {
-      parse_temperature_config(YAML::Load(y)["modules"], "c.yaml");
-    } catch (const SourceError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto bad = config_error;
   EXPECT_NE(bad("modules: {temperature: {modules: [{type: 7TC}]}}").find("unknown module"), std::string::npos);
   EXPECT_NE(bad("modules: {temperature: {averaging: 3, modules: [{type: 2TC}]}}").find("averaging"), std::string::npos);
   EXPECT_NE(bad("modules: {temperature: {modules: [{type: 6RTD, sensor: K}]}}").find("PT100"), std::string::npos);

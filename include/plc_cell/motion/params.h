@@ -34,6 +34,9 @@ struct AxisParams {
   // Registers SR+0..SR+23, layout of the manual (32-bit values low word first).
   static AxisParams from_registers(const uint16_t* r);
   void to_registers(uint16_t* r) const;
+  // Sets Pn (0..17) from one value, P9 as (home << 8) | rot; the YAML `params:` keys and
+  // the ROS set_params service both write through it. Returns false for n outside 0..17.
+  bool set(int n, int64_t v);
 
   // 0 if valid, else the manual's code: 1 + parameter number (P0 -> 1 ... P14 -> 15).
   int validate() const;
