@@ -46,7 +46,8 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
   }
   cfg.document = doc;
   if (doc.IsNull()) return cfg;
-  r.only(doc, "", {"cell", "plc", "signals", "simulation", "counters", "axes", "modules", "fatek", "modbus", "servers"});
+  r.only(doc, "", {"cell", "plc", "signals", "simulation", "counters", "axes", "modules", "fatek", "modbus", "servers",
+                 "registers"});
 
   if (const auto cell = doc["cell"]) {
     r.only(cell, "cell", {"name", "program"});
@@ -109,6 +110,7 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
       cfg.signals.emplace_back(name, a);
     }
   }
+  if (const auto regs = doc["registers"]) cfg.registers = parse_register_groups(regs, "registers", r);
   if (const auto sim = doc["simulation"]) {
     r.only(sim, "simulation", {"inputs"});
     if (const auto inputs = sim["inputs"]) {

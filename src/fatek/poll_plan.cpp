@@ -23,21 +23,6 @@ uint32_t phase(const Address& a) { return a.index % step(a); }
 
 }  // namespace
 
-PollItem parse_poll_item(const std::string& text) {
-  PollItem it;
-  const auto colon = text.find(':');
-  it.start = parse_address(text.substr(0, colon));
-  if (colon != std::string::npos) {
-    const std::string n = text.substr(colon + 1);
-    char* end = nullptr;
-    const long v = std::strtol(n.c_str(), &end, 10);
-    if (n.empty() || *end || v < 1 || v > 100000) throw Error("poll item '" + text + "': bad count");
-    it.count = uint32_t(v);
-  }
-  check_span(it.start, it.count);
-  return it;
-}
-
 PollPlan plan_poll(const std::vector<PollItem>& items) {
   // Every requested element, grouped into runs of one (area, width, phase), ordered.
   std::map<std::tuple<int, int, uint32_t, bool>, std::map<uint32_t, Address>> by_type;

@@ -6,6 +6,7 @@
 
 #include "plc_cell/IoState.h"
 #include "plc_cell/RegisterBlock.h"
+#include "plc_cell/config/register_groups.h"
 #include "plc_cell/core/error.h"
 
 namespace plc_cell {
@@ -53,25 +54,28 @@ FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(n
       throw Error(config + ": " + e.what());
     }
     if (doc["fatek_bridge"]) doc = doc["fatek_bridge"];
-    for (const auto& kv : doc["signals"]) {
-      const Address a = parse_address(kv.second.as<std::string>());
-      if (a.width != Width::Bit) throw Error(config + ": signal " + kv.first.as<std::string>() + " must be a discrete");
-      signals_.emplace_back(kv.first.as<std::string>(), a);
-    }
-    for (const auto& g : doc["groups"]) {
-      Group grp;
-      grp.name = g["name"].as<std::string>();
-      const double rate = g["rate"] ? g["rate"].as<double>() : 1.0;
-      if (!(rate > 0 && rate <= 100)) throw Error(config + ": group " + grp.name + ": rate must be in (0, 100] Hz");
-      grp.period = 1.0 / rate;
-      for (const auto& p : g["points"]) {
-        grp.items.push_back(fatek::parse_poll_item(p.as<std::string>()));
-        grp.text += (grp.text.empty() ? "" : ",") + p.as<std::string>();
+    const YamlReader r(config);
+    r.only(doc, "", {"signals", "groups"});
+    if (const auto sig = doc["signals"]) {
+      if (!sig.IsMap()) r.fail(sig, "signals", "expected a mapping of names to discretes (motor: Y0)");
+      for (const auto& kv : sig) {
+        const std::string key = "signals." + kv.first.as<std::string>();
+        const Address a = r.address(kv.second, key);
+        if (a.width != Width::Bit) r.fail(kv.second, key, "a signal is a single discrete (X, Y, M, S, T, C)");
+        signals_.emplace_back(kv.first.as<std::string>(), a);
       }
-      if (grp.items.empty()) throw Error(config + ": group " + grp.name + " has no points");
-      grp.plan = fatek::plan_poll(grp.items);
-      grp.pub = pnh.advertise<RegisterBlock>("registers/" + grp.name, 10);
-      groups_.push_back(std::move(grp));
+    }
+    if (doc["groups"]) {
+      for (auto& rg : parse_register_groups(doc["groups"], "groups", r)) {
+        Group grp;
+        grp.name = rg.name;
+        grp.text = rg.text;
+        grp.period = 1.0 / rg.rate_hz;
+        grp.items = std::move(rg.spans);
+        grp.plan = fatek::plan_poll(grp.items);
+        grp.pub = pnh.advertise<RegisterBlock>("registers/" + grp.name, 10);
+        groups_.push_back(std::move(grp));
+      }
     }
   }
   // The I/O image: WX0..WX240 and WY0..WY240 (one 48 frame of weight 32) plus signals.

@@ -63,6 +63,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   updater_.add("scan", this, &PlcNode::diagnose);
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   pnh.param("virtual_time", virtual_time_, false);
+  registers_ = std::make_unique<RegisterTopics>(nh, pnh, *cell_, virtual_time_);
   // Virtual time publishes every change with its scan's stamp, and nothing else: the
   // periodic republish would add wall-clock stamps to a replay.
   if (!virtual_time_) io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {

@@ -79,6 +79,7 @@ void PlcNode::on_clock(uint64_t now_us) {
       std::lock_guard<std::mutex> slk(snap_mu_);
       last_published_ = s;
     }
+    registers_->after_virtual_scan(t);
     next_scan_us_ += period_us_;
   }
 }

@@ -85,6 +85,41 @@ TEST(CellConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(error_of("bogus: 1\n").find("key 'bogus': unknown key"), std::string::npos);
 }
 
+// ~registers/<group> of plc_node (and fatek_bridge's groups): same YAML, same checks.
+TEST(CellConfig, RegisterGroups) {
+  const CellConfig c = parse_cell_config(
+      "registers:\n"
+      "  - {name: levels, rate: 5, points: ['R100:10', DR200, 'X0:16']}\n"
+      "  - {name: axis0, points: [DR4088]}\n",
+      "cell.yaml");
+  ASSERT_EQ(c.registers.size(), 2u);
+  EXPECT_EQ(c.registers[0].name, "levels");
+  EXPECT_EQ(c.registers[0].rate_hz, 5.0);
+  EXPECT_EQ(c.registers[0].text, "R100:10,DR200,X0:16");
+  ASSERT_EQ(c.registers[0].spans.size(), 3u);
+  EXPECT_EQ(c.registers[0].spans[0].start, parse_address("R100"));
+  EXPECT_EQ(c.registers[0].spans[0].count, 10u);
+  EXPECT_EQ(c.registers[0].spans[2].count, 16u);
+  EXPECT_EQ(c.registers[1].rate_hz, 1.0);  // the default
+
+  EXPECT_EQ(error_of("registers:\n  - {name: a, points: ['R8070:5']}\n"),
+            "cell.yaml:2:24: error: key 'registers[0].points[0]': address R8070 x 5: out of range: R has elements "
+            "0..8071");
+  EXPECT_NE(error_of("registers:\n  - {name: a, points: ['R1:x']}\n").find("bad count"), std::string::npos);
+  EXPECT_NE(error_of("registers:\n  - {name: a, points: [Q1]}\n").find("'registers[0].points[0]': bad address"),
+            std::string::npos);
+  EXPECT_NE(error_of("registers:\n  - {name: a, points: []}\n").find("non-empty list"), std::string::npos);
+  EXPECT_NE(error_of("registers:\n  - {name: a-b, points: [R1]}\n").find("becomes a ROS topic name"),
+            std::string::npos);
+  EXPECT_EQ(error_of("registers:\n  - {name: a, points: [R1]}\n  - {name: a, points: [R2]}\n"),
+            "cell.yaml:3:12: error: key 'registers[1].name': group 'a' defined twice");
+  EXPECT_NE(error_of("registers:\n  - {name: a, rate: 0, points: [R1]}\n").find("out of range [0.01, 100]"),
+            std::string::npos);
+  EXPECT_NE(error_of("registers:\n  - {name: a, every: 1, points: [R1]}\n").find("unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of("registers: {a: R1}\n").find("expected a list"), std::string::npos);
+}
+
 TEST(CellConfig, Durations) {
   EXPECT_EQ(parse_duration_us("2.5s"), 2500000u);
   EXPECT_EQ(parse_duration_us("100ms"), 100000u);

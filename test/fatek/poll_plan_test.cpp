@@ -11,7 +11,7 @@ using namespace plc_cell::fatek;
 namespace {
 std::vector<PollItem> items(std::initializer_list<const char*> texts) {
   std::vector<PollItem> v;
-  for (const char* t : texts) v.push_back(parse_poll_item(t));
+  for (const char* t : texts) v.push_back(parse_register_span(t));
   return v;
 }
 }  // namespace
@@ -49,7 +49,7 @@ TEST(FatekPollPlan, ScatteredPointsShareMixedFrames) {
   EXPECT_EQ(q.requests[0].count, 11u);
   // Weight over 64 takes a second frame.
   std::vector<PollItem> many;
-  for (int i = 0; i < 40; ++i) many.push_back(parse_poll_item("DR" + std::to_string(i * 100)));
+  for (int i = 0; i < 40; ++i) many.push_back(parse_register_span("DR" + std::to_string(i * 100)));
   EXPECT_EQ(plan_poll(many).requests.size(), 2u);
 }
 

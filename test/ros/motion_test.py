@@ -7,7 +7,7 @@ import unittest
 
 import rospy
 import rostest
-from actionlib_msgs.msg import GoalID, GoalStatus
+from actionlib_msgs.msg import GoalID, GoalStatus, GoalStatusArray
 from sensor_msgs.msg import JointState
 
 from plc_cell.msg import (AxisStatus, RunMotionTableActionFeedback, RunMotionTableActionGoal,
@@ -53,18 +53,18 @@ class ActionClient(object):
         self.cancel_pub = rospy.Publisher(ns + "/cancel", GoalID, queue_size=1)
         self.results = Latest(ns + "/result", RunMotionTableActionResult)
         self.feedback = Latest(ns + "/feedback", RunMotionTableActionFeedback)
+        self.status = Latest(ns + "/status", GoalStatusArray)
         self.count = 0
         self.id = None
 
     def wait_for_server(self, timeout):
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if self.goal_pub.get_num_connections() > 0 and self.cancel_pub.get_num_connections() > 0 \
-                    and self.results.sub.get_num_connections() > 0:
-                time.sleep(0.5)
-                return True
-            time.sleep(0.1)
-        return False
+        """Every connection of the protocol is up, checked at each of the server's
+        status messages (actionlib publishes them at 5 Hz): no goal or result is lost."""
+        def connected(_):
+            return (self.goal_pub.get_num_connections() > 0 and self.cancel_pub.get_num_connections() > 0
+                    and self.results.sub.get_num_connections() > 0
+                    and self.feedback.sub.get_num_connections() > 0)
+        return connected(self.status.wait_for(connected, timeout))
 
     def send_goal(self, table=""):
         self.count += 1

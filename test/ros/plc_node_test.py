@@ -2,7 +2,6 @@
 """rostest for plc_node: topics in, program outputs observed on topics out, services."""
 import os
 import sys
-import time
 import unittest
 
 import rospy
@@ -11,7 +10,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 from std_msgs.msg import Bool
 from std_srvs.srv import SetBool
 
-from plc_cell.msg import IoState
+from plc_cell.msg import IoState, RegisterBlock
 from plc_cell.srv import ForceDiscrete, LoadProgram, ReadMemory, WriteMemory
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -37,20 +36,12 @@ class PlcNodeTest(unittest.TestCase):
         cls.start_pub = rospy.Publisher(NS + "inputs/start", Bool, queue_size=1, latch=True)
         cls.io = Latest(NS + "io", IoState, timeout=TIMEOUT)
         cls.motor = Latest(NS + "signals/motor", Bool, timeout=TIMEOUT)
+        cls.part_seen = Latest(NS + "signals/part_seen", Bool, timeout=TIMEOUT)
+        cls.sums = Latest(NS + "registers/sums", RegisterBlock, timeout=TIMEOUT)  # R10, R11, R12, R20
 
     def setUp(self):
         self.assertTrue(self.run_mode(True).success)
         self.assertTrue(self.force("Y0", "enable").success)
-
-    def read_until(self, address, expected, count=1):
-        deadline = time.monotonic() + TIMEOUT
-        while time.monotonic() < deadline:
-            r = self.read(address, count)
-            self.assertTrue(r.success, r.message)
-            if list(r.values) == expected:
-                return True
-            rospy.sleep(0.01)
-        return False
 
     def test_topic_in_drives_output_topic_out(self):
         self.start_pub.publish(Bool(True))
@@ -72,16 +63,18 @@ class PlcNodeTest(unittest.TestCase):
     def test_write_then_program_computes(self):
         r = self.write("R11", [5, 7])
         self.assertTrue(r.success, r.message)
-        self.assertTrue(self.read_until("R10", [12]), "R10 != R11 + R12")
+        m = self.sums.wait_for(lambda m: list(m.values[:3]) == [12, 5, 7])
+        self.assertEqual(list(m.values[:3]), [12, 5, 7], "R10 != R11 + R12 on registers/sums")
+        self.assertEqual((m.name, m.address, m.header.frame_id), ("sums", "R10:3,R20", "test_cell"))
         self.assertEqual(list(self.read("R11", 2).values), [5, 7])
 
     def test_named_signals_and_double_words(self):
         self.assertTrue(self.write("DR100", [0x12345678]).success)
         self.assertEqual(list(self.read("R100", 2).values), [0x5678, 0x1234])
         self.write("part_present", [1])
-        self.assertTrue(self.read_until("part_seen", [1]))
+        self.assertTrue(self.part_seen.wait_for(lambda m: m.data).data)
         self.write("M10", [1])
-        self.assertTrue(self.read_until("part_seen", [0]))
+        self.assertFalse(self.part_seen.wait_for(lambda m: not m.data).data)
         self.write("M10", [0])
         self.write("part_present", [0])
 
@@ -111,7 +104,7 @@ class PlcNodeTest(unittest.TestCase):
         self.assertTrue(self.force("Y0", "on").success)
         self.assertTrue(self.motor.wait_for(lambda m: m.data).data)
         # The program writes Y0 = X0 = 0 every scan, but a disabled point keeps its state.
-        self.assertTrue(self.read_until("Y0", [1]))
+        self.assertEqual(list(self.read("Y0", 1).values), [1])
         # Two more ~io images (each taken after a scan) still show Y0 on, X0 off.
         seq = self.io.wait_for(lambda m: True).header.seq
         io = self.io.wait_for(lambda m: m.header.seq >= seq + 2)
@@ -142,7 +135,7 @@ class PlcNodeTest(unittest.TestCase):
         r = self.load("", "ORG X0\nOUT Y0\nORG M1925\nFUN 8 S=321 D=R20\nEND\n")
         self.assertTrue(r.success, r.message)
         self.assertEqual(r.instructions, 5)
-        self.assertTrue(self.read_until("R20", [321]))
+        self.assertEqual(self.sums.wait_for(lambda m: m.values[3] == 321).values[3], 321)
         r = self.load("", "")  # reload the file named in the cell
         self.assertTrue(r.success, r.message)
 

@@ -3,7 +3,6 @@
 import math
 import os
 import sys
-import time
 import unittest
 
 import rospy
@@ -11,6 +10,7 @@ import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from sensor_msgs.msg import Temperature
 
+from plc_cell.msg import RegisterBlock
 from plc_cell.srv import ReadMemory, SetPidLoop
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -70,9 +70,8 @@ class TemperatureTest(unittest.TestCase):
 
     def test_set_pid_loop(self):
         # The program writes its settings on the first scan; wait until they are there.
-        deadline = time.monotonic() + TIMEOUT
-        while time.monotonic() < deadline and self.read("R100", 1).values[0] != 2000:
-            time.sleep(0.05)
+        pid = Latest(NS + "registers/oven_pid", RegisterBlock, timeout=TIMEOUT)  # R100 R120 R130 R140
+        self.assertEqual(pid.wait_for(lambda m: m.values[0] == 2000).values[0], 2000)
         r = self.set_loop("oven", 180.5, 90, -1, 0)
         self.assertTrue(r.success, r.message)
         self.assertEqual(list(self.read("R100", 1).values), [1805])

@@ -8,6 +8,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "plc_cell/config/register_groups.h"
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/memory.h"
 
@@ -49,6 +50,7 @@ struct CellConfig {
   PersistSettings persist;
   std::vector<std::pair<std::string, Address>> signals;  // in file order
   std::vector<SimInputDef> sim_inputs;
+  std::vector<RegisterGroup> registers;  // ~registers/<group> on plc_node
   YAML::Node document;  // the whole file, for subsystems that read their own sections
 
   static std::vector<AreaRange> default_retentive();

@@ -7,18 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/config/register_groups.h"
 #include "plc_cell/fatek/client.h"
 
 namespace plc_cell {
 namespace fatek {
 
-struct PollItem {
-  Address start;
-  uint32_t count = 1;
-};
-
-// "R100", "R100:10" (ten registers from R100), "DR0:4", "X0:16". Throws plc_cell::Error.
-PollItem parse_poll_item(const std::string& text);
+// Parsed by parse_register_span: "R100", "R100:10", "DR0:4", "X0:16".
+using PollItem = RegisterSpan;
 
 struct PollPlan {
   std::vector<Request> requests;  // station is filled in by the client

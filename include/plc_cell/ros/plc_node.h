@@ -20,6 +20,7 @@
 #include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/ros/counter_topics.h"
 #include "plc_cell/ros/motion_topics.h"
+#include "plc_cell/ros/register_topics.h"
 #include "plc_cell/io/server.h"
 #include "plc_cell/ros/temperature_ros.h"
 #include "plc_cell/persist/persister.h"
@@ -67,6 +68,7 @@ class PlcNode {
   std::vector<std::unique_ptr<Server>> servers_;  // protocol servers on this PLC
   std::unique_ptr<CounterTopics> counters_;        // high-speed counters on topics
   std::unique_ptr<MotionTopics> motion_;           // pulse-output axes (JointState, services, action)
+  std::unique_ptr<RegisterTopics> registers_;      // ~registers/<group>
   std::mutex path_mu_;
   std::string program_path_;
 
