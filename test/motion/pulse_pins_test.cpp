@@ -128,19 +128,10 @@ class WiredCell : public MotionCell {
   }
 };
 
-// Ladder: FUN141/FUN140 on PSO0 (M1 = EN), and Y0/Y1 set by the ladder all along.
-constexpr const char* kLadderY = R"(ORG M1925
-MPARA Ps=0 SR=R2000
-ORG M1
-LD M2
-LD M3
-HSPSO Ps=0 SR=R0 WR=R100 ACT=M10 ERR=M11 DN=M12
-ORG M1925
-OUT Y0
-OUT Y1
-OUT Y2
-END
-)";
+// Ladder: FUN141/FUN140 on PSO0 (kAxis0Program without its END), and Y0, Y1, Y2 set
+// by the ladder all along.
+const std::string kLadderY = std::string(kAxis0Program).substr(0, std::string(kAxis0Program).rfind("END")) +
+                             "ORG M1925\nOUT Y0\nOUT Y1\nOUT Y2\nEND\n";
 
 TEST(PulsePins, ConfiguredAxisOwnsItsPinsTheLadderDoesNotReachThem) {
   WiredCell c("axes:\n  pso0: {output: PR}\n", kLadderY);
@@ -169,6 +160,17 @@ TEST(PulsePins, ConfiguredAxisOwnsItsPinsTheLadderDoesNotReachThem) {
   for (uint32_t v : y0) on += v;
   EXPECT_GE(on, 5);  // 3 pulses x 2 samples of the ON half (ramp-free at 1 kHz: P5 = 141 Hz start)
   EXPECT_EQ(c.get32("DR4088"), 3);
+}
+
+TEST(PulsePins, YamlPolarityNormalOnIdlesThePinsInverted) {
+  // PSO1 owns Y2/Y3 (the ladder does not write them). A/B at rest is A off, B on.
+  for (const char* pol : {"normal_off", "normal_on"}) {
+    WiredCell c(std::string("axes:\n  pso1: {output: AB, polarity: ") + pol + "}\n", kAxis0Program);
+    c.run(3000);
+    const bool inverted = std::string(pol) == "normal_on";
+    EXPECT_EQ(c.get("Y2"), inverted ? 1u : 0u) << pol;
+    EXPECT_EQ(c.get("Y3"), inverted ? 0u : 1u) << pol;
+  }
 }
 
 TEST(PulsePins, UnconfiguredAxisLeavesY0Y1ToTheLadder) {
