@@ -6,6 +6,7 @@ target_sources(plc_cell_core PRIVATE
   src/motion/table_regs.cpp
   src/motion/profile.cpp
   src/motion/axis.cpp
+  src/motion/pulse_pins.cpp
   src/motion/axis_config.cpp
   src/motion/motion_unit.cpp
   src/motion/motion_functions.cpp)
@@ -26,6 +27,7 @@ list(APPEND PLC_CELL_NODE_SOURCES src/ros/motion_topics.cpp)
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   add_rostest(test/ros/motion.test DEPENDENCIES plc_node)
+  add_rostest(test/ros/motion_plot.test DEPENDENCIES plc_node)
 endif()
 
 find_package(benchmark QUIET)

@@ -4,6 +4,9 @@ position and velocity of every joint over time, into a PNG.
 
     rosbag record -O run.bag /plc_node/joint_states
     scripts/plot_motion.py run.bag -o run.png [--topic /plc_node/joint_states]
+
+Prints one summary line per joint (what test/ros/motion_plot_test.py checks):
+    <name>: final position <p>, peak speed <|v| max>, <n> samples over <t> s
 """
 import argparse
 import collections
@@ -46,6 +49,9 @@ def main():
     fig.tight_layout()
     fig.savefig(args.output, dpi=90)
     print("wrote %s (%d joints)" % (args.output, len(series)))
+    for name, (t, p, v) in series.items():
+        print("%s: final position %.6g, peak speed %.6g, %d samples over %.3f s"
+              % (name, p[-1], max(abs(x) for x in v), len(t), t[-1] - t[0]))
 
 
 if __name__ == "__main__":

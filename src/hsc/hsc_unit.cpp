@@ -12,7 +12,6 @@ namespace hsc {
 namespace {
 ScanEngine& engine_of(Plc& p) { return *p.locked([](ScanEngine& e, Memory&) { return &e; }); }
 Memory& memory_of(Plc& p) { return *p.locked([](ScanEngine&, Memory& m) { return &m; }); }
-bool phase_level(int ph, int64_t q) { return ph == 0 ? PulseSource::level_a(q) : PulseSource::level_b(q); }
 int counter_source(int n) { return n < 4 ? kHsc0I + n : kHsc4I + (n - 4); }
 }  // namespace
 
@@ -23,35 +22,12 @@ HscUnit::HscUnit(Plc& plc, HscConfig cfg)
     sources_.push_back(std::make_unique<PulseSource>(d.name, d.pin_a, d.pin_b));
     PulseSource* s = sources_.back().get();
     s->set_rate(0, d.has_follow ? 0.0 : d.hz);
-    for (int k = 0; k < 2; ++k) {
-      const int x = k == 0 ? d.pin_a : d.pin_b;
-      if (x < 0) continue;
-      if (pin_src_[x]) throw Error("counters.sources: X" + std::to_string(x) + " is driven by both " +
-                                   pin_src_[x]->name() + " and " + d.name);
-      pin_src_[x] = s;
-      pin_phase_[x] = k;
-    }
+    bind_pins(s, d.pin_a, d.pin_b);
   }
-  for (int n = 0; n < 8; ++n) {
-    Counter& c = counters_[n];
-    c.n = n;
-    c.def = cfg_.counters[n];
-    if (!c.def.used || c.def.timer) continue;
-    for (int k = 0; k < 2; ++k) {
-      const int x = k == 0 ? c.def.pin_a : c.def.pin_b;
-      if (x < 0 || !pin_src_[x]) continue;
-      if (c.src && c.src != pin_src_[x])
-        throw Error("HSC" + std::to_string(n) + ": its counting inputs are driven by two sources (" +
-                    c.src->name() + ", " + pin_src_[x]->name() + "); give it one encoder");
-      c.src = pin_src_[x];
-      c.phase[k] = pin_phase_[x];
-    }
-    for (int x : {c.def.pin_mask, c.def.pin_clear})
-      if (x >= 0 && pin_src_[x])
-        throw Error("HSC" + std::to_string(n) + ": X" + std::to_string(x) +
-                    " is a MASK/CLEAR input; pulse sources drive counting or interrupt inputs only");
-    if (n >= 4) irq_.set_priority(counter_source(n), x_edge_source(c.def.pin_a, false) + 1);
-  }
+  bind_counters();
+  for (int n = 0; n < 8; ++n)
+    if (counters_[n].def.used && !counters_[n].def.timer && n >= 4)
+      irq_.set_priority(counter_source(n), x_edge_source(counters_[n].def.pin_a, false) + 1);
   for (int x = 16; x < kFilteredInputs; ++x) scan_filter_[x - 16] = ScanDebounce(cfg_.filter_ns[x]);
   for (const auto& e : cfg_.edges) schedule_edge(e.x, e.t_ns, e.level);
   plc_.locked([this](ScanEngine& e, Memory&) {
@@ -67,6 +43,60 @@ HscUnit::~HscUnit() {
   });
 }
 
+void HscUnit::bind_pins(EdgeSource* s, int pin_a, int pin_b) {
+  for (int k = 0; k < 2; ++k) {
+    const int x = k == 0 ? pin_a : pin_b;
+    if (x < 0) continue;
+    if (x > 15) throw Error(s->name() + ": X" + std::to_string(x) + " is not a high-speed input (X0-X15)");
+    if (pin_src_[x]) throw Error("counters.sources: X" + std::to_string(x) + " is driven by both " +
+                                 pin_src_[x]->name() + " and " + s->name());
+    pin_src_[x] = s;
+    pin_phase_[x] = k;
+  }
+}
+
+// Which source drives each counter's counting inputs (again after attach_source).
+void HscUnit::bind_counters() {
+  for (int n = 0; n < 8; ++n) {
+    Counter& c = counters_[n];
+    c.n = n;
+    c.def = cfg_.counters[n];
+    c.src = nullptr;
+    c.phase[0] = c.phase[1] = -1;
+    if (!c.def.used || c.def.timer) continue;
+    for (int k = 0; k < 2; ++k) {
+      const int x = k == 0 ? c.def.pin_a : c.def.pin_b;
+      if (x < 0 || !pin_src_[x]) continue;
+      if (c.src && c.src != pin_src_[x])
+        throw Error("HSC" + std::to_string(n) + ": its counting inputs are driven by two sources (" +
+                    c.src->name() + ", " + pin_src_[x]->name() + "); give it one encoder");
+      c.src = pin_src_[x];
+      c.phase[k] = pin_phase_[x];
+    }
+    for (int x : {c.def.pin_mask, c.def.pin_clear})
+      if (x >= 0 && pin_src_[x])
+        throw Error("HSC" + std::to_string(n) + ": X" + std::to_string(x) +
+                    " is a MASK/CLEAR input; pulse sources drive counting or interrupt inputs only");
+    if (running_ && c.src) take_quarter(c);
+  }
+}
+
+void HscUnit::attach_source(EdgeSource* s, int pin_a, int pin_b) {
+  bind_pins(s, pin_a, pin_b);
+  bind_counters();
+  for (int x : {pin_a, pin_b})
+    if (x >= 0 && running_) cap_q_[x] = s->quarter(cur_ns_);
+}
+
+void HscUnit::detach_source(EdgeSource* s) {
+  for (int x = 0; x < 16; ++x)
+    if (pin_src_[x] == s) {
+      pin_src_[x] = nullptr;
+      pin_phase_[x] = -1;
+    }
+  bind_counters();
+}
+
 HscUnit* HscUnit::of(ScanEngine* engine) {
   if (!engine) return nullptr;
   for (ScanHook* h : engine->hooks())
@@ -77,7 +107,7 @@ HscUnit* HscUnit::of(ScanEngine* engine) {
 // ---- levels and counting ------------------------------------------------------
 
 bool HscUnit::term(int x, uint64_t t) const {
-  if (pin_src_[x]) return !blocked(x) && phase_level(pin_phase_[x], pin_src_[x]->quarter(t));
+  if (pin_src_[x]) return !blocked(x) && pin_src_[x]->level(pin_phase_[x], pin_src_[x]->quarter(t));
   return term_[x];
 }
 
@@ -108,7 +138,7 @@ bool HscUnit::counting(const Counter& c) const {
 }
 
 Pins HscUnit::pins_at(const Counter& c, int64_t q) const {
-  auto lvl = [&](int pin, int ph) { return ph >= 0 ? phase_level(ph, q) : term_[pin]; };
+  auto lvl = [&](int pin, int ph) { return ph >= 0 ? c.src->level(ph, q) : term_[pin]; };
   Pins p;
   p.a = lvl(c.def.pin_a, c.phase[0]) != c.def.inv_count;
   if (c.def.pin_b >= 0) p.b = lvl(c.def.pin_b, c.phase[1]) != c.def.inv_count;
@@ -153,6 +183,25 @@ void HscUnit::add_count(Counter& c, int64_t d, bool check) {
   if (check && v == get_pv(c)) fired_.push_back(counter_source(c.n));
 }
 
+void HscUnit::take_quarter(Counter& c) {
+  c.q = c.src->quarter(cur_ns_);
+  c.last = pins_at(c, c.q);
+  c.epoch = c.src->epoch();
+}
+
+// The source changed at cur_ns_ (a move started, was cut or ended): its levels
+// before and after are one transition of the counting inputs. Counts are exact
+// through a cut too, since an axis completes a pulse whose edge has left the pin
+// (docs/motion.md "Pulse pins").
+void HscUnit::resync(Counter& c) {
+  const int64_t q = c.src->quarter(cur_ns_);
+  const Pins now = pins_at(c, q);
+  if (counting(c) && !blocked(c)) add_count(c, count_delta(c.def.mode, c.last, now), true);
+  c.q = q;
+  c.last = now;
+  c.epoch = c.src->epoch();
+}
+
 void HscUnit::advance_counters(uint64_t t) {
   for (auto& c : counters_) {
     if (!c.src) continue;
@@ -168,6 +217,7 @@ void HscUnit::advance_counters(uint64_t t) {
       add_count(c, (k / 4) * n + d, false);  // matches inside the span are events of their own
     }
     c.q = q1;
+    c.last = pins_at(c, q1);
   }
 }
 
@@ -229,12 +279,12 @@ int HscUnit::active_time_base() const {
 }
 
 uint64_t HscUnit::next_pin_edge(int x, bool rising) const {
-  const PulseSource* s = pin_src_[x];
+  const EdgeSource* s = pin_src_[x];
   const int dir = s->direction();
   if (dir == 0 || blocked(x)) return kNever;
   const int64_t q = s->quarter(cur_ns_);
   for (int i = 1; i <= 4; ++i) {
-    const bool a = phase_level(pin_phase_[x], q + (i - 1) * dir), b = phase_level(pin_phase_[x], q + i * dir);
+    const bool a = s->level(pin_phase_[x], q + (i - 1) * dir), b = s->level(pin_phase_[x], q + i * dir);
     if (a != b && b == rising) return s->time_of_quarter(q + i * dir, cur_ns_);
   }
   return kNever;
@@ -251,7 +301,7 @@ void HscUnit::start(uint64_t t) {
     c.hist.clear();
     c.t_cv0 = 0;
     c.t_base = t;
-    if (c.src) c.q = c.src->quarter(t);
+    if (c.src) take_quarter(c);
   }
   hsta_pv_ = 0;
   hsta_cv0_ = 0;
@@ -271,6 +321,12 @@ void HscUnit::start(uint64_t t) {
 void HscUnit::advance(uint64_t to) {
   std::array<uint64_t, 8> match;
   for (;;) {
+    for (auto& c : counters_)
+      if (c.src && c.src->epoch() != c.epoch) resync(c);
+    if (!fired_.empty()) {  // a CV=PV reached by such a jump interrupts at its instant
+      fire_pending();
+      if (!running_) return;
+    }
     uint64_t t = to;
     for (auto& c : counters_) {
       match[c.n] = !c.def.used ? kNever : c.def.timer ? hst_match(c) : next_match(c);
@@ -498,7 +554,7 @@ bool HscUnit::source_was_on(int x) const {
   const int64_t lo = std::min(cap_q_[x], q1), hi = std::max(cap_q_[x], q1);
   if (hi - lo >= 3) return true;
   for (int64_t q = lo; q <= hi; ++q)
-    if (phase_level(pin_phase_[x], q)) return true;
+    if (pin_src_[x]->level(pin_phase_[x], q)) return true;
   return false;
 }
 
@@ -522,6 +578,7 @@ void HscUnit::on_stop() {
 
 void HscUnit::refresh_outputs(uint32_t first, uint32_t n) {
   for (uint32_t y = first; y < first + n && y < phys_y_.size(); ++y) {
+    if (owned_y_[y]) continue;
     const bool v = mem_.bit(Area::Y, y);
     if (v == phys_y_[y]) continue;
     phys_y_[y] = v;
@@ -599,7 +656,7 @@ void HscUnit::set_source_rate(const std::string& name, double hz) {
   PulseSource* s = source(name);
   if (!s) throw Error("no pulse source named '" + name + "'");
   for (auto& c : counters_)
-    if (c.src == s) c.q = s->quarter(cur_ns_);
+    if (c.src == s) take_quarter(c);
   s->set_rate(cur_ns_, hz);
 }
 

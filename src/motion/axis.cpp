@@ -16,6 +16,7 @@ void Axis::start(uint64_t t, int64_t delta, int64_t comp, bool forward, const Pr
   sign_ = delta < 0 ? -1 : 1;
   comp_ = comp;
   prof_ = prof;
+  ++epoch_;
 }
 
 int64_t Axis::progress(int64_t e) const {
@@ -68,9 +69,40 @@ uint64_t Axis::when_at(int64_t pos) const {
 
 void Axis::settle(uint64_t t) {
   if (!active_) return;
-  count0_ = pulse_count(t);
-  pos0_ = position(t);
+  const int64_t e = committed(t);
+  count0_ += (forward_ ? 1 : -1) * e;
+  pos0_ += sign_ * progress(e);
+  travel0_ += e;
   active_ = false;
+  ++epoch_;
+}
+
+uint64_t Axis::step_time(int64_t j, int64_t per) const {
+  if (!active_) return kNever;
+  if (j <= 0) return t0_;
+  if (!prof_.endless() && j >= prof_.pulses() * per) return j == prof_.pulses() * per ? end_ns() : kNever;
+  const double s = prof_.time_of(static_cast<double>(j) / static_cast<double>(per));
+  if (!(s < 1e9)) return kNever;
+  return t0_ + static_cast<uint64_t>(std::ceil(s * 1e9 - 1e-6));  // as end_ns() and when_at()
+}
+
+int64_t Axis::steps(uint64_t t, int64_t per) const {
+  if (!active_ || t <= t0_) return 0;
+  const int64_t cap = prof_.endless() ? INT64_MAX : prof_.pulses() * per;
+  if (t >= end_ns()) return cap;
+  // The float estimate is off by at most one near a boundary; step_time decides.
+  int64_t j = static_cast<int64_t>(std::floor(prof_.position(secs(t)) * static_cast<double>(per)));
+  j = std::clamp<int64_t>(j, 0, cap);
+  while (j < cap && step_time(j + 1, per) <= t) ++j;
+  while (j > 0 && step_time(j, per) > t) --j;
+  return j;
+}
+
+int64_t Axis::committed(uint64_t t) const {
+  if (!active_) return 0;
+  if (t >= end_ns()) return prof_.pulses();
+  const int64_t e = (steps(t, 4) + 2) / 4;  // quarters: past k - 1/2 is pulse k
+  return prof_.endless() ? e : std::min(e, prof_.pulses());
 }
 
 void Axis::cut(uint64_t t) { settle(t); }
@@ -78,11 +110,11 @@ void Axis::cut(uint64_t t) { settle(t); }
 void Axis::retarget(uint64_t t, double v_target, double v_out, double acc, double dec) {
   if (!active_) return;
   const double v = frequency(t);
-  const int64_t e = emitted(t);
+  const int64_t e = committed(t);
   const bool endless = prof_.endless();
   const int64_t left = endless ? -1 : prof_.pulses() - e;
   const int64_t comp_left = std::max<int64_t>(0, comp_ - e);
-  const int64_t len_left = remaining(t);
+  const int64_t len_left = left_if_cut(t);
   settle(t);
   if (left == 0) return;
   active_ = true;
@@ -95,10 +127,10 @@ void Axis::retarget(uint64_t t, double v_target, double v_out, double acc, doubl
 void Axis::decelerate(uint64_t t, double v_stop, double dec) {
   if (!active_) return;
   const double v = frequency(t);
-  const int64_t e = emitted(t);
+  const int64_t e = committed(t);
   const int64_t left = prof_.endless() ? -1 : prof_.pulses() - e;
   const int64_t comp_left = std::max<int64_t>(0, comp_ - e);
-  const int64_t len_left = remaining(t);
+  const int64_t len_left = left_if_cut(t);
   settle(t);
   if (v <= 0 || left == 0) return;
   active_ = true;

@@ -28,6 +28,15 @@ T get(const YAML::Node& n, const std::string& file, const std::string& what) {
     fail(file, n, "key '" + what + "': bad value");
   }
 }
+// Analytic (edge-exact) signals can only drive the high-speed inputs.
+int high_speed_input(const YAML::Node& v, const std::string& file, const std::string& what) {
+  Address ad;
+  std::string why;
+  if (!try_parse_address(get<std::string>(v, file, what), &ad, &why) || ad.area != Area::X ||
+      ad.width != Width::Bit || ad.index > 15)
+    fail(file, v, "key '" + what + "': expected a high-speed input X0-X15");
+  return static_cast<int>(ad.index);
+}
 }  // namespace
 
 bool SwitchDef::level(int64_t pos) const {
@@ -53,6 +62,7 @@ int64_t SwitchDef::next_change(int64_t pos, int dir) const {
 
 AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
   AxesConfig cfg;
+  cfg.file = file;
   if (!axes || axes.IsNull()) return cfg;
   if (!axes.IsMap()) fail(file, axes, "key 'axes': expected a map of pso0..pso3");
   for (const auto& kv : axes) {
@@ -75,6 +85,42 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
         else if (m == "PR") a.mode = OutputMode::PR;
         else if (m == "AB") a.mode = OutputMode::AB;
         else fail(file, v, "key '" + pre + k + "': expected UD, PR or AB");
+        a.has_output = true;
+      } else if (k == "polarity") {
+        const std::string m = get<std::string>(v, file, pre + k);
+        if (m == "normal_off") a.polarity = Polarity::NormalOff;
+        else if (m == "normal_on") a.polarity = Polarity::NormalOn;
+        else fail(file, v, "key '" + pre + k + "': expected normal_off or normal_on");
+      } else if (k == "wiring") {
+        if (!v.IsMap()) fail(file, v, "key '" + pre + k + "': expected a map like {Y0: X0, Y1: X1}");
+        a.wiring_line = v.Mark().line + 1;
+        for (const auto& w : v) {
+          const std::string y = w.first.as<std::string>();
+          Address ya;
+          std::string why;
+          const int first = 2 * n;
+          if (!try_parse_address(y, &ya, &why) || ya.area != Area::Y || ya.width != Width::Bit ||
+              (int(ya.index) != first && int(ya.index) != first + 1))
+            fail(file, w.first, "key '" + pre + k + "." + y + "': expected this axis's pins Y" + std::to_string(first) +
+                                    " or Y" + std::to_string(first + 1));
+          a.wired[ya.index - first] = high_speed_input(w.second, file, pre + k + "." + y);
+        }
+      } else if (k == "encoder") {
+        if (!v.IsMap() || !v["a"]) fail(file, v, "key '" + pre + k + "': expected {a: Xn, b: Xm, periods_per_pulse: k}");
+        a.encoder.used = true;
+        a.encoder.line = v.Mark().line + 1;
+        for (const auto& e : v) {
+          const std::string ek = e.first.as<std::string>();
+          if (ek == "a") a.encoder.a = high_speed_input(e.second, file, pre + k + ".a");
+          else if (ek == "b") a.encoder.b = high_speed_input(e.second, file, pre + k + ".b");
+          else if (ek == "periods_per_pulse") {
+            a.encoder.periods = get<int64_t>(e.second, file, pre + k + "." + ek);
+            if (a.encoder.periods < 1 || a.encoder.periods > 1000)
+              fail(file, e.second, "key '" + pre + k + "." + ek + "': expected a whole number 1-1000");
+          } else {
+            fail(file, e.first, "key '" + pre + k + "." + ek + "': unknown (a, b, periods_per_pulse)");
+          }
+        }
       } else if (k == "type") {
         const std::string t = get<std::string>(v, file, pre + k);
         if (t != "linear" && t != "rotary") fail(file, v, "key '" + pre + k + "': expected linear or rotary");
@@ -144,7 +190,9 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
           if (code) fail(file, v, "key '" + pre + "params': parameter error " + std::to_string(code));
         }
       } else {
-        fail(file, f.first, "key '" + pre + k + "': unknown (name, output, type, units_per_pulse, switches, table, params)");
+        fail(file, f.first, "key '" + pre + k +
+                                 "': unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, switches, "
+                                 "table, params)");
       }
     }
   }

@@ -39,7 +39,10 @@ MotionUnit::MotionUnit(Plc& plc) : plc_(plc), engine_(engine_of(plc)), mem_(memo
 
 MotionUnit::~MotionUnit() {
   plc_.locked([this](ScanEngine& e, Memory&) {
-    if (hsc_ && hsc::HscUnit::of(&e) == hsc_) hsc_->remove_event_source(this);
+    if (hsc_ && hsc::HscUnit::of(&e) == hsc_) {
+      detach_signals();
+      hsc_->remove_event_source(this);
+    }
     e.remove_hook(this);
   });
 }
@@ -160,7 +163,7 @@ void MotionUnit::advance(Program& p, uint64_t t) {
     if (p.phase == Phase::Homing) {
       home_check(p, next);
     } else if (act_first) {  // ACT: the time is up, go on even if the output is not finished
-      p.paused_left = ax.remaining(next);
+      p.paused_left = ax.left_if_cut(next);
       axes_[p.call.ps].rest = p.paused_left;
       ax.cut(next);
       step_done(p, next);
@@ -319,7 +322,7 @@ void MotionUnit::stop(Program& p, uint64_t t, Phase then, bool force_decel) {
         return;
       }
     } else {
-      p.paused_left = ax.remaining(t);
+      p.paused_left = ax.left_if_cut(t);
       axes_[p.call.ps].rest = p.paused_left;
       ax.cut(t);
     }
@@ -423,7 +426,7 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
       }
     }
     if (s.transfer == Transfer::Ext && contact(s)) {  // EXT: cut the move short, go on now
-      p.paused_left = a.axis.remaining(t);
+      p.paused_left = a.axis.left_if_cut(t);
       a.rest = p.paused_left;
       a.axis.cut(t);
       step_done(p, t);
@@ -466,6 +469,7 @@ void MotionUnit::write_wr(Program& p) {
 }
 
 void MotionUnit::write_status(uint64_t t) {
+  write_pins(t);
   for (int n = 0; n < kAxes; ++n) {
     AxisState& a = axes_[n];
     const auto put32 = [&](uint32_t reg, int64_t v) {
@@ -547,7 +551,11 @@ bool MotionUnit::command(int ps, Command c, std::string* why) {
 
 // ---- homing (DRVZ) ------------------------------------------------------------------
 
-void MotionUnit::configure(const AxesConfig& cfg) { cfg_ = cfg; }
+void MotionUnit::configure(const AxesConfig& cfg) {
+  detach_signals();
+  cfg_ = cfg;
+  attach_signals();
+}
 
 bool MotionUnit::input(int ps, int x, uint64_t t) const {
   (void)ps;

@@ -49,6 +49,18 @@ TEST(MotionCli, ManualExamplesRunWithSim) {
   }
 }
 
+// The test rig: pins looped into HSC0, an encoder into HSC1, a sensor on the stage.
+TEST(MotionCli, TestRigCountsThePinsAndTheEncoder) {
+  const Result r = tool("sim --config " + std::string(PLC_CELL_SOURCE_DIR) +
+                        "/examples/motion/test_rig.yaml --duration 2s --watch DR4088,DR4096,DR4100,DR300,R302,Y2");
+  EXPECT_EQ(r.status, 0) << r.out;
+  // +10000 -4000; HSC0 = up - down pulses; HSC1 = 4 counts x 1 period per pulse x
+  // 6000; HSC0I at CV = PV = 8000 going up and coming down; Y2 the ladder's output.
+  EXPECT_NE(r.out.find("DR4088 = 6000\nDR4096 = 6000\nDR4100 = 24000\nDR300 = 8000\nR302 = 2\nY2 = 1\n"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST(MotionCli, BadTableInTheYamlNamesItsLine) {
   const std::string dir = ::testing::TempDir();
   FILE* f = std::fopen((dir + "/bad_motion.il").c_str(), "w");

@@ -78,8 +78,10 @@ TEST(Fun140Act, GoesOnAtTheTimeEvenIfPulsesRemain) {
   const double d = (1e6 - 141.0 * 141) / (2 * 4.6e6);
   const double t2 = 2 * (1000 - 141) / 4.6e6 + (10 - 2 * d) / 1000;
   EXPECT_NEAR(c.done[1].t_ns * 1e-9, 0.5 + t2, 1e-8);
-  const double ta = (1000 - 141) / 4.6e6;  // step 1: what 0.5 s sent, then step 2's 10
-  EXPECT_EQ(c.get32("DR4088"), static_cast<int32_t>(std::floor(d + (0.5 - ta) * 1000)) + 10);
+  // Step 1: what 0.5 s sent (499.92 pulses: the 500th is past its half, its edge is
+  // out, so the cut completes it: docs/motion.md "Pulse pins"), then step 2's 10.
+  const double ta = (1000 - 141) / 4.6e6;
+  EXPECT_EQ(c.get32("DR4088"), static_cast<int32_t>(std::floor(d + (0.5 - ta) * 1000 + 0.5)) + 10);
   ASSERT_TRUE(c.run_until([&] { return c.get("M1996") == 1; }, 5000000));
   // The program ends 1 s after step 2 started (the 1.5 s scan sees it), not when its pulses ended.
   EXPECT_EQ(c.now_us, 1501000u);

@@ -57,9 +57,10 @@ END
 class MotionCell {
  public:
   // with_counters: the HSC unit too (as SoftCell makes it): PSOnI in its event loop.
-  explicit MotionCell(const std::string& il = kAxis0Program, bool with_counters = false) {
+  explicit MotionCell(const std::string& il = kAxis0Program, bool with_counters = false,
+                      hsc::HscConfig counters_cfg = {}) {
     if (with_counters) {
-      counters = std::make_unique<hsc::HscUnit>(plc, hsc::HscConfig{});
+      counters = std::make_unique<hsc::HscUnit>(plc, std::move(counters_cfg));
       counters->on_isr([this](uint64_t t, int s) { isrs.push_back({t, s}); });
     }
     unit = std::make_unique<MotionUnit>(plc);

@@ -23,6 +23,7 @@
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/scan_engine.h"
+#include "plc_cell/hsc/edge_source.h"
 #include "plc_cell/hsc/hsc_config.h"
 #include "plc_cell/hsc/interrupts.h"
 #include "plc_cell/hsc/pulse_source.h"
@@ -77,6 +78,14 @@ class HscUnit : public ScanHook {
   // use a PulseSource, whose edges cost nothing).
   void add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint64_t delay_ns);
   PulseSource* source(const std::string& name);
+  // Another analytic source (owned by the caller, e.g. a pulse-output axis wired to
+  // inputs) on X pin_a (phase 0) and pin_b (phase 1, -1: none). Throws Error if a pin
+  // is outside X0-X15 or already driven.
+  void attach_source(EdgeSource* s, int pin_a, int pin_b);
+  void detach_source(EdgeSource* s);
+  // Output y belongs to a pulse generator: the Y relay does not reach the terminal
+  // (the I/O refresh and its observers skip it).
+  void own_output(uint32_t y, bool owned = true) { if (y < owned_y_.size()) owned_y_[y] = owned; }
   bool source_on(int x) const { return x >= 0 && x < 16 && pin_src_[x] != nullptr; }
   void set_source_rate(const std::string& name, double hz);  // from the last processed instant
   void preset(int n, int64_t value);  // sets the CV now (chip, register or timer); 0 clears
@@ -100,9 +109,11 @@ class HscUnit : public ScanHook {
     CounterDef def;
     uint32_t cv = 0, pv = 0;  // chip registers (HHSC); SHSC keeps them in R memory
     bool sw_mask = false, sw_clear = false, sw_dir = false;
-    PulseSource* src = nullptr;  // drives one or both counting inputs
+    EdgeSource* src = nullptr;   // drives one or both counting inputs
     int phase[2] = {-1, -1};     // which phase of src drives a, b (0 = A, 1 = B)
     int64_t q = 0;               // src quarter at cur_ns_
+    Pins last;                   // counting-input levels at q (a source change is one transition)
+    uint64_t epoch = 0;          // src->epoch() when q was taken
     int64_t total = 0;           // net counts, for the frequency
     std::deque<std::pair<uint64_t, int64_t>> hist;
     uint32_t t_cv0 = 0;          // HST: CV at t_base
@@ -145,13 +156,17 @@ class HscUnit : public ScanHook {
   bool blocked(const Counter& c) const;      // one of its counting inputs is
   void raw_edge(const Edge& e, std::vector<std::pair<int, bool>>* group);
   bool source_was_on(int x) const;           // capture of an analytic pin since the last image
+  void bind_pins(EdgeSource* s, int pin_a, int pin_b);
+  void bind_counters();
+  void take_quarter(Counter& c);             // c.q, c.last, c.epoch from the source at cur_ns_
+  void resync(Counter& c);                   // the source changed: count the jump as one transition
 
   ScanEngine& engine_;
   Memory& mem_;
   Plc& plc_;
   HscConfig cfg_;
   std::vector<std::unique_ptr<PulseSource>> sources_;
-  std::array<PulseSource*, 16> pin_src_{};  // analytic driver of each X0-X15
+  std::array<EdgeSource*, 16> pin_src_{};   // analytic driver of each X0-X15
   std::array<int, 16> pin_phase_{};
   std::array<bool, 16> term_{};              // explicit terminal levels after the filter
   std::array<bool, 16> raw_{};               // ... before the filter (what the terminal shows)
@@ -178,6 +193,7 @@ class HscUnit : public ScanHook {
   uint32_t hsta_cv0_ = 0;
   uint64_t hsta_t0_ = 0;
   std::vector<bool> phys_y_ = std::vector<bool>(256, false);
+  std::vector<bool> owned_y_ = std::vector<bool>(256, false);
   std::vector<int> fired_;   // sources requested at the present instant
   std::vector<EventSource*> ext_;
   std::vector<OutputObserver> output_obs_;

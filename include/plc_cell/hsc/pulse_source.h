@@ -11,28 +11,31 @@
 #include <cstdint>
 #include <string>
 
+#include "plc_cell/hsc/edge_source.h"
+
 namespace plc_cell {
 namespace hsc {
 
-class PulseSource {
+class PulseSource : public EdgeSource {
  public:
   PulseSource(std::string name, int pin_a, int pin_b) : name_(std::move(name)), pin_a_(pin_a), pin_b_(pin_b) {}
 
-  const std::string& name() const { return name_; }
+  const std::string& name() const override { return name_; }
   int pin_a() const { return pin_a_; }
   int pin_b() const { return pin_b_; }  // -1 for a single-phase generator
 
   // From t_ns on, move at hz periods per second (negative: B leads A, backwards).
   void set_rate(uint64_t t_ns, double hz);
-  double rate_hz() const { return rate_mhz_ / 1000.0; }
-  int direction() const { return rate_mhz_ > 0 ? 1 : rate_mhz_ < 0 ? -1 : 0; }
+  double rate_hz() const override { return rate_mhz_ / 1000.0; }
+  int direction() const override { return rate_mhz_ > 0 ? 1 : rate_mhz_ < 0 ? -1 : 0; }
 
-  int64_t quarter(uint64_t t_ns) const;
+  int64_t quarter(uint64_t t_ns) const override;
   static bool level_a(int64_t q) { return mod4(q) <= 1; }
   static bool level_b(int64_t q) { return mod4(q) == 1 || mod4(q) == 2; }
   // First time >= from_ns at which Q reaches q (>= q moving forward, <= q backward);
   // UINT64_MAX if it never does at the present rate.
-  uint64_t time_of_quarter(int64_t q, uint64_t from_ns) const;
+  uint64_t time_of_quarter(int64_t q, uint64_t from_ns) const override;
+  bool level(int phase, int64_t q) const override { return phase == 0 ? level_a(q) : level_b(q); }
   static int mod4(int64_t q) { return static_cast<int>(((q % 4) + 4) % 4); }
 
  private:

@@ -18,7 +18,9 @@ class Axis {
   // change the logical position; `prof` emits |delta| + comp pulses (or is endless).
   // `forward` is the pulse direction (U/D output, P/R direction level).
   void start(uint64_t t, int64_t delta, int64_t comp, bool forward, const Profile& prof);
-  // Stops at t at once: pulses emitted so far stay, the rest is dropped.
+  // Stops at t at once: pulses emitted so far stay, the rest is dropped. A pulse
+  // whose rising edge has left the pin (past half its period) is completed, so the
+  // pins and a counter wired to them agree with the position (committed()).
   void cut(uint64_t t);
   // Replaces the rest of the move by a deceleration at dec (Hz/s) to v_stop.
   void decelerate(uint64_t t, double v_stop, double dec);
@@ -40,6 +42,22 @@ class Axis {
   const Profile& profile() const { return prof_; }
   uint64_t start_ns() const { return t0_; }
 
+  // ---- pulse edges (docs/motion.md "Pulse pins"), O(1) in the pulse rate ----
+  // Pulses a cut at t keeps: pulse k counts once the move is past k - 1/2.
+  int64_t committed(uint64_t t) const;
+  // Logical pulses a cut at t would leave undone (DR4072 after the cut).
+  int64_t left_if_cut(uint64_t t) const { return active_ && !prof_.endless() ? len_ - progress(committed(t)) : 0; }
+  // The instant this move has travelled j/per pulses (j = 0: its start; the last
+  // pulse: end_ns()); kNever beyond the move or when idle.
+  uint64_t step_time(int64_t j, int64_t per) const;
+  // How many of those instants (j >= 1) are <= t: floor(per * travel), exactly
+  // consistent with step_time.
+  int64_t steps(uint64_t t, int64_t per) const;
+  int64_t travel0() const { return travel0_; }  // pulses of all earlier moves (unsigned)
+  int64_t count0() const { return count0_; }    // pulse_count at this move's start
+  // Changes at every start and settle: the pins' model is new.
+  uint64_t epoch() const { return epoch_; }
+
   // The instant the logical position reaches pos on this move (kNever if it does not).
   uint64_t when_at(int64_t pos) const;
   int direction() const { return sign_; }  // of the logical position
@@ -58,6 +76,8 @@ class Axis {
   int sign_ = 1;        // position direction
   int64_t comp_ = 0;
   int64_t count0_ = 0;  // pulse_count at t0_
+  int64_t travel0_ = 0;  // pulses of all earlier moves, either direction
+  uint64_t epoch_ = 0;
   Profile prof_;
 };
 

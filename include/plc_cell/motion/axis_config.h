@@ -31,11 +31,30 @@ struct SwitchDef {
 };
 
 enum class OutputMode : uint8_t { UD, PR, AB };
+// Idle level of the pulse-carrying pins (U, D, P, A, B); the P/R direction pin is a
+// level, ON = up, and is not inverted (docs/motion.md "Pulse pins").
+enum class Polarity : uint8_t { NormalOff, NormalOn };
+
+// An incremental encoder on the axis's load: phases A (and B) on inputs X0-X15,
+// `periods` A/B periods per output pulse (A leads B when the pulse count rises).
+struct EncoderDef {
+  bool used = false;
+  int a = -1, b = -1;
+  int64_t periods = 1;
+  int line = 0;  // where it was configured, for errors found when it is attached
+};
 
 struct AxisDef {
   bool used = false;
   std::string name;            // JointState name; default "pso<n>"
   OutputMode mode = OutputMode::PR;
+  bool has_output = false;     // `output:` given: Y(2n), Y(2n+1) belong to the pulse generator
+  Polarity polarity = Polarity::NormalOff;
+  // `wiring: {Y0: X0, Y1: X1}`: the output pins looped back to inputs X0-X15
+  // (-1: that pin is not wired), e.g. into a counter to check the pulses.
+  int wired[2] = {-1, -1};
+  int wiring_line = 0;
+  EncoderDef encoder;
   bool rotary = false;         // JointState position in rad (rotary) or m (linear)
   double units_per_pulse = 1;  // JointState units per pulse
   std::vector<SwitchDef> switches;
@@ -50,6 +69,7 @@ struct AxisDef {
 
 struct AxesConfig {
   std::array<AxisDef, 4> axes;
+  std::string file;  // for errors found when the wiring is attached
 };
 
 // Throws SourceError (file:line:column) on a bad key or value.

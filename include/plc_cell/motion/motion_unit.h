@@ -12,7 +12,9 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/scan_engine.h"
@@ -20,6 +22,7 @@
 #include "plc_cell/motion/axis.h"
 #include "plc_cell/motion/axis_config.h"
 #include "plc_cell/motion/params.h"
+#include "plc_cell/motion/pulse_pins.h"
 #include "plc_cell/motion/table.h"
 
 namespace plc_cell {
@@ -76,8 +79,12 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   // State of the unit-run program: running, done (last step finished), error code.
   bool program_running(int ps) const;
 
-  // The cell YAML's axes: section (names, output modes, simulated switches).
+  // The cell YAML's axes: section (names, output modes, simulated switches). Axes
+  // with `output:` own their pins Y2n/Y2n+1; `wiring:` and `encoder:` become edge
+  // sources of the counters (throws SourceError naming the YAML line if they clash).
   void configure(const AxesConfig& cfg);
+  // The pins of axis ps (null unless configured with `output:`), docs/motion.md "Pulse pins".
+  const AxisSignal* pins(int ps) const { return pins_[ps]; }
   const AxesConfig& config() const { return cfg_; }
 
   // ---- observation and control (lock held) ----
@@ -171,7 +178,13 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   std::vector<StepObserver> step_obs_;
   AxesConfig cfg_;
   bool preloaded_ = false;                // the YAML's tables written since RUN
+  void attach_signals();                  // pulse_pins.cpp: pins, wiring and encoders
+  void detach_signals();
+  void write_pins(uint64_t t);            // the Y image of owned pins shows their level at t
+
   hsc::HscUnit* hsc_ = nullptr;           // the counters' unit we are a source of
+  std::vector<std::unique_ptr<AxisSignal>> signals_;  // owned; the counters hold pointers
+  std::array<const AxisSignal*, kAxes> pins_{};
   std::vector<int>* requests_ = nullptr;  // inside at(): PSOnI requests go here
 };
 
