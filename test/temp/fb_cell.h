@@ -19,6 +19,12 @@ inline FunctionTable fb_table(Generation g = Generation::FB) {
   return t;
 }
 
+// A cell YAML of the FB generation with these modules.fb_temperature.modules entries
+// (and whatever follows them, e.g. a plants section at two spaces).
+inline std::string fb_yaml(const std::string& modules) {
+  return "modules:\n  generation: FB\n  fb_temperature:\n    modules:\n" + modules;
+}
+
 struct FbCell {
   Plc p{fb_table()};
   std::unique_ptr<TemperatureCell> cell;

@@ -15,11 +15,7 @@ namespace {
 
 // FUN72 program example 1 (B:460): an FB-2AK4 then an FB-2AJ4, both 0-10 V (Pl 0).
 // The Ym figures are lost: Y16 and Y24 here.
-const char* kEx1Yaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+const std::string kEx1Yaml = fb_yaml(R"(
       - type: 2AK4
         outputs: Y16
         polarity: unipolar
@@ -28,7 +24,7 @@ modules:
         outputs: Y24
         polarity: unipolar
         channels: [{temperature: 350}, {temperature: 100}, {temperature: 0}, {temperature: 700}]
-)";
+)");
 const char* kEx1Program =
     "ORG M0\nFUN 72 Tp=0 Pl=0 Sm=0 Ym=Y16 AR=R3842 TR=R0 WR=R100 ERR=M10 ALM=M1\n"
     "ORG M0\nFUN 72 Tp=1 Pl=0 Sm=4 Ym=Y24 AR=R3845 TR=R4 WR=R108 ERR=M11 ALM=M2\n"
@@ -88,14 +84,10 @@ TEST(Fun72, NotInstalledPointReadsZeroWithoutAlarm) {
 TEST(Fun72, IrCeilingRows18And19) {
   // 950 degC: unipolar 10 V gives AI 1875 -> held at 1842 -> primitive 3890 -> 942 > 900:
   // line broken (row 19). Bipolar 10 V: 950 x 1024 / 496 = 1961 -> 1842 -> 892 < 900 (row 18).
-  const char* yaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+  const std::string yaml = fb_yaml(R"(
       - {type: 2AK4, outputs: Y16, polarity: unipolar, channels: [{temperature: 950}]}
       - {type: 2AK4, outputs: Y24, polarity: bipolar, channels: [{temperature: 950}]}
-)";
+)");
   FbCell c(yaml,
            "ORG M0\nFUN 72 Tp=0 Pl=0 Sm=0 Ym=Y16 AR=R3842 TR=R0 WR=R100 ALM=M1\n"
            "ORG M0\nFUN 72 Tp=0 Pl=2 Sm=4 Ym=Y24 AR=R3845 TR=R4 WR=R108 ALM=M2\nEND\n");
@@ -112,13 +104,9 @@ modules:
 TEST(Fun72, FiveVoltSpanHalvesR4016) {
   // plc_cell's choice: FUN72 on a 5 V span uses R4016 / 2 (FUN85's default 124 = 248 / 2).
   // +-5 V K at 242.19 degC: 242.19 x 1024 / (2 x 124) = 1000 counts; 1000 x 2 x 124 / 1024 = 242.2 -> 242.
-  const char* yaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+  const std::string yaml = fb_yaml(R"(
       - {type: 2AK4, outputs: Y16, span: 5, channels: [{temperature: 242.19}, {temperature: -50}]}
-)";
+)");
   FbCell c(yaml, "ORG M0\nFUN 72 Tp=0 Pl=3 Sm=0 Ym=Y16 AR=R3842 TR=R0 WR=R100 ALM=M1\nEND\n");
   c.set("M0", 1);
   c.run_to(1100000);
@@ -132,13 +120,9 @@ modules:
 TEST(Fun72, Pt100OnAnFb2AH4) {
   // PT-100 DIN, +-10 V (Pl 2), 100.0 degC: reads 1000 (0.1 degC); the primitive is the
   // reading over the span -49.8..146.6 degC as 0..4095: (1000 + 498) / 1964 x 4095 = 3123.4.
-  const char* yaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+  const std::string yaml = fb_yaml(R"(
       - {type: 2AH4, outputs: Y16, channels: [{temperature: 100}, {temperature: -20.5}, {open: true}]}
-)";
+)");
   FbCell c(yaml, "ORG M0\nFUN 72 Tp=2 Pl=2 Sm=0 Ym=Y16 AR=R3842 TR=R0 WR=R100 ALM=M1\nEND\n");
   c.set("M0", 1);
   c.run_to(2100000);
@@ -153,6 +137,14 @@ modules:
   EXPECT_EQ(c.r("M1"), 1);
 }
 
+// The ms between the last two of three completed multiplex cycles (WR+3 counts them).
+uint64_t cycle_ms(FbCell& c, const char* wr3) {
+  std::vector<uint64_t> at;
+  for (int last = c.r(wr3); at.size() < 3; c.run_to(c.now))
+    if (c.r(wr3) != last) at.push_back(c.now - 1000), last = c.r(wr3);
+  return (at[2] - at[1]) / 1000;
+}
+
 TEST(Fun72, UpdatePeriodIsR4014TimesFour) {
   // Spec row 21: 500 / 250 / 1000 / 2000 ms per point -> an update every 2 / 1 / 4 / 8 s.
   for (const auto& [slot, period] : std::vector<std::pair<int, uint64_t>>{{500, 2000}, {250, 1000}, {1000, 4000}, {2000, 8000}}) {
@@ -160,16 +152,7 @@ TEST(Fun72, UpdatePeriodIsR4014TimesFour) {
     c.run_to(0);
     c.set("R4014", uint32_t(slot));
     c.set("M0", 1);
-    std::vector<uint64_t> rises;
-    int last = 0;
-    while (rises.size() < 3) {
-      c.run_to(c.now);
-      const int y = c.r("Y16");
-      if (y && !last) rises.push_back(c.now - 1000);
-      last = y;
-    }
-    EXPECT_EQ((rises[2] - rises[1]) / 1000, period) << "R4014 = " << slot;
-    EXPECT_EQ((rises[1] - rises[0]) / 1000, period) << "R4014 = " << slot;
+    EXPECT_EQ(cycle_ms(c, "R103"), period) << "R4014 = " << slot;
   }
 }
 
@@ -209,15 +192,11 @@ TEST(Fun72, MovingAverageOfR4015Samples) {
   // A zone at 100 degC heading for 500 degC with tau 100 s: T(t) = 500 - 400 exp(-t / 100 s).
   // Point 0 is converted at 0.5 s + 2 s k; with R4015 = 2 (4 samples) the reading is the
   // rounded mean of the last 4 primitives round(T x 1024 / 248), times 248 / 1024.
-  const char* yaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+  const std::string yaml = fb_yaml(R"(
       - {type: 2AK4, outputs: Y16, polarity: unipolar, channels: [{plant: p}]}
   plants:
     - {name: p, ambient: 500, initial: 100, gain: 0, time_constant: 100, dead_time: 0}
-)";
+)");
   FbCell c(yaml, "ORG M0\nFUN 72 Tp=0 Pl=0 Sm=0 Ym=Y16 AR=R3842 TR=R0 WR=R100\nEND\n");
   c.run_to(0);
   c.set("R4015", 2);
@@ -235,11 +214,7 @@ modules:
 
 // FUN85 example (B:917): FBx-28MC with an FB-4AK24 at 0-10 V, Zn 24 -> R0-R23, primitives
 // R3968-R3991, line broken in WR+0/WR+1 -> M1000-M1023. The Yn figure is lost: Y16.
-const char* k4akYaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+const std::string k4akYaml = fb_yaml(R"(
       - type: 4AK24
         outputs: Y16
         polarity: unipolar
@@ -249,7 +224,7 @@ modules:
                    {temperature: 225}, {temperature: 250}, {temperature: 275}, {temperature: 325},
                    {temperature: 350}, {open: true}, {temperature: 375}, {temperature: 425},
                    {temperature: 450}, {temperature: 475}, {temperature: 525}, {temperature: 550}]
-)";
+)");
 const char* kFun85Program = "ORG M0\nFUN 85 Tp=0 Pl=0 Zn=24 Yn=Y16 SR=R0 WR=R100 ERR=M10 ALM=M1\n"
                             "ORG M0\nMOV.D S=R100 D=WM1000\nEND\n";
 
@@ -278,13 +253,9 @@ TEST(Fun85, ManualExampleFb4AK24) {
 
 TEST(Fun85, R4001FiveVoltRow20) {
   // Row 20: FUN85, K, +-5 V: R4001 defaults to 124; primitive 1000 -> 1000 x 2 x 124 / 1024 = 242.2.
-  const char* yaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+  const std::string yaml = fb_yaml(R"(
       - {type: 4AK12, outputs: Y16, span: 5, channels: [{temperature: 242.19}]}
-)";
+)");
   FbCell c(yaml, "ORG M0\nFUN 85 Tp=0 Pl=3 Zn=12 Yn=Y16 SR=R0 WR=R100 ALM=M1\nEND\n");
   c.set("M0", 1);
   c.run_to(2100000);
@@ -301,13 +272,7 @@ TEST(Fun85, UpdatePeriodIsR4004TimesSix) {
     c.set("M0", 1);
     c.run_to(0);  // the first execution initialises R4000-R4004; then the program's value
     c.set("R4004", uint32_t(slot));
-    std::vector<uint64_t> cycles;
-    int last = c.r("R103");
-    while (cycles.size() < 3) {
-      c.run_to(c.now);
-      if (c.r("R103") != last) cycles.push_back(c.now - 1000), last = c.r("R103");
-    }
-    EXPECT_EQ((cycles[2] - cycles[1]) / 1000, period) << "R4004 = " << slot;
+    EXPECT_EQ(cycle_ms(c, "R103"), period) << "R4004 = " << slot;
   }
 }
 

@@ -13,16 +13,12 @@ namespace {
 
 // FUN73 program example 1 (B:713-B:780), 0-10 V. Point temperatures are fixed: 200 degC
 // on points 1-15 and 350 on point 16 (out of the 195..205 zone).
-const char* kEx1Yaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+const std::string kEx1Yaml = fb_yaml(R"(
       - {type: 2AK4, outputs: Y16, polarity: unipolar, channels: [{temperature: 200}, {temperature: 200}, {temperature: 200}, {temperature: 200}]}
       - {type: 2AK4, outputs: Y24, polarity: unipolar, channels: [{temperature: 200}, {temperature: 200}, {temperature: 200}, {temperature: 200}]}
       - {type: 2AK4, outputs: Y32, polarity: unipolar, channels: [{temperature: 200}, {temperature: 200}, {temperature: 200}, {temperature: 200}]}
       - {type: 2AK4, outputs: Y40, polarity: unipolar, channels: [{temperature: 200}, {temperature: 200}, {temperature: 190}, {temperature: 350}]}
-)";
+)");
 const char* kEx1Program =
     "ORG M1924\nMOV.D S=WM800 D=R4010\nMOV.D S=WM832 D=R4012\n"
     "ORG M3\nFUN 72 Tp=0 Pl=0 Sm=12 Ym=Y40 AR=R3851 TR=R12 WR=R240\n"
@@ -85,15 +81,11 @@ TEST(Fun73, ErrOnRtdOrShBelowSm) {
 
 // The FB FUN86 with FUN85 on an FB-4AK12 (0-10 V), heating an oven (gain 300 degC, tau
 // 600 s, dead time 10 s) through Y30 from 25 to 200 degC.
-const char* kOvenYaml = R"(
-modules:
-  generation: FB
-  fb_temperature:
-    modules:
+const std::string kOvenYaml = fb_yaml(R"(
       - {type: 4AK12, outputs: Y16, polarity: unipolar, channels: [{name: oven, plant: oven}]}
   plants:
     - {name: oven, ambient: 25, initial: 25, gain: 300, time_constant: 600, dead_time: 10, heater: Y30}
-)";
+)");
 const char* kOvenProgram =
     "ORG M1924\nMOV S=200 D=R100\nMOV S=1 D=R120\n"   // SV 200 degC, zone +-1
     "MOV S=40 D=R140\nMOV S=20 D=R160\nMOV S=10 D=R180\n"  // Kc 40, Ti 0.2 rep/min, Td 0.1 min
