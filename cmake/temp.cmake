@@ -18,7 +18,11 @@ target_sources(plc_cell_core PRIVATE
   src/temp/linear_conversion.cpp
   src/temp/hspwm.cpp
   src/temp/pwmda.cpp
-  src/temp/fb_tc_scaling.cpp)
+  src/temp/fb_tc_scaling.cpp
+  src/temp/tpctl_loop.cpp
+  src/temp/fb_modules.cpp
+  src/temp/fb_measure.cpp
+  src/temp/fb_functions.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS test/temp/*_test.cpp)

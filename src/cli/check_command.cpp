@@ -13,11 +13,14 @@ namespace plc_cell {
 namespace cli {
 
 int cmd_check(const std::vector<std::string>& argv) {
-  Args args(argv, {"program"});
+  Args args(argv, {"program", "config"});
   const std::string path = args.require("program");
-  FunctionTable fns = SoftCell::functions();
-  const auto keep = install_protocol_functions(CellConfig(), fns);  // FUN150/151 without ports
   try {
+    // --config: the cell's generation (an FB cell has FUN72/73/85 and the FB FUN86).
+    const std::string config = args.get("config");
+    const CellConfig cell = config.empty() ? CellConfig() : load_cell_config(config);
+    FunctionTable fns = SoftCell::functions(temp::cell_generation(cell.document, cell.file));
+    const auto keep = install_protocol_functions(CellConfig(), fns);  // FUN150/151 without ports
     const Program p = load_program_file(path, fns);
     std::cout << path << ": OK, " << p.code.size() << " instructions, " << p.labels.size() << " labels\n";
     return 0;

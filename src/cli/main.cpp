@@ -18,7 +18,7 @@ const char* kUsage =
     "         run the program in virtual time and print the watched values\n"
     "  run    --program FILE [--config FILE] [--scan 1ms] [--duration T] [--rt-priority N]\n"
     "         run the soft PLC in real time until interrupted\n"
-    "  check  --program FILE   parse a program and report every error\n"
+    "  check  --program FILE [--config CELL.yaml]   parse a program and report every error\n"
     // @usage: subsystems add their commands' usage lines here
     "  fatek  (--tcp HOST:PORT | --serial DEV[:BAUD[:FMT]]) [--station N] [--timeout MS]\n"
     "         [--retries N] status|run|stop|read ADDR [COUNT]|write ADDR VALUE...|\n"

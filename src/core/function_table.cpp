@@ -41,6 +41,23 @@ const FunctionSpec* FunctionTable::find(uint16_t number) const {
   return &specs_[by_number_[number]];
 }
 
+void FunctionTable::add_unavailable(uint16_t number, const std::string& mnemonic, const std::string& why) {
+  unavailable_.push_back({number, upper(mnemonic), why});
+}
+
+std::string FunctionTable::why_unavailable(uint16_t number) const {
+  for (const auto& u : unavailable_)
+    if (u.number == number) return "FUN " + std::to_string(u.number) + " " + u.mnemonic + ": " + u.why;
+  return "";
+}
+
+std::string FunctionTable::why_unavailable(const std::string& mnemonic) const {
+  const std::string m = upper(mnemonic);
+  for (const auto& u : unavailable_)
+    if (u.mnemonic == m) return why_unavailable(u.number);
+  return "";
+}
+
 const FunctionSpec* FunctionTable::find(const std::string& mnemonic) const {
   const std::string u = upper(mnemonic);
   for (const auto& s : specs_)

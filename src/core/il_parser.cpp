@@ -159,7 +159,8 @@ class Parser {
       mods = m.substr(dot + 1);
     }
     if (const FunctionSpec* spec = fns_.find(base)) return fun(spec, mods, head, toks, 1);
-    error(head.column, "unknown instruction '" + head.text + "'");
+    const std::string why = fns_.why_unavailable(base);
+    error(head.column, why.empty() ? "unknown instruction '" + head.text + "'" : why);
   }
 
   void contact(const std::string& m, const std::vector<Token>& toks) {
@@ -446,7 +447,10 @@ class Parser {
     for (const auto& f : kFlowFuns)
       if (f.number == number) return flow(f.name, toks, 2);
     const FunctionSpec* spec = fns_.find(number);
-    if (!spec) return error(toks[1].column, "FUN " + std::to_string(number) + " is not available in plc_cell");
+    if (!spec) {
+      const std::string why = fns_.why_unavailable(number);
+      return error(toks[1].column, why.empty() ? "FUN " + std::to_string(number) + " is not available in plc_cell" : why);
+    }
     size_t first = 2;
     if (first < toks.size() && upper(toks[first].text) == upper(spec->mnemonic)) ++first;
     fun(spec, mods, toks[1], toks, first);

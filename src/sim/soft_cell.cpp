@@ -8,15 +8,15 @@
 
 namespace plc_cell {
 
-FunctionTable SoftCell::functions() {
+FunctionTable SoftCell::functions(temp::Generation g) {
   FunctionTable t = FunctionTable::with_core_functions();
-  temp::add_temperature_functions(t);  // FUN86 TPCTL, FUN30 PID
+  temp::add_temperature_functions(t, g);  // FUN86 TPCTL (FBs or FB), FUN30 PID, FB: FUN72/73/85
   return t;
 }
 
 FunctionTable SoftCell::functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
                                       std::vector<std::shared_ptr<void>>* keep) {
-  FunctionTable t = functions();
+  FunctionTable t = functions(temp::cell_generation(cfg.document, cfg.file));
   if (install) *keep = install(cfg, t);
   return t;
 }

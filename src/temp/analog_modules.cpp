@@ -16,7 +16,10 @@ struct Kind {
   const char* name;
   int ai, ao;
 };
-const Kind kKinds[] = {{"6AD", 6, 0}, {"4A2D", 4, 2}, {"4DA", 0, 4}, {"2DA", 0, 2}};
+// The AI part of the FBs-2A4TC/2A4RTD (A:7206-A:7370) is an AI module of 2 channels,
+// "the same as the analog input modules" (its temperature part is in modules.temperature).
+const Kind kKinds[] = {{"6AD", 6, 0},   {"4A2D", 4, 2},  {"4DA", 0, 4},
+                       {"2DA", 0, 2},   {"2A4TC", 2, 0}, {"2A4RTD", 2, 0}};
 const Kind kBoards[] = {{"B4AD", 4, 0}, {"B2DA", 0, 2}, {"B2A1D", 2, 1}};
 
 [[noreturn]] void fail(const std::string& file, const YAML::Node& n, const std::string& key, const std::string& msg) {
@@ -140,7 +143,7 @@ AnalogConfig parse_analog_config(const YAML::Node& node, const std::string& file
     only(file, m, mk, {"type", "code", "signal", "span", "inputs", "outputs"});
     AnalogModuleDef d;
     if (!m["type"]) fail(file, m, mk + ".type", "missing");
-    d.type = choice(file, m["type"], mk + ".type", {"6AD", "4A2D", "4DA", "2DA"});
+    d.type = choice(file, m["type"], mk + ".type", {"6AD", "4A2D", "4DA", "2DA", "2A4TC", "2A4RTD"});
     int ai = 0, ao = 0;
     for (const auto& kd : kKinds)
       if (d.type == kd.name) ai = kd.ai, ao = kd.ao;

@@ -7,7 +7,7 @@ namespace temp {
 
 int32_t fb_primitive(int32_t ir, int pl) { return fb_bipolar(pl) ? ir : ir + 2048; }
 
-int32_t fb_tc_engineering(int32_t prim, int pl, int32_t pos, int32_t neg) {
+int32_t fb_tc_engineering(int32_t prim, int pl, double pos, double neg) {
   double v;
   if (prim >= 0)
     v = prim * (fb_bipolar(pl) ? 2.0 : 1.0) * pos / 1024.0;

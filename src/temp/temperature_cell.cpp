@@ -7,6 +7,7 @@
 
 #include "plc_cell/core/area.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/temp/fb_modules.h"
 #include "plc_cell/temp/rtd.h"
 
 namespace plc_cell {
@@ -79,11 +80,12 @@ TemperatureCell::TemperatureCell(TemperatureConfig cfg, Memory& mem) : cfg_(std:
       wired_open_.push_back(open);
     }
   }
-  if (cfg_.has_analog)
-    analog_ = std::make_unique<AnalogModules>(cfg_.analog, mem_, [this](const std::string& name) {
-      ThermalPlant* p = plant(name);
-      return p ? p->temperature_c() : 0.0;
-    });
+  auto plant_c = [this](const std::string& name) {
+    ThermalPlant* p = plant(name);
+    return p ? p->temperature_c() : 0.0;
+  };
+  if (cfg_.has_analog) analog_ = std::make_unique<AnalogModules>(cfg_.analog, mem_, plant_c);
+  if (cfg_.fb) fb_ = std::make_unique<FbModules>(*cfg_.fb, mem_, plant_c);
   std::lock_guard<std::mutex> lk(g_registry_mu);
   registry()[&mem_] = this;
 }
@@ -195,14 +197,21 @@ int16_t TemperatureCell::register_value(double c, double resolution_c) const {
 
 void TemperatureCell::before_program(uint64_t now_us) {
   if (mem_.bit(Area::M, special::kFirstScan)) {
-    // The manual's defaults (A:6945, A:7170-A:7177); the program may overwrite them.
-    mem_.set_reg(Area::R, treg::kIntervals, 0x0102);
+    // The manual's defaults (A:6945, A:7170-A:7177; FB: B:385-B:436, B:705-B:711); the
+    // program may overwrite them.
+    const bool fb = cfg_.generation == Generation::FB;
+    mem_.set_reg(Area::R, treg::kIntervals, fb ? 0x0000 : 0x0102);
     mem_.set_reg(Area::R, treg::kLargePower, 90);
     mem_.set_reg(Area::R, treg::kLargePowerTime, 600);
-    mem_.set_reg(Area::R, treg::kHighAlarm, 3500);
+    mem_.set_reg(Area::R, treg::kHighAlarm, fb ? 350 : 3500);
     for (uint32_t r = 0; r < 4; ++r) mem_.set_reg(Area::R, treg::kInstalled + r, 0xFFFF);
+    if (fb) {  // R4014 500 ms, R4015 no averaging, R4016-R4019, R4020 DIN/R, R4021 R8000, R4022/R4023
+      const uint16_t d[] = {500, 0, 248, 286, 240, 280, 0x0001, 8000, 1024, 1024};
+      for (uint32_t r = 0; r < 10; ++r) mem_.set_reg(Area::R, treg::kFbSlotMs + r, d[r]);
+    }
   }
   if (!modules_.empty()) write_registers();
+  if (fb_) fb_->before_program();
   if (analog_) analog_->before_program(now_us);
 }
 

@@ -1,9 +1,11 @@
 #include "plc_cell/temp/temperature_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/temp/fb_modules.h"
 
 namespace plc_cell {
 namespace temp {
@@ -172,6 +174,20 @@ PlantDef parse_plant(const Reader& r, const YAML::Node& n, const std::string& ke
 
 const ModuleInfo& module_info(ModuleKind k) { return kModules[static_cast<int>(k)]; }
 
+ChannelDef parse_channel_def(const YAML::Node& n, const std::string& key, const std::string& file) {
+  return parse_channel(Reader(file), n, key);
+}
+
+Generation cell_generation(const YAML::Node& document, const std::string& file) {
+  if (!document.IsMap() || !document["modules"] || !document["modules"].IsMap()) return Generation::FBs;
+  const YAML::Node g = document["modules"]["generation"];
+  if (!g) return Generation::FBs;
+  const Reader r(file);
+  const std::string v = r.str(g, "modules.generation");
+  if (v != "FBs" && v != "FB") r.fail(g, "modules.generation", "FBs or FB (the older FB series)");
+  return v == "FB" ? Generation::FB : Generation::FBs;
+}
+
 int ModuleDef::sensor_code() const {
   switch (sensor) {
     case SensorKind::Thermocouple: return static_cast<int>(tc);  // J K E T R S B N = 0..7
@@ -192,7 +208,20 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
   Reader r(file);
   TemperatureConfig c;
   if (!node) return c;
-  r.only(node, "modules", {"temperature", "plants", "analog", "rtc", "pwmda"});  // rtc.cpp, pwmda.cpp
+  r.only(node, "modules", {"generation", "temperature", "fb_temperature", "plants", "analog", "rtc", "pwmda"});  // rtc.cpp, pwmda.cpp
+  YAML::Node doc;
+  doc["modules"] = node;
+  c.generation = cell_generation(doc, file);
+  // R4003-R4008 and FUN86 mean different things in the two generations (spec 16.1).
+  if (c.generation == Generation::FB && node["temperature"])
+    r.fail(node["temperature"], "modules.temperature",
+           "the FBs temperature modules belong to the FBs generation; this cell has modules.generation: FB "
+           "(use modules.fb_temperature)");
+  if (const YAML::Node fb = node["fb_temperature"]) {
+    if (c.generation != Generation::FB)
+      r.fail(fb, "modules.fb_temperature", "the FB-series modules need modules.generation: FB");
+    c.fb = std::make_shared<FbConfig>(parse_fb_config(fb, file));
+  }
   if (node["analog"]) c.analog = parse_analog_config(node["analog"], file), c.has_analog = true;
   if (const YAML::Node t = node["temperature"]) {
     const std::string k = "modules.temperature";
@@ -264,6 +293,23 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
       for (const auto& p : c.plants) ok |= p.name == in.plant;
       if (!ok) r.fail(node["analog"], "modules.analog", "input '" + in.name + "' names an unknown plant '" + in.plant + "'");
     }
+  if (c.fb)
+    for (const auto& m : c.fb->modules)
+      for (const auto& ch : m.channels)
+        if (!ch.plant.empty() && std::none_of(c.plants.begin(), c.plants.end(), [&](const PlantDef& p) { return p.name == ch.plant; }))
+          r.fail(node["fb_temperature"], "modules.fb_temperature", "channel '" + ch.name + "' names an unknown plant '" + ch.plant + "'");
+  // A 2A4TC/2A4RTD in modules.analog is the AI half of one in modules.temperature.
+  for (const char* combo : {"2A4TC", "2A4RTD"}) {
+    const auto ai = std::count_if(c.analog.modules.begin(), c.analog.modules.end(),
+                                  [&](const AnalogModuleDef& m) { return m.type == combo; });
+    const auto tm = std::count_if(c.modules.begin(), c.modules.end(), [&](const ModuleDef& m) {
+      return std::string(module_info(m.kind).name) == combo;
+    });
+    if (ai > tm)
+      r.fail(node["analog"], "modules.analog",
+             std::to_string(ai) + " " + combo + " analog part(s) but " + std::to_string(tm) + " " + combo +
+                 " in modules.temperature (the AI part belongs to a temperature module)");
+  }
   for (const auto& m : c.modules)
     for (const auto& ch : m.channels) {
       if (ch.plant.empty()) continue;

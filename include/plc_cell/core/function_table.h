@@ -72,7 +72,19 @@ class FunctionTable {
   const FunctionSpec* find(const std::string& mnemonic) const;  // case-insensitive
   const std::vector<FunctionSpec>& all() const { return specs_; }
 
+  // A FUN this table does not offer, with the reason the parser reports at its line
+  // (e.g. an instruction of another PLC generation). Found by number or mnemonic.
+  void add_unavailable(uint16_t number, const std::string& mnemonic, const std::string& why);
+  // "FUN 72 TP4: <why>", or empty if the number/mnemonic is simply unknown.
+  std::string why_unavailable(uint16_t number) const;
+  std::string why_unavailable(const std::string& mnemonic) const;
+
  private:
+  struct Unavailable {
+    uint16_t number;
+    std::string mnemonic, why;
+  };
+  std::vector<Unavailable> unavailable_;
   std::vector<FunctionSpec> specs_;
   std::vector<int> by_number_ = std::vector<int>(1024, -1);
 };

@@ -33,8 +33,9 @@ class SoftCell {
   // config's cell.program. Throws SourceError/Error with file and line on bad input.
   SoftCell(const std::string& config_path, const std::string& program_path,
            const CellFunctionInstaller& install = {});
-  // The instruction set of every cell: the core's plus the subsystems' FUNs.
-  static FunctionTable functions();
+  // The instruction set of a cell of generation g (modules.generation): the core's
+  // plus the subsystems' FUNs.
+  static FunctionTable functions(temp::Generation g = temp::Generation::FBs);
   ~SoftCell();
 
   Plc& plc() { return plc_; }

@@ -2,8 +2,8 @@
 // The older FB-series temperature modules' arithmetic (FB-2AJ(K)4 with FUN72/FUN73,
 // FB-4AJ(K)xx with FUN85; second source chapter 20, B:318-B:440, B:876-B:922): IR ->
 // primitive value -> engineering value with the R4016-R4019 / R4001-R4002 factors,
-// the line-broken thresholds and the update periods. Pure math: the FB instructions
-// themselves are not installed (docs/analog-and-temperature.md, "FB series").
+// the line-broken thresholds and the update periods. Pure math, used by the emulated
+// FB modules (fb_modules.h) and FUN72/73/85/86-FB (fb_functions.h).
 #include <cstdint>
 
 namespace plc_cell {
@@ -23,7 +23,12 @@ int32_t fb_primitive(int32_t ir, int pl);
 // x 2 x factor / 1024 (bipolar); negative: prim x 2 x neg / 1024 on +-10 V, x neg / 1024
 // on +-5 V. Rounded to the nearest degree (the manual's TC resolution is 1 degC; the
 // rounding rule is not given).
-int32_t fb_tc_engineering(int32_t primitive, int pl, int32_t pos_factor, int32_t neg_factor);
+// pos_factor is a double: FUN72 on a 5 V span uses R4016 / 2 (docs, "FB generation").
+int32_t fb_tc_engineering(int32_t primitive, int pl, double pos_factor, double neg_factor);
+
+// "the content of IR at most it can reach 1842. For the scale exceeding 1842, it is
+// treated for line broken check only" (B:275). An open input reads full scale, 2047.
+constexpr int32_t kFbIrCeiling = 1842, kFbIrOpen = 2047;
 
 // Default factors: FUN72 R4016-R4019 (K 248/286, J 240/280); FUN85 R4001/R4002 use half
 // the positive factor on the 5 V spans (K 124, J 120).

@@ -25,7 +25,12 @@ constexpr uint16_t kExecMeasuring = 0x56;  // WR+0 high byte: all channels read
 namespace treg {
 constexpr uint32_t kPvFromR4004 = 4003, kPvStart = 4004, kIntervals = 4005, kLargePower = 4006,
                    kLargePowerTime = 4007, kHighAlarm = 4008, kInstalled = 4010, kPidEnable = 4012;
+// FB generation only (second source B:383-B:440, B:876-B:913).
+constexpr uint32_t kFbFun85 = 4000,  // R4000 (signature, averaging) .. R4004 (ms per point)
+    kFbSlotMs = 4014, kFbAveraging = 4015, kFbFactors = 4016, kFbRtd = 4020, kFbRtdFactors = 4022;
 }
+
+class FbModules;
 
 struct ChannelState {
   std::string name;
@@ -51,6 +56,8 @@ class TemperatureCell : public ScanHook {
 
   // The analog I/O modules of modules.analog, or nullptr.
   const AnalogModules* analog() const { return analog_.get(); }
+  // The FB-series modules of modules.fb_temperature, or nullptr.
+  FbModules* fb() { return fb_.get(); }
 
   const TemperatureConfig& config() const { return cfg_; }
   const std::vector<ChannelState>& channels() const { return channels_; }
@@ -84,6 +91,7 @@ class TemperatureCell : public ScanHook {
   };
   std::vector<ModuleState> modules_;
   std::unique_ptr<AnalogModules> analog_;
+  std::unique_ptr<FbModules> fb_;
   bool all_read_ = false;
   bool have_time_ = false;
   uint64_t last_us_ = 0;

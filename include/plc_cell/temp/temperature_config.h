@@ -1,6 +1,7 @@
 #pragma once
 // The `modules:` section of the cell YAML: temperature modules, their channels and the
 // thermal plants that the simulated cell puts behind them. docs/analog-and-temperature.md.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,13 @@
 
 namespace plc_cell {
 namespace temp {
+
+// The PLC generation whose temperature instructions and R4000-R4023 meanings the cell
+// has (`modules.generation`): FBs (default) or the older FB series (FUN72/73/85 and the
+// FB FUN86, FB-2A?4 / FB-4AJ(K)xx modules). The two clash on FUN86 and R4003-R4008.
+enum class Generation { FBs, FB };
+
+struct FbConfig;  // fb_modules.h
 
 enum class ModuleKind { TC2, TC6, TC16, RTD6, RTD16, NTC6, A4TC2, A4RTD2 };
 enum class SensorKind { Thermocouple, Pt100, Pt1000, Ntc };
@@ -65,6 +73,8 @@ struct LoopDef {
 };
 
 struct TemperatureConfig {
+  Generation generation = Generation::FBs;
+  std::shared_ptr<const FbConfig> fb;  // modules.fb_temperature (FB generation), or null
   bool fast = false;        // Fast: half the update period, 1 degree resolution
   bool fahrenheit = false;  // readings in 0.1 degF
   int averaging = 1;        // moving average over 1, 2, 4, 8 (NTC also 16) samples
@@ -83,6 +93,12 @@ struct TemperatureConfig {
 
 // Reads node (the `modules:` mapping); throws SourceError at the offending key.
 TemperatureConfig parse_temperature_config(const YAML::Node& modules, const std::string& file);
+
+// One entry of a module's `channels` list ({name, plant, temperature, open}).
+ChannelDef parse_channel_def(const YAML::Node& n, const std::string& key, const std::string& file);
+
+// modules.generation of a whole cell document (FBs when absent); throws SourceError.
+Generation cell_generation(const YAML::Node& document, const std::string& file);
 
 }  // namespace temp
 }  // namespace plc_cell

@@ -18,6 +18,7 @@ struct TpctlPoint {
   int32_t prev_pv = 0;
   bool primed = false;  // prev_pv valid
   double output = 0;
+  double full_scale = 16383;  // output range: 16383 (FBs FUN86), 4095 (FB FUN73/FUN86)
 
   // One solve. heating: error SV - PV (cooling: PV - SV); the derivative acts on PV
   // with the sign that opposes its change (the manual's "+" is taken as a typo, §16).
@@ -29,8 +30,11 @@ struct TpctlPoint {
 
 constexpr int kTpctlFullScale = 16383;
 
-// Adds FUN86 TPCTL to t.
+// Adds FUN86 TPCTL (the FBs version) to t.
 void add_tpctl_function(FunctionTable& t);
+
+// R4005 byte -> period, FBs codes: 0 = 1 s, 1 = 2 s, 2 = 4 s ... >= 5 = 32 s.
+uint64_t fbs_interval_us(unsigned code);
 
 }  // namespace temp
 }  // namespace plc_cell
