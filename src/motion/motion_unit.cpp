@@ -8,6 +8,8 @@
 #include "plc_cell/core/plc.h"
 #include "plc_cell/hsc/hsc_unit.h"
 #include "plc_cell/hsc/interrupts.h"
+#include "plc_cell/motion/interpolation.h"
+#include "plc_cell/motion/mpg.h"
 
 namespace plc_cell {
 namespace motion {
@@ -35,6 +37,8 @@ MotionUnit::MotionUnit(Plc& plc) : plc_(plc), engine_(engine_of(plc)), mem_(memo
     hsc_ = hsc::HscUnit::of(&e);
     if (hsc_) hsc_->add_event_source(this);
   });
+  interp_ = std::make_unique<Interpolation>(*this, mem_);
+  mpg_ = std::make_unique<Mpg>(*this, mem_, hsc_);
 }
 
 MotionUnit::~MotionUnit() {
@@ -57,7 +61,7 @@ uint64_t MotionUnit::next_event(const Program& p) const {
 uint64_t MotionUnit::next_event_ns() const {
   uint64_t next = kNever;
   for (const auto& kv : programs_) next = std::min(next, next_event(kv.second));
-  return next;
+  return std::min({next, interp_->next_event_ns(), mpg_->next_event_ns()});
 }
 
 void MotionUnit::at(uint64_t t, std::vector<int>* requests) {
@@ -132,6 +136,12 @@ void MotionUnit::preload() {
       put(a.params_at, r, kParamWords);
     }
   }
+  for (const auto& g : cfg_.groups)  // FUN147 tables (axes: gp0/gp1)
+    if (g.has_table) {
+      const std::vector<uint16_t> r = encode_lin_table(g.table);
+      for (size_t i = 0; i < r.size() && g.table_at.index + i < Memory::word_count(g.table_at.area); ++i)
+        mem_.set_reg(g.table_at.area, static_cast<uint32_t>(g.table_at.index + i), r[i]);
+    }
 }
 
 void MotionUnit::on_stop() {
@@ -141,10 +151,14 @@ void MotionUnit::on_stop() {
     a.owner = UINT32_MAX;
   }
   programs_.clear();
+  interp_->on_stop();
+  mpg_->on_stop();
 }
 
 void MotionUnit::advance(uint64_t t) {
   for (auto& kv : programs_) advance(kv.second, t);
+  interp_->advance(t);  // FUN147 groups and FUN148 outputs on the same clock
+  mpg_->advance(t);
   now_ns_ = std::max(now_ns_, t);
 }
 
