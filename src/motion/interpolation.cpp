@@ -7,6 +7,7 @@
 #include "plc_cell/core/memory.h"
 #include "plc_cell/motion/params.h"
 #include "plc_cell/motion/motion_unit.h"
+#include "step_flow.h"
 
 namespace plc_cell {
 namespace motion {
@@ -24,16 +25,6 @@ constexpr uint16_t kWrPaused = 1u << 8, kWrWaiting = 1u << 9, kWrAct = 1u << 12,
 
 bool has(uint8_t mask, int n) { return (mask >> n) & 1; }
 }  // namespace
-
-int32_t Interpolation::read32(Operand::Kind k, int32_t i) const {
-  const Area a = k == Operand::D ? Area::D : Area::R;
-  return static_cast<int32_t>(uint32_t(mem_.reg(a, i)) | (uint32_t(mem_.reg(a, i + 1)) << 16));
-}
-
-bool Interpolation::contact(const Step& s) const {
-  static const Area areas[] = {Area::X, Area::Y, Area::M, Area::S};
-  return mem_.bit(areas[static_cast<int>(s.contact_area)], s.contact);
-}
 
 // ---- events -----------------------------------------------------------------------
 
@@ -96,7 +87,7 @@ void Interpolation::start_step(Group& g, int k, uint64_t t) {
 }
 
 void Interpolation::start_move(Group& g, const LinStep& s, uint64_t t) {
-  const int64_t v = s.flow.speed.kind == Operand::Const ? s.flow.speed.value : read32(s.flow.speed.kind, s.flow.speed.value);
+  const int64_t v = flow::value32(mem_, s.flow.speed);
   if (v == 0) {  // SPD 0: wait until the speed register becomes non-zero (as FUN140)
     g.phase = Phase::SpeedWait;
     return;
@@ -105,8 +96,7 @@ void Interpolation::start_move(Group& g, const LinStep& s, uint64_t t) {
   int lead = -1;
   for (int n = 0; n < 4; ++n) {
     if (!has(s.axes, n)) continue;
-    const Operand& o = s.stroke[n];
-    const int64_t stroke = o.kind == Operand::Const ? o.value : read32(o.kind, o.value);
+    const int64_t stroke = flow::value32(mem_, s.stroke[n]);
     if (stroke < -99999999 || stroke > 99999999) return fail(g, 33, t);
     const int64_t pulses = s.ut ? unit_.params(n).ut_to_pulses(stroke) : stroke;
     delta[n] = s.abs ? pulses - unit_.axis(n).position(t) : pulses;
@@ -168,16 +158,13 @@ void Interpolation::step_done(Group& g, uint64_t t) {
 void Interpolation::transfer(Group& g, uint64_t t) {
   const Step& s = g.table.steps[g.step - 1].flow;
   switch (s.transfer) {
-    case Transfer::WaitTime: {
-      const uint16_t ticks = s.time.kind == Operand::Const ? static_cast<uint16_t>(s.time.value)
-                                                           : mem_.reg(s.time.kind == Operand::D ? Area::D : Area::R, s.time.value);
+    case Transfer::WaitTime:
       g.phase = Phase::Waiting;
-      g.wait_until = t + uint64_t(ticks) * kTimeUnitNs;
+      g.wait_until = t + uint64_t(flow::time16(mem_, s)) * kTimeUnitNs;
       return;
-    }
     case Transfer::WaitContact:
     case Transfer::Ext:
-      if (contact(s)) return go_to(g, -1, t);
+      if (flow::contact(mem_, s)) return go_to(g, -1, t);
       g.phase = Phase::Waiting;
       g.wait_until = kNever;  // the contact is looked at every scan
       return;
@@ -189,14 +176,7 @@ void Interpolation::transfer(Group& g, uint64_t t) {
 void Interpolation::go_to(Group& g, int target, uint64_t t) {
   const Step& s = g.table.steps[g.step - 1].flow;
   const int n = static_cast<int>(g.table.steps.size());
-  if (target < 0) {
-    switch (s.goto_kind) {
-      case Step::Next: target = g.step + 1; break;
-      case Step::Number: target = s.goto_value; break;
-      default: target = static_cast<int16_t>(mem_.reg(s.goto_kind == Step::R ? Area::R : Area::D, s.goto_value));
-    }
-    if (s.goto_kind != Step::Next && (target < 1 || target > n)) return fail(g, 34, t);
-  }
+  if (target < 0 && (target = flow::goto_target(mem_, s, g.step, n)) == 0) return fail(g, 34, t);
   if (target > n) {  // past the last step: finished (M1934+gp)
     g.phase = Phase::Done;
     g.chain = false;
@@ -338,7 +318,7 @@ Fun147Outputs Interpolation::fun147(const Fun147Call& c, uint64_t t) {
     start_move(g, g.table.steps[g.step - 1], t);
   } else if (g.phase == Phase::Moving && !c.pau) {
     const Step& s = g.table.steps[g.step - 1].flow;
-    if (s.transfer == Transfer::Ext && contact(s)) {  // EXT: cut the move short, go on now
+    if (s.transfer == Transfer::Ext && flow::contact(mem_, s)) {  // EXT: cut the move short, go on now
       cut(g, t);
       g.moving = 0;
       step_done(g, t);
@@ -346,7 +326,7 @@ Fun147Outputs Interpolation::fun147(const Fun147Call& c, uint64_t t) {
       advance(g, t);
     }
   } else if (g.phase == Phase::Waiting && g.wait_until == kNever) {
-    if (contact(g.table.steps[g.step - 1].flow)) {
+    if (flow::contact(mem_, g.table.steps[g.step - 1].flow)) {
       go_to(g, -1, t);
       advance(g, t);
     }

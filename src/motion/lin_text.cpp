@@ -95,11 +95,9 @@ bool check_lin_table(const LinTable& t, TableError* err, const std::vector<int>&
 
 std::string format_lin_table(const LinTable& t) {
   std::ostringstream o;
-  char num[24];
   for (size_t i = 0; i < t.steps.size(); ++i) {
     const LinStep& s = t.steps[i];
-    std::snprintf(num, sizeof num, "%03zu", i + 1);
-    o << num << " SPD " << text::op_text(s.flow.speed) << "\n    " << (s.line ? "LINE " : "LIN ")
+    o << text::format_head(i, s.flow) << "    " << (s.line ? "LINE " : "LIN ")
       << (s.abs ? "ABS" : "ADR");
     for (int n = 0; n < 4; ++n) o << "," << ((s.axes >> n) & 1 ? text::op_text(s.stroke[n]) : " ");
     o << "," << (s.ut ? "Ut" : "Ps") << "\n" << text::format_flow(s.flow);

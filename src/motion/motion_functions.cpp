@@ -18,42 +18,57 @@ std::string check_area(const plc_cell::Operand& o, const char* what) {
   if (o.addr.area != Area::R && o.addr.area != Area::D) return std::string(what) + " must be an R or D register";
   return "";
 }
+// FUN140 and FUN147 share their shape: EN/PAU/ABT, (Ps|Gp, SR, WR), ACT/ERR/DN.
+FunctionSpec program_spec(uint16_t number, const char* mnemonic, const char* first) {
+  using R = OperandRole;
+  FunctionSpec s;
+  s.number = number;
+  s.mnemonic = mnemonic;
+  s.inputs = {"EN", "PAU", "ABT"};
+  s.operands = {{first, R::Const}, {"SR", R::Register}, {"WR", R::Register},
+                {"ACT", R::BitOut, true}, {"ERR", R::BitOut, true}, {"DN", R::BitOut, true}};
+  s.allow_32 = false;
+  s.allow_pulse = false;
+  s.always_runs = true;  // EN = 0 stops the output
+  return s;
+}
+template <typename Call>
+Call program_call(const ExecContext& c, const BoundOperand* o) {
+  Call call;
+  call.sr = o[1].addr;
+  call.wr = o[2].addr;
+  call.en = c.inputs[0];
+  call.pau = c.inputs[1];
+  call.abt = c.inputs[2];
+  call.instance = c.instance;
+  return call;
+}
+template <typename Outputs>
+void program_flags(const ExecContext& c, const BoundOperand* o, const Outputs& r) {
+  c.flag(o[3], r.act);
+  c.flag(o[4], r.err);
+  c.flag(o[5], r.dn);
+}
+std::string check_program(const std::vector<plc_cell::Operand>& o, std::string e) {
+  if (e.empty()) e = check_area(o[1], "SR");
+  if (e.empty()) e = check_area(o[2], "WR");
+  return e;
+}
 }  // namespace
 
 void install_functions(FunctionTable& t) {
   using R = OperandRole;
   FunctionSpec s;
 
-  s = {};
-  s.number = 140; s.mnemonic = "HSPSO";  // run a positioning program on axis Ps
-  s.inputs = {"EN", "PAU", "ABT"};
-  s.operands = {{"Ps", R::Const}, {"SR", R::Register}, {"WR", R::Register},
-                {"ACT", R::BitOut, true}, {"ERR", R::BitOut, true}, {"DN", R::BitOut, true}};
-  s.allow_32 = false;
-  s.allow_pulse = false;
-  s.always_runs = true;  // EN = 0 stops the output
+  s = program_spec(140, "HSPSO", "Ps");  // run a positioning program on axis Ps
   s.handler = [](ExecContext& c, const BoundOperand* o) {
     auto* u = MotionUnit::of(c.engine);
     if (!u) return;
-    Fun140Call call;
+    Fun140Call call = program_call<Fun140Call>(c, o);
     call.ps = static_cast<int>(o[0].k);
-    call.sr = o[1].addr;
-    call.wr = o[2].addr;
-    call.en = c.inputs[0];
-    call.pau = c.inputs[1];
-    call.abt = c.inputs[2];
-    call.instance = c.instance;
-    const Fun140Outputs r = u->fun140(call, c.now_us);
-    c.flag(o[3], r.act);
-    c.flag(o[4], r.err);
-    c.flag(o[5], r.dn);
+    program_flags(c, o, u->fun140(call, c.now_us));
   };
-  s.check = [](const std::vector<plc_cell::Operand>& o) {
-    std::string e = check_ps(o);
-    if (e.empty()) e = check_area(o[1], "SR");
-    if (e.empty()) e = check_area(o[2], "WR");
-    return e;
-  };
+  s.check = [](const std::vector<plc_cell::Operand>& o) { return check_program(o, check_ps(o)); };
   t.add(s);
 
   s = {};
@@ -100,35 +115,16 @@ void install_functions(FunctionTable& t) {
   };
   t.add(s);
 
-  s = {};
-  s.number = 147; s.mnemonic = "MHSP0";  // linear interpolation program of group Gp
-  s.inputs = {"EN", "PAU", "ABT"};
-  s.operands = {{"Gp", R::Const}, {"SR", R::Register}, {"WR", R::Register},
-                {"ACT", R::BitOut, true}, {"ERR", R::BitOut, true}, {"DN", R::BitOut, true}};
-  s.allow_32 = false;
-  s.allow_pulse = false;
-  s.always_runs = true;  // EN = 0 stops the output
+  s = program_spec(147, "MHSP0", "Gp");  // linear interpolation program of group Gp
   s.handler = [](ExecContext& c, const BoundOperand* o) {
     auto* u = MotionUnit::of(c.engine);
     if (!u) return;
-    Fun147Call call;
+    Fun147Call call = program_call<Fun147Call>(c, o);
     call.gp = static_cast<int>(o[0].k);
-    call.sr = o[1].addr;
-    call.wr = o[2].addr;
-    call.en = c.inputs[0];
-    call.pau = c.inputs[1];
-    call.abt = c.inputs[2];
-    call.instance = c.instance;
-    const Fun147Outputs r = u->interpolation().fun147(call, c.now_us * 1000);
-    c.flag(o[3], r.act);
-    c.flag(o[4], r.err);
-    c.flag(o[5], r.dn);
+    program_flags(c, o, u->interpolation().fun147(call, c.now_us * 1000));
   };
   s.check = [](const std::vector<plc_cell::Operand>& o) {
-    std::string e = o[0].k >= 0 && o[0].k <= 1 ? "" : "Gp must be 0 (Ps0&Ps1, or 3-4 axes) or 1 (Ps2&Ps3)";
-    if (e.empty()) e = check_area(o[1], "SR");
-    if (e.empty()) e = check_area(o[2], "WR");
-    return e;
+    return check_program(o, o[0].k >= 0 && o[0].k <= 1 ? "" : "Gp must be 0 (Ps0&Ps1, or 3-4 axes) or 1 (Ps2&Ps3)");
   };
   t.add(s);
 

@@ -10,6 +10,7 @@
 #include "plc_cell/hsc/interrupts.h"
 #include "plc_cell/motion/interpolation.h"
 #include "plc_cell/motion/mpg.h"
+#include "step_flow.h"
 
 namespace plc_cell {
 namespace motion {
@@ -81,17 +82,11 @@ MotionUnit* MotionUnit::of(ScanEngine* engine) {
 
 // ---- memory helpers -------------------------------------------------------------
 
-int32_t MotionUnit::read32(Operand::Kind k, int32_t i) const {
-  const Area a = k == Operand::D ? Area::D : Area::R;
-  return static_cast<int32_t>(uint32_t(mem_.reg(a, i)) | (uint32_t(mem_.reg(a, i + 1)) << 16));
-}
+int32_t MotionUnit::read32(Operand::Kind k, int32_t i) const { return flow::read32(mem_, k, i); }
 
-uint16_t MotionUnit::read16(Operand::Kind k, int32_t i) const { return mem_.reg(k == Operand::D ? Area::D : Area::R, i); }
+uint16_t MotionUnit::read16(Operand::Kind k, int32_t i) const { return mem_.reg(flow::area(k), i); }
 
-bool MotionUnit::contact(const Step& s) const {
-  static const Area areas[] = {Area::X, Area::Y, Area::M, Area::S};
-  return mem_.bit(areas[static_cast<int>(s.contact_area)], s.contact);
-}
+bool MotionUnit::contact(const Step& s) const { return flow::contact(mem_, s); }
 
 // ---- scan hook ------------------------------------------------------------------
 
@@ -232,21 +227,12 @@ void MotionUnit::transfer(Program& p, uint64_t t) {
   }
 }
 
-uint16_t MotionUnit::read_time(const Step& s) const {
-  return s.time.kind == Operand::Const ? static_cast<uint16_t>(s.time.value) : read16(s.time.kind, s.time.value);
-}
+uint16_t MotionUnit::read_time(const Step& s) const { return flow::time16(mem_, s); }
 
 void MotionUnit::go_to(Program& p, int target, uint64_t t) {
   const Step& s = p.table.steps[p.step - 1];
   const int n = static_cast<int>(p.table.steps.size());
-  if (target < 0) {
-    switch (s.goto_kind) {
-      case Step::Next: target = p.step + 1; break;
-      case Step::Number: target = s.goto_value; break;
-      default: target = static_cast<int16_t>(read16(s.goto_kind == Step::R ? Operand::R : Operand::D, s.goto_value));
-    }
-    if (s.goto_kind != Step::Next && (target < 1 || target > n)) return fail(p, 34, t);
-  }
+  if (target < 0 && (target = flow::goto_target(mem_, s, p.step, n)) == 0) return fail(p, 34, t);
   if (target > n) {  // past the last step: the program is finished
     p.phase = Phase::Done;
     p.chain = false;

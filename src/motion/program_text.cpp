@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <sstream>
 
 #include "plc_cell/motion/params.h"
@@ -228,6 +229,12 @@ bool parse_program(const std::string& text, const Syntax& syn, std::vector<Step>
   return true;
 }
 
+std::string format_head(size_t index, const Step& s) {
+  char num[24];
+  std::snprintf(num, sizeof num, "%03zu", index + 1);
+  return std::string(num) + " SPD " + op_text(s.speed) + "\n";
+}
+
 std::string format_flow(const Step& s) {
   std::ostringstream o;
   switch (s.transfer) {
@@ -243,6 +250,25 @@ std::string format_flow(const Step& s) {
   else o << (s.goto_kind == Step::R ? "R" : "D") << s.goto_value;
   o << "\n";
   return o.str();
+}
+
+bool decode_header(const uint16_t* r, size_t n, uint16_t magic, int step_words, int* steps, TableError* err) {
+  char m[8];
+  std::snprintf(m, sizeof m, "%04XH", magic);
+  if (n < kHeaderWords || r[1] != magic) {
+    *err = {34, 0, std::string("no program of this instruction at SR (SR+1 must be ") + m + ")"};
+    return false;
+  }
+  *steps = r[0];
+  if (*steps < 1 || *steps > kMaxSteps) {
+    *err = {*steps > kMaxSteps ? 36 : 35, 0, "SR+0 (number of steps) must be 1~250, is " + std::to_string(*steps)};
+    return false;
+  }
+  if (kHeaderWords + size_t(step_words) * *steps > n) {
+    *err = {35, 0, std::to_string(*steps) + " steps do not fit in the register area"};
+    return false;
+  }
+  return true;
 }
 
 namespace {

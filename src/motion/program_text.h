@@ -44,8 +44,13 @@ struct Syntax {
 // Fills steps (flow part: speed, transfer, GOTO) and the line of each SPD.
 bool parse_program(const std::string& text, const Syntax& syn, std::vector<Step>* steps,
                    std::vector<int>* step_lines, TableError* err);
-// WAIT/EXT/GOTO lines of a step (and the "003 SPD" numbering) as the manual writes them.
+// "003 SPD 5000" (the step's first line) and its WAIT/EXT/GOTO lines, as the manual writes them.
+std::string format_head(size_t index, const Step& s);
 std::string format_flow(const Step& s);
+
+// The 2-word header of a register image: SR+0 = N (1-250), SR+1 = magic; N steps of
+// step_words must fit in n. False with code 34/35/36.
+bool decode_header(const uint16_t* r, size_t n, uint16_t magic, int step_words, int* steps, TableError* err);
 
 // Register form of the flow part: bits 8-14 of the command word (transfer, GOTO
 // kind, contact area), the time/contact word and the GOTO word.

@@ -42,19 +42,8 @@ std::vector<uint16_t> encode_table(const Table& t) {
 }
 
 bool decode_table(const uint16_t* r, size_t n, Table* out, TableError* err) {
-  if (n < kHeaderWords || r[1] != kTableMagic) {
-    *err = {34, 0, "no positioning program at SR (SR+1 must be 140AH)"};
-    return false;
-  }
-  const int steps = r[0];
-  if (steps < 1 || steps > kMaxSteps) {
-    *err = {steps > kMaxSteps ? 36 : 35, 0, "SR+0 (number of steps) must be 1~250, is " + std::to_string(steps)};
-    return false;
-  }
-  if (kHeaderWords + size_t(kStepWords) * steps > n) {
-    *err = {35, 0, std::to_string(steps) + " steps do not fit in the register area"};
-    return false;
-  }
+  int steps = 0;
+  if (!text::decode_header(r, n, kTableMagic, kStepWords, &steps, err)) return false;
   Table t;
   for (int i = 0; i < steps; ++i) {
     const uint16_t* w = &r[kHeaderWords + kStepWords * i];

@@ -111,11 +111,9 @@ using text::op_text;
 
 std::string format_table(const Table& t) {
   std::ostringstream o;
-  char num[24];
   for (size_t i = 0; i < t.steps.size(); ++i) {
     const Step& s = t.steps[i];
-    std::snprintf(num, sizeof num, "%03zu", i + 1);
-    o << num << " SPD " << op_text(s.speed) << "\n";
+    o << text::format_head(i, s);
     if (s.motion == Motion::Drvz) {
       o << "    DRVZ MD" << s.zero_mode << "\n";
     } else {

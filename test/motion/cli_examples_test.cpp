@@ -56,33 +56,29 @@ TEST(MotionCli, ManualExamplesRunWithSim) {
   }
 }
 
-TEST(MotionCli, BadTableInTheYamlNamesItsLine) {
+// A cell whose YAML table (under axes.<key>) is bad on its second text line.
+Result bad_yaml_table(const std::string& name, const std::string& key, const std::string& line2) {
   const std::string dir = ::testing::TempDir();
-  FILE* f = std::fopen((dir + "/bad_motion.il").c_str(), "w");
+  FILE* f = std::fopen((dir + "/" + name + ".il").c_str(), "w");
   std::fputs("ORG M1925\nOUT M0\nEND\n", f);
   std::fclose(f);
-  f = std::fopen((dir + "/bad_motion.yaml").c_str(), "w");
-  std::fputs("cell: {program: bad_motion.il}\naxes:\n  pso0:\n    table:\n      at: R0\n      text: |\n"
-             "        SPD 100\n        DRV ADR,+,5,mm\n        GOTO NEXT\n        MEND\n",
+  f = std::fopen((dir + "/" + name + ".yaml").c_str(), "w");
+  std::fputs(("cell: {program: " + name + ".il}\naxes:\n  " + key + ":\n    table:\n      at: R0\n      text: |\n"
+              "        SPD 100\n        " + line2 + "\n        GOTO NEXT\n        MEND\n").c_str(),
              f);
   std::fclose(f);
-  const Result r = tool("sim --config " + dir + "/bad_motion.yaml --duration 0.1s");
+  return tool("sim --config " + dir + "/" + name + ".yaml --duration 0.1s");
+}
+
+TEST(MotionCli, BadTableInTheYamlNamesItsLine) {
+  const Result r = bad_yaml_table("bad_motion", "pso0", "DRV ADR,+,5,mm");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("bad_motion.yaml:8:"), std::string::npos) << r.out;  // the DRV line
   EXPECT_NE(r.out.find("error 34"), std::string::npos) << r.out;
 }
 
 TEST(MotionCli, BadGroupTableInTheYamlNamesItsLine) {
-  const std::string dir = ::testing::TempDir();
-  FILE* f = std::fopen((dir + "/bad_group.il").c_str(), "w");
-  std::fputs("ORG M1925\nOUT M0\nEND\n", f);
-  std::fclose(f);
-  f = std::fopen((dir + "/bad_group.yaml").c_str(), "w");
-  std::fputs("cell: {program: bad_group.il}\naxes:\n  gp0:\n    table:\n      at: R0\n      text: |\n"
-             "        SPD 100\n        LIN ADR,5,5,5,5,mm\n        GOTO NEXT\n        MEND\n",
-             f);
-  std::fclose(f);
-  const Result r = tool("sim --config " + dir + "/bad_group.yaml --duration 0.1s");
+  const Result r = bad_yaml_table("bad_group", "gp0", "LIN ADR,5,5,5,5,mm");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("bad_group.yaml:8:"), std::string::npos) << r.out;  // the LIN line
   EXPECT_NE(r.out.find("error 60"), std::string::npos) << r.out;

@@ -276,6 +276,26 @@ TEST(Fun147, ErrorsStopWithTheirCodeAndNothingMoves) {
   }
 }
 
+TEST(Fun147, RunsOnEveryOutputModeIncludingPR) {
+  // AMBIG-22: the manual lists U/D and A/B for FUN147; plc_cell does not refuse P/R
+  // (the output stage is the axis's, the same for FUN140 and FUN147).
+  GroupCell c;
+  AxesConfig cfg;
+  cfg.axes[0].used = cfg.axes[1].used = cfg.axes[2].used = true;
+  cfg.axes[0].mode = OutputMode::UD;
+  cfg.axes[1].mode = OutputMode::PR;
+  cfg.axes[2].mode = OutputMode::AB;
+  c.with([&](MotionUnit& u) {
+    u.configure(cfg);
+    return 0;
+  });
+  c.lin_table("SPD 3000\nLIN ADR,-700,300,100, ,Ps\nGOTO NEXT\nMEND\n");
+  c.put("M1", 1);
+  ASSERT_TRUE(c.run_until([&] { return c.get("M1934") == 1; }, 5000000));
+  EXPECT_EQ(c.get("M11"), 0u);
+  expect_positions(c.gdone[0], -700, 300, 100, 0);
+}
+
 TEST(Fun147, AbortRestartsFromTheFirstStep) {
   GroupCell c;
   c.lin_table("SPD 1000\nLIN ADR,100,100, , \nWAIT M7\nGOTO NEXT\nSPD 1000\nLIN ADR,100, , , \nGOTO NEXT\nMEND\n");

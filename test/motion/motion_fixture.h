@@ -110,18 +110,17 @@ class MotionCell {
     p.to_registers(r);
     for (int i = 0; i < kParamWords; ++i) put("R" + std::to_string(sr + i), r[i]);
   }
-  void table(const std::string& text, uint32_t sr = 0) {
-    Table t;
-    TableError e;
-    ASSERT_TRUE(parse_table(text, &t, &e)) << e.line << ": " << e.message;
-    const auto r = encode_table(t);
-    for (size_t i = 0; i < r.size(); ++i) put("R" + std::to_string(sr + i), r[i]);
-  }
+  // A table's register image at R<sr>, from the text form (FUN140 or FUN147).
+  void table(const std::string& text, uint32_t sr = 0) { image<Table>(text, sr, parse_table, encode_table); }
   void lin_table(const std::string& text, uint32_t sr = 0) {
-    LinTable t;
+    image<LinTable>(text, sr, parse_lin_table, encode_lin_table);
+  }
+  template <typename T, typename Parse, typename Encode>
+  void image(const std::string& text, uint32_t sr, Parse parse, Encode encode) {
+    T t;
     TableError e;
-    ASSERT_TRUE(parse_lin_table(text, &t, &e)) << e.line << ": " << e.message;
-    const auto r = encode_lin_table(t);
+    ASSERT_TRUE(parse(text, &t, &e)) << e.line << ": " << e.message;
+    const auto r = encode(t);
     for (size_t i = 0; i < r.size(); ++i) put("R" + std::to_string(sr + i), r[i]);
   }
   void run(uint64_t duration_us, uint64_t period_us = 1000) {

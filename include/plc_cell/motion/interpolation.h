@@ -84,8 +84,6 @@ class Interpolation {
   void fail(Group& g, int code, uint64_t t);
   void release(Group& g);
   bool load(Group& g);
-  bool contact(const Step& s) const;
-  int32_t read32(Operand::Kind k, int32_t i) const;
   void write_wr(Group& g);
 
   MotionUnit& unit_;
