@@ -89,7 +89,8 @@ TEST(Fun147, ManualExampleC_EveryStepEndsTogetherAtTheClosedFormInstant) {
   expect_positions(c.gdone[2], 1500, 900, 0, 600);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(c.gdone[k].step, k + 1);
   // Pulse counts: every pulse of a step in its own direction (P9 is not used by FUN147).
-  EXPECT_EQ(c.unit->axis(2).pulse_count(c.gdone[2].t_ns), 0);  // +300 then -300
+  const int64_t counts[4] = {1500, 900, 0, 600};  // Ps2: 300 pulses up, then 300 down
+  for (int n = 0; n < 4; ++n) EXPECT_EQ(c.unit->axis(n).pulse_count(c.gdone[2].t_ns), counts[n]) << n;
   EXPECT_EQ(c.get("D4062"), 3u);
   EXPECT_EQ(c.get("D4060"), 0u);
   EXPECT_EQ(c.get("M1934"), 0u);  // GOTO 1: never the last step
@@ -120,6 +121,8 @@ TEST(Fun147, FigureCase1000And500PsPulsesStayProportionalAndEndTogether) {
     ASSERT_LE(std::llabs(dt), 2) << "pulse " << k;
   }
   EXPECT_EQ(x.end_ns(), y.end_ns());
+  EXPECT_EQ(x.emitted(x.end_ns()), 1000);  // exactly the strokes
+  EXPECT_EQ(y.emitted(y.end_ns()), 500);
   // Cruise at 1 kHz along the line: Ps0 at 1000 x 1000/1118.03 = 894.4 Hz, Ps1 at 447.2 Hz.
   c.run(800000);  // 0.803 s: the ramps are 0.5 s
   EXPECT_EQ(c.get32("DR4080"), 894);
