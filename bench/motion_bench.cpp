@@ -9,6 +9,7 @@
 #include <benchmark/benchmark.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -16,6 +17,7 @@
 
 #include "plc_cell/core/plc.h"
 #include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/motion/lin_table.h"
 #include "plc_cell/motion/motion_unit.h"
 #include "plc_cell/motion/table.h"
 
@@ -92,6 +94,48 @@ void run(benchmark::State& state, bool moves, bool looped = false) {
   }
   state.counters["pulses_per_scan"] = double(hz) / 1000.0 * 4;
 }
+
+// Family 3: one FUN147 interpolating all four axes, a step (there and back) every
+// 10 ms, the lead axis at hz: the cost per scan of a 4-axis interpolation.
+void BM_FourAxisInterpolationStepEvery10ms(benchmark::State& state) {
+  const int64_t hz = state.range(0);
+  Plc plc;
+  MotionUnit unit(plc);
+  plc.load_program_text("ORG M1925\nLD M1000\nLD M1001\nMHSP0 Gp=0 SR=R0 WR=R1000\nEND\n", "bench.il");
+  plc.set_mode(RunMode::Run);
+  // |s| = sqrt(1 + 1/4 + 1/9 + 1/16) = 1.193 x the lead stroke: SPD = 1.193 hz puts
+  // the lead axis at hz for 10 ms.
+  const int64_t n = hz / 100;
+  const std::string s = std::to_string(n) + "," + std::to_string(n / 2) + "," + std::to_string(n / 3) + "," +
+                        std::to_string(n / 4);
+  const std::string back = "-" + std::to_string(n) + ",-" + std::to_string(n / 2) + ",-" + std::to_string(n / 3) +
+                           ",-" + std::to_string(n / 4);
+  const std::string v = std::to_string(std::min<int64_t>(921600, hz * 1193 / 1000));
+  motion::LinTable t;
+  motion::TableError e;
+  if (!motion::parse_lin_table("SPD " + v + "\nLIN ADR," + s + ",Ps\nGOTO NEXT\nSPD " + v + "\nLIN ADR," + back +
+                                   ",Ps\nGOTO 1\nMEND\n",
+                               &t, &e))
+    std::abort();
+  const auto regs = motion::encode_lin_table(t);
+  plc.locked([&](ScanEngine&, Memory& m) {
+    for (int a = 0; a < 4; ++a) {
+      motion::AxisParams p;
+      p.p4_max = 921600;
+      p.p13_interp_ms = 0;  // square profile
+      unit.set_params(a, p);
+    }
+    for (size_t i = 0; i < regs.size(); ++i) m.set_reg(Area::R, static_cast<uint32_t>(i), regs[i]);
+    return 0;
+  });
+  uint64_t now = 0;
+  for (auto _ : state) {
+    plc.scan(now);
+    now += 1000;
+  }
+  state.counters["pulses_per_scan"] = double(hz) / 1000.0 * (1 + 0.5 + 0.33 + 0.25);
+}
+BENCHMARK(BM_FourAxisInterpolationStepEvery10ms)->Arg(1000)->Arg(20000)->Arg(460000)->Arg(772000);
 
 void BM_FourAxesEndless(benchmark::State& state) { run(state, false); }
 void BM_FourAxesStepEvery10ms(benchmark::State& state) { run(state, true); }

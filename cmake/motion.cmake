@@ -1,9 +1,14 @@
-# Pulse-output positioning (issue 6): FUN140/141/142/143, the axes PSO0-PSO3 and their
+# Pulse-output positioning (issue 6): FUN140/141/142/143/147/148, the axes PSO0-PSO3 and their
 # profiles. Part of plc_cell_core: SoftCell creates the motion unit for every cell.
 target_sources(plc_cell_core PRIVATE
   src/motion/params.cpp
+  src/motion/program_text.cpp
   src/motion/table_text.cpp
   src/motion/table_regs.cpp
+  src/motion/lin_text.cpp
+  src/motion/lin_regs.cpp
+  src/motion/interpolation.cpp
+  src/motion/mpg.cpp
   src/motion/profile.cpp
   src/motion/axis.cpp
   src/motion/pulse_pins.cpp

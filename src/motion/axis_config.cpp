@@ -5,6 +5,7 @@
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/motion/lin_table.h"
 
 namespace plc_cell {
 namespace motion {
@@ -37,6 +38,32 @@ int high_speed_input(const YAML::Node& v, const std::string& file, const std::st
     fail(file, v, "key '" + what + "': expected a high-speed input X0-X15");
   return static_cast<int>(ad.index);
 }
+
+// The `at:` register of a table or parameter image.
+Address register_at(const YAML::Node& v, const std::string& file, const std::string& key) {
+  Address at;
+  std::string why;
+  if (!v["at"] || !try_parse_address(get<std::string>(v["at"], file, key + ".at"), &at, &why) ||
+      (at.area != Area::R && at.area != Area::D) || at.width != Width::Word)
+    fail(file, v, "key '" + key + ".at': expected a register R or D");
+  return at;
+}
+
+// A table's `at:` register and its `text:` parsed by parse (FUN140 or FUN147 form);
+// a text error names its YAML line.
+template <typename T, typename Parse>
+Address table_text(const YAML::Node& v, const std::string& file, const std::string& key, Parse parse, T* out) {
+  const Address at = register_at(v, file, key);
+  if (!v["text"]) fail(file, v, "key '" + key + "': needs text (the manual's text form)");
+  TableError e;
+  if (!parse(get<std::string>(v["text"], file, key + ".text"), out, &e)) {
+    const YAML::Mark m = v["text"].Mark();
+    // A block scalar starts on the line after its key.
+    throw SourceError::at(file, m.line + 1 + (e.line > 0 ? e.line : 0), 1,
+                          "key '" + key + ".text': error " + std::to_string(e.code) + ": " + e.message);
+  }
+  return at;
+}
 }  // namespace
 
 bool SwitchDef::level(int64_t pos) const {
@@ -67,8 +94,17 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
   if (!axes.IsMap()) fail(file, axes, "key 'axes': expected a map of pso0..pso3");
   for (const auto& kv : axes) {
     const std::string key = kv.first.as<std::string>();
+    if (key == "gp0" || key == "gp1") {  // a FUN147 group's table: gpN: {table: {at:, text:}}
+      GroupDef& g = cfg.groups[key[2] - '0'];
+      for (const auto& f : kv.second) {
+        if (f.first.as<std::string>() != "table") fail(file, f.first, "key 'axes." + key + "': expected table");
+        g.table_at = table_text(f.second, file, "axes." + key + ".table", parse_lin_table, &g.table);
+        g.has_table = true;
+      }
+      continue;
+    }
     if (key.size() != 4 || key.compare(0, 3, "pso") != 0 || key[3] < '0' || key[3] > '3')
-      fail(file, kv.first, "key 'axes." + key + "': expected pso0, pso1, pso2 or pso3");
+      fail(file, kv.first, "key 'axes." + key + "': expected pso0, pso1, pso2, pso3, gp0 or gp1");
     const int n = key[3] - '0';
     AxisDef& a = cfg.axes[n];
     a.used = true;
@@ -155,26 +191,13 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
           if (d.from > d.to) fail(file, s, "key '" + pre + "switches': from must be <= to");
           a.switches.push_back(d);
         }
-      } else if (k == "table" || k == "params") {
-        Address at;
-        std::string why;
-        if (!v["at"] || !try_parse_address(get<std::string>(v["at"], file, pre + k + ".at"), &at, &why) ||
-            (at.area != Area::R && at.area != Area::D) || at.width != Width::Word)
-          fail(file, v, "key '" + pre + k + ".at': expected a register R or D");
-        if (k == "table") {
-          if (!v["text"]) fail(file, v, "key '" + pre + k + "': needs text (the manual's text form)");
-          TableError e;
-          if (!parse_table(get<std::string>(v["text"], file, pre + k + ".text"), &a.table, &e)) {
-            const YAML::Mark m = v["text"].Mark();
-            // A block scalar starts on the line after its key.
-            throw SourceError::at(file, m.line + 1 + (e.line > 0 ? e.line : 0), 1,
-                                  "key '" + pre + "table.text': error " + std::to_string(e.code) + ": " + e.message);
-          }
-          a.has_table = true;
-          a.table_at = at;
-        } else {
+      } else if (k == "table") {
+        a.table_at = table_text(v, file, pre + k, parse_table, &a.table);
+        a.has_table = true;
+      } else if (k == "params") {
+        {
           a.has_params = true;
-          a.params_at = at;
+          a.params_at = register_at(v, file, pre + k);
           for (const auto& pf : v) {
             const std::string pk = pf.first.as<std::string>();
             if (pk == "at") continue;

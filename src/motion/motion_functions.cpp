@@ -1,9 +1,11 @@
-// FUN140 HSPSO, FUN141 MPARA, FUN142 PSOFF, FUN143 PSCNV: the positioning
+// FUN140 HSPSO, FUN141 MPARA, FUN142 PSOFF, FUN143 PSCNV, FUN147 MHSP0, FUN148 MPG: the positioning
 // instructions. They act on the MotionUnit installed on the engine (SoftCell
 // creates one for every cell); without one they do nothing.
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/interpreter.h"
+#include "plc_cell/motion/interpolation.h"
 #include "plc_cell/motion/motion_unit.h"
+#include "plc_cell/motion/mpg.h"
 
 namespace plc_cell {
 namespace motion {
@@ -16,42 +18,57 @@ std::string check_area(const plc_cell::Operand& o, const char* what) {
   if (o.addr.area != Area::R && o.addr.area != Area::D) return std::string(what) + " must be an R or D register";
   return "";
 }
+// FUN140 and FUN147 share their shape: EN/PAU/ABT, (Ps|Gp, SR, WR), ACT/ERR/DN.
+FunctionSpec program_spec(uint16_t number, const char* mnemonic, const char* first) {
+  using R = OperandRole;
+  FunctionSpec s;
+  s.number = number;
+  s.mnemonic = mnemonic;
+  s.inputs = {"EN", "PAU", "ABT"};
+  s.operands = {{first, R::Const}, {"SR", R::Register}, {"WR", R::Register},
+                {"ACT", R::BitOut, true}, {"ERR", R::BitOut, true}, {"DN", R::BitOut, true}};
+  s.allow_32 = false;
+  s.allow_pulse = false;
+  s.always_runs = true;  // EN = 0 stops the output
+  return s;
+}
+template <typename Call>
+Call program_call(const ExecContext& c, const BoundOperand* o) {
+  Call call;
+  call.sr = o[1].addr;
+  call.wr = o[2].addr;
+  call.en = c.inputs[0];
+  call.pau = c.inputs[1];
+  call.abt = c.inputs[2];
+  call.instance = c.instance;
+  return call;
+}
+template <typename Outputs>
+void program_flags(const ExecContext& c, const BoundOperand* o, const Outputs& r) {
+  c.flag(o[3], r.act);
+  c.flag(o[4], r.err);
+  c.flag(o[5], r.dn);
+}
+std::string check_program(const std::vector<plc_cell::Operand>& o, std::string e) {
+  if (e.empty()) e = check_area(o[1], "SR");
+  if (e.empty()) e = check_area(o[2], "WR");
+  return e;
+}
 }  // namespace
 
 void install_functions(FunctionTable& t) {
   using R = OperandRole;
   FunctionSpec s;
 
-  s = {};
-  s.number = 140; s.mnemonic = "HSPSO";  // run a positioning program on axis Ps
-  s.inputs = {"EN", "PAU", "ABT"};
-  s.operands = {{"Ps", R::Const}, {"SR", R::Register}, {"WR", R::Register},
-                {"ACT", R::BitOut, true}, {"ERR", R::BitOut, true}, {"DN", R::BitOut, true}};
-  s.allow_32 = false;
-  s.allow_pulse = false;
-  s.always_runs = true;  // EN = 0 stops the output
+  s = program_spec(140, "HSPSO", "Ps");  // run a positioning program on axis Ps
   s.handler = [](ExecContext& c, const BoundOperand* o) {
     auto* u = MotionUnit::of(c.engine);
     if (!u) return;
-    Fun140Call call;
+    Fun140Call call = program_call<Fun140Call>(c, o);
     call.ps = static_cast<int>(o[0].k);
-    call.sr = o[1].addr;
-    call.wr = o[2].addr;
-    call.en = c.inputs[0];
-    call.pau = c.inputs[1];
-    call.abt = c.inputs[2];
-    call.instance = c.instance;
-    const Fun140Outputs r = u->fun140(call, c.now_us);
-    c.flag(o[3], r.act);
-    c.flag(o[4], r.err);
-    c.flag(o[5], r.dn);
+    program_flags(c, o, u->fun140(call, c.now_us));
   };
-  s.check = [](const std::vector<plc_cell::Operand>& o) {
-    std::string e = check_ps(o);
-    if (e.empty()) e = check_area(o[1], "SR");
-    if (e.empty()) e = check_area(o[2], "WR");
-    return e;
-  };
+  s.check = [](const std::vector<plc_cell::Operand>& o) { return check_program(o, check_ps(o)); };
   t.add(s);
 
   s = {};
@@ -95,6 +112,52 @@ void install_functions(FunctionTable& t) {
   s.check = [](const std::vector<plc_cell::Operand>& o) {
     std::string e = check_ps(o);
     return e.empty() ? check_area(o[1], "D") : e;
+  };
+  t.add(s);
+
+  s = program_spec(147, "MHSP0", "Gp");  // linear interpolation program of group Gp
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    auto* u = MotionUnit::of(c.engine);
+    if (!u) return;
+    Fun147Call call = program_call<Fun147Call>(c, o);
+    call.gp = static_cast<int>(o[0].k);
+    program_flags(c, o, u->interpolation().fun147(call, c.now_us * 1000));
+  };
+  s.check = [](const std::vector<plc_cell::Operand>& o) {
+    return check_program(o, o[0].k >= 0 && o[0].k <= 1 ? "" : "Gp must be 0 (Ps0&Ps1, or 3-4 axes) or 1 (Ps2&Ps3)");
+  };
+  t.add(s);
+
+  s = {};
+  s.number = 148; s.mnemonic = "MPG";  // handwheel on HSC Sc drives axis Ps (run it in a 50 ms ISR)
+  s.operands = {{"Sc", R::Source}, {"Ps", R::Source}, {"Fo", R::Register}, {"Mr", R::Register},
+                {"WR", R::Register}, {"ACT", R::BitOut, true}};
+  s.allow_32 = false;
+  s.allow_pulse = false;
+  s.always_runs = true;  // with EN = 0 it still follows the counter (nothing accumulates)
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    auto* u = MotionUnit::of(c.engine);
+    if (!u) return;
+    const auto word = [&](const Address& a, int i) { return c.mem.read({a.area, Width::Word, a.index + i}); };
+    Fun148Call call;
+    call.sc = static_cast<int>(c.get(o[0]));
+    call.ps = static_cast<int>(c.get(o[1]));
+    call.fo = static_cast<int32_t>(word(o[2].addr, 0) | (word(o[2].addr, 1) << 16));
+    call.fa = static_cast<int16_t>(word(o[3].addr, 0));
+    call.fb = static_cast<int16_t>(word(o[3].addr, 1));
+    call.wr = o[4].addr;
+    call.en = c.en;
+    call.instance = c.instance;
+    c.flag(o[5], u->mpg().fun148(call, c.now_us * 1000));
+  };
+  s.check = [](const std::vector<plc_cell::Operand>& o) {
+    std::string e;
+    if (o[0].kind == plc_cell::Operand::Kind::Const && (o[0].k < 0 || o[0].k > 7)) e = "Sc must be 0-7 (HSC0-HSC7)";
+    if (e.empty() && o[1].kind == plc_cell::Operand::Kind::Const) e = check_ps({o[1]});
+    if (e.empty()) e = check_area(o[2], "Fo");
+    if (e.empty()) e = check_area(o[3], "Mr");
+    if (e.empty()) e = check_area(o[4], "WR");
+    return e;
   };
   t.add(s);
 }

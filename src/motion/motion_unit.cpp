@@ -8,6 +8,9 @@
 #include "plc_cell/core/plc.h"
 #include "plc_cell/hsc/hsc_unit.h"
 #include "plc_cell/hsc/interrupts.h"
+#include "plc_cell/motion/interpolation.h"
+#include "plc_cell/motion/mpg.h"
+#include "step_flow.h"
 
 namespace plc_cell {
 namespace motion {
@@ -35,6 +38,8 @@ MotionUnit::MotionUnit(Plc& plc) : plc_(plc), engine_(engine_of(plc)), mem_(memo
     hsc_ = hsc::HscUnit::of(&e);
     if (hsc_) hsc_->add_event_source(this);
   });
+  interp_ = std::make_unique<Interpolation>(*this, mem_);
+  mpg_ = std::make_unique<Mpg>(*this, mem_, hsc_);
 }
 
 MotionUnit::~MotionUnit() {
@@ -60,7 +65,7 @@ uint64_t MotionUnit::next_event(const Program& p) const {
 uint64_t MotionUnit::next_event_ns() const {
   uint64_t next = kNever;
   for (const auto& kv : programs_) next = std::min(next, next_event(kv.second));
-  return next;
+  return std::min({next, interp_->next_event_ns(), mpg_->next_event_ns()});
 }
 
 void MotionUnit::at(uint64_t t, std::vector<int>* requests) {
@@ -80,17 +85,11 @@ MotionUnit* MotionUnit::of(ScanEngine* engine) {
 
 // ---- memory helpers -------------------------------------------------------------
 
-int32_t MotionUnit::read32(Operand::Kind k, int32_t i) const {
-  const Area a = k == Operand::D ? Area::D : Area::R;
-  return static_cast<int32_t>(uint32_t(mem_.reg(a, i)) | (uint32_t(mem_.reg(a, i + 1)) << 16));
-}
+int32_t MotionUnit::read32(Operand::Kind k, int32_t i) const { return flow::read32(mem_, k, i); }
 
-uint16_t MotionUnit::read16(Operand::Kind k, int32_t i) const { return mem_.reg(k == Operand::D ? Area::D : Area::R, i); }
+uint16_t MotionUnit::read16(Operand::Kind k, int32_t i) const { return mem_.reg(flow::area(k), i); }
 
-bool MotionUnit::contact(const Step& s) const {
-  static const Area areas[] = {Area::X, Area::Y, Area::M, Area::S};
-  return mem_.bit(areas[static_cast<int>(s.contact_area)], s.contact);
-}
+bool MotionUnit::contact(const Step& s) const { return flow::contact(mem_, s); }
 
 // ---- scan hook ------------------------------------------------------------------
 
@@ -135,6 +134,12 @@ void MotionUnit::preload() {
       put(a.params_at, r, kParamWords);
     }
   }
+  for (const auto& g : cfg_.groups)  // FUN147 tables (axes: gp0/gp1)
+    if (g.has_table) {
+      const std::vector<uint16_t> r = encode_lin_table(g.table);
+      for (size_t i = 0; i < r.size() && g.table_at.index + i < Memory::word_count(g.table_at.area); ++i)
+        mem_.set_reg(g.table_at.area, static_cast<uint32_t>(g.table_at.index + i), r[i]);
+    }
 }
 
 void MotionUnit::on_stop() {
@@ -144,10 +149,14 @@ void MotionUnit::on_stop() {
     a.owner = UINT32_MAX;
   }
   programs_.clear();
+  interp_->on_stop();
+  mpg_->on_stop();
 }
 
 void MotionUnit::advance(uint64_t t) {
   for (auto& kv : programs_) advance(kv.second, t);
+  interp_->advance(t);  // FUN147 groups and FUN148 outputs on the same clock
+  mpg_->advance(t);
   now_ns_ = std::max(now_ns_, t);
 }
 
@@ -221,21 +230,12 @@ void MotionUnit::transfer(Program& p, uint64_t t) {
   }
 }
 
-uint16_t MotionUnit::read_time(const Step& s) const {
-  return s.time.kind == Operand::Const ? static_cast<uint16_t>(s.time.value) : read16(s.time.kind, s.time.value);
-}
+uint16_t MotionUnit::read_time(const Step& s) const { return flow::time16(mem_, s); }
 
 void MotionUnit::go_to(Program& p, int target, uint64_t t) {
   const Step& s = p.table.steps[p.step - 1];
   const int n = static_cast<int>(p.table.steps.size());
-  if (target < 0) {
-    switch (s.goto_kind) {
-      case Step::Next: target = p.step + 1; break;
-      case Step::Number: target = s.goto_value; break;
-      default: target = static_cast<int16_t>(read16(s.goto_kind == Step::R ? Operand::R : Operand::D, s.goto_value));
-    }
-    if (s.goto_kind != Step::Next && (target < 1 || target > n)) return fail(p, 34, t);
-  }
+  if (target < 0 && (target = flow::goto_target(mem_, s, p.step, n)) == 0) return fail(p, 34, t);
   if (target > n) {  // past the last step: the program is finished
     p.phase = Phase::Done;
     p.chain = false;

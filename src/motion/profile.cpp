@@ -100,6 +100,19 @@ Profile Profile::stop(double v, double v_stop, double dec, int64_t n_limit) {
   return p;
 }
 
+Profile Profile::scaled(double k, int64_t n) const {
+  Profile p = *this;
+  p.n_ = n;
+  for (auto& s : p.seg_) {
+    s.s0 *= k;
+    s.v0 *= k;
+    s.a *= k;
+  }
+  p.peak_ *= k;
+  p.v_end_ *= k;
+  return p;  // t_end_ unchanged: every scaled axis ends on the lead axis's last pulse
+}
+
 double Profile::position(double t) const {
   if (seg_.empty() || t <= 0) return 0;
   if (!endless() && t >= t_end_) return static_cast<double>(n_);

@@ -1,6 +1,7 @@
 // Register form of a FUN140 program (AMBIG-15: the manual's figure is lost; this
 // layout is plc_cell's, documented in docs/motion.md so an MMI can edit it).
 #include "plc_cell/motion/table.h"
+#include "program_text.h"
 
 namespace plc_cell {
 namespace motion {
@@ -12,9 +13,7 @@ constexpr int kAbsBit = 2;
 constexpr int kDirShift = 3;       // 2 bits: 0 blank, 1 +, 2 -
 constexpr int kUtBit = 5;
 constexpr int kZeroShift = 6;      // 2 bits: DRVZ MD0-MD2
-constexpr int kTransferShift = 8;  // 3 bits: Transfer
-constexpr int kGotoShift = 11;     // 2 bits: NEXT, number, R, D
-constexpr int kAreaShift = 13;     // 2 bits: X, Y, M, S
+// Bits 8-15: transfer, GOTO kind, contact area (text::flow_bits, shared with FUN147).
 // Word 1: operand kinds (2 bits each): speed, stroke, time.
 uint32_t field(uint16_t w, int shift, int bits) { return (w >> shift) & ((1u << bits) - 1); }
 }  // namespace
@@ -29,15 +28,13 @@ std::vector<uint16_t> encode_table(const Table& t) {
     const uint32_t dir = s.dir > 0 ? 1 : s.dir < 0 ? 2 : 0;
     w[0] = static_cast<uint16_t>((uint32_t(s.motion) << kMotionShift) | (uint32_t(s.abs) << kAbsBit) |
                                  (dir << kDirShift) | (uint32_t(s.ut) << kUtBit) |
-                                 (uint32_t(s.zero_mode) << kZeroShift) | (uint32_t(s.transfer) << kTransferShift) |
-                                 (uint32_t(s.goto_kind) << kGotoShift) | (uint32_t(s.contact_area) << kAreaShift));
+                                 (uint32_t(s.zero_mode) << kZeroShift) | text::flow_bits(s));
     w[1] = static_cast<uint16_t>(uint32_t(s.speed.kind) | (uint32_t(s.stroke.kind) << 2) | (uint32_t(s.time.kind) << 4));
     w[2] = static_cast<uint16_t>(uint32_t(s.speed.value) & 0xFFFF);
     w[3] = static_cast<uint16_t>(uint32_t(s.speed.value) >> 16);
     w[4] = static_cast<uint16_t>(uint32_t(s.stroke.value) & 0xFFFF);
     w[5] = static_cast<uint16_t>(uint32_t(s.stroke.value) >> 16);
-    const bool contact = s.transfer == Transfer::WaitContact || s.transfer == Transfer::Ext;
-    w[6] = static_cast<uint16_t>(contact ? s.contact : s.time.value);
+    w[6] = text::flow_time_word(s);
     w[7] = static_cast<uint16_t>(s.goto_value);
     w[8] = static_cast<uint16_t>(i + 1);  // step number: a check an MMI edit keeps
   }
@@ -45,19 +42,8 @@ std::vector<uint16_t> encode_table(const Table& t) {
 }
 
 bool decode_table(const uint16_t* r, size_t n, Table* out, TableError* err) {
-  if (n < kHeaderWords || r[1] != kTableMagic) {
-    *err = {34, 0, "no positioning program at SR (SR+1 must be 140AH)"};
-    return false;
-  }
-  const int steps = r[0];
-  if (steps < 1 || steps > kMaxSteps) {
-    *err = {steps > kMaxSteps ? 36 : 35, 0, "SR+0 (number of steps) must be 1~250, is " + std::to_string(steps)};
-    return false;
-  }
-  if (kHeaderWords + size_t(kStepWords) * steps > n) {
-    *err = {35, 0, std::to_string(steps) + " steps do not fit in the register area"};
-    return false;
-  }
+  int steps = 0;
+  if (!text::decode_header(r, n, kTableMagic, kStepWords, &steps, err)) return false;
   Table t;
   for (int i = 0; i < steps; ++i) {
     const uint16_t* w = &r[kHeaderWords + kStepWords * i];
@@ -68,11 +54,8 @@ bool decode_table(const uint16_t* r, size_t n, Table* out, TableError* err) {
     if (w[8] != i + 1) return bad("check word SR+" + std::to_string(kHeaderWords + kStepWords * i + 8) + " must be the step number");
     Step s;
     const uint32_t m = field(w[0], kMotionShift, 2), d = field(w[0], kDirShift, 2), z = field(w[0], kZeroShift, 2);
-    const uint32_t tr = field(w[0], kTransferShift, 3);
     if (m > 2) return bad("bad command");
     if (d > 2) return bad("bad direction");
-    if (tr > 4) return bad("bad transfer condition");
-    if (w[0] & 0x8000u) return bad("bit 15 of the command word must be 0");
     s.motion = static_cast<Motion>(m);
     s.abs = field(w[0], kAbsBit, 1);
     s.dir = d == 1 ? 1 : d == 2 ? -1 : 0;
@@ -82,9 +65,6 @@ bool decode_table(const uint16_t* r, size_t n, Table* out, TableError* err) {
       *err = {50, 0, "step " + std::to_string(i + 1) + ": illegal DRVZ mode"};
       return false;
     }
-    s.transfer = static_cast<Transfer>(tr);
-    s.goto_kind = static_cast<Step::GotoKind>(field(w[0], kGotoShift, 2));
-    s.contact_area = static_cast<ContactArea>(field(w[0], kAreaShift, 2));
     const uint32_t sk = field(w[1], 0, 2), pk = field(w[1], 2, 2), tk = field(w[1], 4, 2);
     if (sk > 2 || pk > 2 || tk > 2 || (w[1] >> 6) != 0) return bad("bad operand kinds word");
     s.speed = {static_cast<Operand::Kind>(sk), static_cast<int32_t>(uint32_t(w[2]) | (uint32_t(w[3]) << 16))};
@@ -97,11 +77,8 @@ bool decode_table(const uint16_t* r, size_t n, Table* out, TableError* err) {
       *err = {33, 0, "step " + std::to_string(i + 1) + ": stroke out of range"};
       return false;
     }
-    const bool contact = s.transfer == Transfer::WaitContact || s.transfer == Transfer::Ext;
-    if (contact) s.contact = w[6];
-    else if (s.transfer != Transfer::None) s.time = {static_cast<Operand::Kind>(tk), w[6]};
-    s.goto_value = s.goto_kind == Step::Next ? 0 : w[7];
-    if (s.goto_kind == Step::Number && (s.goto_value < 1 || s.goto_value > steps)) return bad("GOTO beyond the last step");
+    std::string why;
+    if (!text::decode_flow(w[0], w[6], w[7], tk, steps, &s, &why)) return bad(why);
     t.steps.push_back(s);
   }
   if (!check_table(t, err)) return false;

@@ -40,6 +40,13 @@ TEST(MotionCli, ManualExamplesRunWithSim) {
       {"positioning", "--duration 10s --watch DR4088,R4064,M11", "DR4088 = 17000\nR4064 = 1\nM11 = 0\n"},
       // D: DRVZ MD2 ends with DR4088 = P16 = 100, the last step done.
       {"homing", "--duration 3s --watch DR4088,M1996,Y8,R4060", "DR4088 = 100\nM1996 = 1\nY8 = 0\nR4060 = 0\n"},
+      // C: FUN147 steps 1-3, X0 at 5 s, step 1 again: +500 +400 +300 +200 on (1500, 900, 0, 600).
+      {"interpolation", "--duration 6s --watch DR4088,DR4090,DR4092,DR4094,D4062,D4060",
+       "DR4088 = 2000\nDR4090 = 1300\nDR4092 = 300\nDR4094 = 800\nD4062 = 1\nD4060 = 0\n"},
+      // E: 100 wheel periods (0.2-1.2 s at 100 Hz) x100 on Ps1, then 140 (1.6-3.0 s) on Ps0;
+      // both MPGs sampled the counter last at 240; WR+1 = EN << 8 | Ps.
+      {"mpg", "--duration 3.5s --watch DR4088,DR4090,DD802,DD812,D801,D811",
+       "DR4088 = 14000\nDR4090 = 10000\nDD802 = 240\nDD812 = 240\nD801 = 256\nD811 = 1\n"},
   };
   for (const auto& c : cases) {
     const Result r = tool("sim --config " + std::string(PLC_CELL_SOURCE_DIR) + "/examples/motion/" + c.name +
@@ -61,20 +68,32 @@ TEST(MotionCli, TestRigCountsThePinsAndTheEncoder) {
       << r.out;
 }
 
-TEST(MotionCli, BadTableInTheYamlNamesItsLine) {
+// A cell whose YAML table (under axes.<key>) is bad on its second text line.
+Result bad_yaml_table(const std::string& name, const std::string& key, const std::string& line2) {
   const std::string dir = ::testing::TempDir();
-  FILE* f = std::fopen((dir + "/bad_motion.il").c_str(), "w");
+  FILE* f = std::fopen((dir + "/" + name + ".il").c_str(), "w");
   std::fputs("ORG M1925\nOUT M0\nEND\n", f);
   std::fclose(f);
-  f = std::fopen((dir + "/bad_motion.yaml").c_str(), "w");
-  std::fputs("cell: {program: bad_motion.il}\naxes:\n  pso0:\n    table:\n      at: R0\n      text: |\n"
-             "        SPD 100\n        DRV ADR,+,5,mm\n        GOTO NEXT\n        MEND\n",
+  f = std::fopen((dir + "/" + name + ".yaml").c_str(), "w");
+  std::fputs(("cell: {program: " + name + ".il}\naxes:\n  " + key + ":\n    table:\n      at: R0\n      text: |\n"
+              "        SPD 100\n        " + line2 + "\n        GOTO NEXT\n        MEND\n").c_str(),
              f);
   std::fclose(f);
-  const Result r = tool("sim --config " + dir + "/bad_motion.yaml --duration 0.1s");
+  return tool("sim --config " + dir + "/" + name + ".yaml --duration 0.1s");
+}
+
+TEST(MotionCli, BadTableInTheYamlNamesItsLine) {
+  const Result r = bad_yaml_table("bad_motion", "pso0", "DRV ADR,+,5,mm");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("bad_motion.yaml:8:"), std::string::npos) << r.out;  // the DRV line
   EXPECT_NE(r.out.find("error 34"), std::string::npos) << r.out;
+}
+
+TEST(MotionCli, BadGroupTableInTheYamlNamesItsLine) {
+  const Result r = bad_yaml_table("bad_group", "gp0", "LIN ADR,5,5,5,5,mm");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("bad_group.yaml:8:"), std::string::npos) << r.out;  // the LIN line
+  EXPECT_NE(r.out.find("error 60"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/motion/interpolation.h"
+#include "plc_cell/motion/lin_table.h"
 #include "plc_cell/motion/motion_unit.h"
 #include "plc_cell/motion/params.h"
 #include "plc_cell/motion/table.h"
@@ -36,6 +38,41 @@ inline const char* const kExample1 = R"(; manual 11.6 positioning program exampl
     WAIT X1
     GOTO 1
 MEND
+)";
+
+// The manual's FUN147 example (section 11.6, MHSP0), used by the table and run tests.
+inline const char* const kExampleC = R"(; manual FUN147 positioning program with linear interpolation
+001 SPD 5000
+    LIN ADR,500,400,300,200,Ut
+    WAIT TIME,100
+    GOTO NEXT
+002 SPD R1000
+    LIN ADR,D100,D200, , ,Ut
+    WAIT TIME,R500
+    GOTO NEXT
+003 SPD R1002
+    LIN ADR,0,0,R300,R400,Ps
+    WAIT X0
+    GOTO 1
+MEND
+)";
+
+// FUN141 at R2000 for all four axes (the manual's advice for interpolation), a FUN147
+// of group 0 with its table at R0 and WR at R100; M1 = EN, M2 = PAU, M3 = ABT;
+// ACT/ERR/DN on M10/M11/M12.
+constexpr const char* kGroup0Program = R"(ORG M1925
+MPARA Ps=0 SR=R2000 ERR=M13
+ORG M1925
+MPARA Ps=1 SR=R2000 ERR=M14
+ORG M1925
+MPARA Ps=2 SR=R2000 ERR=M15
+ORG M1925
+MPARA Ps=3 SR=R2000 ERR=M16
+ORG M1
+LD M2
+LD M3
+MHSP0 Gp=0 SR=R0 WR=R100 ACT=M10 ERR=M11 DN=M12
+END
 )";
 
 struct StepDone {
@@ -73,11 +110,17 @@ class MotionCell {
     p.to_registers(r);
     for (int i = 0; i < kParamWords; ++i) put("R" + std::to_string(sr + i), r[i]);
   }
-  void table(const std::string& text, uint32_t sr = 0) {
-    Table t;
+  // A table's register image at R<sr>, from the text form (FUN140 or FUN147).
+  void table(const std::string& text, uint32_t sr = 0) { image<Table>(text, sr, parse_table, encode_table); }
+  void lin_table(const std::string& text, uint32_t sr = 0) {
+    image<LinTable>(text, sr, parse_lin_table, encode_lin_table);
+  }
+  template <typename T, typename Parse, typename Encode>
+  void image(const std::string& text, uint32_t sr, Parse parse, Encode encode) {
+    T t;
     TableError e;
-    ASSERT_TRUE(parse_table(text, &t, &e)) << e.line << ": " << e.message;
-    const auto r = encode_table(t);
+    ASSERT_TRUE(parse(text, &t, &e)) << e.line << ": " << e.message;
+    const auto r = encode(t);
     for (size_t i = 0; i < r.size(); ++i) put("R" + std::to_string(sr + i), r[i]);
   }
   void run(uint64_t duration_us, uint64_t period_us = 1000) {

@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "plc_cell/core/address.h"
+#include "plc_cell/motion/lin_table.h"
 #include "plc_cell/motion/params.h"
 #include "plc_cell/motion/table.h"
 
@@ -67,9 +68,17 @@ struct AxisDef {
   AxisParams params;
 };
 
+// axes: gp0 / gp1: a FUN147 table written at each STOP -> RUN (table: {at:, text:}).
+struct GroupDef {
+  bool has_table = false;
+  Address table_at{};
+  LinTable table;
+};
+
 struct AxesConfig {
   std::array<AxisDef, 4> axes;
   std::string file;  // for errors found when the wiring is attached
+  std::array<GroupDef, 2> groups;
 };
 
 // Throws SourceError (file:line:column) on a bad key or value.

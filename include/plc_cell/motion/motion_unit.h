@@ -34,6 +34,9 @@ namespace motion {
 
 constexpr int kAxes = 4;
 
+class Interpolation;  // FUN147 (interpolation.h)
+class Mpg;            // FUN148 (mpg.h)
+
 // What a FUN140 instruction sees this scan.
 struct Fun140Call {
   int ps = 0;
@@ -98,6 +101,16 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   bool finished(int ps) const;       // M1996+ps
   int error(int ps) const;           // R4060+ps
   uint64_t now_ns() const { return now_ns_; }
+  // ---- FUN147 / FUN148 (interpolation.h, mpg.h): they hold axes as a FUN140 does ----
+  Interpolation& interpolation() { return *interp_; }
+  Mpg& mpg() { return *mpg_; }
+  uint32_t owner(int ps) const { return axes_[ps].owner; }  // UINT32_MAX: free (M1992+ps on)
+  void take_axis(int ps, uint32_t owner) { axes_[ps].owner = owner; }
+  void release_axis(int ps, uint32_t owner) {
+    if (axes_[ps].owner == owner) axes_[ps].owner = UINT32_MAX;
+  }
+  Axis& drive(int ps) { return axes_[ps].axis; }
+  void set_rest(int ps, int64_t rest) { axes_[ps].rest = rest; }  // DR4072 while idle
   // Every step completion, with its exact instant (tests, ROS feedback).
   using StepObserver = std::function<void(int ps, int step, uint64_t t_ns)>;
   void on_step_done(StepObserver f) { step_obs_.push_back(std::move(f)); }
@@ -186,6 +199,8 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   std::vector<std::unique_ptr<AxisSignal>> signals_;  // owned; the counters hold pointers
   std::array<const AxisSignal*, kAxes> pins_{};
   std::vector<int>* requests_ = nullptr;  // inside at(): PSOnI requests go here
+  std::unique_ptr<Interpolation> interp_;
+  std::unique_ptr<Mpg> mpg_;
 };
 
 }  // namespace motion

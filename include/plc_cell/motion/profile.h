@@ -32,6 +32,9 @@ class Profile {
   // whole pulse: what a decelerated stop (M1991) emits. n_limit caps it (the
   // move's own end).
   static Profile stop(double v, double v_stop, double dec, int64_t n_limit);
+  // The same motion scaled in distance by k (speeds and accelerations too), with the
+  // same duration, as n pulses: a FUN147 axis following the lead axis's profile.
+  Profile scaled(double k, int64_t n) const;
 
   int64_t pulses() const { return n_; }      // -1: endless
   bool endless() const { return n_ < 0; }
