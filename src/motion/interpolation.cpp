@@ -13,7 +13,6 @@ namespace plc_cell {
 namespace motion {
 
 namespace {
-constexpr uint32_t kDecelRelay = 1991;     // M1991: stop/pause with deceleration
 constexpr uint32_t kGroupDoneRelay = 1934; // M1934+gp: the group finished its last step
 constexpr uint32_t kVectorReg = 4068;      // DR4068+2gp: vector speed (R4068..R4071)
 constexpr uint32_t kGroupErrReg = 4060;    // D4060+gp
@@ -193,7 +192,7 @@ void Interpolation::cut(Group& g, uint64_t t) {
   for (int n = 0; n < 4; ++n) {
     if (!has(g.moving, n)) continue;
     Axis& ax = unit_.drive(n);
-    g.rest[n] = ax.moving() ? ax.remaining(t) * ax.direction() : 0;
+    g.rest[n] = ax.moving() ? ax.left_if_cut(t) * ax.direction() : 0;
     unit_.set_rest(n, std::llabs(g.rest[n]));
     ax.cut(t);
   }
@@ -210,7 +209,7 @@ void Interpolation::stop(Group& g, uint64_t t, Phase then) {
         Axis& ax = unit_.drive(n);
         const double dec = g.acc * g.scale[n];
         const double v_stop = std::max(1.0, unit_.params(n).start_hz() * g.scale[n]);
-        g.rest[n] = ax.remaining(t) * ax.direction();
+        g.rest[n] = ax.left_if_cut(t) * ax.direction();
         ax.decelerate(t, v_stop, dec);
         any = any || ax.moving();
       }
@@ -369,6 +368,18 @@ void Interpolation::write_status(uint64_t t) {
     mem_.set_reg(Area::R, kVectorReg + 2 * gp + 1, static_cast<uint16_t>(v >> 16));
     mem_.set_bit(Area::M, kGroupDoneRelay + gp, finished_[gp]);
   }
+}
+
+void Interpolation::psoff(int ps, uint64_t t) {
+  for (auto& kv : groups_) {
+    Group& g = kv.second;
+    if (!has(g.held, ps)) continue;
+    advance(g, t);
+    if (g.phase == Phase::Moving || g.phase == Phase::Waiting || g.phase == Phase::SpeedWait ||
+        g.phase == Phase::Paused)
+      stop(g, t, Phase::Idle);
+  }
+  write_status(t);
 }
 
 void Interpolation::on_stop() {

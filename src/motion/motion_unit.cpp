@@ -19,7 +19,6 @@ namespace {
 ScanEngine& engine_of(Plc& p) { return *p.locked([](ScanEngine& e, Memory&) { return &e; }); }
 Memory& memory_of(Plc& p) { return *p.locked([](ScanEngine&, Memory& m) { return &m; }); }
 
-constexpr uint32_t kDecelRelay = 1991;  // M1991: stop/pause with deceleration
 constexpr uint32_t kReadyRelay = 1992;  // M1992+n: axis ready
 constexpr uint32_t kLastStepRelay = 1996;  // M1996+n: last step finished
 constexpr uint32_t kDynamicReg = 4056;  // low byte 5AH: SPD registers followed during the output
@@ -749,6 +748,8 @@ void MotionUnit::fun142(int ps, uint64_t now_us) {
     if (p.phase == Phase::Moving || p.phase == Phase::Waiting || p.phase == Phase::SpeedWait || p.phase == Phase::Paused)
       stop(p, t, Phase::Idle);
   }
+  interp_->psoff(ps, t);  // FUN147 and FUN148 outputs on the axis stop too
+  mpg_->psoff(ps, t);
   write_status(t);
 }
 

@@ -62,7 +62,7 @@ void Mpg::output(State& s, const Fun148Call& c, int64_t pulses, uint64_t t) {
   int64_t pending = 0;
   double v = 0;
   if (s.holding && ax.moving()) {
-    pending = ax.remaining(t) * ax.direction();
+    pending = ax.left_if_cut(t) * ax.direction();
     v = ax.frequency(t);
     ax.cut(t);
   } else if (ax.moving()) {
@@ -80,6 +80,24 @@ void Mpg::output(State& s, const Fun148Call& c, int64_t pulses, uint64_t t) {
   const Profile prof = Profile::plan(d < 0 ? -d : d, v_in, fo, f0, par.acc_hz_per_s(), par.dec_hz_per_s());
   ax.start(t, d, 0, (d > 0) != (par.p9_rot != 0), prof);
   unit_.set_rest(c.ps, 0);
+}
+
+void Mpg::psoff(int ps, uint64_t t) {
+  advance(t);
+  for (auto& kv : st_) {
+    State& s = kv.second;
+    if (!s.holding || s.ps != ps) continue;
+    s.rem = 0;
+    Axis& ax = unit_.drive(ps);
+    const AxisParams& par = unit_.params(ps);
+    if (mem_.bit(Area::M, kDecelRelay)) {
+      ax.decelerate(t, par.start_hz(), par.dec_hz_per_s());
+    } else {
+      unit_.set_rest(ps, ax.left_if_cut(t));  // DR4072: what the cut left unsent
+      ax.cut(t);
+    }
+    if (!ax.moving()) release(s, kv.first);
+  }
 }
 
 void Mpg::release(State& s, uint32_t instance) {

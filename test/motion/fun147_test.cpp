@@ -244,6 +244,29 @@ TEST(Fun147, PauseResumeAndEnOffKeepExactCounts) {
   EXPECT_LT(c.get32("DR4088"), 6000);  // stopped short of the second target
 }
 
+// FUN142 PSOFF on one axis of a group stops the whole group (its axes move as one):
+// at once with M1991 off, the rest of each axis in DR4072; nothing moves afterwards.
+TEST(Fun147, PsoffOnOneAxisStopsTheGroup) {
+  std::string il = kGroup0Program;
+  il.replace(il.find("END"), 3, "ORG M5\nPSOFF.P N=1\nEND");
+  GroupCell c(il);
+  c.lin_table("SPD 2000\nLIN ADR,3000,-1500, , \nGOTO NEXT\nMEND\n");
+  c.put("M1", 1);
+  c.run(600000);
+  c.put("M5", 1);  // PSOFF Ps1
+  c.run(1000);
+  const int32_t x = c.get32("DR4088"), y = c.get32("DR4090");
+  EXPECT_GT(x, 0);
+  EXPECT_LT(x, 3000);
+  EXPECT_NEAR(double(y), -x / 2.0, 1.0);  // both stopped on the line
+  EXPECT_EQ(c.get32("DR4072"), 3000 - x);
+  EXPECT_EQ(c.get32("DR4080") + c.get32("DR4082"), 0);
+  EXPECT_EQ(c.get("M1992") + c.get("M1993"), 2u);  // both axes free again
+  c.run(500000);
+  EXPECT_EQ(c.get32("DR4088"), x);
+  EXPECT_EQ(c.get32("DR4090"), y);
+}
+
 TEST(Fun147, ErrorsStopWithTheirCodeAndNothingMoves) {
   {  // Gp1 is Ps2 & Ps3: a table naming Ps0 is illegal (code 60 in D4061)
     std::string il = kGroup0Program;

@@ -168,6 +168,33 @@ TEST(Fun148, R4020LimitsBlockOneDirection) {
   EXPECT_EQ(c.get32("DR4088"), 25);
 }
 
+// FUN142 PSOFF stops an MPG output on its axis and drops the input not yet sent.
+TEST(Fun148, PsoffStopsTheOutput) {
+  std::string il = example_il();
+  il.replace(il.find("END"), 3, "ORG M5\nPSOFF.P N=0\nEND");
+  MpgCell c(il);
+  c.put("D700", 100);
+  c.select(32, true);
+  c.put("M100", 1);
+  // 50 wheel periods x100 = 5000 pulses at 200 kHz with 30 ms ramps: about 55 ms of output.
+  c.run(1000, 1000);
+  c.plc.locked([&](ScanEngine&, Memory&) { c.counters->set_source_rate("wheel", 1000); });
+  c.run(50000, 1000);
+  c.plc.locked([&](ScanEngine&, Memory&) { c.counters->set_source_rate("wheel", 0); });
+  c.run(10000, 1000);  // the next 50 ms sample has started the output
+  ASSERT_EQ(c.get("M500"), 1u);
+  c.put("M5", 1);
+  c.run(1000, 1000);
+  const int32_t stopped = c.get32("DR4088");
+  EXPECT_GT(stopped, 0);
+  EXPECT_LT(stopped, 5000);
+  EXPECT_EQ(c.get32("DR4080"), 0);
+  EXPECT_EQ(c.get32("DR4072"), 5000 - stopped);
+  c.run(300000, 1000);
+  EXPECT_EQ(c.get32("DR4088"), stopped);  // nothing more, the rest is dropped
+  EXPECT_EQ(c.get("M1992"), 1u);
+}
+
 TEST(Fun148, RefusedWhileAnotherInstructionHoldsTheAxis) {
   std::string il = example_il();
   il.replace(il.find("END"), 3, "ORG M1\nLD M2\nLD M3\nHSPSO Ps=0 SR=R0 WR=R100 ACT=M10 ERR=M11 DN=M12\nEND");

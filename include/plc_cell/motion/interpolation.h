@@ -42,6 +42,8 @@ class Interpolation {
   uint64_t next_event_ns() const;
   void write_status(uint64_t t);  // M1934/M1935, DR4068/DR4070, D4062/D4063
   void on_stop();
+  // FUN142 PSOFF on axis ps: the group driving it stops as on EN off (M1991 decides how).
+  void psoff(int ps, uint64_t t);
 
   // Every group step completion with its exact instant (tests).
   using StepObserver = std::function<void(int gp, int step, uint64_t t_ns)>;

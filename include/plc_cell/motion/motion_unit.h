@@ -33,6 +33,7 @@ class Memory;
 namespace motion {
 
 constexpr int kAxes = 4;
+constexpr uint32_t kDecelRelay = 1991;  // M1991: stop/pause with deceleration (FUN140/142/147/148)
 
 class Interpolation;  // FUN147 (interpolation.h)
 class Mpg;            // FUN148 (mpg.h)

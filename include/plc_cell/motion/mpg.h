@@ -39,6 +39,9 @@ class Mpg {
   void advance(uint64_t t);                         // frees an axis whose MPG output has ended
   uint64_t next_event_ns() const;
   void on_stop() { st_.clear(); }
+  // FUN142 PSOFF on axis ps: an MPG output on it stops (M1991: decelerating to P5) and
+  // its undelivered input is dropped.
+  void psoff(int ps, uint64_t t);
 
  private:
   struct State {
