@@ -95,21 +95,7 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
       }
     }
   }
-  if (const auto sig = doc["signals"]) {
-    if (!sig.IsMap()) r.fail(sig, "signals", "expected a mapping of names to addresses (part_present: X3)");
-    std::set<std::string> seen;
-    for (const auto& kv : sig) {
-      const std::string name = kv.first.as<std::string>();
-      const std::string key = "signals." + name;
-      bool ok = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
-      for (char c : name) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-      if (!ok) r.fail(kv.first, key, "a signal name is letters, digits and _ (it becomes a ROS topic name)");
-      if (!seen.insert(name).second) r.fail(kv.first, key, "signal defined twice");
-      const Address a = r.address(kv.second, key);
-      if (a.width != Width::Bit) r.fail(kv.second, key, "a signal is a single discrete (X, Y, M, S, T, C)");
-      cfg.signals.emplace_back(name, a);
-    }
-  }
+  if (const auto sig = doc["signals"]) cfg.signals = r.discretes(sig, "signals");
   if (const auto regs = doc["registers"]) cfg.registers = parse_register_groups(regs, "registers", r);
   if (const auto sim = doc["simulation"]) {
     r.only(sim, "simulation", {"inputs"});

@@ -1,6 +1,5 @@
 #include "plc_cell/config/register_groups.h"
 
-#include <cctype>
 #include <cstdlib>
 #include <set>
 
@@ -34,10 +33,7 @@ std::vector<RegisterGroup> parse_register_groups(const YAML::Node& seq, const st
     r.only(g, at, {"name", "rate", "points"});
     RegisterGroup grp;
     if (!g["name"]) r.fail(g, at, "missing 'name'");
-    grp.name = r.str(g["name"], at + ".name");
-    bool ok = !grp.name.empty() && !std::isdigit(static_cast<unsigned char>(grp.name[0]));
-    for (char c : grp.name) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-    if (!ok) r.fail(g["name"], at + ".name", "a group name is letters, digits and _ (it becomes a ROS topic name)");
+    grp.name = r.topic_name(g["name"], at + ".name", "group");
     if (!seen.insert(grp.name).second) r.fail(g["name"], at + ".name", "group '" + grp.name + "' defined twice");
     if (g["rate"]) grp.rate_hz = r.number(g["rate"], at + ".rate", 0.01, 100);
     const YAML::Node pts = g["points"];

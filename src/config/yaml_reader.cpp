@@ -1,6 +1,8 @@
 #include "plc_cell/config/yaml_reader.h"
 
+#include <cctype>
 #include <cmath>
+#include <set>
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/error.h"
@@ -91,6 +93,30 @@ AreaRange YamlReader::range(const YAML::Node& n, const std::string& key) const {
   if (a.area != b.area || a.width != b.width || b.index < a.index)
     fail(n, key, "bad range '" + s + "': both ends must name the same area, low end first (e.g. M800-M1399)");
   return {a.area, a.index, b.index};
+}
+
+std::string YamlReader::topic_name(const YAML::Node& n, const std::string& key, const std::string& what) const {
+  const std::string name = str(n, key);
+  bool ok = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
+  for (char c : name) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+  if (!ok) fail(n, key, "a " + what + " name is letters, digits and _ (it becomes a ROS topic name)");
+  return name;
+}
+
+std::vector<std::pair<std::string, Address>> YamlReader::discretes(const YAML::Node& map,
+                                                                   const std::string& key) const {
+  if (!map.IsMap()) fail(map, key, "expected a mapping of names to addresses (part_present: X3)");
+  std::vector<std::pair<std::string, Address>> out;
+  std::set<std::string> seen;
+  for (const auto& kv : map) {
+    const std::string k = key + "." + kv.first.as<std::string>();
+    const std::string name = topic_name(kv.first, k, "signal");
+    if (!seen.insert(name).second) fail(kv.first, k, "signal defined twice");
+    const Address a = address(kv.second, k);
+    if (a.width != Width::Bit) fail(kv.second, k, "a signal is a single discrete (X, Y, M, S, T, C)");
+    out.emplace_back(name, a);
+  }
+  return out;
 }
 
 }  // namespace plc_cell

@@ -56,15 +56,7 @@ FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(n
     if (doc["fatek_bridge"]) doc = doc["fatek_bridge"];
     const YamlReader r(config);
     r.only(doc, "", {"signals", "groups"});
-    if (const auto sig = doc["signals"]) {
-      if (!sig.IsMap()) r.fail(sig, "signals", "expected a mapping of names to discretes (motor: Y0)");
-      for (const auto& kv : sig) {
-        const std::string key = "signals." + kv.first.as<std::string>();
-        const Address a = r.address(kv.second, key);
-        if (a.width != Width::Bit) r.fail(kv.second, key, "a signal is a single discrete (X, Y, M, S, T, C)");
-        signals_.emplace_back(kv.first.as<std::string>(), a);
-      }
-    }
+    if (const auto sig = doc["signals"]) signals_ = r.discretes(sig, "signals");
     if (doc["groups"]) {
       for (auto& rg : parse_register_groups(doc["groups"], "groups", r)) {
         Group grp;

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
@@ -31,6 +33,10 @@ class YamlReader {
   bool boolean(const YAML::Node& n, const std::string& key) const;          // 0/1, true/false, on/off
   Address address(const YAML::Node& n, const std::string& key) const;
   AreaRange range(const YAML::Node& n, const std::string& key) const;       // M800-M1399 or R7
+  // A name that becomes part of a ROS topic: letters, digits and _, not first a digit.
+  std::string topic_name(const YAML::Node& n, const std::string& key, const std::string& what) const;
+  // A mapping of topic names to single discretes ({motor: Y0}), in file order.
+  std::vector<std::pair<std::string, Address>> discretes(const YAML::Node& map, const std::string& key) const;
 
  private:
   std::string file_;
