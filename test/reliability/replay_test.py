@@ -13,7 +13,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from plc_cell.msg import IoState, Signal
+from plc_cell.msg import IoState, RegisterBlock, Signal
 
 TIMEOUT = 20.0
 T0 = 1000.0      # virtual start time, s
@@ -21,13 +21,16 @@ STEP = 0.01      # clock step, s
 STEPS = 250
 LAG = 0.5        # the nodes' ~virtual_time_lag
 INPUTS = ["start", "part_present"]
-OUTPUTS = [("io", IoState), ("signals_stamped/motor", Signal), ("signals_stamped/part_seen", Signal)]
+OUTPUTS = [("io", IoState), ("signals_stamped/motor", Signal), ("signals_stamped/part_seen", Signal),
+           ("registers/sums", RegisterBlock)]  # test_cell.yaml: 50 Hz of virtual time
 
 
 def key(msg):
     """What must be identical: stamps and values (not the per-connection sequence number)."""
     if hasattr(msg, "x"):  # IoState (a bag gives its own generated class)
         return (msg.header.stamp.to_nsec(), msg.run, tuple(msg.x), tuple(msg.y))
+    if hasattr(msg, "values"):  # RegisterBlock
+        return (msg.header.stamp.to_nsec(), tuple(msg.values))
     return (msg.header.stamp.to_nsec(), msg.data)
 
 
@@ -101,6 +104,11 @@ class ReplayTest(unittest.TestCase):
         self.assertGreater(len(recorded["io"]), 10)
         self.assertGreater(len(recorded["signals_stamped/motor"]), 5)
         self.assertGreater(len(recorded["signals_stamped/part_seen"]), 1)
+        # A register group in virtual time: one block per 20 ms of virtual time, on its scan.
+        sums = [m.header.stamp.to_nsec() for m in recorded["registers/sums"]]
+        self.assertGreater(len(sums), 50)
+        self.assertEqual([t % 20000000 for t in sums], [0] * len(sums))
+        self.assertEqual([b - a for a, b in zip(sums, sums[1:])], [20000000] * (len(sums) - 1))
 
         # Phase 2: rosbag play the inputs and the clock into /replay/plc_node.
         topics = ["/rec/clock"] + ["/rec/plc_node/inputs_stamped/" + n for n in INPUTS]
