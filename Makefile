@@ -18,7 +18,8 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 \
   python3-rosservice python3-roslaunch python3-rosnode python3-rosmsg \
   libyaml-cpp-dev googletest libgtest-dev libgmock-dev libbenchmark-dev \
   libmodbus-dev socat mbpoll python3-pymodbus python3-matplotlib \
-  clang libclang-rt-14-dev zlib1g-dev
+  clang libclang-rt-14-dev zlib1g-dev \
+  python3-std-msgs python3-sensor-msgs python3-std-srvs python3-diagnostic-msgs python3-actionlib-msgs python3-actionlib python3-serial rosbash
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
 export PATH := /usr/bin:$(PATH)
