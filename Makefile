@@ -26,7 +26,7 @@ export PATH := /usr/bin:$(PATH)
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build test demo bench clean fuzz soak
+.PHONY: all deps build test test-fresh demo bench clean fuzz soak
 
 all: build
 
@@ -61,6 +61,11 @@ demo: build
 	@echo "     rosservice call /plc_node/read R0 1"
 	@echo "   Ctrl-C stops it."
 	source $(WS)/devel/setup.bash && roslaunch plc_cell cell_sim.launch
+
+# The whole suite in a throwaway Debian 12 root: proves `make test` on a machine with nothing
+# installed by hand (scripts/test_fresh.sh; root only). CI runs this.
+test-fresh:
+	scripts/test_fresh.sh
 
 bench: build
 	$(PY) scripts/run_bench.py --workspace $(WS)

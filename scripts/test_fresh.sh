@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# make test-fresh: the whole suite on a fresh Debian 12, in a throwaway root.
+#
+# A machine that has been used for development has packages installed by hand, which hide
+# a missing install step from `make test`. This script proves the two commands the README
+# promises on a Debian 12 that has nothing but `make`: it bootstraps a minimal bookworm
+# root (debootstrap --variant=minbase), clones the committed HEAD of this repository into
+# it, runs `make test` there, and deletes the root afterwards, whatever the result.
+#
+# The bootstrapped base is cached as a tarball (FRESH_CACHE, under /var/cache/) so a second
+# run skips the download. Needs root (chroot, mounts).
+set -euo pipefail
+
+repo=$(cd "$(dirname "$0")/.." && pwd)
+cache_dir=${FRESH_CACHE:-/var/cache/plc_cell}
+base_tar="$cache_dir/bookworm-minbase.tar"
+root=${FRESH_ROOT:-}
+target=${FRESH_TARGET:-test}
+
+if [ "$(id -u)" != 0 ]; then
+  echo "test-fresh: needs root (debootstrap, chroot and mounts); run it as root or with sudo" >&2
+  exit 2
+fi
+if [ -n "$(git -C "$repo" status --porcelain --untracked-files=no)" ]; then
+  echo "test-fresh: note: uncommitted changes are not tested; the root gets the committed HEAD $(git -C "$repo" rev-parse --short HEAD)"
+fi
+
+# The mirror this machine's apt uses: a fresh machine sees the same archive.
+mirror=${FRESH_MIRROR:-$(grep -hoE '^(URIs: |deb )[^ ]+' /etc/apt/sources.list.d/*.sources /etc/apt/sources.list 2>/dev/null \
+  | sed -E 's/^(URIs: |deb )//' | grep -v security | head -n 1)}
+mirror=${mirror:-http://deb.debian.org/debian}
+
+if ! command -v debootstrap >/dev/null; then
+  echo "== installing debootstrap on this machine"
+  DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends debootstrap </dev/null
+fi
+
+[ -n "$root" ] || root=$(mktemp -d /var/tmp/plc_cell-fresh.XXXXXX)
+mounted=()
+cleanup() {
+  local rc=$?
+  for ((i=${#mounted[@]}-1; i>=0; i--)); do umount -l "${mounted[$i]}" 2>/dev/null || true; done
+  # Never follow a mount left behind: delete only what is on the root's own file system.
+  if ! grep -q " $root/" /proc/mounts; then rm -rf --one-file-system "$root"; else
+    echo "test-fresh: $root still has mounts; not deleted" >&2; fi
+  exit $rc
+}
+trap cleanup EXIT INT TERM
+
+t0=$(date +%s)
+if [ -f "$base_tar" ]; then
+  echo "== unpacking the cached bookworm minbase ($base_tar)"
+  tar -C "$root" -xpf "$base_tar"
+else
+  echo "== debootstrap --variant=minbase bookworm from $mirror (cached afterwards in $base_tar)"
+  # make: a user needs it to type the README's two commands; nothing else is added.
+  debootstrap --variant=minbase --include=make bookworm "$root" "$mirror" > "$root.debootstrap.log" 2>&1 \
+    || { tail -n 30 "$root.debootstrap.log" >&2; rm -f "$root.debootstrap.log"; exit 1; }
+  rm -f "$root.debootstrap.log"
+  mkdir -p "$cache_dir"
+  tar -C "$root" -cpf "$base_tar.tmp" . && mv "$base_tar.tmp" "$base_tar"
+fi
+echo "== base root ready in $(( $(date +%s) - t0 )) s"
+
+# Same suites as this machine (updates and security), so packages match a fresh install.
+cat > "$root/etc/apt/sources.list" <<SRC
+deb $mirror bookworm main
+deb $mirror bookworm-updates main
+deb ${mirror%/debian}/debian-security bookworm-security main
+SRC
+cp /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
+host=$(hostname)
+printf '127.0.0.1\tlocalhost\n::1\tlocalhost ip6-localhost ip6-loopback\n127.0.1.1\t%s\n' "$host" > "$root/etc/hosts"
+
+for m in proc sys dev dev/pts; do mkdir -p "$root/$m"; done
+mount -t proc proc "$root/proc"; mounted+=("$root/proc")
+mount -t sysfs sys "$root/sys"; mounted+=("$root/sys")
+mount --bind /dev "$root/dev"; mounted+=("$root/dev")
+mount --bind /dev/pts "$root/dev/pts"; mounted+=("$root/dev/pts")
+
+echo "== cloning $(git -C "$repo" rev-parse --short HEAD) into the root"
+mkdir -p "$root/work"
+git clone -q --no-hardlinks "$repo" "$root/work/plc_cell"
+
+echo "== make $target in the fresh root"
+t1=$(date +%s)
+set +e
+chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb CI="${CI:-}" \
+  PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+  /bin/bash -c "cd /work/plc_cell && make $target" </dev/null
+rc=$?
+set -e
+echo "== make $target in the fresh root: exit $rc after $(( $(date +%s) - t1 )) s (whole run $(( $(date +%s) - t0 )) s)"
+exit $rc
