@@ -11,15 +11,20 @@ JOBS    ?= 2
 PY      := /usr/bin/python3
 CMAKE_ARGS := -DPYTHON_EXECUTABLE=$(PY) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON
 
-DEB_PACKAGES := build-essential cmake pkg-config python3 \
-  ros-core-dev libroscpp-dev libstd-msgs-dev libsensor-msgs-dev libstd-srvs-dev \
-  libdiagnostic-updater-dev libdiagnostic-msgs-dev libactionlib-dev ros-message-generation \
-  catkin python3-catkin-pkg python3-rostest python3-rosbag python3-rospy python3-rostopic \
-  python3-rosservice python3-roslaunch python3-rosnode python3-rosmsg \
-  libyaml-cpp-dev googletest libgtest-dev libgmock-dev libbenchmark-dev \
-  libmodbus-dev socat mbpoll python3-pymodbus python3-matplotlib \
-  clang libclang-rt-14-dev zlib1g-dev \
-  python3-std-msgs python3-sensor-msgs python3-std-srvs python3-diagnostic-msgs python3-actionlib-msgs python3-actionlib python3-serial rosbash
+# The Debian packages behind every key of package.xml, through rosdep/bookworm.yaml
+# (test/packaging/test_dependencies.py fails when the three disagree). Written out here
+# because a fresh machine has no Python to resolve them before this list is installed.
+DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-pkg \
+  ros-message-generation ros-message-runtime \
+  libroscpp-dev python3-rospy libstd-msgs-dev python3-std-msgs libstd-srvs-dev python3-std-srvs \
+  libsensor-msgs-dev python3-sensor-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs \
+  libdiagnostic-updater-dev libactionlib-dev python3-actionlib libactionlib-msgs-dev python3-actionlib-msgs \
+  libros-rosgraph-msgs-dev python3-rosgraph-msgs \
+  python3-rosmaster rosout python3-roslaunch librostest-dev python3-rostest python3-rosbag \
+  python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
+  libyaml-cpp-dev libmodbus-dev zlib1g-dev \
+  googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev \
+  socat mbpoll python3-pymodbus python3-serial python3-pytest python3-matplotlib git
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
 export PATH := /usr/bin:$(PATH)
@@ -30,10 +35,11 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 all: build
 
+# One dpkg-query for the whole list: on a built machine this check takes well under a second.
 deps:
-	@missing=""; for p in $(DEB_PACKAGES); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
-	done; \
+	@missing=$$(dpkg-query -W -f='$${Package} $${Status}\n' $(DEB_PACKAGES) 2>/dev/null \
+	  | awk '$$NF == "installed" {ok[$$1] = 1} END {n = split("$(DEB_PACKAGES)", p, " "); \
+	         for (i = 1; i <= n; i++) if (!(p[i] in ok)) printf " %s", p[i]}'); \
 	if [ -n "$$missing" ]; then \
 	  echo "== installing Debian packages:$$missing"; \
 	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq; \
@@ -46,13 +52,23 @@ $(WS)/src/plc_cell:
 	mkdir -p $(WS)/src
 	ln -sfn ../../.. $(WS)/src/plc_cell
 
+# Everything a catkin pass reads. make demo runs catkin only when one of these is newer
+# than the last build, so a built tree starts the demo in seconds.
+SOURCES := $(shell find CMakeLists.txt package.xml src include msg srv action cmake test bench scripts \
+  -type f -not -name '*.pyc' 2>/dev/null)
+BUILT   := $(WS)/.built
+
 build: deps $(WS)/src/plc_cell
 	cd $(WS) && catkin_make -j$(JOBS) $(CMAKE_ARGS) all tests 2>&1 | grep -v -E '^-- (Using|Found|Looking|Detecting|Check|Performing|Configuring done|Generating done)' ; exit $${PIPESTATUS[0]}
+	touch $(BUILT)
+
+$(BUILT): $(SOURCES)
+	$(MAKE) --no-print-directory build
 
 test: build
 	$(PY) scripts/run_tests.py --workspace $(WS) --jobs $(JOBS)
 
-demo: build
+demo: deps $(BUILT)
 	@echo "== starting the demo cell. In another shell:"
 	@echo "     source $(WS)/devel/setup.bash"
 	@echo "     rostopic list"
@@ -86,4 +102,4 @@ soak: build
 	$(WS)/devel/lib/plc_cell/plc_cell_soak $(SOAK_TIME)
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) build

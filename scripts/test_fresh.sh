@@ -27,7 +27,7 @@ fi
 
 # The mirror this machine's apt uses: a fresh machine sees the same archive.
 mirror=${FRESH_MIRROR:-$(grep -hoE '^(URIs: |deb )[^ ]+' /etc/apt/sources.list.d/*.sources /etc/apt/sources.list 2>/dev/null \
-  | sed -E 's/^(URIs: |deb )//' | grep -v security | head -n 1)}
+  | sed -E 's/^(URIs: |deb )//' | grep -v security | head -n 1 || true)}
 mirror=${mirror:-http://deb.debian.org/debian}
 
 if ! command -v debootstrap >/dev/null; then
@@ -88,8 +88,10 @@ t1=$(date +%s)
 set +e
 chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb CI="${CI:-}" \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-  /bin/bash -c "cd /work/plc_cell && make $target" </dev/null
-rc=$?
+  /bin/bash -c "cd /work/plc_cell && make $target" </dev/null 2>&1 | tee "$root/work/make.log"
+rc=${PIPESTATUS[0]}
 set -e
 echo "== make $target in the fresh root: exit $rc after $(( $(date +%s) - t1 )) s (whole run $(( $(date +%s) - t0 )) s)"
+# The suite's own closing line, last, for whoever reads the run's last lines.
+grep -E '^[0-9]+ passed, [0-9]+ failed' "$root/work/make.log" | tail -n 1 || true
 exit $rc

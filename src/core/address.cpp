@@ -153,6 +153,17 @@ Address offset_address(const Address& a, uint32_t n) {
   return r;
 }
 
+uint32_t encode_element(const Address& a, int64_t v) {
+  int64_t lo = 0, hi = 1;
+  if (a.width == Width::Word) lo = -32768, hi = 65535;
+  if (a.width == Width::DWord) lo = -2147483648ll, hi = 4294967295ll;
+  if (v < lo || v > hi)
+    throw Error(format_address(a) + ": value " + std::to_string(v) + " out of range " + std::to_string(lo) + ".." +
+                std::to_string(hi));
+  if (a.width == Width::Word) return static_cast<uint16_t>(v);  // two's complement for negatives
+  return static_cast<uint32_t>(v);
+}
+
 void check_span(const Address& a, uint32_t count) {
   std::string why;
   if (count == 0) throw Error("address " + format_address(a) + ": count must be at least 1");

@@ -13,7 +13,21 @@ Memory::Memory() {
 
 void Memory::set_disabled(Area a, uint32_t i, bool d) {
   uint8_t& c = bits_[idx(a)][i];
+  const uint8_t before = c;
   c = d ? (c | kBitDisabled) : (c & ~kBitDisabled);
+  if (c != before) ++disabled_gen_;
+}
+
+std::vector<Address> Memory::disabled_points() const {
+  std::vector<Address> out;
+  for (int ai = 0; ai < kAreaCount; ++ai) {
+    const Area a = static_cast<Area>(ai);
+    if (!is_discrete(a)) continue;
+    const auto& b = bits_[idx(a)];
+    for (uint32_t i = 0; i < b.size(); ++i)
+      if (b[i] & kBitDisabled) out.push_back(Address{a, Width::Bit, i});
+  }
+  return out;
 }
 
 void Memory::force_bit(Area a, uint32_t i, bool v) {
@@ -67,6 +81,7 @@ void Memory::clear_non_retentive(const std::vector<AreaRange>& retentive) {
 }
 
 void Memory::clear_all() {
+  ++disabled_gen_;
   for (auto& b : bits_) std::fill(b.begin(), b.end(), 0);
   for (auto& w : words_) std::fill(w.begin(), w.end(), 0);
 }

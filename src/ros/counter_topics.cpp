@@ -28,9 +28,10 @@ CounterTopics::CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell
     one_pubs_.push_back(pnh.advertise<Counter>(base, 10));
     services_.push_back(pnh.advertiseService<PresetCounter::Request, PresetCounter::Response>(
         base + "/preset", [this, n, i](PresetCounter::Request& req, PresetCounter::Response& res) {
-          if (!req.name.empty() && req.name != names_[i]) {
+          if (req.value < -2147483648ll || req.value > 4294967295ll) {
             res.success = false;
-            res.message = "this service presets " + names_[i] + ", not " + req.name;
+            res.message = names_[i] + ": value " + std::to_string(req.value) +
+                          " out of range -2147483648..4294967295 (a 32-bit counter)";
             return true;
           }
           cell_.plc().locked([&](ScanEngine&, Memory&) {

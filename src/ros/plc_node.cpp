@@ -3,6 +3,9 @@
 
 #include <sstream>
 
+#include <unistd.h>
+
+#include "plc_cell/ForcedPoints.h"
 #include "plc_cell/IoState.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
@@ -10,7 +13,7 @@
 
 namespace plc_cell {
 
-PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) {
+PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::WallTime::now()), updater_(nh, pnh) {
   std::string program, cell;
   pnh.param<std::string>("program", program, "");
   pnh.param<std::string>("cell", cell, "");
@@ -31,6 +34,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   if (!(io_rate > 0 && io_rate <= 1000)) throw Error("~io_rate must be in (0, 1000] Hz");
 
   io_pub_ = pnh.advertise<IoState>("io", 10);
+  forced_pub_ = pnh.advertise<ForcedPoints>("forced", 1, /*latch=*/true);
   for (const auto& s : cfg.signals) {
     signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s.first, 1, /*latch=*/true));
     stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s.first, 100, /*latch=*/true));
@@ -52,6 +56,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
   services_.push_back(pnh.advertiseService("read", &PlcNode::on_read, this));
   services_.push_back(pnh.advertiseService("write", &PlcNode::on_write, this));
   services_.push_back(pnh.advertiseService("force", &PlcNode::on_force, this));
+  services_.push_back(pnh.advertiseService("release", &PlcNode::on_release, this));
   services_.push_back(pnh.advertiseService("set_run_mode", &PlcNode::on_run, this));
   services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
@@ -61,6 +66,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) 
 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);
+  updater_.add("forced points", this, &PlcNode::diagnose_forced);
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   pnh.param("virtual_time", virtual_time_, false);
   registers_ = std::make_unique<RegisterTopics>(nh, pnh, *cell_, virtual_time_);
@@ -142,6 +148,7 @@ PlcNode::Snapshot PlcNode::take_snapshot() {
       s.y[i] = m.bit(Area::Y, i);
     }
     for (const auto& sig : cell_->config().signals) s.signals.push_back(m.bit(sig.second.area, sig.second.index));
+    s.forced_gen = m.disabled_generation();
     return s;
   });
 }
@@ -191,6 +198,7 @@ void PlcNode::publish(const Snapshot& s, bool all_signals) {
     std::lock_guard<std::mutex> lk(snap_mu_);
     prev = last_published_;
   }
+  if (all_signals || prev.forced_gen != s.forced_gen) publish_forced(stamp);
   for (size_t i = 0; i < signal_pubs_.size() && i < s.signals.size(); ++i) {
     if (!all_signals && i < prev.signals.size() && prev.signals[i] == s.signals[i]) continue;
     std_msgs::Bool b;
@@ -226,6 +234,9 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("wake latency avg (us)", v.st.wake_latency.avg_ns() / 1000.0);
   stat.add("wake latency max (us)", v.st.wake_latency.max_ns / 1000.0);
   stat.add("overruns", v.st.overruns);
+  // A respawned cell shows as a new pid with a short uptime (launch/cells.launch restarts it).
+  stat.add("pid", static_cast<int>(::getpid()));
+  stat.add("uptime (s)", (ros::WallTime::now() - started_).toSec());
 }
 
 // A lost serial device or a stopped server is a fault on /diagnostics; it clears itself
@@ -245,6 +256,42 @@ void PlcNode::diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat
   }
   if (down.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "serving");
   else stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, down);
+}
+
+// The forced set is read in one lock only when Memory says it changed (a few thousand
+// flag bytes, once per force or release), so the scan never pays for it.
+void PlcNode::publish_forced(const ros::Time& stamp) {
+  ForcedPoints msg;
+  msg.header.stamp = stamp;
+  std::vector<std::pair<std::string, bool>> list = cell_->plc().locked([](ScanEngine&, Memory& m) {
+    std::vector<std::pair<std::string, bool>> out;
+    for (const Address& a : m.disabled_points()) out.emplace_back(format_address(a), m.bit(a.area, a.index));
+    return out;
+  });
+  for (const auto& p : list) {
+    msg.addresses.push_back(p.first);
+    msg.states.push_back(p.second);
+  }
+  forced_pub_.publish(msg);
+  std::lock_guard<std::mutex> lk(forced_mu_);
+  forced_ = std::move(list);
+}
+
+// A forced input or output looks like any other state in ~io: a cell that stops "for no
+// reason" is often one a client locked. The list is a WARN here so that it shows.
+void PlcNode::diagnose_forced(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  std::lock_guard<std::mutex> lk(forced_mu_);
+  if (forced_.empty()) {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "no point forced");
+    return;
+  }
+  std::string list;
+  for (const auto& p : forced_) {
+    list += (list.empty() ? "" : ", ") + p.first + (p.second ? "=ON" : "=OFF");
+    stat.add(p.first, p.second ? "forced ON" : "forced OFF");
+  }
+  stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+               std::to_string(forced_.size()) + " forced (release with ~release): " + list);
 }
 
 void PlcNode::diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat) {
@@ -278,10 +325,8 @@ bool PlcNode::on_write(WriteMemory::Request& req, WriteMemory::Response& res) {
   try {
     const Address a = cell_->config().resolve(req.address);
     std::vector<uint32_t> values;
-    for (int64_t v : req.values) {
-      if (v < 0 || v > 0xFFFFFFFFll) throw Error("value " + std::to_string(v) + " is negative or wider than 32 bits");
-      values.push_back(static_cast<uint32_t>(v));
-    }
+    for (size_t i = 0; i < req.values.size(); ++i)
+      values.push_back(encode_element(offset_address(a, uint32_t(i)), req.values[i]));
     cell_->plc().write(a, values);
     res.success = true;
   } catch (const std::exception& e) {
@@ -294,14 +339,35 @@ bool PlcNode::on_write(WriteMemory::Request& req, WriteMemory::Response& res) {
 bool PlcNode::on_force(ForceDiscrete::Request& req, ForceDiscrete::Response& res) {
   try {
     const Address a = cell_->config().resolve(req.address);
-    ForceAction act;
-    if (req.action == "on" || req.action == "set") act = ForceAction::Set;
-    else if (req.action == "off" || req.action == "reset") act = ForceAction::Reset;
-    else if (req.action == "disable") act = ForceAction::Disable;
-    else if (req.action == "enable") act = ForceAction::Enable;
-    else throw Error("action '" + req.action + "': use on, off, enable or disable");
-    cell_->plc().force(a, act);
+    // Lock first, then set: the program cannot overwrite the new state in between.
+    cell_->plc().force(a, ForceAction::Disable);
+    cell_->plc().force(a, req.value ? ForceAction::Set : ForceAction::Reset);
     res.success = true;
+    res.message = format_address(a) + " forced " + (req.value ? "ON" : "OFF");
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+  }
+  return true;
+}
+
+bool PlcNode::on_release(ReleaseDiscrete::Request& req, ReleaseDiscrete::Response& res) {
+  try {
+    std::vector<Address> points;
+    if (req.address.empty()) {
+      points = cell_->plc().locked([](ScanEngine&, Memory& m) { return m.disabled_points(); });
+    } else {
+      const Address a = cell_->config().resolve(req.address);
+      if (a.width != Width::Bit) throw Error("release " + req.address + ": only a single discrete can be forced");
+      points.push_back(a);
+    }
+    for (const Address& a : points) {
+      const bool was = cell_->plc().locked([&](ScanEngine&, Memory& m) { return m.disabled(a.area, a.index); });
+      cell_->plc().force(a, ForceAction::Enable);
+      if (was) res.released.push_back(format_address(a));
+    }
+    res.success = true;
+    res.message = res.released.empty() ? "nothing was forced" : std::to_string(res.released.size()) + " released";
   } catch (const std::exception& e) {
     res.success = false;
     res.message = e.what();

@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
 """rostest: two plc_nodes in namespaces do not see each other's memory, inputs or outputs."""
 import os
+import signal
 import sys
 import unittest
+import xmlrpc.client
+
+import rosgraph
 
 import rospy
 import rostest
@@ -70,6 +74,41 @@ class TwoCellsTest(unittest.TestCase):
         self.assertIn("cell_a", s.name)
         keys = dict((kv.key, kv.value) for kv in s.values)
         self.assertTrue(keys["file"].endswith("two_cells_a_store.bin"))
+
+    def test_z_a_crashed_cell_restarts_alone(self):
+        """kill -9 of cell_a: cell_b keeps scanning, cell_a respawns with its retentive D7, and
+        /diagnostics shows the new process (pid, uptime)."""
+        self.assertTrue(self.srv["cell_a"][1]("D7", [4321]).success)  # acknowledged, so on disk
+
+        def scan_status(arr, cell):
+            for st in arr.status:
+                if cell in st.name and st.name.endswith("scan"):
+                    return dict((kv.key, kv.value) for kv in st.values)
+            return None
+        before = self.diag.wait_for(lambda a: scan_status(a, "cell_a") is not None)
+        old_pid = int(scan_status(before, "cell_a")["pid"])
+        uri = rosgraph.Master("/two_cells_test").lookupNode("/cell_a/plc_node")
+        code, _, pid = xmlrpc.client.ServerProxy(uri).getPid("/two_cells_test")
+        self.assertEqual((code, pid), (1, old_pid))
+        os.kill(pid, signal.SIGKILL)
+
+        # cell_b is untouched: its program still answers its input.
+        self.start["cell_b"].publish(Bool(True))
+        self.assertTrue(self.motor["cell_b"].wait_for(lambda m: m.data).data)
+        self.start["cell_b"].publish(Bool(False))
+        self.assertFalse(self.motor["cell_b"].wait_for(lambda m: not m.data).data)
+
+        # cell_a comes back by itself, as a new process, with its acknowledged write.
+        after = self.diag.wait_for(lambda a: scan_status(a, "cell_a") is not None and
+                                   int(scan_status(a, "cell_a")["pid"]) != old_pid, timeout=30)
+        st = scan_status(after, "cell_a")
+        self.assertNotEqual(int(st["pid"]), old_pid, "cell_a did not come back")
+        self.assertLess(float(st["uptime (s)"]), 30.0)
+        rospy.wait_for_service("/cell_a/plc_node/read", timeout=30)
+        read_a = rospy.ServiceProxy("/cell_a/plc_node/read", ReadMemory)
+        self.assertEqual(list(read_a("D7", 1).values), [4321])
+        b = scan_status(self.diag.wait_for(lambda a: scan_status(a, "cell_b") is not None), "cell_b")
+        self.assertEqual(b["pid"], scan_status(before, "cell_b")["pid"], "cell_b was restarted too")
 
 
 if __name__ == "__main__":

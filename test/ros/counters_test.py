@@ -47,7 +47,7 @@ class CountersTest(unittest.TestCase):
 
     def test_2_preset_and_clear(self):
         self.one.wait_for(lambda m: m.count == 4000)
-        self.assertTrue(self.preset("conveyor", 123).success)
+        self.assertTrue(self.preset(123).success)
         self.assertEqual(self.one.wait_for(lambda m: m.count == 123).count, 123)
         self.assertTrue(self.clear().success)
         self.assertEqual(self.one.wait_for(lambda m: m.count == 0).count, 0)

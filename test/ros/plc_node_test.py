@@ -10,8 +10,8 @@ from diagnostic_msgs.msg import DiagnosticArray
 from std_msgs.msg import Bool
 from std_srvs.srv import SetBool
 
-from plc_cell.msg import IoState, RegisterBlock
-from plc_cell.srv import ForceDiscrete, LoadProgram, ReadMemory, WriteMemory
+from plc_cell.msg import ForcedPoints, IoState, RegisterBlock
+from plc_cell.srv import ForceDiscrete, LoadProgram, ReadMemory, ReleaseDiscrete, WriteMemory
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from latest_message import Latest  # noqa: E402
@@ -26,11 +26,14 @@ class PlcNodeTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("plc_node_test", anonymous=True)
-        for s in ["read", "write", "force", "set_run_mode", "load_program"]:
+        for s in ["read", "write", "force", "release", "set_run_mode", "load_program"]:
             rospy.wait_for_service(NS + s, timeout=30)
         cls.read = rospy.ServiceProxy(NS + "read", ReadMemory)
         cls.write = rospy.ServiceProxy(NS + "write", WriteMemory)
         cls.force = rospy.ServiceProxy(NS + "force", ForceDiscrete)
+        cls.release = rospy.ServiceProxy(NS + "release", ReleaseDiscrete)
+        cls.forced = Latest(NS + "forced", ForcedPoints, timeout=TIMEOUT)
+        cls.diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
         cls.run_mode = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
         cls.load = rospy.ServiceProxy(NS + "load_program", LoadProgram)
         cls.start_pub = rospy.Publisher(NS + "inputs/start", Bool, queue_size=1, latch=True)
@@ -41,7 +44,7 @@ class PlcNodeTest(unittest.TestCase):
 
     def setUp(self):
         self.assertTrue(self.run_mode(True).success)
-        self.assertTrue(self.force("Y0", "enable").success)
+        self.assertTrue(self.release("").success)
 
     def test_topic_in_drives_output_topic_out(self):
         self.start_pub.publish(Bool(True))
@@ -91,17 +94,38 @@ class PlcNodeTest(unittest.TestCase):
         self.assertEqual(list(self.read("R8070", 2).values), before)
         r = self.write("R5", [70000])
         self.assertFalse(r.success)
-        r = self.force("R5", "on")
+        r = self.force("R5", True)
         self.assertFalse(r.success)
-        r = self.force("Y0", "sideways")
+        self.assertIn("single discrete", r.message)
+        r = self.release("R5")
         self.assertFalse(r.success)
-        self.assertIn("sideways", r.message)
+        r = self.force("Y999", True)
+        self.assertFalse(r.success)
+        self.assertIn("Y999", r.message)
+        # A 16-bit register takes -32768..65535; the message names the range and the value.
+        r = self.write("R5", [-40000])
+        self.assertFalse(r.success)
+        self.assertIn("-32768..65535", r.message)
+        self.assertIn("-40000", r.message)
+
+    def test_negative_values_are_written_as_twos_complement(self):
+        # The docs say register values are signed: -500 is stored as 65036 (0xFE0C).
+        self.assertTrue(self.write("R30", [-500, 65535, -32768]).success)
+        self.assertEqual(list(self.read("R30", 3).values), [65036, 65535, 32768])
+        self.assertTrue(self.write("DR40", [-2]).success)
+        self.assertEqual(list(self.read("DR40", 1).values), [0xFFFFFFFE])
+        r = self.write("DR40", [-2147483649])
+        self.assertFalse(r.success)
+        self.assertIn("-2147483648..4294967295", r.message)
+        r = self.write("M3", [-1])
+        self.assertFalse(r.success)
+        self.assertIn("0..1", r.message)
 
     def test_force_disable_holds_the_output(self):
         self.start_pub.publish(Bool(False))
         self.assertFalse(self.motor.wait_for(lambda m: not m.data).data)
-        self.assertTrue(self.force("Y0", "disable").success)
-        self.assertTrue(self.force("Y0", "on").success)
+        r = self.force("Y0", True)
+        self.assertTrue(r.success, r.message)
         self.assertTrue(self.motor.wait_for(lambda m: m.data).data)
         # The program writes Y0 = X0 = 0 every scan, but a disabled point keeps its state.
         self.assertEqual(list(self.read("Y0", 1).values), [1])
@@ -111,8 +135,38 @@ class PlcNodeTest(unittest.TestCase):
         self.assertGreaterEqual(io.header.seq, seq + 2)
         self.assertTrue(io.y[0] and not io.x[0])
         self.assertEqual(list(self.read("Y0", 1).values), [1])
-        self.assertTrue(self.force("Y0", "enable").success)
+        r = self.release("Y0")
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(list(r.released), ["Y0"])
         self.assertFalse(self.motor.wait_for(lambda m: not m.data).data)
+
+    def test_forced_points_show_on_a_latched_topic_and_diagnostics(self):
+        # A user who locks X3 by mistake must see it: ~forced lists it, /diagnostics warns.
+        self.assertTrue(self.force("X3", False).success)
+        m = self.forced.wait_for(lambda m: "X3" in m.addresses)
+        self.assertEqual(list(m.addresses), ["X3"])
+        self.assertEqual(list(m.states), [False])
+        late = Latest(NS + "forced", ForcedPoints, timeout=TIMEOUT)  # latched: a late subscriber sees it
+        self.assertEqual(list(late.wait_for(lambda m: True).addresses), ["X3"])
+
+        def forced_status(a):
+            for st in a.status:
+                if st.name.endswith("forced points"):
+                    return st
+            return None
+        d = self.diag.wait_for(lambda a: forced_status(a) is not None and "X3" in forced_status(a).message)
+        st = forced_status(d)
+        self.assertEqual(st.level, 1, st.message)  # WARN
+        self.assertIn("X3=OFF", st.message)
+        # The input no longer follows its topic while forced.
+        self.write("part_present", [1])
+        self.assertEqual(list(self.read("X3", 1).values), [0])
+        r = self.release("")
+        self.assertEqual(list(r.released), ["X3"])
+        self.assertEqual(list(self.forced.wait_for(lambda m: not m.addresses).addresses), [])
+        d = self.diag.wait_for(lambda a: forced_status(a) is not None and forced_status(a).level == 0)
+        self.assertEqual(forced_status(d).message, "no point forced")
+        self.write("part_present", [0])
 
     def test_run_stop(self):
         self.start_pub.publish(Bool(True))

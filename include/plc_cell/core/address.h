@@ -47,4 +47,10 @@ Address offset_address(const Address& a, uint32_t n);
 // Checks that count elements starting at a stay inside the area; throws otherwise.
 void check_span(const Address& a, uint32_t count);
 
+// The stored bits of a value written to one element of a. A bit takes 0 or 1; a 16-bit
+// element -32768..65535 and a 32-bit one -2147483648..4294967295: the PLC's signed
+// instructions read the same bits as two's complement, so users may write either form.
+// Throws naming the address, the allowed range and the value.
+uint32_t encode_element(const Address& a, int64_t value);
+
 }  // namespace plc_cell

@@ -32,6 +32,11 @@ class Memory {
   }
   bool disabled(Area a, uint32_t i) const { return bits_[idx(a)][i] & kBitDisabled; }
   void set_disabled(Area a, uint32_t i, bool d);
+  // Every discrete whose DISABLE flag is set, in area order. A forced point is invisible in
+  // the I/O image (it looks like any other state), so operators need the list itself.
+  std::vector<Address> disabled_points() const;
+  // Changes whenever a DISABLE flag changes: readers compare it instead of walking memory.
+  uint64_t disabled_generation() const { return disabled_gen_; }
   // Sets the state even of a disabled point (FATEK command 42 SET/RESET, forcing).
   void force_bit(Area a, uint32_t i, bool v);
 
@@ -61,6 +66,7 @@ class Memory {
 
   std::array<std::vector<uint8_t>, 6> bits_;
   std::array<std::vector<uint16_t>, 5> words_;
+  uint64_t disabled_gen_ = 0;
 };
 
 }  // namespace plc_cell

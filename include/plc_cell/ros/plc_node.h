@@ -14,6 +14,7 @@
 #include <std_srvs/SetBool.h>
 
 #include "plc_cell/ForceDiscrete.h"
+#include "plc_cell/ReleaseDiscrete.h"
 #include "plc_cell/LoadProgram.h"
 #include "plc_cell/ReadMemory.h"
 #include "plc_cell/WriteMemory.h"
@@ -39,8 +40,9 @@ class PlcNode {
     uint64_t scan_us = 0;  // virtual time: the scan it was taken after
     bool run = false;
     std::vector<uint8_t> x, y, signals;
+    uint64_t forced_gen = 0;  // Memory::disabled_generation(): the forced set changed
     bool operator==(const Snapshot& o) const {
-      return run == o.run && x == o.x && y == o.y && signals == o.signals;
+      return run == o.run && x == o.x && y == o.y && signals == o.signals && forced_gen == o.forced_gen;
     }
   };
 
@@ -55,10 +57,13 @@ class PlcNode {
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void diagnose_forced(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void publish_forced(const ros::Time& stamp);
 
   bool on_read(ReadMemory::Request& req, ReadMemory::Response& res);
   bool on_write(WriteMemory::Request& req, WriteMemory::Response& res);
   bool on_force(ForceDiscrete::Request& req, ForceDiscrete::Response& res);
+  bool on_release(ReleaseDiscrete::Request& req, ReleaseDiscrete::Response& res);
   bool on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool on_load(LoadProgram::Request& req, LoadProgram::Response& res);
 
@@ -73,6 +78,9 @@ class PlcNode {
   std::string program_path_;
 
   ros::Publisher io_pub_;
+  ros::Publisher forced_pub_;  // ~forced, latched
+  std::mutex forced_mu_;
+  std::vector<std::pair<std::string, bool>> forced_;  // as last published
   std::vector<ros::Publisher> signal_pubs_;
   std::vector<ros::Subscriber> input_subs_;
   std::vector<ros::Publisher> stamped_pubs_;  // plc_cell/Signal, beside signal_pubs_
@@ -93,6 +101,7 @@ class PlcNode {
   bool virtual_published_ = false;
   std::vector<ros::ServiceServer> services_;
   ros::Timer io_timer_, diag_timer_;
+  ros::WallTime started_;
   diagnostic_updater::Updater updater_;
   std::unique_ptr<TemperatureRos> temperature_;  // ~temperature/<name>, ~set_pid_loop
 

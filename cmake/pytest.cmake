@@ -1,0 +1,10 @@
+# Python tests (pytest) in catkin's run_tests, with JUnit results beside the gtests'
+# (scripts/run_tests.py totals pytest-<name>.xml as it does gtest-*.xml and rostest-*.xml).
+function(plc_cell_add_pytest name)
+  cmake_parse_arguments(_py "" "" "FILES;DEPENDENCIES" ${ARGN})
+  set(results ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/pytest-${name}.xml)
+  catkin_run_tests_target("pytest" ${name} "pytest-${name}.xml"
+    COMMAND ${PYTHON_EXECUTABLE} -m pytest -q -p no:cacheprovider --junitxml=${results} ${_py_FILES}
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+    DEPENDENCIES ${_py_DEPENDENCIES})
+endfunction()

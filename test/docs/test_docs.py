@@ -1,0 +1,275 @@
+"""Every command in README.md and docs/ works when pasted.
+
+The docs mark their blocks: ```sh holds commands a user pastes, ```console a transcript
+(`$ command` lines, then the output the command prints), ```text or a language name
+(yaml, il) anything else. This test runs every sh and console block, in order, from the
+repository's root (files the commands write there are removed afterwards), in a shell that has sourced
+.build/ws/devel/setup.bash (as the README says), against the demo cell
+(launch/cell_sim.launch) on a private ROS master port. A console block's output lines
+must appear in the command's output in the same order (`...` stands for any lines); a
+transcript that shows a command's error output documents a failure, so its exit status is
+free, but its lines must match.
+
+A command that streams (rostopic echo, roslaunch, plc_cell run without --duration, ...)
+passes when it prints something and no error within its window; every other command must
+exit 0. A command ending in `&` runs in the background, as in a user's shell, until the
+block's `kill %N` or the block's end; the next command starts once it has printed its first
+line (a server announces its ports). An unmarked block that looks like commands fails the test: it must say which it is."""
+import glob
+import os
+import re
+import shlex
+import signal
+import socket
+import subprocess
+import tempfile
+import time
+
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+WS = os.path.join(ROOT, ".build", "ws")
+DOCS = ["README.md"] + sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "docs", "*.md")))
+
+FENCE = re.compile(r"^```([^\n]*)\n(.*?)^```\s*$", re.M | re.S)
+SHELLISH = re.compile(r"^\s*(\$ |source |rostopic |rosservice |roslaunch |rosrun |rostest |plc_cell |make |mbpoll |"
+                      r"\.build/ws/devel/lib/)")
+STREAMING = re.compile(r"^(rostopic (echo|hz)|roslaunch |rosbag record|rosrun plc_cell plc_node|make demo|"
+                       r"plc_cell run (?!.*--duration))")
+ERRORS = re.compile(r"Traceback|ERROR|Cannot load message|Unable to load type|command not found|"
+                    r"No such file|process has died|error:", re.I)
+STREAM_WINDOW = 8.0
+COMMAND_LIMIT = 300.0
+# `make test` is the command that runs this test; it is not run again from inside itself.
+SELF = {"make test"}
+
+
+def blocks(path):
+    text = open(os.path.join(ROOT, path), encoding="utf-8").read()
+    for m in FENCE.finditer(text):
+        line = text.count("\n", 0, m.start()) + 1
+        yield line, m.group(1).strip(), m.group(2)
+
+
+def commands(kind, body):
+    """(command, expected output lines) of a sh or console block; continuations joined."""
+    out = []
+    lines = body.split("\n")
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        if kind == "console" and not line.startswith("$ "):
+            if out:
+                out[-1][1].append(line)
+            i += 1
+            continue
+        cmd = line[2:] if kind == "console" else line
+        while cmd.endswith("\\") and i + 1 < len(lines):
+            i += 1
+            cmd = cmd[:-1] + " " + lines[i].strip()
+        i += 1
+        stripped = cmd.split(" #")[0].strip() if not cmd.strip().startswith("#") else ""
+        if stripped:
+            out.append((stripped, []))
+    return [(c, [e for e in exp if e.strip()]) for c, exp in out]
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Shell:
+    """A user's shell: the scratch folder, setup.bash sourced, a private ROS master."""
+
+    def __init__(self, workdir, master_port):
+        self.workdir, home = workdir
+        self.env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % master_port,
+                        ROS_HOME=home, PYTHONUNBUFFERED="1")
+        self.env.pop("ROS_NAMESPACE", None)
+
+    def start(self, cmd):
+        script = "source %s/devel/setup.bash >/dev/null 2>&1\n%s\n" % (shlex.quote(WS), cmd)
+        return subprocess.Popen(["bash", "-c", script], cwd=self.workdir, env=self.env, stdin=subprocess.DEVNULL,
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
+
+    def run(self, cmd, window=None):
+        """(exit code or None if still running after window, output)."""
+        p = self.start(cmd)
+        try:
+            out, _ = p.communicate(timeout=window or COMMAND_LIMIT)
+            return p.returncode, out.decode(errors="replace")
+        except subprocess.TimeoutExpired:
+            stop(p)
+            out, _ = p.communicate()
+            if window is None:
+                return -1, out.decode(errors="replace") + "\n[killed after %d s]" % COMMAND_LIMIT
+            return None, out.decode(errors="replace")
+
+
+def stop(p):
+    for sig, wait in ((signal.SIGINT, 10), (signal.SIGKILL, 5)):
+        try:
+            os.killpg(p.pid, sig)
+        except ProcessLookupError:
+            return
+        try:
+            p.wait(timeout=wait)
+            return
+        except subprocess.TimeoutExpired:
+            continue
+
+
+def untracked():
+    """Files in the repository that git does not know (the build folders aside)."""
+    out = subprocess.run(["git", "ls-files", "--others", "--exclude-standard", "-z"], cwd=ROOT,
+                         stdout=subprocess.PIPE, check=False).stdout.decode()
+    return {f for f in out.split("\0") if f}
+
+
+@pytest.fixture(scope="module")
+def workdir():
+    # The repository itself, as a user would paste the commands there; what they write
+    # (trace.csv, ...) is removed afterwards. A ROS_HOME of its own keeps logs out of it.
+    before = untracked()
+    home = tempfile.mkdtemp(prefix="plc_cell_docs.")
+    yield ROOT, home
+    for f in untracked() - before:
+        os.remove(os.path.join(ROOT, f))
+    subprocess.call(["rm", "-rf", home])
+
+
+def wait_for_service(shell, name, limit=60.0):
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline:
+        code, out = shell.run("rosservice list")
+        if code == 0 and name in out.split():
+            return True
+        time.sleep(0.5)  # polling the master for the demo to come up, not waiting for a result
+    return False
+
+
+def needs_cell(path):
+    return any(re.search(r"\b(rostopic|rosservice|rosnode|rosparam)\b", body) and kind in ("sh", "console")
+               for _, kind, body in blocks(path))
+
+
+def test_every_command_block_is_marked():
+    unmarked = []
+    for path in DOCS:
+        for line, kind, body in blocks(path):
+            if kind == "" and any(SHELLISH.match(l) for l in body.split("\n")):
+                unmarked.append("%s:%d" % (path, line))
+    assert not unmarked, ("blocks with commands but no sh/console/text mark (the doc test cannot tell whether "
+                          "to run them): %s" % ", ".join(unmarked))
+
+
+def test_there_are_commands_to_run():
+    n = sum(len(commands(k, b)) for p in DOCS for _, k, b in blocks(p) if k in ("sh", "console"))
+    assert n >= 20, "only %d runnable commands found in the docs" % n
+
+
+@pytest.mark.parametrize("path", DOCS)
+def test_commands_work_when_pasted(path, workdir):
+    runnable = [(line, kind, body) for line, kind, body in blocks(path) if kind in ("sh", "console")]
+    if not runnable:
+        return
+    shell = Shell(workdir, free_port())
+    cell = None
+    failures = []
+    try:
+        if needs_cell(path):
+            cell = shell.start("roslaunch -p %s plc_cell cell_sim.launch"
+                               % shell.env["ROS_MASTER_URI"].rsplit(":", 1)[1])
+            assert wait_for_service(shell, "/plc_node/read"), "the demo cell did not come up"
+        for line, kind, body in runnable:
+            jobs = []
+            for cmd, expected in commands(kind, body):
+                if cmd in SELF:
+                    continue
+                where = "%s:%d: %s" % (path, line, cmd)
+                if cmd.endswith("&"):
+                    job = shell.start(cmd[:-1])
+                    jobs.append((where, job))
+                    if not first_line(job, 20.0):
+                        failures.append("%s\n  printed nothing in 20 s (exit %s)" % (where, job.poll()))
+                    continue
+                kill = re.match(r"^kill %(\d+)$", cmd)
+                if kill:
+                    n = int(kill.group(1))
+                    if not 1 <= n <= len(jobs) or jobs[n - 1][1].poll() is not None:
+                        failures.append("%s\n  job %d is not running: it stopped early" % (where, n))
+                    else:
+                        stop(jobs[n - 1][1])
+                    continue
+                streaming = STREAMING.match(cmd) is not None
+                if cmd.startswith("make demo"):  # its own master: it starts the demo cell itself
+                    own = Shell(workdir, free_port())
+                    code, out = own.run(cmd, window=90.0)
+                else:
+                    code, out = shell.run(cmd, window=STREAM_WINDOW if streaming else None)
+                if code is None:
+                    if not out.strip() or ERRORS.search(out):
+                        failures.append("%s\n  streamed nothing useful or an error:\n%s" % (where, indent(out)))
+                elif code != 0 and not (kind == "console" and expected):
+                    failures.append("%s\n  exit %d:\n%s" % (where, code, indent(out)))
+                elif expected:
+                    missing = unmatched(expected, out)
+                    if missing:
+                        failures.append("%s\n  output lacks %r; it was:\n%s" % (where, missing, indent(out)))
+            for where, job in jobs:
+                stop(job)
+    finally:
+        if cell is not None:
+            stop(cell)
+    assert not failures, "\n\n".join(failures)
+
+
+def first_line(p, limit):
+    """True once p has printed a line (it keeps running), False if it printed none in time."""
+    import select
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline:
+        r, _, _ = select.select([p.stdout], [], [], max(0.0, deadline - time.monotonic()))
+        if r:
+            return bool(p.stdout.readline())
+    return False
+
+
+def unmatched(expected, out):
+    """The first expected line not found in order in out (None if all are); '...' skips."""
+    got = [l.rstrip() for l in out.split("\n")]
+    pos = 0
+    for e in expected:
+        e = e.rstrip()
+        if e.strip() == "...":
+            continue
+        while pos < len(got) and got[pos].strip() != e.strip():
+            pos += 1
+        if pos == len(got):
+            return e
+        pos += 1
+    return None
+
+
+def indent(text, n=40):
+    lines = text.rstrip().split("\n")
+    if len(lines) > n:
+        lines = lines[:10] + ["..."] + lines[-(n - 11):]
+    return "\n".join("    " + l for l in lines)
+
+
+# Words that belong to the project's tracker and working notes, not to a user's manual.
+INTERNAL = re.compile(r"\b[Ii]ssue\s+#?\d+|\.\./shared|\bspec\b\s*(§|\d)|\bthe spec\b|\bseed\s+0\d\d|"
+                      r"[Ss]tatus of issue|\bbranch `")
+
+
+def test_docs_speak_of_the_product_only():
+    found = []
+    for path in DOCS:
+        for n, line in enumerate(open(os.path.join(ROOT, path), encoding="utf-8"), 1):
+            m = INTERNAL.search(line)
+            if m:
+                found.append("%s:%d: %r" % (path, n, m.group(0)))
+    assert not found, "internal references in user docs (cite the manual by chapter instead):\n" + "\n".join(found)

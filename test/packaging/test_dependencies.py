@@ -1,0 +1,168 @@
+"""The install list has one source of truth.
+
+package.xml names every dependency under its rosdep key; rosdep/bookworm.yaml maps each key
+to Debian packages; the Makefile's DEB_PACKAGES (written out because a fresh machine has no
+Python before it is installed) must be exactly the image of package.xml under that map.
+And package.xml must be complete: every ROS package, Python module, CMake package and tool
+that the code, tests, scripts, launch files and docs use is declared."""
+import glob
+import os
+import re
+import xml.etree.ElementTree as ET
+
+import yaml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def read(path):
+    with open(os.path.join(ROOT, path), encoding="utf-8") as f:
+        return f.read()
+
+
+def files(*patterns):
+    out = []
+    for p in patterns:
+        out += glob.glob(os.path.join(ROOT, p), recursive=True)
+    return sorted(f for f in out if "/.build/" not in f and os.path.isfile(f))
+
+
+def package_keys():
+    root = ET.fromstring(read("package.xml"))
+    tags = ("depend", "build_depend", "exec_depend", "test_depend", "buildtool_depend",
+            "build_export_depend", "doc_depend")
+    return {e.text.strip() for t in tags for e in root.findall(t)}
+
+
+def rules():
+    return yaml.safe_load(read("rosdep/bookworm.yaml"))
+
+
+def makefile_packages():
+    text = read("Makefile").replace("\\\n", " ")
+    m = re.search(r"^DEB_PACKAGES\s*:=(.*)$", text, re.M)
+    assert m, "Makefile has no DEB_PACKAGES line"
+    return set(m.group(1).split())
+
+
+def test_every_key_has_a_debian_rule():
+    r = rules()
+    missing = sorted(k for k in package_keys() if k not in r)
+    assert not missing, "package.xml keys with no rule in rosdep/bookworm.yaml: %s" % missing
+    for key, rule in r.items():
+        pkgs = rule.get("debian", {}).get("bookworm")
+        assert pkgs, "rosdep/bookworm.yaml: %s has no debian/bookworm packages" % key
+
+
+def test_no_rule_is_unused():
+    unused = sorted(set(rules()) - package_keys())
+    assert not unused, "rules in rosdep/bookworm.yaml that package.xml does not use: %s" % unused
+
+
+def test_makefile_installs_exactly_what_package_xml_declares():
+    r = rules()
+    wanted = {p for k in package_keys() if k in r for p in r[k]["debian"]["bookworm"]}
+    have = makefile_packages()
+    assert not (wanted - have), "package.xml needs, Makefile lacks: %s" % sorted(wanted - have)
+    assert not (have - wanted), "Makefile installs, package.xml does not declare: %s" % sorted(have - wanted)
+
+
+# ---- completeness: what the code uses is declared ------------------------------------
+
+def test_catkin_components_are_declared():
+    text = read("CMakeLists.txt")
+    m = re.search(r"find_package\(catkin REQUIRED COMPONENTS([^)]*)\)", text)
+    used = set(m.group(1).split())
+    missing = sorted(used - package_keys())
+    assert not missing, "CMakeLists.txt finds catkin components package.xml lacks: %s" % missing
+
+
+def test_message_dependencies_are_declared():
+    used = set()
+    for f in files("msg/*.msg", "srv/*.srv", "action/*.action"):
+        for line in open(f, encoding="utf-8"):
+            line = line.split("#")[0].strip()
+            m = re.match(r"([A-Za-z_][\w]*)/\w+", line)
+            if m:
+                used.add(m.group(1))
+    used.discard("plc_cell")
+    used |= {"std_msgs"} if any("Header" in open(f).read() for f in files("msg/*.msg")) else set()
+    missing = sorted(used - package_keys())
+    assert not missing, "msg/srv/action types from packages package.xml lacks: %s" % missing
+
+
+# Python modules that come from a key other than their own name.
+PY_MODULE_KEYS = {"serial": "python3-serial", "pymodbus": "python3-pymodbus",
+                  "matplotlib": "python3-matplotlib", "yaml": None, "pytest": "python3-pytest",
+                  "rospkg": None, "genpy": None, "rosgraph": None, "roslib": None}
+
+
+def test_python_imports_are_declared():
+    keys = package_keys()
+    problems = []
+    for f in files("scripts/**/*.py", "test/**/*.py", "src/**/*.py"):
+        for n, line in enumerate(open(f, encoding="utf-8"), 1):
+            m = re.match(r"\s*(?:from|import)\s+([A-Za-z_]\w*)", line)
+            if not m:
+                continue
+            mod = m.group(1)
+            if mod in PY_MODULE_KEYS:
+                key = PY_MODULE_KEYS[mod]
+            elif mod.endswith("_msgs") or mod.endswith("_srvs") or mod in (
+                    "rospy", "rosbag", "rostest", "actionlib", "rosunit"):
+                key = "rostest" if mod == "rosunit" else mod
+            else:
+                continue
+            if key and key not in keys:
+                problems.append("%s:%d imports %s: package.xml lacks %s"
+                                % (os.path.relpath(f, ROOT), n, mod, key))
+    assert not problems, "\n".join(problems)
+
+
+# Tools run by launch files, tests, scripts, the Makefile and the docs, and their keys.
+TOOLS = {"socat": "socat", "mbpoll": "mbpoll", "rosrun": "rosbash", "roscd": "rosbash",
+         "rostopic": "rostopic", "rosservice": "rosservice", "roslaunch": "roslaunch",
+         "roscore": "roslaunch", "rosbag": "rosbag", "rosnode": "rosnode", "rosmsg": "rosmsg",
+         "rostest": "rostest", "clang\\+\\+": "clang", "catkin_make": "catkin", "git": "git"}
+
+
+def test_tools_are_declared():
+    keys = package_keys()
+    problems = []
+    sources = files("test/**/*", "scripts/**/*", "launch/**/*", "docs/**/*.md", "README.md",
+                    "Makefile", "cmake/*.cmake", "CMakeLists.txt")
+    for f in sources:
+        if os.path.samefile(f, __file__):
+            continue
+        try:
+            text = open(f, encoding="utf-8").read()
+        except UnicodeDecodeError:
+            continue
+        for tool, key in TOOLS.items():
+            if key not in keys and re.search(r"(?<![\w/.-])%s(?![\w-])" % tool, text):
+                problems.append("%s uses %s: package.xml lacks %s"
+                                % (os.path.relpath(f, ROOT), tool.replace("\\", ""), key))
+    assert not problems, "\n".join(problems)
+
+
+# CMake packages found by the build, and the keys that provide them.
+CMAKE_PACKAGES = {"yaml-cpp": "yaml-cpp", "ZLIB": "zlib", "benchmark": "benchmark",
+                  "PkgConfig": "pkg-config", "GTest": "gtest", "rostest": "rostest", "catkin": "catkin"}
+
+
+def test_cmake_packages_are_declared():
+    keys = package_keys()
+    problems = []
+    for f in files("CMakeLists.txt", "cmake/*.cmake", "test/**/CMakeLists.txt"):
+        text = open(f, encoding="utf-8").read()
+        for pkg in re.findall(r"find_package\((\S+)", text):
+            key = CMAKE_PACKAGES.get(pkg)
+            if key is None:
+                problems.append("%s finds %s, which this test does not know: add it to CMAKE_PACKAGES"
+                                % (os.path.relpath(f, ROOT), pkg))
+            elif key not in keys:
+                problems.append("%s finds %s: package.xml lacks %s" % (os.path.relpath(f, ROOT), pkg, key))
+        for mod in re.findall(r"pkg_check_modules\(\w+ (?:REQUIRED )?(?:IMPORTED_TARGET )?(\S+)\)", text):
+            if mod == "libmodbus" and "libmodbus-dev" not in keys:
+                problems.append("%s needs libmodbus: package.xml lacks libmodbus-dev" % f)
+    assert not problems, "\n".join(problems)
