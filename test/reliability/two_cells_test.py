@@ -85,8 +85,11 @@ class TwoCellsTest(unittest.TestCase):
                 if cell in st.name and st.name.endswith("scan"):
                     return dict((kv.key, kv.value) for kv in st.values)
             return None
+        # Each node publishes its own DiagnosticArray: look for each cell's in turn.
         before = self.diag.wait_for(lambda a: scan_status(a, "cell_a") is not None)
         old_pid = int(scan_status(before, "cell_a")["pid"])
+        b_before = self.diag.wait_for(lambda a: scan_status(a, "cell_b") is not None)
+        b_pid = scan_status(b_before, "cell_b")["pid"]
         uri = rosgraph.Master("/two_cells_test").lookupNode("/cell_a/plc_node")
         code, _, pid = xmlrpc.client.ServerProxy(uri).getPid("/two_cells_test")
         self.assertEqual((code, pid), (1, old_pid))
@@ -108,7 +111,7 @@ class TwoCellsTest(unittest.TestCase):
         read_a = rospy.ServiceProxy("/cell_a/plc_node/read", ReadMemory)
         self.assertEqual(list(read_a("D7", 1).values), [4321])
         b = scan_status(self.diag.wait_for(lambda a: scan_status(a, "cell_b") is not None), "cell_b")
-        self.assertEqual(b["pid"], scan_status(before, "cell_b")["pid"], "cell_b was restarted too")
+        self.assertEqual(b["pid"], b_pid, "cell_b was restarted too")
 
 
 if __name__ == "__main__":
