@@ -599,8 +599,23 @@ void MotionUnit::start_homing(Program& p, const Step& s, uint64_t t) {
   p.counting = false;
   p.dog_seen = false;
   p.t_cur = t;
-  run_endless(p, t, par.p9_home ? -1 : 1, p.speed_hz);
-  home_check(p, t);  // starting on the DOG or the limit
+  const int home_sign = par.p9_home ? -1 : 1;
+  const bool on_dog = input(p.call.ps, par.dog_input(), t) != par.dog_nc();
+  if (on_dog && par.limit_input() >= 0) {
+    // Started on the DOG: toward home to the limit first, then back through the DOG
+    // (manual, zero return started at or in front of the DOG).
+    p.home = Home::ToLimit;
+    run_endless(p, t, home_sign, p.speed_hz);
+  } else if (on_dog) {
+    // On the DOG with no limit to go to: leave the DOG backward first, then the
+    // normal sequence (docs/motion.md "Homing"; the manual needs the limit here).
+    p.home = Home::Escape;
+    p.dog_seen = true;
+    run_endless(p, t, -home_sign, p.speed_hz);
+  } else {
+    run_endless(p, t, home_sign, p.speed_hz);
+  }
+  home_check(p, t);  // starting on the limit
 }
 
 uint64_t MotionUnit::home_next_event(const Program& p) const {
@@ -656,6 +671,14 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
         p.dog_seen = false;
       }
       return;
+    case Home::ToLimit:  // started on the DOG: the DOG is ignored until the limit acts
+      if (limit) {
+        a.axis.cut(t);
+        run_endless(p, t, -home_sign, p.speed_hz);
+        p.home = Home::Escape;
+        p.dog_seen = dog;
+      }
+      return;
     case Home::Escape:
       if (dog) p.dog_seen = true;
       if (p.dog_seen && !dog) {
@@ -699,7 +722,8 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
       return;
     case Home::Clr:
       if (t >= p.home_until) {
-        mem_.set_bit(Area::Y, par.clr_output(), false);
+        // No CLR output (FFH): done at once; there is no Y to switch off.
+        if (par.clr_output() >= 0) mem_.set_bit(Area::Y, par.clr_output(), false);
         p.home_until = kNever;
         a.axis.set_position(par.p16_zero);
         p.phase = Phase::Moving;  // for the step bookkeeping

@@ -119,7 +119,7 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
  private:
   enum class Phase { Idle, Moving, Waiting, SpeedWait, Paused, Stopping, Done, Homing };
   // DRVZ stages (docs/motion.md "Homing").
-  enum class Home { Seek, Escape, Creep, Md1Stop, Md1Delay, Md1Back, Clr };
+  enum class Home { Seek, ToLimit, Escape, Creep, Md1Stop, Md1Delay, Md1Back, Clr };
   struct Program {
     Fun140Call call;
     Table table;
