@@ -188,10 +188,17 @@ TEST_F(Homing, NoClrMd2IsDoneAtTheTenthPg0EdgeWithoutTheTwentyMs) {
 
 // ---- PG0 and the limit are optional where the manual says so ----
 
-TEST_F(Homing, Md0AndMd1NeedNoPg0) {
+TEST_F(Homing, Md0NeedsNoPg0) {
   io(kNoPg0);
   go("MD0");
   EXPECT_EQ(net(), -5001);
+  EXPECT_EQ(c.get("R4060"), 0u);
+}
+
+TEST_F(Homing, Md1NeedsNoPg0) {
+  io(kNoPg0);
+  go("MD1");
+  EXPECT_EQ(net(), -2999);
   EXPECT_EQ(c.get("R4060"), 0u);
 }
 
