@@ -41,27 +41,48 @@ int cmd_sim(const std::vector<std::string>& argv) {
     } catch (const std::exception&) {
       throw UsageError("--set " + s + ": value is not a number");
     }
+    // A negative value is the two's complement of the register's width (R1=-500).
+    const int bits = value_bits(a);
+    if (v < 0 && bits > 1 && v >= -(int64_t(1) << (bits - 1))) v &= bits == 16 ? 0xFFFF : 0xFFFFFFFFLL;
+    if (v < 0) throw UsageError("--set " + s + ": value below the address's range");
     plc.write(a, {static_cast<uint32_t>(v)});
   }
   if (!plc.set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
 
   VirtualRun run(plc, scan);
-  std::vector<std::string> names;
+  std::vector<std::string> names;  // as given, format suffix and all
+  std::vector<Address> addrs;
+  std::vector<ValueFormat> formats;
   for (const auto& w : args.all("watch"))
     for (const auto& n : split_list(w)) {
+      const auto nf = split_format(n);
+      const Address a = cell.config().resolve(nf.first);
+      check_format(a, nf.second, n);
       names.push_back(n);
-      run.watch(cell.config().resolve(n));
+      addrs.push_back(a);
+      formats.push_back(nf.second);
+      run.watch(a);
     }
 
   std::ofstream trace;
   if (args.has("trace")) {
     trace.open(args.get("trace"));
     if (!trace) throw Error("cannot write the trace file " + args.get("trace"));
-    trace << "time_s,address,value\n";
+    trace << "time_s,address,value,event,source\n";
+    run.trace_events();
   }
-  run.run_for(duration, [&](const WatchChange& c) {
-    if (trace.is_open()) trace << seconds(c.t_us) << "," << names[c.watch] << "," << c.value << "\n";
-  });
+  run.run_for(
+      duration,
+      [&](const WatchChange& c) {
+        if (trace.is_open())
+          trace << seconds(c.t_us) << "," << names[c.watch] << ","
+                << format_value(addrs[c.watch], c.value, formats[c.watch]) << "\n";  // scan rows: 3 fields
+      },
+      [&](const SimEvent& e) {
+        // Events carry their instant to the ns (scan rows are on the scan's us).
+        trace << e.t_ns / 1000000000 << "." << std::setw(9) << std::setfill('0') << e.t_ns % 1000000000
+              << std::setfill(' ') << ",,," << e.kind << "," << e.source << "\n";
+      });
 
   const bool running = plc.mode() == RunMode::Run;
   std::cout << "# plc_cell sim: " << run.scans() << " scans of " << scan << " us, virtual time "
@@ -69,7 +90,8 @@ int cmd_sim(const std::vector<std::string>& argv) {
   const std::string fault = plc.locked([](ScanEngine& e, Memory&) { return e.fault(); });
   if (!fault.empty()) std::cout << "# fault: " << fault << "\n";
   const auto values = run.values();
-  for (size_t i = 0; i < names.size(); ++i) std::cout << names[i] << " = " << values[i] << "\n";
+  for (size_t i = 0; i < names.size(); ++i)
+    std::cout << names[i] << " = " << format_value(addrs[i], values[i], formats[i]) << "\n";
   return fault.empty() ? 0 : 1;
 }
 

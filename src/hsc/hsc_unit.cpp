@@ -180,7 +180,10 @@ void HscUnit::add_count(Counter& c, int64_t d, bool check) {
   const uint32_t v = get_cv(c) + static_cast<uint32_t>(d);
   set_cv(c, v);
   c.total += d;
-  if (check && v == get_pv(c)) fired_.push_back(counter_source(c.n));
+  if (check && v == get_pv(c)) {
+    fired_.push_back(counter_source(c.n));
+    for (auto& f : match_obs_) f(cur_ns_, c.n, c.def.timer);
+  }
 }
 
 void HscUnit::take_quarter(Counter& c) {
@@ -361,7 +364,10 @@ void HscUnit::advance(uint64_t to) {
     cur_ns_ = t;
     fired_.clear();
     for (auto& c : counters_)
-      if (match[c.n] == t) fired_.push_back(counter_source(c.n));
+      if (match[c.n] == t) {
+        fired_.push_back(counter_source(c.n));
+        for (auto& f : match_obs_) f(t, c.n, c.def.timer);
+      }
     if (hsta == t) fired_.push_back(kHstaI);
     if (tb_next == t) fired_.push_back(kTimeBase0 + tb);
     for (int e = 0; e < 32; ++e)

@@ -209,8 +209,9 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
               n = std::stoi(pk.substr(1));
             if (!a.params.set(n, val)) fail(file, pf.first, "key '" + pre + "params." + pk + "': expected at, p0 ... p17");
           }
-          const int code = a.params.validate();
-          if (code) fail(file, v, "key '" + pre + "params': parameter error " + std::to_string(code));
+          ParamError pe;
+          const int code = a.params.validate(&pe);
+          if (code) fail(file, v, "key '" + pre + "params': parameter error " + std::to_string(code) + ": " + pe.message);
         }
       } else {
         fail(file, f.first, "key '" + pre + k +

@@ -593,14 +593,36 @@ void MotionUnit::start_homing(Program& p, const Step& s, uint64_t t) {
   if (s.zero_mode == 2 && (par.pg0_input() < 0 || par.pg0_input() > 15)) return fail(p, 52, t);
   if (par.clr_output() > 23) return fail(p, 53, t);
   p.phase = Phase::Homing;
-  p.home = Home::Seek;
+  p.home = Home::Seek;  // reported below, once the start case is known
   p.home_until = kNever;
   p.pg0_count = 0;
   p.counting = false;
   p.dog_seen = false;
   p.t_cur = t;
-  run_endless(p, t, par.p9_home ? -1 : 1, p.speed_hz);
-  home_check(p, t);  // starting on the DOG or the limit
+  const int home_sign = par.p9_home ? -1 : 1;
+  const bool on_dog = input(p.call.ps, par.dog_input(), t) != par.dog_nc();
+  if (on_dog && par.limit_input() >= 0) {
+    // Started on the DOG: toward home to the limit first, then back through the DOG
+    // (manual, zero return started at or in front of the DOG).
+    set_home(p, Home::ToLimit, t);
+    run_endless(p, t, home_sign, p.speed_hz);
+  } else if (on_dog) {
+    // On the DOG with no limit to go to: leave the DOG backward first, then the
+    // normal sequence (docs/motion.md "Homing"; the manual needs the limit here).
+    set_home(p, Home::Escape, t);
+    p.dog_seen = true;
+    run_endless(p, t, -home_sign, p.speed_hz);
+  } else {
+    set_home(p, Home::Seek, t);
+    run_endless(p, t, home_sign, p.speed_hz);
+  }
+  home_check(p, t);  // starting on the limit
+}
+
+void MotionUnit::set_home(Program& p, Home h, uint64_t t) {
+  p.home = h;
+  static const char* const kNames[] = {"seek", "to_limit", "escape", "creep", "md1_stop", "md1_delay", "md1_back", "home"};
+  for (auto& f : home_obs_) f(p.call.ps, kNames[static_cast<int>(h)], t);
 }
 
 uint64_t MotionUnit::home_next_event(const Program& p) const {
@@ -636,15 +658,15 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
       if (dog) {
         if (s.zero_mode == 1) {  // MD1: slow down and stop on the DOG
           a.axis.decelerate(t, par.start_hz(), par.dec_hz_per_s());
-          p.home = Home::Md1Stop;
+          set_home(p, Home::Md1Stop, t);
           if (!a.axis.moving()) {
-            p.home = Home::Md1Delay;
+            set_home(p, Home::Md1Delay, t);
             p.home_until = t + 500000000;
           }
           return;
         }
         run_endless(p, t, home_sign, par.creep_hz());
-        p.home = Home::Creep;
+        set_home(p, Home::Creep, t);
         p.counting = s.zero_mode == 2 && !par.pg0_rear();
         p.prev_pg0 = pg0;
         p.pg0_count = 0;
@@ -652,8 +674,16 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
       } else if (limit) {  // in front of the DOG: back until the DOG has been passed
         a.axis.cut(t);
         run_endless(p, t, -home_sign, p.speed_hz);
-        p.home = Home::Escape;
+        set_home(p, Home::Escape, t);
         p.dog_seen = false;
+      }
+      return;
+    case Home::ToLimit:  // started on the DOG: the DOG is ignored until the limit acts
+      if (limit) {
+        a.axis.cut(t);
+        run_endless(p, t, -home_sign, p.speed_hz);
+        set_home(p, Home::Escape, t);
+        p.dog_seen = dog;
       }
       return;
     case Home::Escape:
@@ -661,7 +691,7 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
       if (p.dog_seen && !dog) {
         a.axis.cut(t);
         run_endless(p, t, home_sign, p.speed_hz);
-        p.home = Home::Seek;
+        set_home(p, Home::Seek, t);
       }
       return;
     case Home::Creep:
@@ -682,7 +712,7 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
       if (a.axis.moving() && t >= a.axis.end_ns()) a.axis.settle(t);
       if (!a.axis.moving() || t >= a.axis.end_ns()) {
         a.axis.settle(t);
-        p.home = Home::Md1Delay;
+        set_home(p, Home::Md1Delay, t);
         p.home_until = t + 500000000;  // 0.5 s, then back out of the DOG
       }
       return;
@@ -690,7 +720,7 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
       if (t >= p.home_until) {
         p.home_until = kNever;
         run_endless(p, t, -home_sign, par.creep_hz());
-        p.home = Home::Md1Back;
+        set_home(p, Home::Md1Back, t);
         if (!dog) home_found(p, t);
       }
       return;
@@ -699,7 +729,8 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
       return;
     case Home::Clr:
       if (t >= p.home_until) {
-        mem_.set_bit(Area::Y, par.clr_output(), false);
+        // No CLR output (FFH): done at once; there is no Y to switch off.
+        if (par.clr_output() >= 0) mem_.set_bit(Area::Y, par.clr_output(), false);
         p.home_until = kNever;
         a.axis.set_position(par.p16_zero);
         p.phase = Phase::Moving;  // for the step bookkeeping
@@ -715,7 +746,7 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
 void MotionUnit::home_found(Program& p, uint64_t t) {
   AxisState& a = axes_[p.call.ps];
   a.axis.cut(t);
-  p.home = Home::Clr;
+  set_home(p, Home::Clr, t);
   p.home_until = t;
   if (a.params.clr_output() >= 0) {
     mem_.set_bit(Area::Y, a.params.clr_output(), true);

@@ -90,24 +90,109 @@ void AxisParams::to_registers(uint16_t* r) const {
   r[23] = static_cast<uint16_t>(p17_pg0);
 }
 
-int AxisParams::validate() const {
+namespace {
+// Manual section 11.6. P5 may be 0 (start from standstill, AMBIG-18); P9 is two bytes
+// of 0/1 (checked byte by byte below).
+constexpr ParamRange kRanges[kParamCount] = {
+    {0, 1, 0, 2, 0, 2},
+    {1, 2, 1, 65535, 1, 65535},
+    {2, 3, 1, 999999, 1, 999999},
+    {3, 4, 0, 3, 0, 3},
+    {4, 5, 1, kMaxHz, 1, 153000},
+    {5, 6, 0, kMaxHz, 0, 15300},
+    {6, 7, 1, 65535, 1, 15300},
+    {7, 8, 0, 32767, 0, 32767},
+    {8, 9, 0, 30000, 0, 30000},
+    {9, 10, 0, 0x0101, 0, 0x0101},
+    {10, 0, -32768, 32767, -32768, 32767},
+    {11, 0, -32768, 32767, -32768, 32767},
+    {12, 13, 0, 30000, 0, 30000},
+    {13, 14, 0, 30000, 0, 30000},
+    {14, 15, 0, 1999999, 0, 1999999},
+    {15, 0, 0, 0xFFFFFFFFLL, 0, 0xFFFFFFFFLL},
+    {16, 0, -999999, 999999, -999999, 999999},
+    {17, 0, 0, 255, 0, 255},
+};
+
+bool bad(const ParamRange& r, int64_t v, const std::string& why, ParamError* e) {
+  if (e) {
+    e->n = r.n;
+    e->code = r.code;
+    e->value = v;
+    e->message = "P" + std::to_string(r.n) + ": " + why;
+  }
+  return false;
+}
+}  // namespace
+
+const ParamRange& param_range(int n) { return kRanges[n < 0 || n >= kParamCount ? 0 : n]; }
+
+bool check_param(int n, int64_t v, bool machine, ParamError* e) {
+  if (n < 0 || n >= kParamCount) {
+    if (e) *e = {n, 0, v, "P" + std::to_string(n) + ": no such parameter (P0..P17)"};
+    return false;
+  }
+  const ParamRange& r = kRanges[n];
+  const int64_t lo = machine ? r.machine_lo : r.lo, hi = machine ? r.machine_hi : r.hi;
+  if (n == 9 && (v < 0 || v > 0xFFFF || (v & 0xFF) > 1 || (v >> 8) > 1))
+    return bad(r, v, std::to_string(v) + " out of range: low byte (P9-0) 0..1, high byte (P9-1) 0..1 "
+                     "(0000H, 0001H, 0100H, 0101H)", e);
+  if (v < lo || v > hi)
+    return bad(r, v, std::to_string(v) + " out of range " + std::to_string(lo) + ".." + std::to_string(hi) +
+                         (machine && (lo != r.lo || hi != r.hi) ? " (machine units, P0 = 0)" : ""),
+               e);
+  return true;
+}
+
+int64_t AxisParams::get(int n) const {
+  switch (n) {
+    case 0: return p0_unit;
+    case 1: return p1_ppr;
+    case 2: return p2_per_rev;
+    case 3: return p3_res;
+    case 4: return p4_max;
+    case 5: return p5_start;
+    case 6: return p6_creep;
+    case 7: return p7_backlash;
+    case 8: return p8_acc_ms;
+    case 9: return (int64_t(p9_home) << 8) | p9_rot;
+    case 10: return p10_fwd_comp;
+    case 11: return p11_bwd_comp;
+    case 12: return p12_dec_ms;
+    case 13: return p13_interp_ms;
+    case 14: return p14_ppr;
+    case 15: return p15_io;
+    case 16: return p16_zero;
+    case 17: return p17_pg0;
+    default: return 0;
+  }
+}
+
+int AxisParams::validate(ParamError* e) const {
+  ParamError local;
+  ParamError* err = e ? e : &local;
   const bool machine = p0_unit == 0;
-  if (p0_unit < 0 || p0_unit > 2) return 1;
-  if (p1_ppr < 1 || p1_ppr > 65535) return 2;
-  if (p2_per_rev < 1 || p2_per_rev > 999999) return 3;
-  if (p3_res < 0 || p3_res > 3) return 4;
-  if (p4_max < 1 || p4_max > (machine ? 153000 : kMaxHz)) return 5;
-  if (machine && (max_hz() > kMaxHz || max_hz() < 1)) return 5;
-  // AMBIG-18: P5 may be 0 (start from standstill); machine units up to 15300.
-  if (p5_start < 0 || p5_start > (machine ? 15300 : kMaxHz) || start_hz() > kMaxHz) return 6;
-  if (p6_creep < 1 || p6_creep > (machine ? 15300 : 65535)) return 7;
-  if (p7_backlash < 0 || p7_backlash > 32767) return 8;
-  if (p8_acc_ms < 0 || p8_acc_ms > 30000) return 9;
-  if (p9_rot < 0 || p9_rot > 1 || p9_home < 0 || p9_home > 1) return 10;
-  if (p12_dec_ms < 0 || p12_dec_ms > 30000) return 13;
-  if (p13_interp_ms < 0 || p13_interp_ms > 30000) return 14;
-  if (p14_ppr < 0 || p14_ppr > 1999999) return 15;
+  for (const ParamRange& r : kRanges) {
+    if (r.code == 0) continue;  // no error code in the manual: FUN141 takes the register as it is
+    if (!check_param(r.n, get(r.n), machine, err)) return r.code;
+    // Machine speeds must also come out within the pulse generator's range.
+    if (machine && r.n == 4 && (max_hz() > kMaxHz || max_hz() < 1))
+      return bad(r, p4_max, std::to_string(p4_max) + " (machine units) is " + std::to_string(std::llround(max_hz())) +
+                                " Hz, outside 1.." + std::to_string(kMaxHz) + " Hz", err), 5;
+    if (r.n == 5 && start_hz() > kMaxHz)
+      return bad(r, p5_start, std::to_string(p5_start) + " (machine units) is " + std::to_string(std::llround(start_hz())) +
+                                  " Hz, above " + std::to_string(kMaxHz) + " Hz", err), 6;
+  }
   return 0;
+}
+
+bool AxisParams::check_values(const int64_t* v, ParamError* e) {
+  const bool machine = v[0] == 0;
+  for (int n = 0; n < kParamCount; ++n)
+    if (!check_param(n, v[n], machine, e)) return false;
+  AxisParams p;
+  for (int n = 0; n < kParamCount; ++n) p.set(n, v[n]);
+  return p.validate(e) == 0;
 }
 
 int64_t AxisParams::ut_to_pulses(int64_t stroke) const {

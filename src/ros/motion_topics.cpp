@@ -69,23 +69,26 @@ MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& 
         }));
     a->services.push_back(pnh.advertiseService<SetMotionParams::Request, SetMotionParams::Response>(
         base + "/set_params", [n, locked](SetMotionParams::Request& req, SetMotionParams::Response& res) {
-          if (req.values.size() != 18) {
+          if (req.values.size() != size_t(motion::kParamCount)) {
             res.success = false;
             res.message = "give the 18 values P0..P17";
             return true;
           }
-          motion::AxisParams p;
-          for (int k = 0; k < 18; ++k) p.set(k, req.values[size_t(k)]);
-          res.error_code = p.validate();
-          res.success = res.error_code == 0;
-          if (res.success) {
-            locked([&](MotionUnit& u) {
-              u.set_params(n, p);
-              return 0;
-            });
-          } else {
-            res.message = "parameter error " + std::to_string(res.error_code);
+          // The values as given against the FUN141 ranges (before they are narrowed
+          // to the table's fields): a refused request changes nothing.
+          motion::ParamError e;
+          res.success = motion::AxisParams::check_values(req.values.data(), &e);
+          if (!res.success) {
+            res.error_code = e.code;
+            res.message = e.message;
+            return true;
           }
+          motion::AxisParams p;
+          for (int k = 0; k < motion::kParamCount; ++k) p.set(k, req.values[size_t(k)]);
+          locked([&](MotionUnit& u) {
+            u.set_params(n, p);
+            return 0;
+          });
           return true;
         }));
     a->services.push_back(pnh.advertiseService<MotionCommand::Request, MotionCommand::Response>(
@@ -142,14 +145,28 @@ MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& 
             srv.setAborted(result, why);
             return;
           }
+          // A cancel (or a new goal, which preempts this one) decelerates the axis; the
+          // goal stays active with feedback until the axis stands still, so the result
+          // carries the final position and the axis takes the next goal at once.
           ros::Rate rate(50);
+          bool cancelling = false;
           for (;;) {
+            if (!ros::ok()) {  // shutting down: the scans may have stopped, do not wait
+              locked([&](MotionUnit& u) { return u.command(ar->n, MotionUnit::Command::Abort, &why); });
+              result.message = "node shutting down";
+              srv.setAborted(result, result.message);
+              return;
+            }
+            if (!cancelling && srv.isPreemptRequested()) {
+              locked([&](MotionUnit& u) { return u.command(ar->n, MotionUnit::Command::Abort, &why); });
+              cancelling = true;
+            }
             RunMotionTableFeedback fb;
             bool running = false;
             int err = 0;
             int64_t pulses = 0;
             locked([&](MotionUnit& u) {
-              running = u.program_running(ar->n);
+              running = u.program_running(ar->n) || u.axis(ar->n).moving();
               err = u.error(ar->n);
               pulses = u.position(ar->n);
               fb.step = u.step(ar->n);
@@ -159,17 +176,17 @@ MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& 
             fb.position = static_cast<double>(pulses) * ar->upp;
             result.pulses = pulses;
             result.position = fb.position;
-            if (srv.isPreemptRequested() || !ros::ok()) {
-              locked([&](MotionUnit& u) { return u.command(ar->n, MotionUnit::Command::Abort, &why); });
-              result.message = "cancelled: decelerated stop";
-              srv.setPreempted(result, result.message);
-              return;
-            }
             if (!running) {
               result.error_code = err;
-              result.success = err == 0;
-              if (result.success) srv.setSucceeded(result);
-              else srv.setAborted(result, "error " + std::to_string(err));
+              if (cancelling) {
+                result.message = "cancelled: decelerated stop at " + std::to_string(pulses) + " pulses";
+                srv.setPreempted(result, result.message);
+              } else if (err == 0) {
+                result.success = true;
+                srv.setSucceeded(result);
+              } else {
+                srv.setAborted(result, "error " + std::to_string(err));
+              }
               return;
             }
             srv.publishFeedback(fb);

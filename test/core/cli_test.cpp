@@ -38,7 +38,7 @@ TEST(Cli, SimPrintsTheWatchedValuesAndIsDeterministic) {
             "R0 = 2\n"
             "T50 = 0\n");
   const std::string trace = slurp("/tmp/plc_cell_cli_test_a.csv");
-  EXPECT_EQ(trace.rfind("time_s,address,value\n0.000000,conveyor_run,1\n0.000000,R0,0\n0.000000,T50,0\n"
+  EXPECT_EQ(trace.rfind("time_s,address,value,event,source\n0.000000,conveyor_run,1\n0.000000,R0,0\n0.000000,T50,0\n"
                         "1.000000,conveyor_run,0\n2.500000,T50,1\n2.501000,conveyor_run,1\n",
                         0),
             0u)

@@ -56,6 +56,30 @@ TEST(MotionCli, ManualExamplesRunWithSim) {
   }
 }
 
+// Example D without a CLR output (P15-3 = FFH), in each mode: the homing ends at
+// step c (the manual) and the tool exits normally with the homed position.
+TEST(MotionCli, HomingWithoutClrInEachMode) {
+  for (const char* mode : {"MD0", "MD1", "MD2"}) {
+    const std::string dir = ::testing::TempDir();
+    const std::string yaml = dir + "/homing_noclr_" + mode + ".yaml";
+    FILE* f = fopen(yaml.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    fprintf(f,
+            "cell:\n  name: noclr\n  program: %s/examples/motion/homing.il\n"
+            "axes:\n  pso0:\n"
+            "    params: {at: R500, p8: 100, p9: 0x0100, p15: 0xFF04A802, p16: 100, p17: 10}\n"
+            "    table:\n      at: R0\n      text: |\n        001 SPD 5000\n            DRVZ %s\n"
+            "            GOTO NEXT\n        MEND\n"
+            "    switches:\n      - {x: X2, from: -5000, to: -3000}\n      - {x: X40, from: -7999}\n"
+            "      - {x: X4, period: 200, width: 5}\n",
+            PLC_CELL_SOURCE_DIR, mode);
+    fclose(f);
+    const Result r = tool("sim --config " + yaml + " --duration 3s --watch DR4088,M1996,R4060,Y8");
+    EXPECT_EQ(r.status, 0) << mode << "\n" << r.out;
+    EXPECT_NE(r.out.find("DR4088 = 100\nM1996 = 1\nR4060 = 0\nY8 = 0\n"), std::string::npos) << mode << "\n" << r.out;
+  }
+}
+
 // The test rig: pins looped into HSC0, an encoder into HSC1, a sensor on the stage.
 TEST(MotionCli, TestRigCountsThePinsAndTheEncoder) {
   const Result r = tool("sim --config " + std::string(PLC_CELL_SOURCE_DIR) +

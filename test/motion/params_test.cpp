@@ -98,6 +98,103 @@ TEST(Params, UtToPulses) {
   EXPECT_DOUBLE_EQ(p.speed_hz(60), 20000.0);
 }
 
+
+// The message names the parameter, the value and the manual's range (section 11.6).
+TEST(Params, ErrorNamesTheParameterTheValueAndTheRange) {
+  struct Case {
+    int n;
+    int64_t v;
+    bool machine;
+    int code;
+    const char* message;
+  };
+  const Case cases[] = {
+      {0, 3, false, 1, "P0: 3 out of range 0..2"},
+      {1, 0, false, 2, "P1: 0 out of range 1..65535"},
+      {2, 1000000, false, 3, "P2: 1000000 out of range 1..999999"},
+      {3, 7, false, 4, "P3: 7 out of range 0..3"},
+      {4, 921601, false, 5, "P4: 921601 out of range 1..921600"},
+      {4, 153001, true, 5, "P4: 153001 out of range 1..153000 (machine units, P0 = 0)"},
+      {5, -1, false, 6, "P5: -1 out of range 0..921600"},
+      {6, 15301, true, 7, "P6: 15301 out of range 1..15300 (machine units, P0 = 0)"},
+      {7, 32768, false, 8, "P7: 32768 out of range 0..32767"},
+      {8, 30001, false, 9, "P8: 30001 out of range 0..30000"},
+      {12, -1, false, 13, "P12: -1 out of range 0..30000"},
+      {13, 30001, false, 14, "P13: 30001 out of range 0..30000"},
+      {14, 2000000, false, 15, "P14: 2000000 out of range 0..1999999"},
+  };
+  for (const Case& c : cases) {
+    // Through FUN141's validation of a stored table...
+    AxisParams p;
+    if (c.machine) {
+      p.p0_unit = 0;
+      p.p4_max = 100;  // 100 cm/min with A = B = 2000: 16667 Hz, in range
+      p.p5_start = 1;
+      p.p6_creep = 1;
+    }
+    ASSERT_EQ(p.validate(), 0);
+    p.set(c.n, c.v);
+    ParamError e;
+    EXPECT_EQ(p.validate(&e), c.code) << c.message;
+    EXPECT_EQ(e.message, c.message);
+    EXPECT_EQ(e.n, c.n);
+    EXPECT_EQ(e.value, c.v);
+    // ...and through the values as a service gives them.
+    int64_t v[kParamCount];
+    for (int k = 0; k < kParamCount; ++k) v[k] = p.get(k);
+    v[c.n] = c.v;
+    ParamError e2;
+    EXPECT_FALSE(AxisParams::check_values(v, &e2)) << c.message;
+    EXPECT_EQ(e2.message, c.message);
+    EXPECT_EQ(e2.code, c.code);
+  }
+}
+
+TEST(Params, P9BytesAreZeroOrOne) {
+  AxisParams p;
+  p.set(9, 0x0200);
+  ParamError e;
+  EXPECT_EQ(p.validate(&e), 10);
+  EXPECT_EQ(e.message, "P9: 512 out of range: low byte (P9-0) 0..1, high byte (P9-1) 0..1 (0000H, 0001H, 0100H, 0101H)");
+  for (int64_t ok : {0x000, 0x001, 0x100, 0x101}) {
+    p.set(9, ok);
+    EXPECT_EQ(p.validate(), 0) << ok;
+  }
+}
+
+// Values the table's fields could not hold as given are refused before they are
+// narrowed (a service argument); parameters without a manual code report code 0.
+TEST(Params, ServiceValuesAreCheckedBeforeNarrowing) {
+  const AxisParams d;
+  int64_t v[kParamCount];
+  for (int k = 0; k < kParamCount; ++k) v[k] = d.get(k);
+  ParamError e;
+  ASSERT_TRUE(AxisParams::check_values(v, &e)) << e.message;
+  struct Case {
+    int n;
+    int64_t v;
+    const char* message;
+  };
+  const Case cases[] = {
+      {1, 65536 + 2000, "P1: 67536 out of range 1..65535"},  // would store as 2000
+      {8, (int64_t(1) << 32) + 100, "P8: 4294967396 out of range 0..30000"},
+      {10, 40000, "P10: 40000 out of range -32768..32767"},
+      {11, -32769, "P11: -32769 out of range -32768..32767"},
+      {15, -1, "P15: -1 out of range 0..4294967295"},
+      {16, 1000000, "P16: 1000000 out of range -999999..999999"},
+      {17, 256, "P17: 256 out of range 0..255"},
+  };
+  for (const Case& c : cases) {
+    int64_t w[kParamCount];
+    std::copy(v, v + kParamCount, w);
+    w[c.n] = c.v;
+    ParamError e2;
+    EXPECT_FALSE(AxisParams::check_values(w, &e2)) << c.message;
+    EXPECT_EQ(e2.message, c.message);
+    EXPECT_EQ(e2.n, c.n);
+  }
+}
+
 }  // namespace
 }  // namespace motion
 }  // namespace plc_cell

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rostest: a motion table loaded by service, run with the action; JointState reaches
 the target; bad tables are refused with code and line; cancel decelerates."""
+import logging
 import threading
 import time
 import unittest
@@ -12,7 +13,7 @@ from sensor_msgs.msg import JointState
 
 from plc_cell.msg import (AxisStatus, RunMotionTableActionFeedback, RunMotionTableActionGoal,
                           RunMotionTableActionResult)
-from plc_cell.srv import LoadMotionTable, MotionCommand, SetMotionParams
+from plc_cell.srv import LoadMotionTable, MotionCommand, ReadMemory, SetMotionParams
 
 NS = "/plc_node/motion/slide/"
 TIMEOUT = 30.0
@@ -112,6 +113,11 @@ class MotionTest(unittest.TestCase):
         res = self.params([1, 2000, 2000, 2, 460000, 141, 1000, 0, 30001, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 1])
         self.assertFalse(res.success)
         self.assertEqual(res.error_code, 9)
+        self.assertEqual(res.message, "P8: 30001 out of range 0..30000")
+        # P17 has no code in the manual; the value is still refused, by name.
+        res = self.params([1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 256])
+        self.assertFalse(res.success)
+        self.assertEqual(res.message, "P17: 256 out of range 0..255")
 
     def test_2_loaded_table_runs_to_its_end_with_the_action(self):
         res = self.load("001 SPD 20000\n    DRV ADR,+,20000,Ut\n    GOTO NEXT\n002 SPD 10000\n"
@@ -154,6 +160,107 @@ class MotionTest(unittest.TestCase):
         self.assertTrue(between, "no intermediate speed seen after the cancel")
         # and the table is no longer running
         self.assertFalse(self.status.wait_for(lambda m: m.running, timeout=0.5))
+
+    def test_5_cancel_reports_after_the_stop_and_the_next_goal_runs(self):
+        """actionlib's client: cancel -> decelerated stop with feedback all along, the
+        PREEMPTED result carries the final position, the next goal is accepted at once,
+        and the client logs no warning or error."""
+        import actionlib
+        from plc_cell.msg import RunMotionTableAction, RunMotionTableGoal
+
+        sending = threading.Event()
+
+        class Capture(logging.Handler):
+            """Client warnings and errors. One is the client library's own: Python's
+            SimpleActionClient.send_goal assigns its goal handle only after the goal is
+            published, so a server that accepts at once can report ACTIVE before that
+            and the client logs "not tracking" (ros/actionlib#206, any server). Those
+            arrive while send_goal is still running and are kept apart; every other
+            record (a transition after the result, a late status) fails the test."""
+
+            def __init__(self):
+                logging.Handler.__init__(self, logging.WARNING)
+                self.records = []
+                self.during_send = []
+
+            def emit(self, record):
+                (self.during_send if sending.is_set() else self.records).append(record.getMessage())
+        cap = Capture()
+        logging.getLogger("rosout").addHandler(cap)
+        try:
+            self._cancel_sequence(actionlib, RunMotionTableAction, RunMotionTableGoal, sending)
+        finally:
+            logging.getLogger("rosout").removeHandler(cap)
+        self.assertEqual(cap.records, [])
+        for m in cap.during_send:
+            self.assertEqual(m, "Got a transition callback on a goal handle that we're not tracking")
+
+    def _cancel_sequence(self, actionlib, RunMotionTableAction, RunMotionTableGoal, sending):
+        read = rospy.ServiceProxy("/plc_node/read", ReadMemory)
+        # P12 = 2 s: 460 kHz / 2 s = 230 kHz/s, so 100 kHz -> 141 Hz takes 0.43 s of
+        # deceleration, about 20 feedback messages at 50 Hz.
+        slow = [1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 2000, 500, 0, 0xFFFFFFFF, 0, 1]
+        self.assertTrue(self.params(slow).success)
+        client = actionlib.SimpleActionClient(NS + "run", RunMotionTableAction)
+        self.assertTrue(client.wait_for_server(rospy.Duration(TIMEOUT)))
+
+        def send(goal, **kw):
+            sending.set()
+            try:
+                client.send_goal(goal, **kw)
+            finally:
+                sending.clear()
+        fb = []
+        cond = threading.Condition()
+
+        def on_feedback(f):
+            with cond:
+                fb.append(f)
+                cond.notify_all()
+
+        def wait_feedback(pred):
+            deadline = time.monotonic() + TIMEOUT
+            with cond:
+                while not any(pred(f) for f in fb):
+                    left = deadline - time.monotonic()
+                    if left <= 0:
+                        return False
+                    cond.wait(left)
+                return True
+
+        self.assertTrue(self.load("SPD 100000\nDRV ADR,+,10000000,Ps\nGOTO NEXT\nMEND\n").success)
+        send(RunMotionTableGoal(table=""), feedback_cb=on_feedback)
+        self.assertTrue(wait_feedback(lambda f: abs(f.velocity - 100.0) < 1e-9), "never cruised at 100 kHz")
+        with cond:
+            n = len(fb)
+        client.cancel_goal()
+        self.assertTrue(client.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertEqual(client.get_state(), GoalStatus.PREEMPTED)
+        result = client.get_result()
+        with cond:
+            after = [f.velocity for f in fb[n:]]
+        # Feedback went on during the deceleration, with speeds between cruise and standstill.
+        self.assertTrue([v for v in after if 0.0 < v < 100.0], "no feedback during the deceleration: %s" % after)
+        # The result came once the axis stood still: DR4088 read now, and the next
+        # status, show the same pulse count, and the axis is not moving.
+        dr = read("DR4088", 1)
+        self.assertTrue(dr.success, dr.message)
+        pos = dr.values[0] - (1 << 32) if dr.values[0] >= (1 << 31) else dr.values[0]
+        self.assertEqual(result.pulses, pos)
+        self.assertAlmostEqual(result.position, pos * 0.001, places=9)
+        k = len(self.status.all)
+        st = self.status.wait_for(lambda m: len(self.status.all) > k + 1)
+        self.assertIsNotNone(st)
+        self.assertEqual(st.pulses, result.pulses)
+        self.assertEqual(st.frequency, 0.0)
+        self.assertFalse(st.running)
+        # The next goal straight after the result: accepted and run to its end.
+        send(RunMotionTableGoal(table="SPD 10000\nDRV ADR,+,1000,Ps\nGOTO NEXT\nMEND\n"))
+        self.assertTrue(client.wait_for_result(rospy.Duration(TIMEOUT)))
+        self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED, client.get_goal_status_text())
+        self.assertEqual(client.get_result().pulses, result.pulses + 1000)
+        self.assertTrue(self.params([1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0,
+                                     0xFFFFFFFF, 0, 1]).success)
 
     def test_4_unknown_command(self):
         res = self.command("jump", 0, 0)

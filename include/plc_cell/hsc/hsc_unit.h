@@ -99,6 +99,10 @@ class HscUnit : public ScanHook {
   using IsrObserver = std::function<void(uint64_t t_ns, int source)>;
   void on_output(OutputObserver f) { output_obs_.push_back(std::move(f)); }
   void on_isr(IsrObserver f) { isr_obs_.push_back(std::move(f)); }
+  // Every CV=PV match of counter n (HSC0-7; timer: HST0-3) at its instant, whether
+  // or not an interrupt routine runs (`plc_cell sim --trace`).
+  using MatchObserver = std::function<void(uint64_t t_ns, int n, bool timer)>;
+  void on_match(MatchObserver f) { match_obs_.push_back(std::move(f)); }
 
  private:
   static constexpr uint64_t kNever = UINT64_MAX;
@@ -198,6 +202,7 @@ class HscUnit : public ScanHook {
   std::vector<EventSource*> ext_;
   std::vector<OutputObserver> output_obs_;
   std::vector<IsrObserver> isr_obs_;
+  std::vector<MatchObserver> match_obs_;
 };
 
 }  // namespace hsc

@@ -115,11 +115,15 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   // Every step completion, with its exact instant (tests, ROS feedback).
   using StepObserver = std::function<void(int ps, int step, uint64_t t_ns)>;
   void on_step_done(StepObserver f) { step_obs_.push_back(std::move(f)); }
+  // Every DRVZ phase change at its instant: seek, to_limit, escape, creep, md1_stop,
+  // md1_delay, md1_back, home (docs/motion.md "Homing"; `plc_cell sim --trace`).
+  using HomeObserver = std::function<void(int ps, const char* phase, uint64_t t_ns)>;
+  void on_home_phase(HomeObserver f) { home_obs_.push_back(std::move(f)); }
 
  private:
   enum class Phase { Idle, Moving, Waiting, SpeedWait, Paused, Stopping, Done, Homing };
   // DRVZ stages (docs/motion.md "Homing").
-  enum class Home { Seek, Escape, Creep, Md1Stop, Md1Delay, Md1Back, Clr };
+  enum class Home { Seek, ToLimit, Escape, Creep, Md1Stop, Md1Delay, Md1Back, Clr };
   struct Program {
     Fun140Call call;
     Table table;
@@ -178,6 +182,7 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   void home_check(Program& p, uint64_t t);
   uint64_t home_next_event(const Program& p) const;
   void home_found(Program& p, uint64_t t);
+  void set_home(Program& p, Home h, uint64_t t);  // and tells the observers
   void run_endless(Program& p, uint64_t t, int sign, double hz);
   bool input(int ps, int x, uint64_t t) const;  // positional switch level, else the X image
   void write_switches(uint64_t t);
@@ -190,6 +195,7 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   std::map<uint32_t, Program> programs_;  // by FUN140 instance
   uint64_t now_ns_ = 0;
   std::vector<StepObserver> step_obs_;
+  std::vector<HomeObserver> home_obs_;
   AxesConfig cfg_;
   bool preloaded_ = false;                // the YAML's tables written since RUN
   void attach_signals();                  // pulse_pins.cpp: pins, wiring and encoders

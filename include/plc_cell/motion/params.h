@@ -3,12 +3,38 @@
 // spec §3.8), its validation with the manual's error codes 1-15, and the unit
 // conversions (Ut -> pulses, machine speed -> Hz). docs/motion.md has the choices.
 #include <cstdint>
+#include <string>
 
 namespace plc_cell {
 namespace motion {
 
 constexpr int kParamWords = 24;
+constexpr int kParamCount = 18;  // P0..P17
 constexpr int64_t kMaxHz = 921600;
+
+// The allowed range of each FUN141 parameter (manual section 11.6, the parameter
+// list): the one table behind FUN141's validation, the cell YAML's params: and the ROS
+// set_params service. code: the manual's error code (0: the manual gives none, so
+// FUN141 accepts any register value there; a service or YAML value outside is still
+// refused, since it could not be stored as given).
+struct ParamRange {
+  int n;
+  int code;
+  int64_t lo, hi;                  // P0 = 1 or 2 (motor, compound)
+  int64_t machine_lo, machine_hi;  // P0 = 0 (machine units)
+};
+const ParamRange& param_range(int n);  // n in 0..17
+
+// The first bad parameter: its number, the manual's code, the value given and a message
+// such as "P9: 7 out of range 0..3".
+struct ParamError {
+  int n = -1;
+  int code = 0;
+  int64_t value = 0;
+  std::string message;
+};
+// Pn = v as given (machine: P0 = 0); false with *e filled when out of range.
+bool check_param(int n, int64_t v, bool machine, ParamError* e);
 
 struct AxisParams {
   int p0_unit = 1;            // 0 machine, 1 motor (pulses), 2 compound
@@ -38,8 +64,14 @@ struct AxisParams {
   // the ROS set_params service both write through it. Returns false for n outside 0..17.
   bool set(int n, int64_t v);
 
-  // 0 if valid, else the manual's code: 1 + parameter number (P0 -> 1 ... P14 -> 15).
-  int validate() const;
+  int64_t get(int n) const;  // Pn as set() takes it
+
+  // 0 if valid, else the manual's code: 1 + parameter number (P0 -> 1 ... P14 -> 15);
+  // *e (if given) names the parameter, its range and the value.
+  int validate(ParamError* e = nullptr) const;
+  // All 18 values as given (before set() narrows them): every parameter against its
+  // range, then validate(). False with *e for the first bad one.
+  static bool check_values(const int64_t* v, ParamError* e);
 
   uint32_t ppr() const { return p14_ppr != 0 ? static_cast<uint32_t>(p14_ppr) : p1_ppr; }
   // Stroke in Ut -> pulses. P0 = 1: Ut is one pulse (AMBIG-20). P0 = 0/2:
