@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Runs the plc_cell benchmarks (make bench) and prints a summary table.
 
   bench_scan      Google Benchmark: the 10,000-instruction ladder through the

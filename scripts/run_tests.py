@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Runs every test of the package (gtest and rostest, through catkin's run_tests
 target) and totals the test cases from the JUnit XML files.
 

@@ -194,6 +194,9 @@ def test_commands_work_when_pasted(path, workdir):
                     jobs.append((where, job))
                     if not first_line(job, 20.0):
                         failures.append("%s\n  printed nothing in 20 s (exit %s)" % (where, job.poll()))
+                    elif job.poll() is not None:
+                        failures.append("%s\n  stopped at once (exit %d):\n%s"
+                                        % (where, job.returncode, indent(job.stdout.read().decode(errors="replace"))))
                     continue
                 kill = re.match(r"^kill %(\d+)$", cmd)
                 if kill:

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest fixture: a socat pty pair and `plc_cell run --fatek-serial` on one end.
 The bridge opens the other end (it retries until the pty exists). Killed on shutdown."""
 import os

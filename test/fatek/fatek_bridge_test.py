@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: fatek_bridge publishes what the soft PLC holds, and its services change it."""
 import os
 import sys

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: plc_node's ~fatek_serial server, seen through fatek_bridge on the other pty end."""
 import time
 import unittest

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: modbus_bridge against plc_node's Modbus/TCP slave publishes what the
 PLC holds, and its write service changes the PLC's memory."""
 import os

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: kill -9 of plc_node loses no acknowledged write to a retentive range."""
 import os
 import signal

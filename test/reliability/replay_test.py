@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: replaying a bag's clock and input topics into plc_node in virtual time
 reproduces the recorded outputs bit for bit (values and stamps)."""
 import os

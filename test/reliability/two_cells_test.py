@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: two plc_nodes in namespaces do not see each other's memory, inputs or outputs."""
 import os
 import signal

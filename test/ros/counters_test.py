@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: the simulated conveyor encoder on the counters topics; preset and clear."""
 import os
 import sys

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: bag of plc_node's JointState while it runs the manual's example B (DRVC
 chain 10 kHz x 20000, 50 kHz x 60000, 3 kHz x 5000 pulses), then
 scripts/plot_motion.py on it: the PNG exists and the printed summary gives the final

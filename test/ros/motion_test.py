@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest: a motion table loaded by service, run with the action; JointState reaches
 the target; bad tables are refused with code and line; cancel decelerates."""
 import logging

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest for plc_node: topics in, program outputs observed on topics out, services."""
 import os
 import sys

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest for plc_node's temperature topics, module diagnostics and ~set_pid_loop."""
 import math
 import os
