@@ -58,6 +58,6 @@ endif()
 
 # make soak (not part of make test): see docs/reliability.md.
 add_executable(plc_cell_soak test/reliability/soak/soak_main.cpp)
-target_link_libraries(plc_cell_soak plc_cell_fatek plc_cell_modbus)
+target_link_libraries(plc_cell_soak plc_cell_fatek plc_cell_modbus plc_cell_persist)
 target_compile_definitions(plc_cell_soak PRIVATE PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
 add_dependencies(plc_cell_soak plc_cell_tool)

@@ -304,3 +304,13 @@ TEST_F(ChecksummedButDamaged, NarrowerConfigSaysWhichRangesCameBack) {
   EXPECT_NE(p.status().restored.find("restored 2 retentive elements (D1-D2) from"), std::string::npos)
       << p.status().restored;
 }
+
+TEST_F(Damaged, TruncationBehindAnIntactFirstSlotIsNamed) {
+  std::string d = read_file(s_.file);
+  write_file(s_.file, d.substr(0, d.size() / 2 + 7));  // slot 0 whole, slot 1 mostly gone
+  std::vector<std::string> pr;
+  read_slots(s_.file, &pr);
+  ASSERT_FALSE(pr.empty());
+  EXPECT_NE(pr[0].find("two slots of"), std::string::npos) << pr[0];
+  EXPECT_NE(pr[0].find("truncated"), std::string::npos) << pr[0];
+}
