@@ -70,6 +70,18 @@ class NodeRestartTest(unittest.TestCase):
             main, live = self.newest_slot(self.store), self.newest_slot(self.store + ".live")
             self.assertGreater(main[0], 0)
             self.assertEqual(main, live)
+        # Right after the spawn: a clean stop, or (before main ran) the default action; the
+        # store keeps what the last run flushed either way (test_cell.il recomputes R10 from
+        # R11 and R12, which nothing writes here, so a clean run changes no retentive value).
+        before = self.newest_slot(self.store)
+        proc = subprocess.Popen(
+            [self.node_binary(), "__name:=" + NODE, "_cell:=" + self.cell,
+             "_persist_file:=" + self.store, "_persist_interval:=60"],
+            stdin=subprocess.DEVNULL)
+        proc.send_signal(signal.SIGTERM)
+        self.assertIn(proc.wait(timeout=20), (0, -signal.SIGTERM))
+        after = self.newest_slot(self.store)
+        self.assertEqual(after[1], before[1])
 
     def kill(self, proc):
         os.kill(proc.pid, signal.SIGKILL)
