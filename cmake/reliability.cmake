@@ -8,10 +8,13 @@ find_package(ZLIB REQUIRED)
 target_link_libraries(plc_cell_persist PUBLIC plc_cell_core PRIVATE ZLIB::ZLIB)
 set_target_properties(plc_cell_persist PROPERTIES POSITION_INDEPENDENT_CODE ON)
 list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_persist)
+# SIGINT/SIGTERM as a signalfd event: the clean stop of plc_cell run and plc_node.
+list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/io/stop_signal.cpp)
+list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/io/stop_signal.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB RELIABILITY_TESTS ${PROJECT_SOURCE_DIR}/test/reliability/*_test.cpp)
-  catkin_add_gtest(reliability_tests test/core/test_main.cpp ${RELIABILITY_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  catkin_add_gtest(reliability_tests test/core/test_main.cpp ${RELIABILITY_TESTS} src/io/stop_signal.cpp WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(reliability_tests plc_cell_persist plc_cell_fatek plc_cell_modbus)
   target_compile_definitions(reliability_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
@@ -55,6 +58,6 @@ endif()
 
 # make soak (not part of make test): see docs/reliability.md.
 add_executable(plc_cell_soak test/reliability/soak/soak_main.cpp)
-target_link_libraries(plc_cell_soak plc_cell_fatek plc_cell_modbus)
+target_link_libraries(plc_cell_soak plc_cell_fatek plc_cell_modbus plc_cell_persist)
 target_compile_definitions(plc_cell_soak PRIVATE PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
 add_dependencies(plc_cell_soak plc_cell_tool)

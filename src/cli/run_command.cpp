@@ -1,5 +1,6 @@
 // plc_cell run: the soft PLC headless in real time until SIGINT/SIGTERM.
-#include <csignal>
+#include <algorithm>
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -11,16 +12,17 @@
 #include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/config/server_settings.h"
 #include "plc_cell/io/server.h"
+#include "plc_cell/io/stop_signal.h"
 #include "plc_cell/persist/persister.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 namespace cli {
 
-static volatile std::sig_atomic_t g_stop = 0;
-static void on_signal(int) { g_stop = 1; }
-
 int cmd_run(const std::vector<std::string>& argv) {
+  // Before the store, the servers and every thread: a SIGTERM at any moment from here on
+  // waits until start-up is done and then stops cleanly, with the store flushed.
+  StopSignal stop;
   std::vector<std::string> options = {"program", "config", "scan", "duration", "rt-priority"};
   // @run-options: subsystems append their option names (e.g. "fatek-tcp") here
   options.insert(options.end(), {"fatek-tcp", "fatek-serial", "station"});
@@ -53,17 +55,23 @@ int cmd_run(const std::vector<std::string>& argv) {
     std::cerr << "plc_cell run: serving " << s->describe() << "\n";
   }
 
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   RealTimeLoop loop(cell.plc(), std::chrono::microseconds(scan));
   loop.set_priority(static_cast<int>(args.get_int("rt-priority", 0, 0, 99)));
   loop.start();
   std::cerr << "plc_cell run: " << cell.program_path() << " scanning every " << scan
             << " us; Ctrl-C to stop\n";
   const auto t0 = std::chrono::steady_clock::now();
-  while (!g_stop) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    if (duration && std::chrono::steady_clock::now() - t0 >= std::chrono::microseconds(duration)) break;
+  for (;;) {
+    std::chrono::milliseconds wait(1000);
+    if (duration) {
+      const auto left = std::chrono::microseconds(duration) - (std::chrono::steady_clock::now() - t0);
+      if (left <= left.zero()) break;
+      wait = std::min(wait, std::chrono::duration_cast<std::chrono::milliseconds>(left) + std::chrono::milliseconds(1));
+    }
+    if (stop.wait_for(wait)) {
+      std::cerr << "plc_cell run: " << stop.signal_name() << ": stopping\n";
+      break;
+    }
   }
   loop.stop();
   if (!loop.priority_error().empty()) std::cerr << "plc_cell run: " << loop.priority_error() << "\n";

@@ -16,23 +16,38 @@ Persister::Persister(Plc& plc, const PersistSettings& settings, std::function<vo
   const std::string live_path = settings_.file + ".live";
   std::vector<Slot> slots = read_slots(settings_.file, &problems_);
   for (auto& s : read_slots(live_path, &problems_)) slots.push_back(std::move(s));
-  for (const auto& p : problems_) log_("persist: " + p);
   std::sort(slots.begin(), slots.end(), [](const Slot& a, const Slot& b) { return a.seq > b.seq; });
+  // Every slot is checked whole before any byte of it reaches memory: the newest slot that
+  // passes wins, and a damaged one (even with a valid CRC) contributes nothing.
+  const Slot* chosen = nullptr;
+  std::vector<StoredRange> stored;
+  for (const auto& s : slots) {
+    try {
+      stored = parse_retentive(s.payload);
+      chosen = &s;
+      break;
+    } catch (const Error& err) {
+      problems_.push_back(s.where + ": " + err.what() + " (valid CRC, unusable layout)");
+    }
+  }
+  for (const auto& p : problems_) log_("persist: " + p);
 
   plc_.locked([&](ScanEngine& e, Memory& m) {
-    restored_ = "no stored image in " + settings_.file + ": retentive ranges start cleared";
-    for (const auto& s : slots) {
-      try {
-        const size_t n = decode_retentive(s.payload, e.retentive(), &m);
-        restored_ = "restored " + std::to_string(n) + " retentive elements from " + s.where + " (sequence " +
-                    std::to_string(s.seq) + ")";
-        seq_ = s.seq;
-        break;
-      } catch (const Error& err) {
-        problems_.push_back(s.where + ": " + err.what());  // valid CRC, wrong layout: try the next
-      }
+    if (chosen) {
+      std::vector<AreaRange> what;
+      const size_t n = apply_retentive(chosen->payload, stored, e.retentive(), &m, &what);
+      restored_ = "restored " + std::to_string(n) + " retentive elements (" +
+                  (what.empty() ? std::string("none of the stored ranges is retentive now") : describe_ranges(what)) +
+                  ") from " + chosen->where + " (sequence " + std::to_string(chosen->seq) + ")";
+      if (!problems_.empty()) restored_ += "; fell back past " + std::to_string(problems_.size()) + " damaged slot(s)";
+      seq_ = chosen->seq;
+    } else if (problems_.empty()) {
+      restored_ = "nothing restored: no stored image in " + settings_.file + " or " + live_path +
+                  ": retentive ranges start cleared";
+    } else {
+      restored_ = "nothing restored: no stored image in " + settings_.file + " or " + live_path + " passed its checks (" +
+                  std::to_string(problems_.size()) + " damaged slot(s)): retentive ranges start cleared";
     }
-    if (!problems_.empty() && !slots.empty()) restored_ += "; fell back past " + std::to_string(problems_.size()) + " bad slot(s)";
     encode_retentive(e.retentive(), m, &latest_);
     scratch_ = latest_;
     ++seq_;

@@ -1,6 +1,7 @@
 #include "plc_cell/persist/retentive_image.h"
 
 #include <cstring>
+#include <string>
 
 #include "plc_cell/core/area.h"
 #include "plc_cell/core/error.h"
@@ -53,38 +54,71 @@ void encode_retentive(const std::vector<AreaRange>& ranges, const Memory& m, std
   }
 }
 
-size_t decode_retentive(const std::vector<uint8_t>& image, const std::vector<AreaRange>& ranges, Memory* m) {
-  size_t pos = 0, restored = 0;
+std::vector<StoredRange> parse_retentive(const std::vector<uint8_t>& image) {
+  std::vector<StoredRange> out;
+  size_t pos = 0;
   while (pos < image.size()) {
-    if (image.size() - pos < 9) throw Error("retentive image: truncated range header");
+    const std::string at = "range " + std::to_string(out.size() + 1) + " at byte " + std::to_string(pos);
+    if (image.size() - pos < 9) throw Error("retentive image: " + at + ": truncated range header");
     const uint8_t a8 = image[pos];
     const uint32_t first = get32(&image[pos + 1]), last = get32(&image[pos + 5]);
     pos += 9;
-    if (a8 >= kAreaCount) throw Error("retentive image: bad area code");
+    if (a8 >= kAreaCount) throw Error("retentive image: " + at + ": bad area code " + std::to_string(a8));
     const Area a = Area(a8);
-    if (first > last || last >= area_size(a)) throw Error("retentive image: bad range");
-    if (is_discrete(a)) {
-      const size_t n = last - first + 1;
-      if (image.size() - pos < n) throw Error("retentive image: truncated discretes");
-      for (uint32_t i = first; i <= last; ++i, ++pos)
-        if (inside(ranges, a, i)) {
-          m->force_bit(a, i, image[pos] & kBitState);  // keeps a point's force flag as it is
-          ++restored;
-        }
-    } else {
-      const size_t n = 2 * size_t(end_word(a, last) - first_word(a, first));
-      if (image.size() - pos < n) throw Error("retentive image: truncated registers");
-      uint16_t* w = m->words(a);
-      for (uint32_t i = first; i <= last; ++i) {
-        const uint32_t k0 = first_word(a, i), k1 = end_word(a, i);
-        const bool keep = inside(ranges, a, i);
-        for (uint32_t k = k0; k < k1; ++k, pos += 2)
-          if (keep) w[k] = uint16_t(image[pos] | image[pos + 1] << 8);
-        restored += keep;
+    if (first > last || last >= area_size(a))
+      throw Error("retentive image: " + at + ": bad range " + area_name(a) + std::to_string(first) + "-" +
+                  area_name(a) + std::to_string(last));
+    const size_t n = is_discrete(a) ? size_t(last - first + 1) : 2 * size_t(end_word(a, last) - first_word(a, first));
+    if (image.size() - pos < n)
+      throw Error("retentive image: " + at + ": " + std::to_string(n) + " bytes of values announced, " +
+                  std::to_string(image.size() - pos) + " present");
+    out.push_back({{a, first, last}, pos});
+    pos += n;
+  }
+  return out;
+}
+
+size_t apply_retentive(const std::vector<uint8_t>& image, const std::vector<StoredRange>& stored,
+                       const std::vector<AreaRange>& ranges, Memory* m, std::vector<AreaRange>* restored_ranges) {
+  size_t restored = 0;
+  for (const auto& s : stored) {
+    const Area a = s.range.area;
+    size_t pos = s.offset;
+    for (uint32_t i = s.range.first; i <= s.range.last; ++i) {
+      const bool keep = inside(ranges, a, i);
+      if (keep && restored_ranges) {
+        // Consecutive restored elements of one area extend the last range.
+        auto& rr = *restored_ranges;
+        if (!rr.empty() && rr.back().area == a && rr.back().last + 1 == i) rr.back().last = i;
+        else rr.push_back({a, i, i});
       }
+      if (is_discrete(a)) {
+        if (keep) m->force_bit(a, i, image[pos] & kBitState);  // keeps a point's force flag as it is
+        ++pos;
+      } else {
+        uint16_t* w = m->words(a);
+        for (uint32_t k = first_word(a, i); k < end_word(a, i); ++k, pos += 2)
+          if (keep) w[k] = uint16_t(image[pos] | image[pos + 1] << 8);
+      }
+      restored += keep;
     }
   }
   return restored;
+}
+
+size_t decode_retentive(const std::vector<uint8_t>& image, const std::vector<AreaRange>& ranges, Memory* m) {
+  const std::vector<StoredRange> stored = parse_retentive(image);  // throws before any write
+  return apply_retentive(image, stored, ranges, m);
+}
+
+std::string describe_ranges(const std::vector<AreaRange>& ranges) {
+  std::string out;
+  for (const auto& r : ranges) {
+    if (!out.empty()) out += ",";
+    out += area_name(r.area) + std::to_string(r.first);
+    if (r.last != r.first) out += "-" + std::string(area_name(r.area)) + std::to_string(r.last);
+  }
+  return out;
 }
 
 }  // namespace persist

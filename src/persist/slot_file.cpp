@@ -77,12 +77,23 @@ std::vector<Slot> read_slots(const std::string& path, std::vector<std::string>* 
     data.insert(data.end(), chunk, chunk + n);
   }
   ::close(fd);
-  // Slot 1 starts half-way: the file is always written whole, two equal slots.
-  const size_t offsets[2] = {0, data.size() / 2};
+  // The file is always written whole: two equal slots. Slot 0's length says where slot 1
+  // starts, so a truncated or extended file is named as such even when slot 0 is intact.
+  size_t half = data.size() / 2;
+  bool sized = false;
+  if (data.size() >= kHeader && get(data.data(), 4) == kMagic) {
+    const size_t slot = kHeader + size_t(get(data.data() + 12, 4));
+    if (data.size() != 2 * slot)
+      problems->push_back(path + ": file size " + std::to_string(data.size()) + ", two slots of " + std::to_string(slot) +
+                          " bytes expected (truncated?)");
+    half = slot;
+    sized = true;
+  }
+  const size_t offsets[2] = {0, half};
   for (int s = 0; s < 2; ++s) {
     const std::string where = path + " slot " + std::to_string(s);
     const size_t off = offsets[s];
-    if (s == 1 && (data.size() % 2 || off < kHeader)) {
+    if (s == 1 && !sized && (data.size() % 2 || off < kHeader)) {
       problems->push_back(where + ": file size " + std::to_string(data.size()) + " is not two whole slots (truncated?)");
       continue;
     }

@@ -16,6 +16,8 @@ from plc_cell.srv import WriteMemory
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from latest_message import Latest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reliability"))
+from bridge_faults import misbehaving_device_keeps_reporting  # noqa: E402
 
 NS = "/fatek_bridge/"
 TIMEOUT = 20.0
@@ -94,6 +96,11 @@ class FatekBridgeTest(unittest.TestCase):
         stamp = rospy.Time.now()
         m = self.regs.wait_for(lambda m: m.header.stamp > stamp)
         self.assertGreater(m.header.stamp, stamp)
+
+    def test_6_misbehaving_device_keeps_diagnostics_and_recovers(self):
+        # fatek_bridge_flaky polls a second soft PLC over TCP through flaky_device.py.
+        io = Latest("/fatek_bridge_flaky/io", IoState, timeout=TIMEOUT)
+        misbehaving_device_keeps_reporting(self, self.diag, "fatek_bridge_flaky", "/flaky_fatek/", io)
 
 
 if __name__ == "__main__":

@@ -16,6 +16,8 @@ from plc_cell.srv import ReadMemory, WriteMemory, WritePoint
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from latest_message import Latest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reliability"))
+from bridge_faults import misbehaving_device_keeps_reporting  # noqa: E402
 
 TIMEOUT = 20.0
 
@@ -86,6 +88,12 @@ class ModbusBridgeTest(unittest.TestCase):
             return any(s.name.endswith("plc") and s.level == 0 for s in msg.status)
         m = diags.wait_for(plc_ok)
         self.assertTrue(m is not None and plc_ok(m))
+
+    def test_misbehaving_device_keeps_diagnostics_and_recovers(self):
+        # modbus_bridge_flaky polls plc_node through flaky_device.py.
+        diags = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
+        blocks = Latest("/modbus_bridge_flaky/flaky/blocks", RegisterBlock, timeout=TIMEOUT)
+        misbehaving_device_keeps_reporting(self, diags, "modbus_bridge_flaky", "/flaky_modbus/", blocks)
 
 
 if __name__ == "__main__":

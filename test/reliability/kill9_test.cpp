@@ -4,6 +4,7 @@
 #include <modbus/modbus.h>
 
 #include <atomic>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -11,6 +12,7 @@
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/fatek/client.h"
+#include "kill9_loop.h"
 #include "run_child.h"
 #include "temp_dir.h"
 
@@ -159,3 +161,29 @@ INSTANTIATE_TEST_SUITE_P(Protocols, Kill9, ::testing::Values(false, true),
                          [](const ::testing::TestParamInfo<bool>& i) { return i.param ? "Modbus" : "Fatek"; });
 
 }  // namespace
+
+// 60 kills while FATEK, libmodbus and mbpoll write at once (test/reliability/kill9_loop.h);
+// every tenth start also finds its main file truncated or its live file's newest slot corrupt.
+TEST(Kill9Mixed, SixtyKillsLoseNoAcknowledgedWrite) {
+  TempDir dir;
+  kill9::Loop loop(dir.path(), 0x6b696c6c);
+  for (int i = 0; i < 60; ++i) loop.round();
+  const std::string log = loop.finish();
+  const kill9::Stats& s = loop.stats;
+  for (const auto& e : s.errors) ADD_FAILURE() << e;
+  EXPECT_EQ(s.kills, 60);
+  EXPECT_EQ(s.lost, 0);
+  EXPECT_GT(s.acked[0], 0);  // FATEK
+  EXPECT_GT(s.acked[1], 0);  // libmodbus
+  EXPECT_GT(s.acked[2], 0);  // mbpoll
+  EXPECT_EQ(s.truncated_main, 12);
+  EXPECT_GT(s.corrupt_live, 0);
+  EXPECT_EQ(s.fallbacks_logged, s.truncated_main + s.corrupt_live);
+  EXPECT_NE(log.find("persist: restored"), std::string::npos) << log;
+  RecordProperty("kills", s.kills);
+  RecordProperty("acknowledged_writes", int(s.total_acked()));
+  RecordProperty("lost", int(s.lost));
+  std::printf("kill -9: %d kills, %ld acknowledged writes (FATEK %ld, libmodbus %ld, mbpoll %ld), %ld lost; "
+              "%d truncated main files, %d corrupt live slots\n",
+              s.kills, s.total_acked(), s.acked[0], s.acked[1], s.acked[2], s.lost, s.truncated_main, s.corrupt_live);
+}

@@ -206,3 +206,111 @@ TEST_F(Damaged, NothingValidStartsClearedAndSaysSo) {
   EXPECT_EQ(restart_d1(&st), 0u);
   EXPECT_NE(st.restored.find("no stored image"), std::string::npos) << st.restored;
 }
+
+// A slot whose CRC is valid but whose content is not a whole image (a writer bug, a store
+// from a broken build): it is checked whole first, so none of it reaches memory, and the
+// log says what was restored and from where, or "nothing restored" and why.
+class ChecksummedButDamaged : public ::testing::Test {
+ protected:
+  const std::vector<AreaRange> ranges_{{Area::D, 0, 9}, {Area::M, 800, 809}, {Area::RC, 199, 201}};
+  std::vector<uint8_t> image_with_d1(uint16_t v) {
+    Memory m;
+    m.write(at("D1"), v);
+    m.write(at("M803"), 1);
+    std::vector<uint8_t> img;
+    encode_retentive(ranges_, m, &img);
+    return img;
+  }
+  // Restarts on the store as it is; returns D1 and M803 and the log lines.
+  std::pair<uint32_t, uint32_t> restart(std::vector<std::string>* log, PersistStatus* st) {
+    auto plc = make_plc();
+    Persister p(*plc, s_, [log](const std::string& l) { log->push_back(l); });
+    *st = p.status();
+    return {plc->read(at("D1"), 1)[0], plc->read(at("M803"), 1)[0]};
+  }
+  TempDir dir_;
+  PersistSettings s_{dir_.path() + "/store", 60000000, true};
+};
+
+TEST_F(ChecksummedButDamaged, ImageIsCheckedWholeBeforeAnyWrite) {
+  std::vector<uint8_t> img = image_with_d1(99);
+  // A fourth range whose bounds do not fit: D5-D3.
+  const uint8_t bad[9] = {uint8_t(Area::D), 5, 0, 0, 0, 3, 0, 0, 0};
+  img.insert(img.end(), bad, bad + 9);
+  Memory m;
+  EXPECT_THROW(decode_retentive(img, ranges_, &m), Error);
+  EXPECT_EQ(m.read(at("D1")), 0u);  // the good ranges before the bad one were not written
+  EXPECT_EQ(m.read(at("M803")), 0u);
+  EXPECT_THROW(parse_retentive(img), Error);
+}
+
+TEST_F(ChecksummedButDamaged, BadRangeHeaderRestoresNothingAndSaysSo) {
+  std::vector<uint8_t> img = image_with_d1(99);
+  const uint8_t bad[9] = {uint8_t(Area::D), 5, 0, 0, 0, 3, 0, 0, 0};
+  img.insert(img.end(), bad, bad + 9);
+  { SlotFile f(s_.file, 100, img); }  // the only store, CRC valid
+  std::vector<std::string> log;
+  PersistStatus st;
+  const auto v = restart(&log, &st);
+  EXPECT_EQ(v.first, 0u);
+  EXPECT_EQ(v.second, 0u);
+  ASSERT_EQ(st.problems.size(), 1u);
+  EXPECT_NE(st.problems[0].find("slot 0"), std::string::npos) << st.problems[0];
+  EXPECT_NE(st.problems[0].find("bad range D5-D3"), std::string::npos) << st.problems[0];
+  EXPECT_EQ(st.restored.rfind("nothing restored: ", 0), 0u) << st.restored;
+  // The problem first, then the one line that says what memory holds.
+  ASSERT_EQ(log.size(), 2u);
+  EXPECT_EQ(log[0], "persist: " + st.problems[0]);
+  EXPECT_EQ(log[1], "persist: " + st.restored);
+}
+
+TEST_F(ChecksummedButDamaged, ElementCountDisagreeingFallsBackToOlderSlotOnly) {
+  const std::vector<uint8_t> good = image_with_d1(11);
+  std::vector<uint8_t> shorter = image_with_d1(77);
+  // The last range (RC199-RC201, 10 bytes of values) now announces RC199-RC205: more values
+  // than the slot holds. Same size, so the slot is a valid one of this file.
+  shorter[shorter.size() - 10 - 4] = 205;
+  {
+    SlotFile f(s_.file, 5, good);
+    f.write(6, shorter, true);  // newer slot (slot 1), valid CRC over the short image
+  }
+  std::vector<std::string> log;
+  PersistStatus st;
+  const auto v = restart(&log, &st);
+  EXPECT_EQ(v.first, 11u);  // from the older slot, nothing of the newer one
+  EXPECT_EQ(v.second, 1u);
+  ASSERT_EQ(st.problems.size(), 1u);
+  EXPECT_NE(st.problems[0].find("slot 1"), std::string::npos) << st.problems[0];
+  EXPECT_NE(st.problems[0].find("present"), std::string::npos) << st.problems[0];
+  EXPECT_NE(st.restored.find("restored 23 retentive elements (D0-D9,M800-M809,RC199-RC201) from " + s_.file +
+                             " slot 0 (sequence 5)"),
+            std::string::npos)
+      << st.restored;
+  EXPECT_NE(st.restored.find("fell back past 1 damaged slot(s)"), std::string::npos) << st.restored;
+  ASSERT_EQ(log.size(), 2u);
+  EXPECT_EQ(log[1], "persist: " + st.restored);
+}
+
+TEST_F(ChecksummedButDamaged, NarrowerConfigSaysWhichRangesCameBack) {
+  { SlotFile f(s_.file, 3, image_with_d1(42)); }
+  auto plc = std::make_unique<Plc>();
+  plc->locked([](ScanEngine& e, Memory&) {
+    e.set_retentive({{Area::D, 1, 2}, {Area::R, 0, 9}});  // R was never stored
+    return 0;
+  });
+  plc->load_program_text("ORG M1925\nOUT Y0\nEND\n", "t.il");
+  Persister p(*plc, s_);
+  EXPECT_EQ(plc->read(at("D1"), 1)[0], 42u);
+  EXPECT_NE(p.status().restored.find("restored 2 retentive elements (D1-D2) from"), std::string::npos)
+      << p.status().restored;
+}
+
+TEST_F(Damaged, TruncationBehindAnIntactFirstSlotIsNamed) {
+  std::string d = read_file(s_.file);
+  write_file(s_.file, d.substr(0, d.size() / 2 + 7));  // slot 0 whole, slot 1 mostly gone
+  std::vector<std::string> pr;
+  read_slots(s_.file, &pr);
+  ASSERT_FALSE(pr.empty());
+  EXPECT_NE(pr[0].find("two slots of"), std::string::npos) << pr[0];
+  EXPECT_NE(pr[0].find("truncated"), std::string::npos) << pr[0];
+}

@@ -13,7 +13,8 @@
 
 class RunChild {
  public:
-  // Waits (up to timeout_ms) until every one of `servers` log lines appeared.
+  // Waits (up to timeout_ms) until every one of `servers` log lines appeared; servers = 0
+  // returns as soon as the child is forked (read its log with next_line()).
   explicit RunChild(const std::vector<std::string>& args, int servers = 1, int timeout_ms = 20000) {
     int p[2];
     if (::pipe2(p, O_CLOEXEC) != 0) throw std::runtime_error("pipe");
@@ -67,6 +68,35 @@ class RunChild {
     return log;
   }
 
+  // The next whole line of the log (without '\n'); false on EOF or after timeout_ms.
+  bool next_line(std::string* line, int timeout_ms = 20000) {
+    for (;;) {
+      const auto eol = log.find('\n', cursor_);
+      if (eol != std::string::npos) {
+        *line = log.substr(cursor_, eol - cursor_);
+        cursor_ = eol + 1;
+        return true;
+      }
+      pollfd pf{fd_, POLLIN, 0};
+      if (::poll(&pf, 1, timeout_ms) <= 0) return false;
+      char buf[512];
+      const ssize_t n = ::read(fd_, buf, sizeof buf);
+      if (n <= 0) return false;
+      log.append(buf, size_t(n));
+    }
+  }
+  // Sends sig, reads the log to its end, reaps the child; returns its wait status.
+  int stop(int sig) {
+    ::kill(pid_, sig);
+    char buf[512];
+    ssize_t n;
+    while ((n = ::read(fd_, buf, sizeof buf)) > 0) log.append(buf, size_t(n));
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return status;
+  }
+
   pid_t pid() const { return pid_; }
   std::vector<int> ports;
   std::string log;
@@ -74,4 +104,5 @@ class RunChild {
  private:
   pid_t pid_ = -1;
   int fd_ = -1;
+  size_t cursor_ = 0;  // next_line() reads from here
 };

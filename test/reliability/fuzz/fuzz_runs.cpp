@@ -49,3 +49,11 @@ TEST(Fuzz, IlParser) { expect_clean("il_parser", "il", 5000); }
 TEST(Fuzz, AddressParser) { expect_clean("address", "address", 50000); }
 TEST(Fuzz, CellConfigLoader) { expect_clean("config", "config", 3000); }
 TEST(Fuzz, MotionTableParserAndDecoder) { expect_clean("motion_table", "motion", 20000); }
+
+// The servers' request handlers on a live Plc whose real-time loop scans (test/fuzz/live_plc.h):
+// besides crashes and sanitizer reports, a scan longer than 50 ms or any fault is a finding.
+// The _tsan builds run the same targets under ThreadSanitizer (handler thread vs scan thread).
+TEST(Fuzz, ModbusHandlerOnLivePlc) { expect_clean("modbus_handler", "modbus", 3000); }
+TEST(Fuzz, FatekSlaveOnLivePlc) { expect_clean("fatek_slave_live", "fatek", 50000); }
+TEST(Fuzz, ModbusHandlerOnLivePlcThreadSanitizer) { expect_clean("modbus_handler_tsan", "modbus", 1000); }
+TEST(Fuzz, FatekSlaveOnLivePlcThreadSanitizer) { expect_clean("fatek_slave_live_tsan", "fatek", 10000); }

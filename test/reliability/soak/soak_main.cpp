@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "../kill9_loop.h"
 #include "../run_child.h"
 #include "../temp_dir.h"
 #include "plc_cell/core/address.h"
@@ -192,7 +193,21 @@ int main(int argc, char** argv) {
               (unsigned long long)mismatches);
   std::printf("soak: server RSS %ld kB after warm-up, %ld kB at the end (growth %ld kB)\n", rss0, rss1, rss1 - rss0);
   std::printf("soak: %s\n", summary.empty() ? "(no summary from plc_cell run)" : summary.c_str());
-  const bool ok = mismatches == 0 && !summary.empty() && fatek_ok > 0 && modbus_ok > 0;
+  // Second phase: kill -9 at random moments under three writers (kill9_loop.h), as many
+  // rounds as fit in the same time again, at least 100.
+  TempDir kdir;
+  kill9::Loop k9(kdir.path(), 0x736f616b);
+  const auto k0 = Clock::now();
+  while (k9.stats.kills < 100 || Clock::now() - k0 < std::chrono::seconds(seconds)) k9.round();
+  k9.finish();
+  const kill9::Stats& ks = k9.stats;
+  std::printf("soak: kill -9: %d kills, %ld acknowledged writes (FATEK %ld, libmodbus %ld, mbpoll %ld), %ld lost; "
+              "%d truncated main files, %d corrupt live slots, %d fallbacks reported\n",
+              ks.kills, ks.total_acked(), ks.acked[0], ks.acked[1], ks.acked[2], ks.lost, ks.truncated_main,
+              ks.corrupt_live, ks.fallbacks_logged);
+  for (const auto& e : ks.errors) std::printf("soak: kill -9: %s\n", e.c_str());
+  const bool ok = mismatches == 0 && !summary.empty() && fatek_ok > 0 && modbus_ok > 0 && ks.lost == 0 &&
+                  ks.errors.empty() && ks.fallbacks_logged == ks.truncated_main + ks.corrupt_live;
   std::printf("soak: %s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }
