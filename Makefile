@@ -37,7 +37,7 @@ all: build
 
 # One dpkg-query for the whole list: on a built machine this check takes well under a second.
 deps:
-	@missing=$$(dpkg-query -W -f='$${Package} $${Status}\n' $(DEB_PACKAGES) 2>/dev/null \
+	@missing=$$( { dpkg-query -W -f='$${Package} $${Status}\n' $(DEB_PACKAGES) 2>/dev/null || true; } \
 	  | awk '$$NF == "installed" {ok[$$1] = 1} END {n = split("$(DEB_PACKAGES)", p, " "); \
 	         for (i = 1; i <= n; i++) if (!(p[i] in ok)) printf " %s", p[i]}'); \
 	if [ -n "$$missing" ]; then \
