@@ -86,7 +86,9 @@ class HostileClients : public ::testing::Test {
     EXPECT_EQ(log.find("fault:"), std::string::npos) << log;
     EXPECT_NE(log.find(" scans, cycle avg"), std::string::npos) << log;
     const auto k = log.find(" max ", log.find("cycle avg"));
-    if (k != std::string::npos) EXPECT_LT(std::stod(log.substr(k + 5)), 20000.0) << "max scan cycle, us: " << log;
+    if (k != std::string::npos) {
+      EXPECT_LT(std::stod(log.substr(k + 5)), 20000.0) << "max scan cycle, us: " << log;
+    }
   }
   pid_t pid() const { return child_->pid(); }
 
@@ -134,10 +136,11 @@ class HostileClients : public ::testing::Test {
   void expect_flat(const std::string& name, int deadline_ms = 5000) {
     EXPECT_TRUE(eventually([&] { return abuse::fd_count(pid()) <= fds0_; }, deadline_ms))
         << name << ": fds " << abuse::fd_count(pid()) << " vs " << fds0_;
+    const int fds = abuse::fd_count(pid());
     const long rss = abuse::rss_kb(pid());
     EXPECT_LT(rss, rss0_ + 4096) << name << ": RSS " << rss << " kB vs " << rss0_ << " kB";
     EXPECT_EQ(holding(0, 100), mem0_) << name << ": memory changed";
-    report(name + ".fds_rss", "fds " + std::to_string(fds0_) + " -> " + std::to_string(abuse::fd_count(pid())) +
+    report(name + ".fds_rss", "fds " + std::to_string(fds0_) + " -> " + std::to_string(fds) +
                                   ", RSS " + std::to_string(rss0_) + " -> " + std::to_string(rss) + " kB");
   }
   void expect_served(const std::string& name, double bound_ms = 100) {
