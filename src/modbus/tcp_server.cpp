@@ -129,9 +129,56 @@ void TcpServer::run() {
   const auto send_all = [](int fd, const uint8_t* p, size_t n) {
     return ::send(fd, p, n, MSG_NOSIGNAL | MSG_DONTWAIT) == ssize_t(n);
   };
+  uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
+  // Answers every whole frame in the connection's buffer (a client may pipeline);
+  // true when the connection must be closed.
+  const auto serve = [&](Connections<Rx>::Conn& c, Clock::time_point now) {
+    Rx& rx = c.x;
+    bool closing = false;
+    for (;;) {
+      const int flen = frame_length(rx.buf, rx.have);
+      if (flen < 0) {
+        count(false, "malformed MBAP header");
+        closing = true;
+        break;
+      }
+      if (flen == 0) break;
+      Connections<Rx>::complete(c, now);
+      const uint8_t* f = rx.buf;
+      if (!own(f[6])) {  // gateway: the RTU side answers, in its own time
+        std::vector<uint8_t> frame(f, f + flen);
+        const uint64_t id = c.id;
+        c.waiting = true;
+        if (!opt_.forwarder->submit(id, frame, [this](uint64_t conn, std::vector<uint8_t> r) { complete(conn, std::move(r)); })) {
+          c.waiting = false;
+          const auto busy = tcp_exception(frame, MODBUS_EXCEPTION_SLAVE_OR_SERVER_BUSY);
+          closing = !send_all(c.fd, busy.data(), busy.size());
+          count(false, "gateway busy");
+        } else {
+          count(true);
+        }
+      } else {
+        // MBAP delimits the frame, so a bad PDU is consumed whole and answered
+        // with an exception; the connection stays in step.
+        const PduAnswer a = answer_pdu(plc_, f + 7, flen - 7, rsp + 7, &opt_.writable);
+        std::memcpy(rsp, f, 7);
+        rsp[2] = rsp[3] = 0;
+        rsp[4] = uint8_t((a.length + 1) >> 8);
+        rsp[5] = uint8_t(a.length + 1);
+        closing = !send_all(c.fd, rsp, size_t(7 + a.length));
+        if (a.accepted) count(true);
+        else if (a.exception == MODBUS_EXCEPTION_ILLEGAL_FUNCTION) count(false, "illegal function " + std::to_string(f[7]));
+        else count(false, "exception " + std::to_string(a.exception) + " to function " + std::to_string(f[7]));
+        if (closing) count(false, std::string("reply: ") + strerror(errno));
+      }
+      rx.have -= flen;
+      if (rx.have) std::memmove(rx.buf, rx.buf + flen, size_t(rx.have));
+      if (closing || c.waiting) break;  // a forwarded request keeps the order: read on after its reply
+    }
+    return closing;
+  };
   std::vector<pollfd> pfds;  // reused: no allocation per request
   std::vector<int> to_close;
-  uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
   size_t reported = 0;
   while (!stop_) {
     pfds.clear();
@@ -153,7 +200,11 @@ void TcpServer::run() {
         for (auto& c : conns.all())
           if (c.id == d.first) {  // gone meanwhile: the reply is dropped
             c.waiting = false;
-            if (!send_all(c.fd, d.second.data(), d.second.size())) c.waiting = true, to_close.push_back(c.fd);
+            // Requests that came in meanwhile are answered now, in order.
+            if (!send_all(c.fd, d.second.data(), d.second.size()) || serve(c, Clock::now())) {
+              c.waiting = true;  // skipped below; closed after the loop
+              to_close.push_back(c.fd);
+            }
           }
     }
     const auto now = Clock::now();
@@ -169,48 +220,7 @@ void TcpServer::run() {
           continue;
         }
         if (n > 0) rx.have += int(n);
-        // Every whole frame in the buffer is answered (a client may pipeline).
-        bool closing = false;
-        for (;;) {
-          const int flen = frame_length(rx.buf, rx.have);
-          if (flen < 0) {
-            count(false, "malformed MBAP header");
-            closing = true;
-            break;
-          }
-          if (flen == 0) break;
-          Connections<Rx>::complete(c, now);
-          const uint8_t* f = rx.buf;
-          if (!own(f[6])) {  // gateway: the RTU side answers, in its own time
-            std::vector<uint8_t> frame(f, f + flen);
-            const uint64_t id = c.id;
-            c.waiting = true;
-            if (!opt_.forwarder->submit(id, frame, [this](uint64_t conn, std::vector<uint8_t> r) { complete(conn, std::move(r)); })) {
-              c.waiting = false;
-              const auto busy = tcp_exception(frame, MODBUS_EXCEPTION_SLAVE_OR_SERVER_BUSY);
-              closing = !send_all(c.fd, busy.data(), busy.size());
-              count(false, "gateway busy");
-            } else {
-              count(true);
-            }
-          } else {
-            // MBAP delimits the frame, so a bad PDU is consumed whole and answered
-            // with an exception; the connection stays in step.
-            const PduAnswer a = answer_pdu(plc_, f + 7, flen - 7, rsp + 7, &opt_.writable);
-            std::memcpy(rsp, f, 7);
-            rsp[2] = rsp[3] = 0;
-            rsp[4] = uint8_t((a.length + 1) >> 8);
-            rsp[5] = uint8_t(a.length + 1);
-            closing = !send_all(c.fd, rsp, size_t(7 + a.length));
-            if (a.accepted) count(true);
-            else if (a.exception == MODBUS_EXCEPTION_ILLEGAL_FUNCTION) count(false, "illegal function " + std::to_string(f[7]));
-            else count(false, "exception " + std::to_string(a.exception) + " to function " + std::to_string(f[7]));
-            if (closing) count(false, std::string("reply: ") + strerror(errno));
-          }
-          rx.have -= flen;
-          if (rx.have) std::memmove(rx.buf, rx.buf + flen, size_t(rx.have));
-          if (closing || c.waiting) break;  // a forwarded request keeps the order: read on after its reply
-        }
+        const bool closing = serve(c, now);
         if (closing) {
           to_close.push_back(c.fd);
           continue;
