@@ -6,6 +6,7 @@ pkg_check_modules(LIBMODBUS REQUIRED IMPORTED_TARGET libmodbus)
 add_library(plc_cell_modbus STATIC
   src/modbus/slave_map.cpp
   src/modbus/slave_handler.cpp
+  src/modbus/rtu_frame.cpp
   src/modbus/tcp_server.cpp
   src/modbus/rtu_server.cpp
   src/modbus/slave_servers.cpp

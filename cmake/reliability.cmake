@@ -61,3 +61,12 @@ add_executable(plc_cell_soak test/reliability/soak/soak_main.cpp)
 target_link_libraries(plc_cell_soak plc_cell_fatek plc_cell_modbus plc_cell_persist)
 target_compile_definitions(plc_cell_soak PRIVATE PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
 add_dependencies(plc_cell_soak plc_cell_tool)
+
+# ---- hostile clients against `plc_cell run` (test/reliability/abuse/) ----------
+if(CATKIN_ENABLE_TESTING)
+  file(GLOB ABUSE_TESTS ${PROJECT_SOURCE_DIR}/test/reliability/abuse/*_test.cpp)
+  catkin_add_gtest(abuse_tests test/core/test_main.cpp ${ABUSE_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} TIMEOUT 300)
+  target_link_libraries(abuse_tests plc_cell_fatek plc_cell_modbus)
+  target_compile_definitions(abuse_tests PRIVATE PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
+  add_dependencies(abuse_tests plc_cell_tool)
+endif()

@@ -16,6 +16,7 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/fatek/serial_port.h"
+#include "plc_cell/io/connections.h"
 
 namespace plc_cell {
 namespace fatek {
@@ -42,11 +43,10 @@ void drain(int fd) {
   }
 }
 
-struct Conn {
-  int fd;
+// What the server keeps per connection (the time bounds are io/connections.h's).
+struct Rx {
   Decoder decoder;
   std::string out;
-  Clock::time_point last_rx;
 };
 
 }  // namespace
@@ -115,8 +115,9 @@ ServerStatus TcpServer::status() const {
 }
 
 void TcpServer::loop() {
-  std::vector<Conn> conns;
+  Connections<Rx> conns(ConnectionLimits{opt_.max_connections, opt_.idle_timeout_ms, opt_.frame_timeout_ms});
   std::vector<pollfd> pfds;
+  std::vector<int> dead;
   char buf[4096];
   auto note = [&](const std::string& e) {
     std::lock_guard<std::mutex> lk(err_mu_);
@@ -126,69 +127,85 @@ void TcpServer::loop() {
     pfds.clear();
     pfds.push_back({wake_[0], POLLIN, 0});
     pfds.push_back({listen_fd_, POLLIN, 0});
-    for (auto& c : conns) pfds.push_back({c.fd, short(POLLIN | (c.out.empty() ? 0 : POLLOUT)), 0});
-    ::poll(pfds.data(), pfds.size(), 100);
+    for (auto& c : conns.all()) pfds.push_back({c.fd, short(POLLIN | (c.x.out.empty() ? 0 : POLLOUT)), 0});
+    ::poll(pfds.data(), pfds.size(), conns.poll_timeout_ms(Clock::now()));
     if (!running_) break;
     if (pfds[0].revents) drain(wake_[0]);
-    std::vector<bool> dead(conns.size(), false);
+    dead.clear();
+    const auto now = Clock::now();
     for (size_t i = 0; i < conns.size(); ++i) {
-      Conn& c = conns[i];
+      auto& c = conns.all()[i];
       const short ev = pfds[i + 2].revents;
       if (ev & (POLLIN | POLLHUP | POLLERR)) {
         const ssize_t n = ::recv(c.fd, buf, sizeof buf, MSG_DONTWAIT);
         if (n == 0 || (n < 0 && errno != EAGAIN && errno != EINTR)) {
-          dead[i] = true;
+          dead.push_back(c.fd);
           continue;
         }
         if (n > 0) {
-          c.last_rx = Clock::now();
-          c.decoder.feed(reinterpret_cast<const uint8_t*>(buf), size_t(n),
-                         [&](const Frame& f) { slave_.handle(f, c.out); },
-                         [&](Decoder::Fault f) {
-                           ++framing_errors_;
-                           note(std::string("framing: ") + fault_name(f));
-                         });
+          c.x.decoder.feed(reinterpret_cast<const uint8_t*>(buf), size_t(n),
+                           [&](const Frame& f) {
+                             Connections<Rx>::complete(c, now);
+                             slave_.handle(f, c.x.out);
+                           },
+                           [&](Decoder::Fault f) {
+                             ++framing_errors_;
+                             note(std::string("framing: ") + fault_name(f));
+                           });
+          // Bytes outside a frame (no STX yet) start no frame deadline: they are
+          // dropped as they come, and only a complete request keeps the connection.
+          if (c.x.decoder.in_frame()) Connections<Rx>::partial(c, now);
         }
       }
-      if (!c.out.empty()) {
-        const ssize_t w = ::send(c.fd, c.out.data(), c.out.size(), MSG_DONTWAIT | MSG_NOSIGNAL);
-        if (w > 0) c.out.erase(0, size_t(w));
-        else if (w < 0 && errno != EAGAIN && errno != EINTR) dead[i] = true;
-        if (c.out.size() > opt_.max_pending_output) {
+      if (!c.x.out.empty()) {
+        const ssize_t w = ::send(c.fd, c.x.out.data(), c.x.out.size(), MSG_DONTWAIT | MSG_NOSIGNAL);
+        if (w > 0) c.x.out.erase(0, size_t(w));
+        else if (w < 0 && errno != EAGAIN && errno != EINTR) {
+          dead.push_back(c.fd);
+          continue;
+        }
+        if (c.x.out.size() > opt_.max_pending_output) {
           note("client does not read its answers; dropped");
-          dead[i] = true;
+          dead.push_back(c.fd);
+          continue;
         }
       }
-      const int64_t quiet = ms_since(c.last_rx);
-      if (c.decoder.in_frame() && quiet > opt_.frame_timeout_ms) {
-        c.decoder.timeout();
-        ++framing_errors_;
-        note("framing: frame cut short by timeout");
+      switch (conns.expired(c, now)) {
+        case Connections<Rx>::Expiry::Frame:
+          ++framing_errors_;
+          note("framing: frame not complete within the frame timeout; connection closed");
+          dead.push_back(c.fd);
+          break;
+        case Connections<Rx>::Expiry::Idle: dead.push_back(c.fd); break;
+        case Connections<Rx>::Expiry::None: break;
       }
-      if (quiet > opt_.idle_timeout_ms) dead[i] = true;
     }
-    for (size_t i = conns.size(); i-- > 0;) {
-      if (!dead[i]) continue;
-      ::close(conns[i].fd);
-      conns.erase(conns.begin() + long(i));
+    for (int fd : dead) {
+      ::close(fd);
+      conns.remove_fd(fd);
     }
     if (pfds[1].revents & POLLIN) {
-      for (;;) {
+      for (int k = 0; k < 16; ++k) {  // bounded: the clients we have are served in between
         const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
         if (fd < 0) break;
-        if (int(conns.size()) >= opt_.max_connections) {
+        int evicted = -1;
+        const auto how = conns.admit(fd, Clock::now(), &evicted);
+        if (how == Connections<Rx>::Admit::Refused) {
           ::close(fd);  // bounded: refuse beyond max_connections
           note("connection refused: limit reached");
           continue;
         }
+        if (how == Connections<Rx>::Admit::Evicted) {
+          ::close(evicted);
+          note("connection closed for a new client: no complete request within the frame timeout");
+        }
         int one = 1;
         setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-        conns.push_back(Conn{fd, Decoder(), std::string(), Clock::now()});
       }
     }
     connections_ = conns.size();
   }
-  for (auto& c : conns) ::close(c.fd);
+  for (auto& c : conns.all()) ::close(c.fd);
   connections_ = 0;
 }
 

@@ -1,14 +1,18 @@
 #include "plc_cell/modbus/rtu_server.h"
 
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <string>
-
-#include <cerrno>
 
 #include <modbus/modbus.h>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/modbus/rtu_frame.h"
 #include "plc_cell/modbus/slave_handler.h"
 
 namespace plc_cell {
@@ -33,14 +37,6 @@ void RtuServer::start() {
     ctx_ = nullptr;
     throw Error(what + ": cannot open: " + why);
   }
-  // Wake up now and then to notice stop(); a frame in progress is unaffected.
-  modbus_set_indication_timeout(ctx_, 0, 200000);
-  // After a request for another slave, libmodbus 3.1.6 reads the next frame as that
-  // slave's reply and drops it, waiting up to the response timeout. Were the other
-  // slave silent, a master's next request to us would be eaten. A master waits out
-  // its own timeout (100 ms and more) before that next request, so a short window
-  // keeps both cases right; a reply later than 50 ms is dropped as a bad request.
-  modbus_set_response_timeout(ctx_, 0, 50000);
   stop_ = false;
   {
     std::lock_guard<std::mutex> lk(mu_);
@@ -91,27 +87,71 @@ void RtuServer::reopen(const std::string& why) {
 }
 
 void RtuServer::run() {
-  uint8_t req[MODBUS_RTU_MAX_ADU_LENGTH];
+  // Frames are cut by our own framer (modbus/rtu_frame.h: libmodbus cannot frame
+  // function codes it does not implement). Over a pty relay bytes of one frame can
+  // come apart by more than t3.5, so a frame whose CRC does not hold yet is given
+  // until the frame timeout to complete.
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto now_us = [&] {
+    return int64_t(std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0).count());
+  };
+  RtuFramer framer(t35_us(port_.baud), int64_t(frame_timeout_ms_) * 1000);
+  uint8_t buf[512];
+  uint8_t rsp[MODBUS_RTU_MAX_ADU_LENGTH];
+  uint8_t out[MODBUS_RTU_MAX_ADU_LENGTH + 2];
+  size_t garbage_seen = 0;
   while (!stop_) {
-    const int rc = modbus_receive(ctx_, req);
-    if (rc == 0) continue;  // for another slave
-    if (rc < 0) {
-      if (errno == ETIMEDOUT || errno == EINTR) continue;
-      if (errno < MODBUS_ENOBASE) {  // an OS error, not a bad frame: the device is gone
-        reopen(modbus_strerror(errno));
-        continue;
-      }
-      std::lock_guard<std::mutex> lk(mu_);
-      st_.rejected++;
-      st_.last_error = modbus_strerror(errno);
-      modbus_flush(ctx_);
+    const int fd = modbus_get_socket(ctx_);
+    const int64_t now = now_us();
+    const int64_t dl = framer.deadline_us(now);
+    const int timeout = dl < 0 ? 200 : int(std::max<int64_t>(0, (dl - now + 999) / 1000));
+    pollfd p{fd, POLLIN, 0};
+    const int r = ::poll(&p, 1, timeout);
+    if (r < 0 && errno != EINTR) {
+      reopen(strerror(errno));
+      framer.reset();
       continue;
     }
-    const bool ok = supported_function(req[1]);
-    const int r = handle_request(ctx_, plc_, req, rc, &writable_);
-    std::lock_guard<std::mutex> lk(mu_);
-    (ok && r >= 0 ? st_.requests : st_.rejected)++;
-    if (r < 0) st_.last_error = modbus_strerror(errno);
+    if (r > 0) {
+      const ssize_t n = ::read(fd, buf, sizeof buf);
+      if (n < 0 && errno != EAGAIN && errno != EINTR) {
+        reopen(strerror(errno));
+        framer.reset();
+        continue;
+      }
+      if (n == 0 && (p.revents & POLLHUP)) {  // a tty hang-up reads as end of file
+        reopen("hang-up");
+        framer.reset();
+        continue;
+      }
+      if (n > 0) framer.feed(buf, size_t(n), now_us());
+    }
+    for (;;) {
+      const RtuFramer::Event ev = framer.poll(now_us());
+      if (framer.garbage_bytes() != garbage_seen) {
+        garbage_seen = framer.garbage_bytes();
+        std::lock_guard<std::mutex> lk(mu_);
+        st_.rejected++;
+        st_.last_error = "line noise or a frame with a bad CRC dropped";
+      }
+      if (ev != RtuFramer::Event::Frame) {
+        if (ev == RtuFramer::Event::None) break;
+        continue;
+      }
+      const std::vector<uint8_t>& f = framer.frame();
+      const uint8_t slave = f[0];
+      if (slave != id_ && slave != 0) continue;  // another slave's frame, or its reply
+      const PduAnswer a = answer_pdu(plc_, f.data() + 1, int(f.size()) - 3, rsp, &writable_);
+      bool sent = true;
+      if (slave != 0 && a.length > 0) {  // a broadcast is executed, never answered
+        const int n = rtu_adu(slave, rsp, a.length, out);
+        sent = ::write(fd, out, size_t(n)) == n;
+      }
+      std::lock_guard<std::mutex> lk(mu_);
+      (a.accepted && sent ? st_.requests : st_.rejected)++;
+      if (!sent) st_.last_error = std::string("serial write: ") + strerror(errno);
+      else if (!a.accepted) st_.last_error = "exception " + std::to_string(a.exception) + " to function " + std::to_string(f[1]);
+    }
   }
 }
 

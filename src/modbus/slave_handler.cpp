@@ -3,12 +3,11 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <memory>
 #include <cerrno>
-#include <vector>
+#include <cstring>
 
 #include "plc_cell/core/plc.h"
+#include "plc_cell/modbus/rtu_frame.h"
 #include "plc_cell/modbus/slave_map.h"
 
 namespace plc_cell {
@@ -18,84 +17,104 @@ namespace {
 
 uint16_t be16(const uint8_t* p) { return uint16_t(p[0] << 8 | p[1]); }
 
-struct Range {
-  Table table = Table::Coils;
-  uint32_t addr = 0, count = 0;
-  bool ok = false;
-  Run run;
-};
-Range span(Table t, uint32_t addr, uint32_t count) {
-  Range r;
-  r.table = t;
-  r.addr = addr;
-  r.count = count;
-  return r;
-}
-
-// Bounds the scratch buffers: no valid request spans more than this.
-constexpr uint32_t kMaxSpan = 65536;
-
-void load_bits(const Memory& m, const Range& r, uint8_t* dst) {
-  const uint8_t* src = m.bits(r.run.area) + r.run.index;  // raw cells: a tight, vectorised loop
-  for (uint32_t i = 0; i < r.count; ++i) dst[i] = src[i] & kBitState;
-}
-void load_words(const Memory& m, const Range& r, uint16_t* dst) {
-  const uint16_t* w = m.words(r.run.area) + r.run.index;
-  for (uint32_t i = 0; i < r.count; ++i) dst[i] = w[i];
-}
-// Only changed elements are written: a refused request (exception) stores nothing.
-void store_bits(Memory& m, const Range& r, const uint8_t* src) {
-  for (uint32_t i = 0; i < r.count; ++i)
-    if (bool(src[i]) != m.bit(r.run.area, r.run.index + i)) m.set_bit(r.run.area, r.run.index + i, src[i] != 0);
-}
-void store_words(Memory& m, const Range& r, const uint16_t* src) {
-  uint16_t* w = m.words(r.run.area) + r.run.index;
-  for (uint32_t i = 0; i < r.count; ++i)
-    if (w[i] != src[i]) w[i] = src[i];
-}
-
-// libmodbus applies a write to the mapping and sends the reply in one call. With
-// persistence on, the reply must wait until the write is durable: modbus_reply then
-// writes into one end of a socket pair, and the bytes go to the peer after commit().
-class HeldReply {
- public:
-  explicit HeldReply(modbus_t* ctx) : ctx_(ctx), real_(modbus_get_socket(ctx)) {
-    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv_) != 0) sv_[0] = sv_[1] = -1;
-    else modbus_set_socket(ctx_, sv_[0]);
-  }
-  ~HeldReply() {
-    restore();
-    for (int fd : sv_)
-      if (fd >= 0) ::close(fd);
-  }
-  bool ok() const { return sv_[0] >= 0; }
-  void restore() { modbus_set_socket(ctx_, real_); }
-  // Sends what modbus_reply wrote. A socket gets MSG_NOSIGNAL; a serial line plain write().
-  int release() {
-    restore();
-    uint8_t buf[MODBUS_MAX_ADU_LENGTH];
-    const ssize_t n = ::recv(sv_[1], buf, sizeof buf, MSG_DONTWAIT);
-    if (n <= 0) return n == 0 || errno == EAGAIN ? 0 : -1;
-    ssize_t w = ::send(real_, buf, size_t(n), MSG_NOSIGNAL);
-    if (w < 0 && errno == ENOTSOCK) w = ::write(real_, buf, size_t(n));
-    return w == n ? int(n) : -1;
-  }
-
- private:
-  modbus_t* ctx_;
-  int real_;
-  int sv_[2] = {-1, -1};
-};
-
 // Word-store index of RC back to the counter it belongs to (C200.. take two words).
 uint32_t rc_counter(uint32_t w) { return w < kFirst32BitCounter ? w : kFirst32BitCounter + (w - kFirst32BitCounter) / 2; }
 
-bool may_write(const WritableRanges* w, const Range& r) {
+bool may_write(const WritableRanges* w, const Run& run, uint32_t count) {
   if (!w || w->everything()) return true;
-  if (r.run.area != Area::RC) return w->allows(r.run.area, r.run.index, r.count);
-  const uint32_t first = rc_counter(r.run.index), last = rc_counter(r.run.index + r.count - 1);
+  if (run.area != Area::RC) return w->allows(run.area, run.index, count);
+  const uint32_t first = rc_counter(run.index), last = rc_counter(run.index + count - 1);
   return w->allows(Area::RC, first, last - first + 1);
 }
+
+PduAnswer exception(const uint8_t* pdu, uint8_t code, uint8_t* rsp) {
+  rsp[0] = uint8_t(pdu[0] | 0x80);
+  rsp[1] = code;
+  PduAnswer a;
+  a.length = 2;
+  a.exception = code;
+  return a;
+}
+
+// What one request asks for, decoded and checked before the lock is taken.
+struct Decoded {
+  Table table = Table::Coils;
+  bool read = false, write = false;
+  uint16_t rd_addr = 0, rd_count = 0, wr_addr = 0, wr_count = 0;
+  const uint8_t* values = nullptr;  // FC 15/16/23: packed bits or big-endian words
+  bool single_coil_on = false;      // FC 5
+  uint16_t single_value = 0;        // FC 6
+};
+
+// 0 when the PDU is a well-formed request, else the exception code (01 or 03):
+// the checks of the protocol's state diagrams, in its order (function, then
+// quantity and length); the address (02) needs the memory map and comes later.
+uint8_t decode(const uint8_t* p, int len, Decoded* d) {
+  const uint8_t fc = p[0];
+  if (!supported_function(fc)) return MODBUS_EXCEPTION_ILLEGAL_FUNCTION;
+  constexpr uint8_t kBad = MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE;
+  if (len < 5) return kBad;
+  const uint16_t addr = be16(p + 1), n = be16(p + 3);
+  switch (fc) {
+    case 1: case 2: case 3: case 4: {
+      const int max = fc <= 2 ? kMaxReadBits : kMaxReadRegisters;
+      if (len != 5 || n < 1 || n > max) return kBad;
+      d->table = fc == 1 ? Table::Coils : fc == 2 ? Table::DiscreteInputs
+               : fc == 3 ? Table::HoldingRegisters : Table::InputRegisters;
+      d->read = true;
+      d->rd_addr = addr;
+      d->rd_count = n;
+      return 0;
+    }
+    case 5:
+      if (len != 5 || (n != 0x0000 && n != 0xFF00)) return kBad;
+      d->table = Table::Coils;
+      d->write = true;
+      d->wr_addr = addr;
+      d->wr_count = 1;
+      d->single_coil_on = n == 0xFF00;
+      return 0;
+    case 6:
+      if (len != 5) return kBad;
+      d->table = Table::HoldingRegisters;
+      d->write = true;
+      d->wr_addr = addr;
+      d->wr_count = 1;
+      d->single_value = n;
+      return 0;
+    case 15: case 16: {
+      if (len < 6) return kBad;
+      const int bc = p[5];
+      const bool ok = fc == 15 ? (n >= 1 && n <= kMaxWriteBits && bc == (n + 7) / 8)
+                               : (n >= 1 && n <= kMaxWriteRegisters && bc == 2 * n);
+      if (!ok || len != 6 + bc) return kBad;
+      d->table = fc == 15 ? Table::Coils : Table::HoldingRegisters;
+      d->write = true;
+      d->wr_addr = addr;
+      d->wr_count = n;
+      d->values = p + 6;
+      return 0;
+    }
+    case 23: {
+      if (len < 10) return kBad;
+      const uint16_t wa = be16(p + 5), wn = be16(p + 7);
+      const int bc = p[9];
+      if (n < 1 || n > kMaxReadRegisters || wn < 1 || wn > kMaxRwWriteRegisters || bc != 2 * wn || len != 10 + bc)
+        return kBad;
+      d->table = Table::HoldingRegisters;
+      d->read = d->write = true;
+      d->rd_addr = addr;
+      d->rd_count = n;
+      d->wr_addr = wa;
+      d->wr_count = wn;
+      d->values = p + 10;
+      return 0;
+    }
+  }
+  return MODBUS_EXCEPTION_ILLEGAL_FUNCTION;
+}
+
+bool is_bits(Table t) { return t == Table::Coils || t == Table::DiscreteInputs; }
 
 }  // namespace
 
@@ -106,83 +125,112 @@ bool supported_function(uint8_t fc) {
   }
 }
 
+PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const WritableRanges* writable) {
+  if (len < 1) return PduAnswer{};
+  Decoded d;
+  if (const uint8_t code = decode(pdu, len, &d)) return exception(pdu, code, rsp);
+  // A range past 65535 is an address error (02) in the protocol's diagrams.
+  if ((d.read && uint32_t(d.rd_addr) + d.rd_count > 65536u) || (d.write && uint32_t(d.wr_addr) + d.wr_count > 65536u))
+    return exception(pdu, MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS, rsp);
+
+  // Values to write, unpacked before the lock: one byte per bit, host-order words.
+  uint8_t wbits[kMaxWriteBits];
+  uint16_t wwords[kMaxWriteRegisters];
+  if (d.write) {
+    if (pdu[0] == 5) wbits[0] = d.single_coil_on;
+    else if (pdu[0] == 6) wwords[0] = d.single_value;
+    else if (pdu[0] == 15)
+      for (int i = 0; i < d.wr_count; ++i) wbits[i] = (d.values[i / 8] >> (i % 8)) & 1;
+    else
+      for (int i = 0; i < d.wr_count; ++i) wwords[i] = be16(d.values + 2 * i);
+  }
+  uint8_t rbits[kMaxReadBits];
+  uint16_t rwords[kMaxReadRegisters];
+
+  // The lock: the user map (R3968..) is read, the write stored, the read copied. One
+  // scan's state; a refused request stores nothing. Nothing here waits on a client.
+  const bool bits = is_bits(d.table);
+  const bool mapped = plc.locked([&](ScanEngine&, Memory& m) {
+    Run rr, wr;
+    if (d.read && !resolve(m, d.table, d.rd_addr, d.rd_count, &rr)) return false;
+    if (d.write && !(resolve(m, d.table, d.wr_addr, d.wr_count, &wr) && may_write(writable, wr, d.wr_count)))
+      return false;
+    if (d.write) {  // before the read: FC 23 reads what it wrote (protocol order)
+      if (bits) {
+        for (uint32_t i = 0; i < d.wr_count; ++i)
+          if (bool(wbits[i]) != m.bit(wr.area, wr.index + i)) m.set_bit(wr.area, wr.index + i, wbits[i] != 0);
+      } else {
+        uint16_t* w = m.words(wr.area) + wr.index;
+        for (uint32_t i = 0; i < d.wr_count; ++i) w[i] = wwords[i];
+      }
+    }
+    if (d.read) {
+      if (bits) {
+        const uint8_t* src = m.bits(rr.area) + rr.index;
+        for (uint32_t i = 0; i < d.rd_count; ++i) rbits[i] = src[i] & kBitState;
+      } else {
+        std::memcpy(rwords, m.words(rr.area) + rr.index, sizeof(uint16_t) * d.rd_count);
+      }
+    }
+    return true;
+  });
+  if (!mapped) return exception(pdu, MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS, rsp);
+  if (d.write) plc.commit();  // durable before it is acknowledged
+
+  PduAnswer a;
+  a.accepted = true;
+  rsp[0] = pdu[0];
+  if (d.read) {
+    int nbytes;
+    if (bits) {
+      nbytes = (d.rd_count + 7) / 8;
+      std::memset(rsp + 2, 0, size_t(nbytes));
+      for (int i = 0; i < d.rd_count; ++i) rsp[2 + i / 8] |= uint8_t(rbits[i] << (i % 8));
+    } else {
+      nbytes = 2 * d.rd_count;
+      for (int i = 0; i < d.rd_count; ++i) {
+        rsp[2 + 2 * i] = uint8_t(rwords[i] >> 8);
+        rsp[3 + 2 * i] = uint8_t(rwords[i]);
+      }
+    }
+    rsp[1] = uint8_t(nbytes);
+    a.length = 2 + nbytes;
+  } else {  // writes echo function, address and quantity (FC 5/6: the value)
+    std::memcpy(rsp + 1, pdu + 1, 4);
+    a.length = 5;
+  }
+  return a;
+}
+
 int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable) {
   const int h = modbus_get_header_length(ctx);
-  if (len < h + 1) return -1;
-  const uint8_t fc = req[h];
-  if (!supported_function(fc) || len < h + 5)
-    return modbus_reply_exception(ctx, req, MODBUS_EXCEPTION_ILLEGAL_FUNCTION);
-  const uint16_t addr = be16(req + h + 1), n = be16(req + h + 3);
-
-  Range rd, wr;  // read range, write range (FC23 has both)
-  bool has_rd = false, has_wr = false;
-  switch (fc) {
-    case 1: rd = span(Table::Coils, addr, n); has_rd = true; break;
-    case 2: rd = span(Table::DiscreteInputs, addr, n); has_rd = true; break;
-    case 3: rd = span(Table::HoldingRegisters, addr, n); has_rd = true; break;
-    case 4: rd = span(Table::InputRegisters, addr, n); has_rd = true; break;
-    case 5: wr = span(Table::Coils, addr, 1); has_wr = true; break;
-    case 6: wr = span(Table::HoldingRegisters, addr, 1); has_wr = true; break;
-    case 15: wr = span(Table::Coils, addr, n); has_wr = true; break;
-    case 16: wr = span(Table::HoldingRegisters, addr, n); has_wr = true; break;
-    case 23:
-      if (len < h + 9) return modbus_reply_exception(ctx, req, MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE);
-      rd = span(Table::HoldingRegisters, addr, n);
-      wr = span(Table::HoldingRegisters, be16(req + h + 5), be16(req + h + 7));
-      has_rd = has_wr = true;
-      break;
+  const bool rtu = h == 1;
+  const int tail = rtu ? 2 : 0;
+  if (len < h + 1 + tail) return -1;
+  uint8_t out[MODBUS_TCP_MAX_ADU_LENGTH];
+  const PduAnswer a = answer_pdu(plc, req + h, len - h - tail, out + (rtu ? 1 : 7), writable);
+  if (a.length == 0) return -1;
+  int n;
+  if (rtu) {
+    if (req[0] == 0) return 0;  // broadcast: executed, never answered
+    out[0] = req[0];
+    n = 1 + a.length;
+    const uint16_t crc = crc16(out, size_t(n));
+    out[n++] = uint8_t(crc & 0xFF);  // the CRC goes low byte first
+    out[n++] = uint8_t(crc >> 8);
+  } else {
+    out[0] = req[0];
+    out[1] = req[1];
+    out[2] = out[3] = 0;
+    out[4] = uint8_t((a.length + 1) >> 8);
+    out[5] = uint8_t(a.length + 1);
+    out[6] = req[6];
+    n = 7 + a.length;
   }
-
-  thread_local std::vector<uint8_t> bits(kMaxSpan);
-  thread_local std::vector<uint16_t> words(kMaxSpan);
-
-  std::unique_ptr<HeldReply> held;
-  if (has_wr && plc.has_durability()) {
-    held = std::make_unique<HeldReply>(ctx);
-    if (!held->ok()) return -1;
-  }
-  const int replied = plc.locked([&](ScanEngine&, Memory& m) {
-    if (has_rd) rd.ok = resolve(m, rd.table, rd.addr, rd.count, &rd.run);
-    if (has_wr) wr.ok = resolve(m, wr.table, wr.addr, wr.count, &wr.run) && may_write(writable, wr);
-    // An unmapped range leaves the table empty in the mapping: libmodbus then
-    // checks the quantity first (exception 03) and the address next (02).
-    modbus_mapping_t mp{};
-    const bool all_ok = (!has_rd || rd.ok) && (!has_wr || wr.ok);
-    if (all_ok) {
-      const uint32_t lo = has_rd && has_wr ? std::min(rd.addr, wr.addr) : (has_rd ? rd.addr : wr.addr);
-      const uint32_t hi = has_rd && has_wr ? std::max(rd.addr + rd.count, wr.addr + wr.count)
-                                           : (has_rd ? rd.addr + rd.count : wr.addr + wr.count);
-      const Table t = has_rd ? rd.table : wr.table;
-      const int nb = int(hi - lo);
-      switch (t) {
-        case Table::Coils: mp.start_bits = int(lo); mp.nb_bits = nb; mp.tab_bits = bits.data(); break;
-        case Table::DiscreteInputs:
-          mp.start_input_bits = int(lo); mp.nb_input_bits = nb; mp.tab_input_bits = bits.data(); break;
-        case Table::InputRegisters:
-          mp.start_input_registers = int(lo); mp.nb_input_registers = nb;
-          mp.tab_input_registers = words.data(); break;
-        case Table::HoldingRegisters:
-          mp.start_registers = int(lo); mp.nb_registers = nb; mp.tab_registers = words.data(); break;
-      }
-      const bool is_bits = t == Table::Coils || t == Table::DiscreteInputs;
-      for (const Range* r : {has_rd ? &rd : nullptr, has_wr ? &wr : nullptr}) {
-        if (!r) continue;
-        if (is_bits) load_bits(m, *r, bits.data() + (r->addr - lo));
-        else load_words(m, *r, words.data() + (r->addr - lo));
-      }
-      const int rc = modbus_reply(ctx, req, len, &mp);
-      if (has_wr) {
-        if (is_bits) store_bits(m, wr, bits.data() + (wr.addr - lo));
-        else store_words(m, wr, words.data() + (wr.addr - lo));
-      }
-      return rc;
-    }
-    return modbus_reply(ctx, req, len, &mp);
-  });
-  if (!held) return replied;
-  if (replied < 0) return replied;
-  plc.commit();
-  return held->release();
+  const int fd = modbus_get_socket(ctx);
+  ssize_t w = ::send(fd, out, size_t(n), MSG_NOSIGNAL);
+  if (w < 0 && errno == ENOTSOCK) w = ::write(fd, out, size_t(n));
+  return w == n ? n : -1;
 }
 
 }  // namespace modbus

@@ -17,6 +17,7 @@
 #include <modbus/modbus.h>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/io/connections.h"
 #include "plc_cell/modbus/forwarder.h"
 #include "plc_cell/modbus/slave_handler.h"
 
@@ -30,46 +31,21 @@ std::vector<uint8_t> tcp_exception(const std::vector<uint8_t>& f, uint8_t code) 
 namespace {
 using Clock = std::chrono::steady_clock;
 
-struct Conn {
-  int fd;
-  uint64_t id;
-  Clock::time_point last;
-  bool waiting = false;  // a forwarded request is out: read nothing more, keep order
+// What the server keeps per connection: the bytes of the request being received.
+// Reading into our own buffer (instead of peeking the socket) sees a peer's close
+// as end of file at once, and costs one system call per request.
+struct Rx {
+  uint8_t buf[MODBUS_TCP_MAX_ADU_LENGTH];
+  int have = 0;
 };
 
-enum class Frame { Partial, Ready, Closed, Bad };
-
-// Looks at the MBAP header without consuming: a whole frame there, not yet, or a
+// A frame in the first `have` bytes: its length, 0 if not all there yet, -1 for a
 // header no Modbus/TCP peer sends (the stream cannot be resynchronised: close).
-Frame peek_frame(int fd, uint8_t* buf, int* frame_len) {
-  const ssize_t n = recv(fd, buf, MODBUS_TCP_MAX_ADU_LENGTH, MSG_PEEK | MSG_DONTWAIT);
-  if (n == 0) return Frame::Closed;
-  if (n < 0) return (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) ? Frame::Partial : Frame::Closed;
-  if (n < 6) return Frame::Partial;
-  const int proto = buf[2] << 8 | buf[3], length = buf[4] << 8 | buf[5];
-  if (proto != 0 || length < 2 || length > MODBUS_TCP_MAX_ADU_LENGTH - 6) return Frame::Bad;
-  *frame_len = 6 + length;
-  return n >= *frame_len ? Frame::Ready : Frame::Partial;
-}
-
-// The frame length a supported request must have, from its own fields; checked
-// before libmodbus reads it, which sizes frames by function code and would
-// otherwise wait for bytes that never come or eat into the next frame.
-bool well_formed(const uint8_t* f, int len) {
-  switch (f[7]) {
-    case 15: case 16: return len >= 13 && len == 7 + 6 + f[12];
-    case 23: return len >= 17 && len == 7 + 10 + f[16];
-    default: return len == 7 + 5;
-  }
-}
-
-void drain(int fd, int bytes) {
-  uint8_t buf[MODBUS_TCP_MAX_ADU_LENGTH];
-  while (bytes > 0) {
-    const ssize_t n = recv(fd, buf, std::min<size_t>(sizeof buf, size_t(bytes)), MSG_DONTWAIT);
-    if (n <= 0) return;
-    bytes -= int(n);
-  }
+int frame_length(const uint8_t* b, int have) {
+  if (have < 6) return 0;
+  const int proto = b[2] << 8 | b[3], length = b[4] << 8 | b[5];
+  if (proto != 0 || length < 2 || length > MODBUS_TCP_MAX_ADU_LENGTH - 6) return -1;
+  return have >= 6 + length ? 6 + length : 0;
 }
 }  // namespace
 
@@ -88,6 +64,8 @@ void TcpServer::start() {
     ctx_ = nullptr;
     throw Error("Modbus TCP " + opt_.host + ":" + std::to_string(opt_.port) + ": cannot listen: " + why);
   }
+  // Non-blocking: the loop accepts until EAGAIN, a bounded batch per wake-up.
+  fcntl(listen_fd_, F_SETFL, fcntl(listen_fd_, F_GETFL) | O_NONBLOCK);
   sockaddr_in sa{};
   socklen_t sl = sizeof sa;
   getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&sa), &sl);
@@ -137,10 +115,7 @@ void TcpServer::complete(uint64_t conn, std::vector<uint8_t> reply) {
 }
 
 void TcpServer::run() {
-  std::vector<Conn> conns;
-  uint64_t next_id = 1;
-  uint8_t req[MODBUS_TCP_MAX_ADU_LENGTH];
-  const auto idle = std::chrono::milliseconds(opt_.idle_timeout_ms);
+  Connections<Rx> conns(ConnectionLimits{opt_.max_connections, opt_.idle_timeout_ms, opt_.frame_timeout_ms});
   const auto count = [&](bool ok, const std::string& err = {}) {
     std::lock_guard<std::mutex> lk(mu_);
     (ok ? st_.requests : st_.rejected)++;
@@ -149,6 +124,59 @@ void TcpServer::run() {
   const auto own = [&](uint8_t unit) {
     return !opt_.forwarder || unit == opt_.own_unit || unit == 0 || unit == 255;
   };
+  // A reply goes out with one non-blocking send: a client that leaves its replies
+  // unread until its socket buffer is full is closed, not waited for.
+  const auto send_all = [](int fd, const uint8_t* p, size_t n) {
+    return ::send(fd, p, n, MSG_NOSIGNAL | MSG_DONTWAIT) == ssize_t(n);
+  };
+  uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
+  // Answers every whole frame in the connection's buffer (a client may pipeline);
+  // true when the connection must be closed.
+  const auto serve = [&](Connections<Rx>::Conn& c, Clock::time_point now) {
+    Rx& rx = c.x;
+    bool closing = false;
+    for (;;) {
+      const int flen = frame_length(rx.buf, rx.have);
+      if (flen < 0) {
+        count(false, "malformed MBAP header");
+        closing = true;
+        break;
+      }
+      if (flen == 0) break;
+      Connections<Rx>::complete(c, now);
+      const uint8_t* f = rx.buf;
+      if (!own(f[6])) {  // gateway: the RTU side answers, in its own time
+        std::vector<uint8_t> frame(f, f + flen);
+        const uint64_t id = c.id;
+        c.waiting = true;
+        if (!opt_.forwarder->submit(id, frame, [this](uint64_t conn, std::vector<uint8_t> r) { complete(conn, std::move(r)); })) {
+          c.waiting = false;
+          const auto busy = tcp_exception(frame, MODBUS_EXCEPTION_SLAVE_OR_SERVER_BUSY);
+          closing = !send_all(c.fd, busy.data(), busy.size());
+          count(false, "gateway busy");
+        } else {
+          count(true);
+        }
+      } else {
+        // MBAP delimits the frame, so a bad PDU is consumed whole and answered
+        // with an exception; the connection stays in step.
+        const PduAnswer a = answer_pdu(plc_, f + 7, flen - 7, rsp + 7, &opt_.writable);
+        std::memcpy(rsp, f, 7);
+        rsp[2] = rsp[3] = 0;
+        rsp[4] = uint8_t((a.length + 1) >> 8);
+        rsp[5] = uint8_t(a.length + 1);
+        closing = !send_all(c.fd, rsp, size_t(7 + a.length));
+        if (a.accepted) count(true);
+        else if (a.exception == MODBUS_EXCEPTION_ILLEGAL_FUNCTION) count(false, "illegal function " + std::to_string(f[7]));
+        else count(false, "exception " + std::to_string(a.exception) + " to function " + std::to_string(f[7]));
+        if (closing) count(false, std::string("reply: ") + strerror(errno));
+      }
+      rx.have -= flen;
+      if (rx.have) std::memmove(rx.buf, rx.buf + flen, size_t(rx.have));
+      if (closing || c.waiting) break;  // a forwarded request keeps the order: read on after its reply
+    }
+    return closing;
+  };
   std::vector<pollfd> pfds;  // reused: no allocation per request
   std::vector<int> to_close;
   size_t reported = 0;
@@ -156,16 +184,8 @@ void TcpServer::run() {
     pfds.clear();
     pfds.push_back({wake_[0], POLLIN, 0});
     pfds.push_back({listen_fd_, POLLIN, 0});
-    for (const auto& c : conns) pfds.push_back({c.fd, short(c.waiting ? 0 : POLLIN), 0});
-    int timeout = -1;
-    const auto now = Clock::now();
-    for (const auto& c : conns) {
-      if (c.waiting) continue;
-      const long left = std::max<long>(
-          std::chrono::duration_cast<std::chrono::milliseconds>(c.last + idle - now).count(), 0) + 1;
-      timeout = timeout < 0 ? int(left) : std::min(timeout, int(left));
-    }
-    if (poll(pfds.data(), pfds.size(), timeout) < 0 && errno != EINTR) break;
+    for (const auto& c : conns.all()) pfds.push_back({c.fd, short(c.waiting ? 0 : POLLIN), 0});
+    if (poll(pfds.data(), pfds.size(), conns.poll_timeout_ms(Clock::now())) < 0 && errno != EINTR) break;
     if (pfds[0].revents) {
       char buf[64];
       while (read(wake_[0], buf, sizeof buf) > 0) {
@@ -177,88 +197,67 @@ void TcpServer::run() {
         done.swap(done_);
       }
       for (auto& d : done)
-        for (auto& c : conns)
+        for (auto& c : conns.all())
           if (c.id == d.first) {  // gone meanwhile: the reply is dropped
-            (void)!send(c.fd, d.second.data(), d.second.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
             c.waiting = false;
-            c.last = Clock::now();
+            // Requests that came in meanwhile are answered now, in order.
+            if (!send_all(c.fd, d.second.data(), d.second.size()) || serve(c, Clock::now())) {
+              c.waiting = true;  // skipped below; closed after the loop
+              to_close.push_back(c.fd);
+            }
           }
     }
-    to_close.clear();
+    const auto now = Clock::now();
     for (size_t i = 2; i < pfds.size(); ++i) {
-      Conn& c = conns[i - 2];
+      auto& c = conns.all()[i - 2];
       if (c.waiting) continue;
-      if (!(pfds[i].revents & (POLLIN | POLLHUP | POLLERR))) {
-        if (Clock::now() - c.last >= idle) to_close.push_back(c.fd);
-        continue;
-      }
-      c.last = Clock::now();
-      int frame_len = 0;
-      const Frame f = peek_frame(c.fd, req, &frame_len);
-      if (f == Frame::Partial) continue;
-      if (f == Frame::Closed || f == Frame::Bad) {
-        if (f == Frame::Bad) count(false, "malformed MBAP header");
-        to_close.push_back(c.fd);
-        continue;
-      }
-      modbus_set_socket(ctx_, c.fd);
-      if (!own(req[6])) {  // gateway: the RTU side answers, in its own time
-        std::vector<uint8_t> frame(req, req + frame_len);
-        drain(c.fd, frame_len);
-        c.waiting = true;
-        const uint64_t id = c.id;
-        if (!opt_.forwarder->submit(id, frame, [this](uint64_t conn, std::vector<uint8_t> r) { complete(conn, std::move(r)); })) {
-          const auto busy = tcp_exception(frame, MODBUS_EXCEPTION_SLAVE_OR_SERVER_BUSY);
-          (void)!send(c.fd, busy.data(), busy.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
-          c.waiting = false;
-          count(false, "gateway busy");
-        } else {
-          count(true);
+      if (pfds[i].revents & (POLLIN | POLLHUP | POLLERR)) {
+        Rx& rx = c.x;
+        const ssize_t n = recv(c.fd, rx.buf + rx.have, sizeof rx.buf - size_t(rx.have), MSG_DONTWAIT);
+        if (n == 0 || (n < 0 && errno != EAGAIN && errno != EINTR)) {
+          if (rx.have) count(false, "connection closed in the middle of a request");
+          to_close.push_back(c.fd);
+          continue;
         }
-        continue;
+        if (n > 0) rx.have += int(n);
+        const bool closing = serve(c, now);
+        if (closing) {
+          to_close.push_back(c.fd);
+          continue;
+        }
+        if (rx.have) Connections<Rx>::partial(c, now);
       }
-      // MBAP delimits the frame, so a bad PDU is consumed whole and answered with
-      // an exception; the connection stays in step.
-      const bool known = supported_function(req[7]);
-      if (!known || !well_formed(req, frame_len)) {
-        drain(c.fd, frame_len);
-        const int code = known ? MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE : MODBUS_EXCEPTION_ILLEGAL_FUNCTION;
-        if (modbus_reply_exception(ctx_, req, code) < 0) to_close.push_back(c.fd);
-        count(false, known ? "request length disagrees with its fields" : "illegal function " + std::to_string(req[7]));
-        continue;
+      switch (conns.expired(c, now)) {
+        case Connections<Rx>::Expiry::Frame:
+          count(false, "request not complete within the frame timeout");
+          to_close.push_back(c.fd);
+          break;
+        case Connections<Rx>::Expiry::Idle: to_close.push_back(c.fd); break;
+        case Connections<Rx>::Expiry::None: break;
       }
-      // The MBAP length delimits the frame (Modbus/TCP's framing rule), so one recv
-      // takes it whole; libmodbus parses the PDU and builds the reply. modbus_receive
-      // is not used here: it would block on a partial frame and cost two more
-      // system calls per request (bench/modbus_bench.cpp).
-      const int rc = int(recv(c.fd, req, size_t(frame_len), MSG_DONTWAIT));
-      if (rc != frame_len) {
-        count(false, std::string("receive: ") + modbus_strerror(errno));
-        to_close.push_back(c.fd);
-        continue;
-      }
-      if (handle_request(ctx_, plc_, req, rc, &opt_.writable) < 0) {
-        count(false, std::string("reply: ") + modbus_strerror(errno));
-        to_close.push_back(c.fd);
-        continue;
-      }
-      count(true);
     }
     for (int fd : to_close) {
       close(fd);
-      conns.erase(std::remove_if(conns.begin(), conns.end(), [fd](const Conn& c) { return c.fd == fd; }), conns.end());
+      conns.remove_fd(fd);
     }
+    to_close.clear();
     if (pfds[1].revents & POLLIN) {
-      const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
-      if (fd >= 0) {
-        if (int(conns.size()) >= opt_.max_connections) {
+      for (int k = 0; k < 16; ++k) {  // bounded: the clients we have are served in between
+        const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
+        if (fd < 0) break;
+        int evicted = -1;
+        const auto how = conns.admit(fd, Clock::now(), &evicted);
+        if (how == Connections<Rx>::Admit::Refused) {
           close(fd);  // bounded: refuse rather than starve the ones we have
           count(false, "connection refused: " + std::to_string(opt_.max_connections) + " already open");
-        } else {
-          const int one = 1;
-          setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-          conns.push_back({fd, next_id++, Clock::now()});
+          continue;
         }
+        if (how == Connections<Rx>::Admit::Evicted) {
+          close(evicted);
+          count(false, "connection closed for a new client: no complete request within the frame timeout");
+        }
+        const int one = 1;
+        setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
       }
     }
     if (conns.size() != reported) {
@@ -267,7 +266,7 @@ void TcpServer::run() {
       st_.connections = reported;
     }
   }
-  for (const auto& c : conns) close(c.fd);
+  for (const auto& c : conns.all()) close(c.fd);
 }
 
 }  // namespace modbus

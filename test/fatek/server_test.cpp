@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <fstream>
+#include <regex>
+#include <sstream>
 #include <cstdlib>
 #include <thread>
 
@@ -179,6 +182,41 @@ TEST_F(FatekTcp, ErrorCodesFromTheServer) {
   // A: illegal address.
   EXPECT_EQ(roundtrip(fd, frame("014601R09000")), frame("0146A"));
   EXPECT_EQ(roundtrip(fd, frame("01423X0300")), frame("0142A"));
+  ::close(fd);
+}
+
+// The request class -> answer table of docs/fatek.md, read from the page.
+TEST_F(FatekTcp, TableInTheDocs) {
+  std::ifstream in(std::string(PLC_CELL_SOURCE_DIR) + "/docs/fatek.md");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  const auto b = doc.find("<!-- fatek-request-classes: begin -->"), e = doc.find("<!-- fatek-request-classes: end -->");
+  ASSERT_NE(b, std::string::npos);
+  ASSERT_NE(e, std::string::npos);
+  std::istringstream lines(doc.substr(b, e - b));
+  const std::regex row(R"(^\| ([^|]+) \| `([0-9A-Z]+)` \| ([0-9A]|none) \|$)");
+  const int fd = connect_local(port);
+  int rows = 0;
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("| ", 0) != 0 || line.find('`') == std::string::npos) continue;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_match(line, m, row)) << "unreadable row: " << line;
+    ++rows;
+    const std::string req = m[2], want = m[3];
+    const std::string got = roundtrip(fd, frame(req), want == "none" ? 300 : 3000);
+    if (want == "none") {
+      EXPECT_EQ(got, "") << m[1];
+      continue;
+    }
+    ASSERT_GE(got.size(), 6u) << m[1] << ": no answer";
+    EXPECT_EQ(got.substr(1, 4), "01" + req.substr(2, 2)) << m[1];
+    EXPECT_EQ(got[5], want[0]) << m[1] << ": " << got;
+  }
+  EXPECT_GE(rows, 15);
+  // Still in step after the refused requests.
+  EXPECT_EQ(roundtrip(fd, frame("0140")).substr(5, 1), "0");
   ::close(fd);
 }
 

@@ -1,6 +1,10 @@
 #pragma once
 // FATEK slave servers over TCP and serial, each on one poll() thread. A client that sends
-// garbage or stalls only loses its own connection; it never holds up the others.
+// garbage or stalls only loses its own connection; it never holds up the others. TCP
+// connections are bounded in time as well as in number (include/plc_cell/io/connections.h):
+// a frame must be whole within frame_timeout_ms of its first byte, idle time counts
+// from the last complete request, and a full server gives the slot of a connection
+// that has completed no request for frame_timeout_ms to a new client.
 #include <atomic>
 #include <memory>
 #include <mutex>
@@ -20,8 +24,8 @@ struct TcpServerOptions {
   int port = 500;                 // FATEK Ethernet default; 0 picks a free port (tests)
   int station = 1;
   int max_connections = 8;        // as the FATEK Ethernet module
-  int idle_timeout_ms = 60000;    // a silent connection is closed
-  int frame_timeout_ms = 1000;    // a frame not finished in time is dropped
+  int idle_timeout_ms = 60000;    // closed this long after its last complete request
+  int frame_timeout_ms = 1000;    // a frame not whole this long after its STX closes the connection
   size_t max_pending_output = 64 * 1024;  // a client that does not read is dropped
   WritableRanges writable;        // what clients may write (default everything)
 };

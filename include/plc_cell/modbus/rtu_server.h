@@ -1,6 +1,8 @@
 #pragma once
-// Modbus RTU slave on a serial line (default 8E1, the FBs default). One thread;
-// libmodbus filters frames for other slave ids and drops bad CRCs.
+// Modbus RTU slave on a serial line (default 8E1, the FBs default). One thread.
+// libmodbus opens and configures the line; frames are cut by modbus/rtu_frame.h,
+// which also frames function codes we do not serve (they get exception 01).
+// Frames for other slave ids and frames with a bad CRC get no answer.
 #include <atomic>
 #include <mutex>
 #include <string>
@@ -21,6 +23,8 @@ namespace modbus {
 class RtuServer : public Server {
  public:
   RtuServer(Plc& plc, SerialSettings port, int slave_id, WritableRanges writable = {});
+  // Bytes that make no frame with a good CRC are dropped this long after the last one.
+  void set_frame_timeout_ms(int ms) { frame_timeout_ms_ = ms; }
   ~RtuServer() override;
 
   void start() override;
@@ -35,6 +39,7 @@ class RtuServer : public Server {
   Plc& plc_;
   SerialSettings port_;
   int id_;
+  int frame_timeout_ms_ = 50;
   WritableRanges writable_;
   modbus_t* ctx_ = nullptr;
   std::atomic<bool> stop_{false};

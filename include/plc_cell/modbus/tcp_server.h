@@ -1,7 +1,8 @@
 #pragma once
 // Modbus/TCP slave on one Plc: one thread, a poll() loop over the listening socket
-// and up to max_connections clients. A request is read only once all of its bytes
-// are there (peeked MBAP length), so a stalling client never blocks the others.
+// and up to max_connections clients. Bytes are buffered per connection and a request
+// is answered once all of its bytes are there (MBAP length), so a stalling client
+// never blocks the others; the time bounds are those of io/connections.h.
 #include <atomic>
 #include <cstdint>
 #include <deque>
@@ -28,7 +29,8 @@ struct TcpServerOptions {
   std::string host = "127.0.0.1";
   int port = 502;             // 0: any free port (tests); see bound_port()
   int max_connections = 16;   // further clients are accepted and closed at once
-  int idle_timeout_ms = 60000;  // a connection silent this long is closed
+  int idle_timeout_ms = 60000;  // closed this long after its last complete request
+  int frame_timeout_ms = 1000;  // a request begun must be whole within this (include/plc_cell/io/connections.h)
   // Gateway: requests whose unit id is none of own_unit, 0 and 255 go to forwarder;
   // without a forwarder every unit id is answered from the PLC.
   int own_unit = 1;
