@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <set>
 
@@ -179,8 +180,18 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
     const auto inputs = sim["inputs"];
     if (!inputs) return;
     if (!inputs.IsMap()) r.fail(inputs, "simulation.inputs", "expected a mapping of inputs to signals");
+    std::map<uint32_t, std::pair<std::string, int>> driven;  // X -> the entry driving it, its line
     for (const auto& kv : inputs)
-      errors->collect([&] { cfg.sim_inputs.push_back(parse_sim_input(r, cfg, kv.first, kv.second)); }, file, kv.first);
+      errors->collect([&] {
+        SimInputDef d = parse_sim_input(r, cfg, kv.first, kv.second);
+        const auto it = driven.find(d.x);
+        if (it != driven.end())
+          r.fail(kv.first, "simulation.inputs." + d.name,
+                 "X" + std::to_string(d.x) + " is already driven by '" + it->second.first + "' (line " +
+                     std::to_string(it->second.second) + "); an input has one signal");
+        driven[d.x] = {d.name, YamlReader::line(kv.first)};
+        cfg.sim_inputs.push_back(std::move(d));
+      }, file, kv.first);
   }, file, sim);
   return cfg;
 }

@@ -1,5 +1,6 @@
 #include "plc_cell/io/protocol_functions.h"
 
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/fatek/client.h"
 #include "plc_cell/fatek/clink.h"
@@ -9,11 +10,25 @@
 namespace plc_cell {
 namespace {
 
+// The keys of the two sections (their readers below take what they know and would
+// silently pass over a misspelt key).
+void check_keys(const CellConfig& cfg) {
+  const YamlReader r(cfg.file);
+  if (!cfg.document.IsMap()) return;
+  if (const YAML::Node f = cfg.document["fatek"]) r.only(f, "fatek", {"ports", "timeout_ms"});
+  if (const YAML::Node m = cfg.document["modbus"]) {
+    r.only(m, "modbus", {"ports"});
+    if (m["ports"] && m["ports"].IsMap())
+      for (const auto& kv : m["ports"]) r.only(kv.second, "modbus.ports." + kv.first.as<std::string>(), {"tcp", "rtu"});
+  }
+}
+
 // Runs the reading of the `fatek:` then the `modbus:` section; an error names the file
 // and the section's line. *section says which one is being read.
 template <typename F>
 void in_sections(const CellConfig& cfg, const char** section, F&& read) {
   try {
+    check_keys(cfg);
     read();
   } catch (const SourceError&) {
     throw;
