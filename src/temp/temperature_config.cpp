@@ -109,6 +109,11 @@ std::string fmt(double v) {
   std::snprintf(b, sizeof b, "%.4f", v);
   return b;
 }
+std::string degrees(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
 
 // A channel's `value` in the unit of the module's sensor, inside the range where the
 // sensor's standard defines it (NIST ITS-90 emf for a thermocouple, IEC 60751 -200..850
@@ -127,7 +132,7 @@ void check_signal(const Reader& r, const YAML::Node& n, const std::string& key, 
       lo = tc_emf_mv(m.tc, tc_min_c(m.tc)), hi = tc_emf_mv(m.tc, tc_max_c(m.tc));
       if (!(c.signal.value >= lo && c.signal.value <= hi))
         r.fail(v, k, "'" + given + "' out of range " + fmt(lo) + ".." + fmt(hi) + " mV (type " + to_string(m.tc) +
-                         ", NIST ITS-90 " + fmt(tc_min_c(m.tc)) + ".." + fmt(tc_max_c(m.tc)) + " C)");
+                         ", NIST ITS-90 " + degrees(tc_min_c(m.tc)) + ".." + degrees(tc_max_c(m.tc)) + " C)");
       return;
     case SensorKind::Pt100:
     case SensorKind::Pt1000: {
