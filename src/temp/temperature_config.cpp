@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 
+#include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/temp/fb_modules.h"
 #include "plc_cell/temp/rtd.h"
@@ -291,7 +292,10 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
     c.fb = std::make_shared<FbConfig>(parse_fb_config(fb, file));
   }
   if (node["analog"]) c.analog = parse_analog_config(node["analog"], file), c.has_analog = true;
-  if (const YAML::Node t = node["temperature"]) {
+  // modules.temperature and modules.plants, and every module and plant entry in them, are
+  // read even after an error in another, so each is reported in the same run.
+  ErrorList errors;
+  if (const YAML::Node t = node["temperature"]) errors.collect([&] {
     const std::string k = "modules.temperature";
     r.only(t, k, {"scan", "unit", "averaging", "readings", "working", "table", "first_ir", "modules", "loops"});
     if (const YAML::Node ls = t["loops"]) {
@@ -327,7 +331,8 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
       const YAML::Node& ms = t["modules"];
       if (!ms.IsSequence() || ms.size() == 0 || ms.size() > 8) r.fail(ms, k + ".modules", "a list of 1 to 8 modules");
       for (size_t i = 0; i < ms.size(); ++i)
-        c.modules.push_back(parse_module(r, ms[i], k + ".modules[" + std::to_string(i) + "]"));
+        errors.collect([&] { c.modules.push_back(parse_module(r, ms[i], k + ".modules[" + std::to_string(i) + "]")); },
+                       file, ms[i]);
     }
     if (c.total_channels() > 32)
       r.fail(t["modules"], k + ".modules", "more than 32 temperature points (the FBs limit)");
@@ -347,11 +352,14 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
     } catch (const Error& e) {
       r.fail(t, k, e.what());
     }
-  }
-  if (const YAML::Node ps = node["plants"]) {
+  }, file, t);
+  if (const YAML::Node ps = node["plants"]) errors.collect([&] {
     if (!ps.IsSequence()) r.fail(ps, "modules.plants", "expected a list");
-    for (size_t i = 0; i < ps.size(); ++i) c.plants.push_back(parse_plant(r, ps[i], "modules.plants[" + std::to_string(i) + "]"));
-  }
+    for (size_t i = 0; i < ps.size(); ++i)
+      errors.collect([&] { c.plants.push_back(parse_plant(r, ps[i], "modules.plants[" + std::to_string(i) + "]")); },
+                     file, ps[i]);
+  }, file, ps);
+  errors.throw_if_any();  // the checks across sections below need them whole
   std::vector<const std::vector<AnalogInputDef>*> analog_inputs{&c.analog.board.inputs};
   for (const auto& m : c.analog.modules) analog_inputs.push_back(&m.inputs);
   for (const auto* ins : analog_inputs)

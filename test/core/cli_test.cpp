@@ -210,6 +210,30 @@ TEST(CheckConfig, ReportsEveryErrorOfTheFileInOneRun) {
   expect_check_agrees_with_sim(path, "many");
 }
 
+// Within modules.temperature.modules and modules.plants each entry is read on its own.
+TEST(CheckConfig, ReportsEveryBadModuleEntry) {
+  const std::string path = write_cell("modules2",
+                                      "modules:\n"
+                                      "  temperature:\n"
+                                      "    modules:\n"
+                                      "      - {type: 7TC}\n"                              // 5
+                                      "      - {type: 6RTD, sensor: K}\n"                  // 6
+                                      "      - {type: 2TC, channels: [{value: 1 ohm}]}\n"  // 7
+                                      "  plants:\n"
+                                      "    - {name: a, gain: -1}\n"                        // 9
+                                      "    - {nmae: b}\n");                                // 10
+  const Result r = tool("check --config " + path);
+  EXPECT_EQ(r.status, 1);
+  for (const char* w : {":5:16: error: key 'modules.temperature.modules[0].type': unknown module '7TC'",
+                        ":6:30: error: key 'modules.temperature.modules[1].sensor': an RTD module takes PT100 or PT1000",
+                        ":7:40: error: key 'modules.temperature.modules[2].channels[0].value': a thermocouple's value is in mV",
+                        ":9:23: error: key 'modules.plants[0].gain': value -1 out of range",
+                        ":10:8: error: key 'modules.plants[1].nmae': unknown key"})
+    EXPECT_NE(r.out.find(path + w), std::string::npos) << w << "\n" << r.out;
+  EXPECT_NE(r.out.find("\n5 error(s)\n"), std::string::npos) << r.out;
+  expect_check_agrees_with_sim(path, "modules2");
+}
+
 TEST(CheckConfig, ProgramErrorsComeAfterTheCellErrors) {
   std::ofstream(kCheckDir + "bad.il") << "ORG X0\nOUT Q1\nEND\n";
   const std::string path = kCheckDir + "badprog.yaml";
