@@ -22,7 +22,9 @@ target_sources(plc_cell_core PRIVATE
   src/temp/tpctl_loop.cpp
   src/temp/fb_modules.cpp
   src/temp/fb_measure.cpp
-  src/temp/fb_functions.cpp)
+  src/temp/fb_functions.cpp
+  src/temp/sensor_signal.cpp
+  src/temp/loop_settings.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS test/temp/*_test.cpp)

@@ -1,11 +1,10 @@
-// plc_cell check: parse a program and list every error with file:line:column.
+// plc_cell check: build the cell as sim, run and plc_node do, stop, and list every error
+// with file:line:column.
 #include <iostream>
 
 #include "args.h"
 #include "commands.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/core/function_table.h"
-#include "plc_cell/core/il_parser.h"
 #include "plc_cell/io/protocol_functions.h"
 #include "plc_cell/sim/soft_cell.h"
 
@@ -14,15 +13,16 @@ namespace cli {
 
 int cmd_check(const std::vector<std::string>& argv) {
   Args args(argv, {"program", "config"});
-  const std::string path = args.require("program");
+  if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
+  if (!args.has("config")) args.require("program");
   try {
-    // --config: the cell's generation (an FB cell has FUN72/73/85 and the FB FUN86).
-    const std::string config = args.get("config");
-    const CellConfig cell = config.empty() ? CellConfig() : load_cell_config(config);
-    FunctionTable fns = SoftCell::functions(temp::cell_generation(cell.document, cell.file));
-    const auto keep = install_protocol_functions(CellConfig(), fns);  // FUN150/151 without ports
-    const Program p = load_program_file(path, fns);
-    std::cout << path << ": OK, " << p.code.size() << " instructions, " << p.labels.size() << " labels\n";
+    // The same SoftCell as sim/run/plc_node; only FUN150/151 get no ports (nothing is opened).
+    SoftCell cell(args.get("config"), args.get("program"), check_protocol_functions);
+    const auto size = cell.plc().locked([](ScanEngine& e, Memory&) {
+      return std::make_pair(e.program().code.size(), e.program().labels.size());
+    });
+    if (!cell.config().file.empty()) std::cout << cell.config().file << ": OK, cell " << cell.config().name << "\n";
+    std::cout << cell.program_path() << ": OK, " << size.first << " instructions, " << size.second << " labels\n";
     return 0;
   } catch (const SourceError& e) {
     for (const auto& d : e.diagnostics()) std::cerr << d.to_string() << "\n";

@@ -47,7 +47,7 @@ int cmd_run(const std::vector<std::string>& argv) {
 
   std::vector<std::unique_ptr<Server>> servers;
   // @run-servers: subsystems create their servers from args here (servers.push_back(...))
-  const ServerSettings from_yaml = parse_server_settings(cell.config());
+  const ServerSettings& from_yaml = cell.servers();  // read (and checked) with the cell
   add_fatek_servers(args, from_yaml, cell.plc(), &servers);
   add_modbus_servers(args, from_yaml, cell.plc(), &servers);
   for (auto& s : servers) {

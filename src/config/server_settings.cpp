@@ -4,6 +4,7 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/writable_ranges.h"
+#include "plc_cell/io/serial_settings.h"
 
 namespace plc_cell {
 namespace {
@@ -67,6 +68,30 @@ std::string ranges(const std::string& file, const YAML::Node& n, const std::stri
   return s;
 }
 
+// Where a server listens, checked here so a bad one is a config error with its line, not a
+// failure when the server starts.
+std::string host_port(const std::string& file, const YAML::Node& n, const std::string& key) {
+  const std::string v = text(file, n, key);
+  try {
+    std::string host;
+    int port = 0;
+    parse_host_port(v, &host, &port);
+  } catch (const Error& e) {
+    fail(file, n, key, e.what());
+  }
+  return v;
+}
+
+std::string serial_line(const std::string& file, const YAML::Node& n, const std::string& key, const char* format) {
+  const std::string v = text(file, n, key);
+  try {
+    parse_serial_settings(v, format);
+  } catch (const Error& e) {
+    fail(file, n, key, e.what());
+  }
+  return v;
+}
+
 }  // namespace
 
 ServerSettings parse_server_settings(const CellConfig& cfg) {
@@ -79,8 +104,8 @@ ServerSettings parse_server_settings(const CellConfig& cfg) {
   if (const auto n = s["fatek"]) {
     only(f, n, "servers.fatek", {"tcp", "serial", "station", "writable", "max_connections", "idle_timeout"});
     auto& o = out.fatek;
-    if (n["tcp"]) o.tcp = text(f, n["tcp"], "servers.fatek.tcp");
-    if (n["serial"]) o.serial = text(f, n["serial"], "servers.fatek.serial");
+    if (n["tcp"]) o.tcp = host_port(f, n["tcp"], "servers.fatek.tcp");
+    if (n["serial"]) o.serial = serial_line(f, n["serial"], "servers.fatek.serial", "7E1");
     if (n["station"]) o.station = integer(f, n["station"], "servers.fatek.station", 1, 254);
     if (n["writable"]) o.writable = ranges(f, n["writable"], "servers.fatek.writable");
     if (n["max_connections"]) o.max_connections = integer(f, n["max_connections"], "servers.fatek.max_connections", 1, 1024);
@@ -89,8 +114,8 @@ ServerSettings parse_server_settings(const CellConfig& cfg) {
   if (const auto n = s["modbus"]) {
     only(f, n, "servers.modbus", {"tcp", "rtu", "id", "writable", "max_connections", "idle_timeout"});
     auto& o = out.modbus;
-    if (n["tcp"]) o.tcp = text(f, n["tcp"], "servers.modbus.tcp");
-    if (n["rtu"]) o.rtu = text(f, n["rtu"], "servers.modbus.rtu");
+    if (n["tcp"]) o.tcp = host_port(f, n["tcp"], "servers.modbus.tcp");
+    if (n["rtu"]) o.rtu = serial_line(f, n["rtu"], "servers.modbus.rtu", "8E1");
     if (n["id"]) o.id = integer(f, n["id"], "servers.modbus.id", 1, 247);
     if (n["writable"]) o.writable = ranges(f, n["writable"], "servers.modbus.writable");
     if (n["max_connections"]) o.max_connections = integer(f, n["max_connections"], "servers.modbus.max_connections", 1, 1024);

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 
 namespace plc_cell {
@@ -31,6 +32,20 @@ void YamlReader::only(const YAML::Node& map, const std::string& key, const std::
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
       fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + list + ")");
     }
+  }
+}
+
+void YamlReader::only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed,
+                      ErrorList* errors) const {
+  if (!map.IsMap()) fail(map, key, "expected a mapping");
+  for (const auto& kv : map) {
+    errors->collect([&] {
+      const std::string k = kv.first.as<std::string>();
+      if (allowed.count(k)) return;
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + list + ")");
+    }, file_, kv.first);
   }
 }
 

@@ -97,7 +97,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   }
 
   // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
-  const ServerSettings from_yaml = parse_server_settings(cfg);
+  const ServerSettings& from_yaml = cell_->servers();  // read (and checked) with the cell
   add_fatek_servers(cell_->plc(), pnh, from_yaml, &servers_);
   add_modbus_servers(cell_->plc(), pnh, from_yaml, &servers_);
   if (cell_->temperature()) temperature_ = std::make_unique<TemperatureRos>(nh, pnh, *cell_, updater_);

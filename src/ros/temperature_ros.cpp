@@ -6,6 +6,7 @@
 #include <sensor_msgs/Temperature.h>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/temp/loop_settings.h"
 #include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
@@ -114,24 +115,13 @@ bool TemperatureRos::on_set_loop(SetPidLoop::Request& req, SetPidLoop::Response&
     res.message = "no loop '" + req.loop + "' in modules.temperature.loops";
     return true;
   }
-  const bool sv = !std::isnan(req.setpoint);
-  if (sv && !(req.setpoint >= -3276.8 && req.setpoint <= 3276.7)) {
-    res.message = "setpoint out of range";
-    return true;
-  }
-  auto gain = [&](int32_t v, bool has, int lo, const char* what) {
-    if (v == -1) return true;
-    if (!has) return res.message = std::string("loop has no ") + what + " register", false;
-    if (v < lo || v > 9999) return res.message = std::string(what) + " out of range", false;
-    return true;
-  };
-  if (!gain(req.kc, loop->has_kc, 1, "kc") || !gain(req.ki, loop->has_ki, 0, "ki") || !gain(req.td, loop->has_td, 0, "td"))
-    return true;
+  temp::LoopChange change;
+  change.setpoint = req.setpoint;
+  change.kc = req.kc, change.ki = req.ki, change.td = req.td;
+  res.message = temp::check_loop_change(*loop, change, cell_.temperature()->config().fahrenheit);
+  if (!res.message.empty()) return true;  // refused: nothing written
   cell_.plc().locked([&](ScanEngine&, Memory& m) {
-    if (sv) m.set_reg(loop->sv.area, loop->sv.index, uint16_t(int16_t(std::lround(req.setpoint * 10))));
-    if (req.kc != -1) m.set_reg(loop->kc.area, loop->kc.index, uint16_t(req.kc));
-    if (req.ki != -1) m.set_reg(loop->ki.area, loop->ki.index, uint16_t(req.ki));
-    if (req.td != -1) m.set_reg(loop->td.area, loop->td.index, uint16_t(req.td));
+    temp::apply_loop_change(*loop, change, m);
     return 0;
   });
   res.success = true;

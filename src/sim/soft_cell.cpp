@@ -7,6 +7,13 @@
 #include "plc_cell/motion/motion_unit.h"
 
 namespace plc_cell {
+namespace {
+
+YAML::Node section(const CellConfig& cfg, const char* name) {
+  return cfg.document.IsMap() ? cfg.document[name] : YAML::Node();
+}
+
+}  // namespace
 
 FunctionTable SoftCell::functions(temp::Generation g) {
   FunctionTable t = FunctionTable::with_core_functions();
@@ -15,35 +22,53 @@ FunctionTable SoftCell::functions(temp::Generation g) {
 }
 
 FunctionTable SoftCell::functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
-                                      std::vector<std::shared_ptr<void>>* keep) {
-  FunctionTable t = functions(temp::cell_generation(cfg.document, cfg.file));
-  if (install) *keep = install(cfg, t);
+                                      std::vector<std::shared_ptr<void>>* keep, ErrorList* errors, bool* complete) {
+  temp::Generation g = temp::Generation::FBs;
+  *complete &= errors->collect([&] { g = temp::cell_generation(cfg.document, cfg.file); }, cfg.file);
+  FunctionTable t = functions(g);
+  if (install) *complete &= errors->collect([&] { *keep = install(cfg, t); }, cfg.file);
   return t;
 }
 
 SoftCell::SoftCell(const std::string& config_path, const std::string& program_path,
                    const CellFunctionInstaller& install)
-    : config_(config_path.empty() ? CellConfig() : load_cell_config(config_path)),
-      plc_(functions_for(config_, install, &installed_)) {
+    : config_(config_path.empty() ? CellConfig() : load_cell_config(config_path, &errors_)),
+      plc_(functions_for(config_, install, &installed_, &errors_, &functions_complete_)) {
+  try {
+    build(program_path);
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+// Each subsystem reads its own section; a section in error leaves its subsystem as an
+// empty one, so the sections after it are still read and reported.
+void SoftCell::build(const std::string& program_path) {
+  const std::string& file = config_.file;
+  ErrorList& errors = errors_;
   program_path_ = program_path.empty() ? config_.program : program_path;
-  if (program_path_.empty())
-    throw Error("no program: give --program or set cell.program in the cell config");
   sim_ = plc_.locked([&](ScanEngine& e, Memory& m) { return std::make_unique<SimulatedCell>(e, m); });
   apply_cell_config(config_, plc_, *sim_);
+  const YAML::Node modules = section(config_, "modules");
   plc_.locked([&](ScanEngine& e, Memory& m) {
     e.add_hook(sim_.get());
-    temperature_ = temp::make_temperature_cell(config_.document, config_.file, m);
+    errors.collect([&] { temperature_ = temp::make_temperature_cell(config_.document, file, m); }, file, modules);
     if (temperature_) e.add_hook(temperature_.get());
-    rtc_ = temp::make_rtc(config_.document, config_.file, m);
-    e.add_hook(rtc_.get());
-    pwmda_ = temp::make_pwmda_outputs(config_.document, config_.file, m);
+    errors.collect([&] { rtc_ = temp::make_rtc(config_.document, file, m); }, file, modules);
+    if (rtc_) e.add_hook(rtc_.get());
+    errors.collect([&] { pwmda_ = temp::make_pwmda_outputs(config_.document, file, m); }, file, modules);
     if (pwmda_) e.add_hook(pwmda_.get());
     return 0;
   });
-  const YAML::Node& doc = config_.document;
-  hsc_ = std::make_unique<hsc::HscUnit>(plc_, hsc::parse_hsc_config(doc["counters"], config_.file));
+  errors.collect([&] { servers_ = parse_server_settings(config_); }, file, section(config_, "servers"));
+  const YAML::Node counters = section(config_, "counters");
+  hsc::HscConfig hc;
+  if (!errors.collect([&] { hc = hsc::parse_hsc_config(counters, file); }, file, counters)) hc = hsc::HscConfig();
+  hsc_ = std::make_unique<hsc::HscUnit>(plc_, hc);
   motion_ = std::make_unique<motion::MotionUnit>(plc_);
-  motion_->configure(motion::parse_axes_config(doc["axes"], config_.file));
+  const YAML::Node axes = section(config_, "axes");
+  errors.collect([&] { motion_->configure(motion::parse_axes_config(axes, file)); }, file, axes);
   // Pulse and step signals on the high-speed inputs X0-X15 become exact-time edges,
   // so counters and edge interrupts see every pulse, not the scan's samples.
   plc_.locked([&](ScanEngine&, Memory&) {
@@ -64,21 +89,30 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
       if (hsc_->config().capture[x]) sim_->capture(x);
     return 0;
   });
-  plc_.load_program_file(program_path_);
+  // The program needs the whole instruction set: with modules.generation, fatek: or
+  // modbus: in error its FUN lines would only repeat those errors.
+  if (program_path_.empty()) {
+    errors.throw_if_any();  // a cell: section in error may be why there is no program
+    throw Error("no program: give --program or set cell.program in the cell config");
+  }
+  if (functions_complete_) errors.collect([&] { plc_.load_program_file(program_path_); }, program_path_);
+  errors.throw_if_any();
 }
 
-SoftCell::~SoftCell() {
+void SoftCell::release() {
   installed_.clear();
   motion_.reset();
   hsc_.reset();
   plc_.locked([&](ScanEngine& e, Memory& m) {
-    e.remove_hook(sim_.get());
+    if (sim_) e.remove_hook(sim_.get());
     if (temperature_) e.remove_hook(temperature_.get());
-    e.remove_hook(rtc_.get());
+    if (rtc_) e.remove_hook(rtc_.get());
     if (pwmda_) e.remove_hook(pwmda_.get());
     temp::hspwm_reset(m);  // FUN139's generators belong to this PLC
     return 0;
   });
 }
+
+SoftCell::~SoftCell() { release(); }
 
 }  // namespace plc_cell

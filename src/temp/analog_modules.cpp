@@ -5,6 +5,7 @@
 #include <set>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/temp/sensor_signal.h"
 
 namespace plc_cell {
 namespace temp {
@@ -81,7 +82,31 @@ void parse_channels(const std::string& file, const YAML::Node& m, const std::str
       AnalogInputDef a;
       if (in[j]["name"]) a.name = in[j]["name"].as<std::string>();
       if (in[j]["current"]) a.current = flag(file, in[j]["current"], ik + ".current");
-      if (in[j]["value"]) a.value = num(file, in[j]["value"], ik + ".value", -30, 30);
+      if (const YAML::Node v = in[j]["value"]) {
+        // A bare number is in the terminal's unit (mA with current: true, else V); with a
+        // unit, mA means the I terminal and V the V terminal.
+        const std::string text = v.IsScalar() ? v.as<std::string>() : "";
+        Quantity q;
+        bool unit = false;
+        try {
+          q = parse_quantity(text);
+          unit = true;
+        } catch (const Error& e) {
+          if (text.find_first_not_of("0123456789+-.eE ") == std::string::npos) q.value = num(file, v, ik + ".value", -30, 30);
+          else fail(file, v, ik + ".value", e.what());
+        }
+        if (unit) {
+          if (q.unit != Unit::Volt && q.unit != Unit::Milliamp)
+            fail(file, v, ik + ".value", "an analog input's value is in V or mA, got '" + text + "'");
+          const bool ma = q.unit == Unit::Milliamp;
+          if (in[j]["current"] && a.current != ma)
+            fail(file, v, ik + ".value", std::string("'") + text + "' on a " + (a.current ? "current (current: true)" : "voltage (current: false)") + " input");
+          a.current = ma;
+          if (!(q.value >= -30 && q.value <= 30))
+            fail(file, v, ik + ".value", "'" + text + "' out of range -30..30 " + unit_name(q.unit));
+        }
+        a.value = q.value;
+      }
       if (in[j]["plant"]) a.plant = in[j]["plant"].as<std::string>();
       if (in[j]["offset"]) a.offset = flag(file, in[j]["offset"], ik + ".offset");
       if (const YAML::Node pr = in[j]["plant_range"]) {

@@ -66,8 +66,13 @@ FbConfig parse_fb_config(const YAML::Node& node, const std::string& file) {
     if (const YAML::Node ch = n["channels"]) {
       if (!ch.IsSequence() || int(ch.size()) > m.points)
         r.fail(ch, mk + ".channels", "a list of at most " + std::to_string(m.points) + " points");
-      for (size_t j = 0; j < ch.size(); ++j)
-        m.channels.push_back(parse_channel_def(ch[j], mk + ".channels[" + std::to_string(j) + "]", file));
+      for (size_t j = 0; j < ch.size(); ++j) {
+        const std::string ck = mk + ".channels[" + std::to_string(j) + "]";
+        m.channels.push_back(parse_channel_def(ch[j], ck, file));
+        // The FB modules' conversion is a linear model in degC (fb_measure.h), not a sensor curve.
+        if (m.channels.back().has_signal)
+          r.fail(ch[j]["value"], ck + ".value", "the FB-series modules take a value in C only (mV and ohm are for the FBs modules)");
+      }
     }
     m.first_ai = ai;
     ai += m.big() ? 8 : 3;  // a 2A?4 takes 3 AI addresses; a 4AJ(K)xx 4 general + 4 temperature

@@ -133,6 +133,31 @@ double TemperatureCell::sense(const ModuleDef& m, double t, bool* out_of_range) 
   return t;
 }
 
+// The same chain from the sensor's signal on. A thermocouple's value is its hot junction's
+// emf against 0 degC (the NIST tables' number): the terminals, at the module's cold-junction
+// temperature, see that minus E(cold junction), and the module adds E(cold junction) back.
+double TemperatureCell::sense_signal(const ModuleDef& m, const Quantity& q, bool* out_of_range) const {
+  double t = 0;
+  switch (m.sensor) {
+    case SensorKind::Thermocouple: {
+      const double terminal_mv = q.value - tc_emf_mv(m.tc, m.cold_junction_c);
+      t = tc_compensated_c(m.tc, terminal_mv, m.cold_junction_c);
+      break;
+    }
+    case SensorKind::Pt100:
+    case SensorKind::Pt1000:
+      t = rtd_temperature(rtd_curve(m.sensor == SensorKind::Pt100 ? 100 : 1000, m.alpha), q.value);
+      break;
+    case SensorKind::Ntc:
+      t = m.use_sh ? ntc_temperature(m.sh, q.value) : ntc_temperature(m.ntc, q.value);
+      break;
+  }
+  double lo, hi;
+  range_of(m, &lo, &hi);
+  *out_of_range = t < lo || t > hi;
+  return std::clamp(t, lo, hi);  // the converter saturates at the ends of its range
+}
+
 void TemperatureCell::sample(size_t i) {
   ChannelState& ch = channels_[i];
   ch.open = wired_open_[i];
@@ -141,7 +166,11 @@ void TemperatureCell::sample(size_t i) {
     ch.next = 0;
     return;
   }
-  const double v = sense(cfg_.modules[size_t(ch.module)], true_temperature(i), &ch.out_of_range);
+  const ModuleDef& m = cfg_.modules[size_t(ch.module)];
+  const size_t local = i - modules_[size_t(ch.module)].first;
+  const ChannelDef* def = local < m.channels.size() ? &m.channels[local] : nullptr;
+  const double v = def && def->has_signal && plant_of_[i] < 0 ? sense_signal(m, def->signal, &ch.out_of_range)
+                                                             : sense(m, true_temperature(i), &ch.out_of_range);
   if (ch.window.size() < size_t(cfg_.averaging)) {
     ch.window.push_back(v);
   } else {

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
+#include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/temp/fb_modules.h"
+#include "plc_cell/temp/rtd.h"
 
 namespace plc_cell {
 namespace temp {
@@ -76,13 +79,76 @@ class Reader {
 };
 
 ChannelDef parse_channel(const Reader& r, const YAML::Node& n, const std::string& key) {
-  r.only(n, key, {"name", "plant", "temperature", "open"});
+  r.only(n, key, {"name", "plant", "temperature", "value", "open"});
   ChannelDef c;
   if (n["name"]) c.name = r.str(n["name"], key + ".name");
   if (n["plant"]) c.plant = r.str(n["plant"], key + ".plant");
   if (n["temperature"]) c.fixed_c = r.number(n["temperature"], key + ".temperature", -273, 3000);
   if (n["open"]) c.open = r.boolean(n["open"], key + ".open");
+  if (const YAML::Node v = n["value"]) {
+    if (n["plant"] || n["temperature"]) r.fail(v, key + ".value", "give one of plant, temperature, value");
+    try {
+      c.signal = parse_quantity(r.str(v, key + ".value"));
+    } catch (const SourceError&) {
+      throw;
+    } catch (const Error& e) {
+      r.fail(v, key + ".value", e.what());
+    }
+    if (c.signal.unit == Unit::Celsius) {
+      if (!(c.signal.value >= -273 && c.signal.value <= 3000))
+        r.fail(v, key + ".value", "value " + v.as<std::string>() + " out of range -273..3000 C");
+      c.fixed_c = c.signal.value;
+    } else {
+      c.has_signal = true;  // its unit is checked against the module's sensor
+    }
+  }
   return c;
+}
+
+std::string fmt(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4f", v);
+  return b;
+}
+std::string degrees(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+// A channel's `value` in the unit of the module's sensor, inside the range where the
+// sensor's standard defines it (NIST ITS-90 emf for a thermocouple, IEC 60751 -200..850
+// degC for an RTD); an NTC takes any resistance above 0.
+void check_signal(const Reader& r, const YAML::Node& n, const std::string& key, const ModuleDef& m,
+                  const ChannelDef& c) {
+  if (!c.has_signal) return;
+  const YAML::Node v = n["value"];
+  const std::string k = key + ".value";
+  const std::string given = v.as<std::string>();
+  double lo, hi;
+  switch (m.sensor) {
+    case SensorKind::Thermocouple:
+      if (c.signal.unit != Unit::Millivolt)
+        r.fail(v, k, "a thermocouple's value is in mV (or C), got '" + given + "'");
+      lo = tc_emf_mv(m.tc, tc_min_c(m.tc)), hi = tc_emf_mv(m.tc, tc_max_c(m.tc));
+      if (!(c.signal.value >= lo && c.signal.value <= hi))
+        r.fail(v, k, "'" + given + "' out of range " + fmt(lo) + ".." + fmt(hi) + " mV (type " + to_string(m.tc) +
+                         ", NIST ITS-90 " + degrees(tc_min_c(m.tc)) + ".." + degrees(tc_max_c(m.tc)) + " C)");
+      return;
+    case SensorKind::Pt100:
+    case SensorKind::Pt1000: {
+      if (c.signal.unit != Unit::Ohm) r.fail(v, k, "an RTD's value is in ohm (or C), got '" + given + "'");
+      const RtdCurve curve = rtd_curve(m.sensor == SensorKind::Pt100 ? 100 : 1000, m.alpha);
+      lo = rtd_resistance(curve, -200), hi = rtd_resistance(curve, 850);
+      if (!(c.signal.value >= lo && c.signal.value <= hi))
+        r.fail(v, k, "'" + given + "' out of range " + fmt(lo) + ".." + fmt(hi) + " ohm (-200..850 C)");
+      return;
+    }
+    case SensorKind::Ntc:
+      if (c.signal.unit != Unit::Ohm) r.fail(v, k, "an NTC's value is in ohm (or C), got '" + given + "'");
+      if (!(c.signal.value > 0)) r.fail(v, k, "'" + given + "' out of range: a resistance above 0 ohm");
+      return;
+  }
 }
 
 ModuleDef parse_module(const Reader& r, const YAML::Node& n, const std::string& key) {
@@ -137,8 +203,11 @@ ModuleDef parse_module(const Reader& r, const YAML::Node& n, const std::string& 
     if (!ch.IsSequence()) r.fail(ch, key + ".channels", "expected a list");
     if (int(ch.size()) > module_info(m.kind).channels)
       r.fail(ch, key + ".channels", "a " + type + " has " + std::to_string(module_info(m.kind).channels) + " channels");
-    for (size_t i = 0; i < ch.size(); ++i)
-      m.channels.push_back(parse_channel(r, ch[i], key + ".channels[" + std::to_string(i) + "]"));
+    for (size_t i = 0; i < ch.size(); ++i) {
+      const std::string ck = key + ".channels[" + std::to_string(i) + "]";
+      m.channels.push_back(parse_channel(r, ch[i], ck));
+      check_signal(r, ch[i], ck, m, m.channels.back());
+    }
   }
   return m;
 }
@@ -223,7 +292,10 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
     c.fb = std::make_shared<FbConfig>(parse_fb_config(fb, file));
   }
   if (node["analog"]) c.analog = parse_analog_config(node["analog"], file), c.has_analog = true;
-  if (const YAML::Node t = node["temperature"]) {
+  // modules.temperature and modules.plants, and every module and plant entry in them, are
+  // read even after an error in another, so each is reported in the same run.
+  ErrorList errors;
+  if (const YAML::Node t = node["temperature"]) errors.collect([&] {
     const std::string k = "modules.temperature";
     r.only(t, k, {"scan", "unit", "averaging", "readings", "working", "table", "first_ir", "modules", "loops"});
     if (const YAML::Node ls = t["loops"]) {
@@ -259,7 +331,8 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
       const YAML::Node& ms = t["modules"];
       if (!ms.IsSequence() || ms.size() == 0 || ms.size() > 8) r.fail(ms, k + ".modules", "a list of 1 to 8 modules");
       for (size_t i = 0; i < ms.size(); ++i)
-        c.modules.push_back(parse_module(r, ms[i], k + ".modules[" + std::to_string(i) + "]"));
+        errors.collect([&] { c.modules.push_back(parse_module(r, ms[i], k + ".modules[" + std::to_string(i) + "]")); },
+                       file, ms[i]);
     }
     if (c.total_channels() > 32)
       r.fail(t["modules"], k + ".modules", "more than 32 temperature points (the FBs limit)");
@@ -279,11 +352,14 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
     } catch (const Error& e) {
       r.fail(t, k, e.what());
     }
-  }
-  if (const YAML::Node ps = node["plants"]) {
+  }, file, t);
+  if (const YAML::Node ps = node["plants"]) errors.collect([&] {
     if (!ps.IsSequence()) r.fail(ps, "modules.plants", "expected a list");
-    for (size_t i = 0; i < ps.size(); ++i) c.plants.push_back(parse_plant(r, ps[i], "modules.plants[" + std::to_string(i) + "]"));
-  }
+    for (size_t i = 0; i < ps.size(); ++i)
+      errors.collect([&] { c.plants.push_back(parse_plant(r, ps[i], "modules.plants[" + std::to_string(i) + "]")); },
+                     file, ps[i]);
+  }, file, ps);
+  errors.throw_if_any();  // the checks across sections below need them whole
   std::vector<const std::vector<AnalogInputDef>*> analog_inputs{&c.analog.board.inputs};
   for (const auto& m : c.analog.modules) analog_inputs.push_back(&m.inputs);
   for (const auto* ins : analog_inputs)

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
@@ -199,4 +201,58 @@ TEST(CellConfig, TheTemplateParses) {
   EXPECT_EQ(c.sim_inputs.size(), 3u);
   EXPECT_EQ(c.retentive.size(), CellConfig::default_retentive().size());
   EXPECT_EQ(c.timer_bases.size(), 3u);
+}
+
+// A section in error does not hide the next: every error of the file, in file order.
+TEST(CellConfig, ListsEveryErrorOfTheFile) {
+  try {
+    parse_cell_config(
+        "cell: {nmae: x}\n"
+        "plc: {scan_period: 5, watchdog: 99}\n"
+        "signals: {a: Q1}\n"
+        "simulation:\n"
+        "  inputs:\n"
+        "    X1: {pulse: {period: 1, width: 2}}\n"
+        "    X2: {steps: [[0, 1]]}\n"
+        "    X2: {steps: [[0, 0]]}\n"
+        "bogus: 1\n",
+        "cell.yaml");
+    FAIL() << "accepted";
+  } catch (const SourceError& e) {
+    std::vector<std::string> got;
+    for (const auto& d : e.diagnostics()) got.push_back(d.to_string().substr(0, d.to_string().find(" error:")));
+    const std::vector<std::string> want = {"cell.yaml:1:8:", "cell.yaml:2:20:", "cell.yaml:2:33:", "cell.yaml:3:14:",
+                                           "cell.yaml:6:36:", "cell.yaml:8:5:", "cell.yaml:9:1:"};
+    EXPECT_EQ(got, want) << e.what();
+    EXPECT_NE(std::string(e.what()).find("key 'simulation.inputs.X2': X2 is already driven by 'X2' (line 7)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// SoftCell reads the subsystems' sections after a failed one and the program after them.
+TEST(SoftCell, ReportsEverySectionAndTheProgram) {
+  std::ofstream("/tmp/plc_cell_softcell_bad.il") << "ORG X0\nOUT Q1\nEND\n";
+  std::ofstream("/tmp/plc_cell_softcell_bad.yaml")
+      << "cell: {program: plc_cell_softcell_bad.il}\n"
+         "plc: {watchdog: 99}\n"
+         "counters: {hsc9: {}}\n"
+         "axes: {pso7: {}}\n"
+         "modules: {temperature: {modules: [{type: 7TC}]}}\n"
+         "servers: {modbus: {id: 0}}\n";
+  try {
+    SoftCell cell("/tmp/plc_cell_softcell_bad.yaml", "");
+    FAIL() << "built";
+  } catch (const SourceError& e) {
+    const std::string w = e.what();
+    ASSERT_EQ(e.diagnostics().size(), 6u) << w;
+    const char* keys[] = {"plc.watchdog", "counters.hsc9", "axes.pso7", "modules.temperature.modules[0].type",
+                          "servers.modbus.id"};
+    for (size_t i = 0; i < 5; ++i) {
+      EXPECT_EQ(e.diagnostics()[i].where.line, int(i) + 2) << w;
+      EXPECT_NE(e.diagnostics()[i].message.find(std::string("key '") + keys[i] + "'"), std::string::npos) << w;
+    }
+    EXPECT_EQ(e.diagnostics()[5].where.file, "/tmp/plc_cell_softcell_bad.il");
+    EXPECT_EQ(e.diagnostics()[5].where.line, 2);
+  }
 }

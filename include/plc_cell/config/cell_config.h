@@ -14,6 +14,7 @@
 
 namespace plc_cell {
 
+class ErrorList;
 class Plc;
 class SimulatedCell;
 
@@ -58,9 +59,14 @@ struct CellConfig {
   Address resolve(const std::string& name_or_address) const;
 };
 
-// Throw SourceError naming file:line:column and the key.
+// Throw SourceError naming file:line:column and the key, listing every error of the file.
 CellConfig load_cell_config(const std::string& path);
 CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file);
+// The same, keeping the errors of each section in errors and returning what could be read
+// (SoftCell goes on with the subsystems' sections). Still throws when the file cannot be
+// read or is not YAML: then there is nothing to go on with.
+CellConfig load_cell_config(const std::string& path, ErrorList* errors);
+CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors);
 
 // Applies scan settings and retentive ranges to the engine and installs the input
 // signals in sim. Does not load the program.

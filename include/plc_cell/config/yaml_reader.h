@@ -15,6 +15,8 @@
 
 namespace plc_cell {
 
+class ErrorList;
+
 class YamlReader {
  public:
   explicit YamlReader(std::string file) : file_(std::move(file)) {}
@@ -26,6 +28,9 @@ class YamlReader {
 
   // A mapping whose keys are all in allowed.
   void only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const;
+  // The same, reporting every unknown key into errors and going on (not a mapping: throws).
+  void only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed,
+            ErrorList* errors) const;
   std::string str(const YAML::Node& n, const std::string& key) const;
   double number(const YAML::Node& n, const std::string& key, double lo, double hi) const;
   uint64_t seconds_us(const YAML::Node& n, const std::string& key, double lo_s, double hi_s) const;

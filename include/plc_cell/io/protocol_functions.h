@@ -12,5 +12,8 @@ namespace plc_cell {
 
 // Throws SourceError naming the config file and section on a bad port entry.
 std::vector<std::shared_ptr<void>> install_protocol_functions(const CellConfig& cfg, FunctionTable& t);
+// For `plc_cell check`: the same sections read with the same errors, and FUN150/151
+// installed, but no port is opened and no thread started.
+std::vector<std::shared_ptr<void>> check_protocol_functions(const CellConfig& cfg, FunctionTable& t);
 
 }  // namespace plc_cell

@@ -1,12 +1,16 @@
 #pragma once
-// A soft PLC with its cell config and simulated inputs: what `plc_cell sim/run`
-// and plc_node both start from.
+// A soft PLC with its cell config and simulated inputs: the one way a cell is built.
+// `plc_cell sim`, `run` and `check` and plc_node all construct a SoftCell, so what one of
+// them rejects every one rejects, with the same messages. Building starts nothing: no
+// thread, no port, no server (the installer decides about FUN150/151's ports).
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/error_list.h"
+#include "plc_cell/config/server_settings.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/simulated_cell.h"
 #include "plc_cell/temp/pwmda.h"
@@ -30,7 +34,10 @@ using CellFunctionInstaller =
 class SoftCell {
  public:
   // config_path may be empty (no signals, no simulation); program_path overrides the
-  // config's cell.program. Throws SourceError/Error with file and line on bad input.
+  // config's cell.program. Every section of the config is read even when an earlier one
+  // failed, then the program (when the sections that make its instruction set are
+  // sound); one SourceError lists every error found, each with file:line:column.
+  // A config or program that cannot be opened, or "no program", throws at once.
   SoftCell(const std::string& config_path, const std::string& program_path,
            const CellFunctionInstaller& install = {});
   // The instruction set of a cell of generation g (modules.generation): the core's
@@ -48,6 +55,8 @@ class SoftCell {
   // Pulse-output axes PSO0-PSO3 and FUN140 programs. Only touch it under plc().locked().
   motion::MotionUnit& motion() { return *motion_; }
   const std::string& program_path() const { return program_path_; }
+  // The config's `servers:` section (what `plc_cell run` and plc_node serve by default).
+  const ServerSettings& servers() const { return servers_; }
   // The temperature modules and thermal plants of `modules:`, or nullptr.
   temp::TemperatureCell* temperature() { return temperature_.get(); }
   temp::Rtc* rtc() { return rtc_.get(); }
@@ -55,11 +64,16 @@ class SoftCell {
 
  private:
   static FunctionTable functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
-                                     std::vector<std::shared_ptr<void>>* keep);
+                                     std::vector<std::shared_ptr<void>>* keep, ErrorList* errors, bool* complete);
+  void build(const std::string& program_path);
+  void release();  // hooks off the engine, port owners first
 
+  ErrorList errors_;           // while building; before config_, which fills it
+  bool functions_complete_ = true;  // modules.generation, fatek: and modbus: were read
   CellConfig config_;
   std::vector<std::shared_ptr<void>> installed_;  // released first: ports stop before the PLC goes
   std::string program_path_;
+  ServerSettings servers_;
   Plc plc_;
   std::unique_ptr<SimulatedCell> sim_;
   std::unique_ptr<hsc::HscUnit> hsc_;  // after sim_: its hook sees the simulated inputs

@@ -71,6 +71,8 @@ class TemperatureCell : public ScanHook {
  private:
   double true_temperature(size_t ch) const;
   double sense(const ModuleDef& m, double true_c, bool* out_of_range) const;
+  // What the module reads from a fixed signal in the sensor's unit (mV, ohm).
+  double sense_signal(const ModuleDef& m, const Quantity& signal, bool* out_of_range) const;
   void sample(size_t ch);
   void write_registers();
 

@@ -10,6 +10,7 @@
 #include "plc_cell/core/address.h"
 #include "plc_cell/temp/analog_modules.h"
 #include "plc_cell/temp/ntc.h"
+#include "plc_cell/temp/sensor_signal.h"
 #include "plc_cell/temp/thermal_plant.h"
 #include "plc_cell/temp/thermocouple.h"
 
@@ -40,6 +41,10 @@ struct ChannelDef {
   std::string plant;  // the thermal plant it measures, or empty
   double fixed_c = 25;  // the temperature when no plant is given
   bool open = false;    // a broken sensor line
+  // `value`: a fixed signal in the sensor's unit instead (mV for a thermocouple, the emf
+  // of its hot junction against 0 degC as the NIST tables give it; ohm for an RTD or NTC).
+  bool has_signal = false;
+  Quantity signal;
 };
 
 struct ModuleDef {
