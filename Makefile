@@ -16,10 +16,11 @@ CMAKE_ARGS := -DPYTHON_EXECUTABLE=$(PY) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENAB
 # because a fresh machine has no Python to resolve them before this list is installed.
 DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-pkg \
   ros-message-generation ros-message-runtime \
-  libroscpp-dev python3-rospy libstd-msgs-dev python3-std-msgs libstd-srvs-dev python3-std-srvs \
-  libsensor-msgs-dev python3-sensor-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs \
-  libdiagnostic-updater-dev libactionlib-dev python3-actionlib libactionlib-msgs-dev python3-actionlib-msgs \
-  libros-rosgraph-msgs-dev python3-rosgraph-msgs \
+  libroscpp-dev python3-rospy ros-std-msgs libstd-msgs-dev python3-std-msgs \
+  ros-std-srvs libstd-srvs-dev python3-std-srvs ros-sensor-msgs libsensor-msgs-dev python3-sensor-msgs \
+  ros-diagnostic-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs libdiagnostic-updater-dev \
+  libactionlib-dev python3-actionlib ros-actionlib-msgs libactionlib-msgs-dev python3-actionlib-msgs \
+  ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rosmaster rosout python3-roslaunch librostest-dev python3-rostest python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
   libyaml-cpp-dev libmodbus-dev zlib1g-dev \

@@ -166,3 +166,19 @@ def test_cmake_packages_are_declared():
             if mod == "libmodbus" and "libmodbus-dev" not in keys:
                 problems.append("%s needs libmodbus: package.xml lacks libmodbus-dev" % f)
     assert not problems, "\n".join(problems)
+
+
+def test_message_packages_bring_their_definitions():
+    # Debian splits a message package three ways: ros-X (the .msg files that message
+    # generation and rosmsg read), libX-dev (C++ headers) and python3-X. The headers do not
+    # pull the definitions in, so a fresh machine without ros-std-msgs cannot generate
+    # plc_cell's messages ("Cannot locate message [Header] in package [std_msgs]").
+    r = rules()
+    missing = []
+    for key in sorted(package_keys()):
+        if key.endswith("_msgs") or key.endswith("_srvs"):
+            pkgs = r[key]["debian"]["bookworm"]
+            for want in ("ros-" + key.replace("_", "-"), "python3-" + key.replace("_", "-")):
+                if want not in pkgs:
+                    missing.append("%s: %s" % (key, want))
+    assert not missing, "message keys without their definitions or Python modules: %s" % missing
