@@ -40,6 +40,10 @@ fi
 mounted=()
 cleanup() {
   local rc=$?
+  # Processes still running inside the root (a make interrupted by a signal) go first.
+  for p in /proc/[0-9]*; do
+    [ "$(readlink "$p/root" 2>/dev/null)" = "$root" ] && kill -9 "${p#/proc/}" 2>/dev/null
+  done
   for ((i=${#mounted[@]}-1; i>=0; i--)); do umount -l "${mounted[$i]}" 2>/dev/null || true; done
   # Never follow a mount left behind: delete only what is on the root's own file system.
   if ! grep -q " $root/" /proc/mounts; then rm -rf --one-file-system "$root"; else
