@@ -2,30 +2,17 @@
 // as a user runs them.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
+#include "../core/run_tool.h"
+
 
 #include <cstdio>
 #include <string>
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out;
-};
-
-Result tool(const std::string& args) {
-  const std::string cmd = std::string(PLC_CELL_TOOL) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  Result r{-1, ""};
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using Result = plc_cell::testing::ToolResult;
+// The tool as a user runs it, with the suite's time limit (test/core/run_tool.h).
+Result tool(const std::string& args) { return plc_cell::testing::run_tool(args); }
 
 TEST(MotionCli, ManualExamplesRunWithSim) {
   struct Case {

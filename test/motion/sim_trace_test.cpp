@@ -2,7 +2,8 @@
 // user runs it (docs/command-line.md "plc_cell sim").
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
+#include "../core/run_tool.h"
+
 
 #include <cmath>
 #include <cstdio>
@@ -13,23 +14,9 @@
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out;
-};
-
-Result tool(const std::string& args) {
-  const std::string cmd = std::string(PLC_CELL_TOOL) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  Result r{-1, ""};
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using Result = plc_cell::testing::ToolResult;
+// The tool as a user runs it, with the suite's time limit (test/core/run_tool.h).
+Result tool(const std::string& args) { return plc_cell::testing::run_tool(args); }
 
 std::string slurp(const std::string& path) {
   std::ifstream f(path);
