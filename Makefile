@@ -68,7 +68,7 @@ bench: build
 # Longer fuzzing (FUZZ_TIME seconds per target, default 60); new inputs land in $(BUILD)/fuzz-corpus.
 FUZZ_TIME ?= 60
 fuzz: build
-	@for t in fatek_decoder:fatek il_parser:il address:address config:config motion_table:motion; do \
+	@for t in fatek_decoder:fatek il_parser:il address:address config:config motion_table:motion cell:cell; do \
 	  n=$${t%%:*}; c=$${t##*:}; mkdir -p $(BUILD)/fuzz-corpus/$$c; \
 	  echo "== fuzz_$$n for $(FUZZ_TIME) s"; \
 	  $(WS)/build/plc_cell/fuzz/fuzz_$$n -max_total_time=$(FUZZ_TIME) -max_len=512 -timeout=20 \
