@@ -24,7 +24,7 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-p
   python3-rosmaster rosout python3-roslaunch librostest-dev python3-rostest python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
   libyaml-cpp-dev libmodbus-dev zlib1g-dev \
-  googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev \
+  googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
   socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest python3-matplotlib git
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
@@ -91,10 +91,11 @@ bench: build
 FUZZ_TIME ?= 60
 fuzz: build
 	@for t in fatek_decoder:fatek il_parser:il address:address config:config motion_table:motion \
-	    modbus_handler:modbus fatek_slave_live:fatek modbus_handler_tsan:modbus fatek_slave_live_tsan:fatek; do \
+	    modbus_handler:modbus fatek_slave_live:fatek modbus_handler_tsan:modbus fatek_slave_live_tsan:fatek cell:cell; do \
 	  n=$${t%%:*}; c=$${t##*:}; mkdir -p $(BUILD)/fuzz-corpus/$$c; \
+	  ml=512; [ $$n != cell ] || ml=8192; \
 	  echo "== fuzz_$$n for $(FUZZ_TIME) s"; \
-	  $(WS)/build/plc_cell/fuzz/fuzz_$$n -max_total_time=$(FUZZ_TIME) -max_len=512 -timeout=20 \
+	  $(WS)/build/plc_cell/fuzz/fuzz_$$n -max_total_time=$(FUZZ_TIME) -max_len=$$ml -timeout=20 \
 	    -artifact_prefix=$(BUILD)/fuzz-corpus/ $(BUILD)/fuzz-corpus/$$c test/fuzz/corpus/$$c || exit 1; \
 	done
 

@@ -15,13 +15,13 @@ struct Run {
 };
 
 // New inputs go to a scratch folder (the first corpus argument), never into the source tree.
-Run fuzz(const std::string& target, const std::string& corpus, int runs) {
+Run fuzz(const std::string& target, const std::string& corpus, int runs, int max_len = 512) {
   const char* t = std::getenv("TMPDIR");
   std::string tmp = std::string(t && *t ? t : "/tmp") + "/plc_cell_fuzz_XXXXXX";
   if (!::mkdtemp(&tmp[0])) return {-1, "mkdtemp"};
   const std::string bin = std::string(PLC_CELL_FUZZ_DIR) + "/fuzz_" + target;
   const std::string seeds = std::string(PLC_CELL_SOURCE_DIR) + "/test/fuzz/corpus/" + corpus;
-  const std::string cmd = bin + " -runs=" + std::to_string(runs) + " -seed=1 -max_len=512 -timeout=20 -rss_limit_mb=1024" +
+  const std::string cmd = bin + " -runs=" + std::to_string(runs) + " -seed=1 -max_len=" + std::to_string(max_len) + " -timeout=20 -rss_limit_mb=1024" +
                           " -artifact_prefix=" + tmp + "/ " + tmp + " " + seeds + " 2>&1";
   Run r{-1, ""};
   if (FILE* p = ::popen(cmd.c_str(), "r")) {
@@ -36,8 +36,8 @@ Run fuzz(const std::string& target, const std::string& corpus, int runs) {
   return r;
 }
 
-void expect_clean(const std::string& target, const std::string& corpus, int runs) {
-  const Run r = fuzz(target, corpus, runs);
+void expect_clean(const std::string& target, const std::string& corpus, int runs, int max_len = 512) {
+  const Run r = fuzz(target, corpus, runs, max_len);
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("Done " + std::to_string(runs) + " runs"), std::string::npos) << r.out;
 }
@@ -57,3 +57,6 @@ TEST(Fuzz, ModbusHandlerOnLivePlc) { expect_clean("modbus_handler", "modbus", 30
 TEST(Fuzz, FatekSlaveOnLivePlc) { expect_clean("fatek_slave_live", "fatek", 50000); }
 TEST(Fuzz, ModbusHandlerOnLivePlcThreadSanitizer) { expect_clean("modbus_handler_tsan", "modbus", 1000); }
 TEST(Fuzz, FatekSlaveOnLivePlcThreadSanitizer) { expect_clean("fatek_slave_live_tsan", "fatek", 10000); }
+
+// Whole cells (YAML + IL + run bytes): the seeds are the examples/ cells, up to 4 KiB each.
+TEST(Fuzz, WholeCell) { expect_clean("cell", "cell", 2000, 8192); }
