@@ -84,18 +84,18 @@ mount --bind /dev "$root/dev"; mounted+=("$root/dev")
 mount --bind /dev/pts "$root/dev/pts"; mounted+=("$root/dev/pts")
 
 echo "== cloning $(git -C "$repo" rev-parse --short HEAD) into the root"
-mkdir -p "$root/root"
-git clone -q --no-hardlinks "$repo" "$root/root/plc_cell"
+mkdir -p "$root/srv"
+git clone -q --no-hardlinks "$repo" "$root/srv/plc_cell"
 
 echo "== make $target in the fresh root"
 t1=$(date +%s)
 set +e
 chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb CI="${CI:-}" \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-  /bin/bash -c "cd /root/plc_cell && make $target" </dev/null 2>&1 | tee "$root/root/make.log"
+  /bin/bash -c "cd /srv/plc_cell && make $target" </dev/null 2>&1 | tee "$root/srv/make.log"
 rc=${PIPESTATUS[0]}
 set -e
 echo "== make $target in the fresh root: exit $rc after $(( $(date +%s) - t1 )) s (whole run $(( $(date +%s) - t0 )) s)"
 # The suite's own closing line, last, for whoever reads the run's last lines.
-grep -E '^[0-9]+ passed, [0-9]+ failed' "$root/root/make.log" | tail -n 1 || true
+grep -E '^[0-9]+ passed, [0-9]+ failed' "$root/srv/make.log" | tail -n 1 || true
 exit $rc
