@@ -8,13 +8,8 @@ import sys
 import rospy
 
 
-def find_tool():
-    """The plc_cell tool in the devel/install space (rospack's search trips on build/ symlinks)."""
-    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
-        path = os.path.join(prefix, "lib", "plc_cell", "plc_cell")
-        if prefix and os.access(path, os.X_OK):
-            return path
-    raise RuntimeError("plc_cell tool not found on CMAKE_PREFIX_PATH")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), ".."))
+from tool_path import find_tool  # noqa: E402
 
 
 def main():

@@ -17,12 +17,8 @@ import rospy
 from std_srvs.srv import Trigger, TriggerResponse
 
 
-def find_tool():
-    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
-        path = os.path.join(prefix, "lib", "plc_cell", "plc_cell")
-        if prefix and os.access(path, os.X_OK):
-            return path
-    raise RuntimeError("plc_cell tool not found on CMAKE_PREFIX_PATH")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), ".."))
+from tool_path import find_tool  # noqa: E402
 
 
 class Device(object):
