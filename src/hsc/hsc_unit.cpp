@@ -82,8 +82,21 @@ void HscUnit::bind_counters() {
 }
 
 void HscUnit::attach_source(EdgeSource* s, int pin_a, int pin_b) {
-  bind_pins(s, pin_a, pin_b);
-  bind_counters();
+  // All or nothing: a source refused on its second pin, or by a counter it would share,
+  // leaves no pin bound, so the unit stays consistent and detaching the others (when the
+  // cell that refused it is torn down) cannot fail.
+  try {
+    bind_pins(s, pin_a, pin_b);
+    bind_counters();
+  } catch (...) {
+    for (int x = 0; x < 16; ++x)
+      if (pin_src_[x] == s) {
+        pin_src_[x] = nullptr;
+        pin_phase_[x] = -1;
+      }
+    bind_counters();
+    throw;
+  }
   for (int x : {pin_a, pin_b})
     if (x >= 0 && running_) cap_q_[x] = s->quarter(cur_ns_);
 }

@@ -1,19 +1,28 @@
-// Whole-cell fuzzer: one input is a cell (YAML), its IL program and the virtual span to run,
-// built through the path `plc_cell sim` takes (SoftCell, then VirtualRun). The input layout
-// is "<yaml>\n%%IL%%\n<il>\n%%RUN%%\n<bytes>": seeds are the examples/ cells, libFuzzer
-// mutates every part. A cell the builder rejects must throw with a message; a crash,
-// sanitizer report or timeout is a finding. Invariant: every data register reads back
-// within 16 bits after the run.
+// Whole-cell fuzzer. An input whose first byte is even is a generated cell: the rest of
+// the bytes drive cell_generator.h (axes with every FUN141 field, homing before/on/beyond
+// the DOG, counters in every mode, interrupts, modules with PID, FUN150/151), and the
+// wired axes' invariants are checked (cell_invariants.h). Any other input is a cell as
+// text, "<yaml>\n%%IL%%\n<il>\n%%RUN%%\n<bytes>", mutated from the examples/ seeds.
+// Both are built the way `plc_cell sim` builds a cell (SoftCell with the protocol
+// functions, RUN, VirtualRun). A cell the builder rejects must throw with a message; a
+// crash, sanitizer report, invariant violation or a virtual second slower than the budget
+// is a finding.
 #include <fuzzer/FuzzedDataProvider.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <fstream>
 #include <string>
 
+#include "cell_generator.h"
+#include "cell_invariants.h"
 #include "plc_cell/core/address.h"
+#include "plc_cell/io/protocol_functions.h"
 #include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/sim/virtual_run.h"
 
@@ -33,22 +42,71 @@ void write(const std::string& path, const std::string& text) {
   f << text;
 }
 
-// The thin adapter over today's sim path (src/cli/sim_command.cpp), so the target can move
-// to a single validation entry point later by changing this function only.
-void run_cell(const std::string& yaml, const std::string& il, uint64_t span_us, uint64_t scan_us) {
-  const std::string cfg = scratch() + "/cell.yaml", prog = scratch() + "/cell.il";
-  write(cfg, yaml);
-  write(prog, il);
-  plc_cell::SoftCell cell(cfg, prog);
-  plc_cell::Plc& plc = cell.plc();
-  if (!plc.set_mode(plc_cell::RunMode::Run)) return;
+// Wall time one virtual second may take (ASan+UBSan build); more is a hang.
+double second_budget_s() {
+  static const double b = [] {
+    const char* e = std::getenv("PLC_CELL_FUZZ_SECOND_BUDGET_S");
+    return e && *e ? std::atof(e) : 20.0;
+  }();
+  return b;
+}
+
+// Runs in 100 ms slices of virtual time so a slow second is caught while it happens.
+void run_bounded(plc_cell::Plc& plc, uint64_t span_us, uint64_t scan_us) {
   plc_cell::VirtualRun run(plc, scan_us);
-  run.run_for(span_us);
+  const uint64_t slice_us = 100000;
+  for (uint64_t done = 0; done < span_us; done += slice_us) {
+    const auto t0 = std::chrono::steady_clock::now();
+    run.run_for(std::min(slice_us, span_us - done));
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (wall > second_budget_s() * slice_us / 1e6) {
+      std::fprintf(stderr, "HANG: 100 ms of virtual time took %.3f s of wall time\n", wall);
+      std::abort();
+    }
+  }
+}
+
+// The one place the target builds a cell, as `plc_cell sim` does (src/cli/sim_command.cpp).
+struct BuiltCell {
+  plc_cell::SoftCell cell;
+  BuiltCell(const std::string& yaml, const std::string& il)
+      : cell((write(scratch() + "/cell.yaml", yaml), write(scratch() + "/cell.il", il), scratch() + "/cell.yaml"),
+             scratch() + "/cell.il", plc_cell::install_protocol_functions) {}
+};
+
+void run_text_cell(const std::string& yaml, const std::string& il, uint64_t span_us, uint64_t scan_us) {
+  BuiltCell b(yaml, il);
+  if (!b.cell.plc().set_mode(plc_cell::RunMode::Run)) return;
+  run_bounded(b.cell.plc(), span_us, scan_us);
+}
+
+void run_generated(const plc_cell_fuzz::GeneratedCell& g) {
+  BuiltCell b(g.yaml, g.il);
+  plc_cell_fuzz::WiredAxisCheck check(b.cell, g.wired);
+  if (!b.cell.plc().set_mode(plc_cell::RunMode::Run)) return;
+  run_bounded(b.cell.plc(), g.span_us, g.scan_us);
+  check.check_at_rest();
+}
+
+void rejected(const std::exception& e) {
+  if (std::string(e.what()).empty()) std::abort();  // a rejection must say why
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size > 0 && data[0] % 2 == 0) {
+    FuzzedDataProvider fdp(data + 1, size - 1);
+    const plc_cell_fuzz::GeneratedCell g = plc_cell_fuzz::generate_cell(fdp);
+    if (std::getenv("PLC_CELL_FUZZ_PRINT")) std::fprintf(stderr, "%s%%%%IL%%%%\n%s", g.yaml.c_str(), g.il.c_str());
+    try {
+      run_generated(g);
+    } catch (const std::exception& e) {
+      if (std::getenv("PLC_CELL_FUZZ_PRINT")) std::fprintf(stderr, "rejected: %s\n", e.what());
+      rejected(e);
+    }
+    return 0;
+  }
   const std::string in(reinterpret_cast<const char*>(data), size);
   const size_t il_at = in.find("\n%%IL%%\n");
   if (il_at == std::string::npos) return 0;
@@ -60,9 +118,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // Short spans keep executions per second high: 50-300 scans of 1 ms.
   const uint64_t span_us = fdp.ConsumeIntegralInRange<uint64_t>(50, 300) * 1000;
   try {
-    run_cell(yaml, il, span_us, 1000);
+    run_text_cell(yaml, il, span_us, 1000);
   } catch (const std::exception& e) {
-    if (std::string(e.what()).empty()) std::abort();  // a rejection must say why
+    rejected(e);
   }
   return 0;
 }
