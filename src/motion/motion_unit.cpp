@@ -290,6 +290,8 @@ void MotionUnit::start_move(Program& p, const Step& s, uint64_t t) {
   const int64_t n = endless ? -1 : std::llabs(delta) + comp;
   p.endless = endless;
   if (!endless && (delta == 0 || n <= 0)) {  // already there: the step completes at once
+    if (p.empty_at != t) p.empty_at = t, p.empty_steps = 0;
+    if (++p.empty_steps > static_cast<int>(p.table.steps.size())) return fail(p, 34, t);  // a GOTO loop of empty steps
     p.chain = false;
     p.paused_left = 0;
     a.rest = 0;

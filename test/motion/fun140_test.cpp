@@ -326,5 +326,32 @@ TEST(Fun140, LadderWritesThePositionRegister) {
 }
 
 }  // namespace
+// Found by the whole-cell fuzzer: steps with nothing to move (ABS to where the axis
+// stands) that GOTO each other never let time pass. Each such step completed and started
+// the next inside the same call, so the stack overflowed. The loop is refused as the
+// text form's GOTO errors are (code 34), with ERR on, and the axis stays where it was.
+TEST(Fun140, GotoLoopOfEmptyStepsIsCode34NotAStackOverflow) {
+  MotionCell c;
+  c.params(fast_params());
+  c.table("001 SPD 5000\n    DRV ABS,,0,Ps\n    GOTO 2\n002 SPD 5000\n    DRV ABS,,0,Ps\n    GOTO 1\nMEND\n");
+  c.put("M1", 1);
+  c.run(10000);
+  EXPECT_EQ(c.get("R4060"), 34u);
+  EXPECT_EQ(c.get("M11"), 1u);
+  EXPECT_EQ(c.get32("DR4088"), 0);
+}
+
+// A step with nothing to move that is not part of a loop still completes at once.
+TEST(Fun140, EmptyStepFollowedByAMoveCompletes) {
+  MotionCell c;
+  c.params(fast_params());
+  c.table("001 SPD 5000\n    DRV ABS,,0,Ps\n    GOTO NEXT\n002 SPD 5000\n    DRV ADR,+,100,Ps\n    GOTO NEXT\nMEND\n");
+  c.put("M1", 1);
+  c.run(100000);
+  EXPECT_EQ(c.get("R4060"), 0u);
+  EXPECT_EQ(c.get("M11"), 0u);
+  EXPECT_EQ(c.get32("DR4088"), 100);
+}
+
 }  // namespace motion
 }  // namespace plc_cell

@@ -142,6 +142,10 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
     uint64_t t_cur = 0;              // the instant this program was last brought to
     uint64_t home_until = kNever;    // MD1 delay / CLR pulse end
     int pg0_count = 0;
+    // Steps that completed at once (nothing to move) at instant empty_at: a GOTO loop of
+    // such steps never lets time pass, so it is refused as advance()'s guard refuses it.
+    uint64_t empty_at = kNever;
+    int empty_steps = 0;
     bool counting = false, dog_seen = false, prev_pg0 = false;
     bool armed = true;               // EN was off since the last start
     bool external = false;           // run by load_table/command, no registers
