@@ -8,7 +8,7 @@ add_library(plc_cell_fatek STATIC
   src/fatek/client.cpp
   src/fatek/poll_plan.cpp
   src/fatek/clink.cpp)
-target_link_libraries(plc_cell_fatek PUBLIC plc_cell_core)
+target_link_libraries(plc_cell_fatek PUBLIC plc_cell_config)
 set_target_properties(plc_cell_fatek PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/fatek_command.cpp)
@@ -18,7 +18,7 @@ list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_fatek)
 if(CATKIN_ENABLE_TESTING)
   file(GLOB FATEK_TESTS ${PROJECT_SOURCE_DIR}/test/fatek/*_test.cpp)
   catkin_add_gtest(fatek_tests test/core/test_main.cpp ${FATEK_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(fatek_tests plc_cell_fatek)
+  target_link_libraries(fatek_tests plc_cell_fatek plc_cell_sim)
   target_compile_definitions(fatek_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
@@ -53,7 +53,7 @@ endif()
 if(benchmark_FOUND AND LIBMODBUS_FOUND)
   add_executable(bench_fatek bench/fatek_bench.cpp)
   target_include_directories(bench_fatek PRIVATE ${LIBMODBUS_INCLUDE_DIRS})
-  target_link_libraries(bench_fatek plc_cell_fatek benchmark::benchmark ${LIBMODBUS_LIBRARIES})
+  target_link_libraries(bench_fatek plc_cell_fatek plc_cell_sim benchmark::benchmark ${LIBMODBUS_LIBRARIES})
 endif()
 
 if(CATKIN_ENABLE_TESTING)

@@ -1,7 +1,6 @@
-# High-speed counters, timers and interrupts (issue 5): part of plc_cell_core,
-# since the soft cell creates the unit for every program (time-base interrupts
-# need no configuration).
-target_sources(plc_cell_core PRIVATE
+# High-speed counters, timers and interrupts: the plc_cell_hsc layer. The soft cell
+# creates the unit for every program (time-base interrupts need no configuration).
+plc_cell_layer(plc_cell_hsc LINKS plc_cell_config SOURCES
   src/hsc/count_rule.cpp
   src/hsc/pulse_source.cpp
   src/hsc/hsc_config.cpp
@@ -14,7 +13,7 @@ target_sources(plc_cell_core PRIVATE
 if(CATKIN_ENABLE_TESTING)
   file(GLOB HSC_TESTS test/hsc/*_test.cpp)
   catkin_add_gtest(hsc_tests test/core/test_main.cpp ${HSC_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(hsc_tests plc_cell_core)
+  target_link_libraries(hsc_tests plc_cell_sim)
   target_compile_definitions(hsc_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
@@ -24,7 +23,7 @@ endif()
 find_package(benchmark QUIET)
 if(benchmark_FOUND AND EXISTS ${PROJECT_SOURCE_DIR}/bench/hsc_bench.cpp)
   add_executable(bench_hsc bench/hsc_bench.cpp)
-  target_link_libraries(bench_hsc plc_cell_core benchmark::benchmark)
+  target_link_libraries(bench_hsc plc_cell_sim benchmark::benchmark)
 endif()
 
 # The counters on ROS topics and services (plc_node).

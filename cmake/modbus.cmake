@@ -15,7 +15,7 @@ add_library(plc_cell_modbus STATIC
   src/modbus/bridge.cpp
   src/modbus/gateway.cpp
   src/modbus/fun150.cpp)
-target_link_libraries(plc_cell_modbus PUBLIC plc_cell_core PkgConfig::LIBMODBUS ${YAML_CPP_LIBRARIES})
+target_link_libraries(plc_cell_modbus PUBLIC plc_cell_config PkgConfig::LIBMODBUS ${YAML_CPP_LIBRARIES})
 set_target_properties(plc_cell_modbus PROPERTIES POSITION_INDEPENDENT_CODE ON)
 list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_modbus)
 
@@ -24,7 +24,7 @@ if(CATKIN_ENABLE_TESTING)
   file(GLOB MODBUS_TESTS test/modbus/*_test.cpp)
   catkin_add_gtest(modbus_tests test/core/test_main.cpp ${MODBUS_TESTS}
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} TIMEOUT 600)
-  target_link_libraries(modbus_tests plc_cell_modbus)
+  target_link_libraries(modbus_tests plc_cell_modbus plc_cell_sim)
   target_compile_definitions(modbus_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/modbus_test_tmp"
@@ -51,6 +51,6 @@ endif()
 find_package(benchmark QUIET)
 if(benchmark_FOUND)
   add_executable(bench_modbus bench/modbus_bench.cpp)
-  target_link_libraries(bench_modbus plc_cell_modbus)
+  target_link_libraries(bench_modbus plc_cell_modbus plc_cell_sim)
   target_compile_definitions(bench_modbus PRIVATE PLC_CELL_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/modbus_bench_tmp")
 endif()

@@ -1,6 +1,7 @@
-# Pulse-output positioning (issue 6): FUN140/141/142/143/147/148, the axes PSO0-PSO3 and their
-# profiles. Part of plc_cell_core: SoftCell creates the motion unit for every cell.
-target_sources(plc_cell_core PRIVATE
+# Pulse-output positioning: FUN140/141/142/143/147/148, the axes PSO0-PSO3 and their
+# profiles; the plc_cell_motion layer, on the counters' edge sources. SoftCell creates the
+# motion unit for every cell.
+plc_cell_layer(plc_cell_motion LINKS plc_cell_hsc SOURCES
   src/motion/params.cpp
   src/motion/program_text.cpp
   src/motion/table_text.cpp
@@ -19,7 +20,7 @@ target_sources(plc_cell_core PRIVATE
 if(CATKIN_ENABLE_TESTING)
   file(GLOB MOTION_TESTS test/motion/*_test.cpp)
   catkin_add_gtest(motion_tests test/core/test_main.cpp ${MOTION_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(motion_tests plc_cell_core)
+  target_link_libraries(motion_tests plc_cell_sim)
   target_compile_definitions(motion_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
@@ -38,5 +39,5 @@ endif()
 find_package(benchmark QUIET)
 if(benchmark_FOUND AND EXISTS ${PROJECT_SOURCE_DIR}/bench/motion_bench.cpp)
   add_executable(bench_motion bench/motion_bench.cpp)
-  target_link_libraries(bench_motion plc_cell_core benchmark::benchmark)
+  target_link_libraries(bench_motion plc_cell_sim benchmark::benchmark)
 endif()

@@ -4,9 +4,10 @@ function(plc_cell_add_pytest name)
   cmake_parse_arguments(_py "" "" "FILES;DEPENDENCIES" ${ARGN})
   set(results ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/pytest-${name}.xml)
   string(REPLACE ";" " " files "${_py_FILES}")
-  # catkin's wrapper takes the command as one string (its options would swallow "-m").
+  # catkin's wrapper takes the command as one string (its options would swallow "-m") and
+  # runs it in a shell; PLC_CELL_LIB_DIR tells the tests where this workspace's libraries are.
   catkin_run_tests_target("pytest" ${name} "pytest-${name}.xml"
-    COMMAND "${PYTHON_EXECUTABLE} -m pytest -q -p no:cacheprovider --junitxml=${results} ${files}"
+    COMMAND "env PLC_CELL_LIB_DIR=${CATKIN_DEVEL_PREFIX}/lib ${PYTHON_EXECUTABLE} -m pytest -q -p no:cacheprovider --junitxml=${results} ${files}"
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
     DEPENDENCIES ${_py_DEPENDENCIES})
 endfunction()

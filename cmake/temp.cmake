@@ -1,6 +1,6 @@
-# Analog and temperature modules, thermal plants, FUN86 TPCTL (issue 7).
-# Core, no ROS. The sources join plc_cell_core: SoftCell installs them for every cell.
-target_sources(plc_cell_core PRIVATE
+# Analog and temperature modules, thermal plants, FUN86 TPCTL: the plc_cell_temp layer,
+# no ROS. SoftCell installs them for every cell.
+plc_cell_layer(plc_cell_temp LINKS plc_cell_config SOURCES
   src/temp/thermocouple.cpp
   src/temp/rtd.cpp
   src/temp/ntc.cpp
@@ -29,7 +29,7 @@ target_sources(plc_cell_core PRIVATE
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS test/temp/*_test.cpp)
   catkin_add_gtest(temp_tests test/core/test_main.cpp ${TEMP_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(temp_tests plc_cell_core)
+  target_link_libraries(temp_tests plc_cell_sim)
   target_compile_definitions(temp_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
@@ -40,7 +40,7 @@ endif()
 find_package(benchmark QUIET)
 if(benchmark_FOUND)
   add_executable(bench_temp bench/temp_bench.cpp)
-  target_link_libraries(bench_temp plc_cell_core benchmark::benchmark)
+  target_link_libraries(bench_temp plc_cell_sim benchmark::benchmark)
 endif()
 
 # plc_node: temperatures on topics, /diagnostics per module, ~set_pid_loop.

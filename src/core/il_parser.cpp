@@ -7,8 +7,8 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/interpreter.h"
-// The reserved interrupt labels (hsc is part of the core library): they cannot be jump targets.
-#include "plc_cell/hsc/interrupts.h"
+// The reserved interrupt labels: they cannot be jump targets.
+#include "plc_cell/core/interrupt_sources.h"
 
 namespace plc_cell {
 namespace {
@@ -376,7 +376,7 @@ class Parser {
       const Token* t = operand("a label name");
       if (!t) return;
       const std::string name = upper(t->text);
-      if (!after_end_ && hsc::source_of_label(name) >= 0)
+      if (!after_end_ && irq::source_of_label(name) >= 0)
         return error(t->column, name + " is an interrupt label: its routine belongs after END (LBL " + name +
                                     " ... RTI)");
       if (prog_.labels.count(name))
@@ -397,7 +397,7 @@ class Parser {
       if (!t) return;
       if (!output_ok(head, 1)) return;
       // An interrupt routine runs on its interrupt and returns with RTI: never a jump target.
-      if (hsc::source_of_label(upper(t->text)) >= 0)
+      if (irq::source_of_label(upper(t->text)) >= 0)
         return error(t->column, m + " " + upper(t->text) + ": " + upper(t->text) +
                                     " is an interrupt label; its routine runs on the interrupt, not by " + m);
       Instruction& in = emit(m == "JMP" ? Op::Jmp : Op::Call, head);

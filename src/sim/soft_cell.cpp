@@ -1,6 +1,7 @@
 #include "plc_cell/sim/soft_cell.h"
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/sim/apply_config.h"
 #include "plc_cell/hsc/hsc_unit.h"
 #include "plc_cell/temp/hspwm.h"
 #include "plc_cell/temp/temp_functions.h"

@@ -5,6 +5,7 @@
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
+#include "plc_cell/sim/apply_config.h"
 #include "plc_cell/sim/simulated_cell.h"
 #include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/sim/virtual_run.h"

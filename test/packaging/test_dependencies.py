@@ -123,7 +123,8 @@ def test_python_imports_are_declared():
 TOOLS = {"socat": "socat", "mbpoll": "mbpoll", "rosrun": "rosbash", "roscd": "rosbash",
          "rostopic": "rostopic", "rosservice": "rosservice", "roslaunch": "roslaunch",
          "roscore": "roslaunch", "rosbag": "rosbag", "rosnode": "rosnode", "rosmsg": "rosmsg",
-         "rostest": "rostest", "clang\\+\\+": "clang", "catkin_make": "catkin", "git": "git"}
+         "rostest": "rostest", "clang\\+\\+": "clang", "catkin_make": "catkin", "git": "git",
+         "readelf": "build-essential"}  # binutils (readelf, nm) comes with build-essential
 
 
 def test_tools_are_declared():

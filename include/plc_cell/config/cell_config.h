@@ -15,8 +15,6 @@
 namespace plc_cell {
 
 class ErrorList;
-class Plc;
-class SimulatedCell;
 
 struct SimInputDef {
   std::string name;  // signal name or address as written
@@ -67,10 +65,6 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
 // read or is not YAML: then there is nothing to go on with.
 CellConfig load_cell_config(const std::string& path, ErrorList* errors);
 CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors);
-
-// Applies scan settings and retentive ranges to the engine and installs the input
-// signals in sim. Does not load the program.
-void apply_cell_config(const CellConfig& cfg, Plc& plc, SimulatedCell& sim);
 
 // "1.5s", "250ms", "100us", "2" (seconds); throws Error.
 uint64_t parse_duration_us(const std::string& text);
