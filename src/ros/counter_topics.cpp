@@ -75,6 +75,7 @@ void CounterTopics::publish() {
   cell_.plc().locked([&](ScanEngine&, Memory&) {
     for (size_t i = 0; i < numbers_.size(); ++i) {
       Counter c;
+      c.header = all.header;
       c.name = names_[i];
       c.number = static_cast<uint8_t>(numbers_[i]);
       c.count = cell_.counters().count(numbers_[i]);
