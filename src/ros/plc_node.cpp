@@ -9,7 +9,11 @@
 #include "plc_cell/IoState.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/ros/counter_topics.h"
+#include "plc_cell/ros/motion_topics.h"
+#include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
+#include "plc_cell/ros/temperature_ros.h"
 
 namespace plc_cell {
 
