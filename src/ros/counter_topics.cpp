@@ -11,8 +11,7 @@
 
 namespace plc_cell {
 
-CounterTopics::CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
-    : cell_(cell) {
+CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz) : cell_(cell) {
   const hsc::HscConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.counters().config(); });
   for (int n = 0; n < 8; ++n) {
     if (!cfg.counters[n].used) continue;
@@ -21,6 +20,7 @@ CounterTopics::CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell
   }
   if (rate_hz <= 0) rate_hz = cfg.publish_rate_hz;
   if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~counter_rate must be in (0, 1000] Hz");
+  rate_hz_ = rate_hz;
   all_pub_ = pnh.advertise<CounterArray>("counters", 10);
   for (size_t i = 0; i < numbers_.size(); ++i) {
     const int n = numbers_[i];
@@ -65,24 +65,31 @@ CounterTopics::CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell
           });
         }));
   }
-  timer_ = nh.createTimer(ros::Duration(1.0 / rate_hz), [this](const ros::TimerEvent&) { publish(); });
 }
 
-void CounterTopics::publish() {
-  CounterArray all;
-  all.header.stamp = ros::Time::now();
-  all.header.frame_id = cell_.config().name;
+void CounterTopics::publish(const ros::Time& stamp) {
+  struct Value {
+    int64_t count;
+    double frequency;
+  };
+  std::vector<Value> values(numbers_.size());
   cell_.plc().locked([&](ScanEngine&, Memory&) {
-    for (size_t i = 0; i < numbers_.size(); ++i) {
-      Counter c;
-      c.name = names_[i];
-      c.number = static_cast<uint8_t>(numbers_[i]);
-      c.count = cell_.counters().count(numbers_[i]);
-      c.frequency = cell_.counters().frequency(numbers_[i]);
-      all.counters.push_back(c);
-    }
+    for (size_t i = 0; i < numbers_.size(); ++i)
+      values[i] = {cell_.counters().count(numbers_[i]), cell_.counters().frequency(numbers_[i])};
     return 0;
   });
+  CounterArray all;
+  all.header.stamp = stamp;
+  all.header.frame_id = cell_.config().name;
+  for (size_t i = 0; i < numbers_.size(); ++i) {
+    Counter c;
+    c.header = all.header;
+    c.name = names_[i];
+    c.number = static_cast<uint8_t>(numbers_[i]);
+    c.count = values[i].count;
+    c.frequency = values[i].frequency;
+    all.counters.push_back(c);
+  }
   all_pub_.publish(all);
   for (size_t i = 0; i < all.counters.size(); ++i) one_pubs_[i].publish(all.counters[i]);
 }

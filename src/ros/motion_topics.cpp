@@ -37,7 +37,7 @@ bool parse(const std::string& text, motion::Table* t, std::string* msg, int* cod
 }
 }  // namespace
 
-MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz) : cell_(cell) {
+MotionTopics::MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz) : cell_(cell), rate_hz_(rate_hz) {
   if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~motion_rate must be in (0, 1000] Hz");
   const motion::AxesConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.motion().config(); });
   const auto locked = [this](auto&& f) {
@@ -199,41 +199,60 @@ MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& 
   }
   if (axes_.empty()) return;
   joints_pub_ = pnh.advertise<sensor_msgs::JointState>("joint_states", 10);
-  timer_ = nh.createTimer(ros::Duration(1.0 / rate_hz), [this](const ros::TimerEvent&) { publish(); });
 }
 
 MotionTopics::~MotionTopics() {
   for (auto& a : axes_) a->run->shutdown();
 }
 
-void MotionTopics::publish() {
-  sensor_msgs::JointState js;
-  js.header.stamp = ros::Time::now();
-  js.header.frame_id = cell_.config().name;
-  std::vector<AxisStatus> st;
+void MotionTopics::publish(const ros::Time& stamp) {
+  if (axes_.empty()) return;
+  struct Reading {
+    int64_t pulses;
+    double frequency;  // signed by the direction
+    int32_t remaining, step, error;
+    bool busy, running, finished;
+  };
+  std::vector<Reading> r(axes_.size());
   cell_.plc().locked([&](ScanEngine&, Memory&) {
     MotionUnit& u = cell_.motion();
-    for (const auto& a : axes_) {
-      AxisStatus s;
-      s.header = js.header;
-      s.name = a->name;
-      s.number = static_cast<uint8_t>(a->n);
-      s.pulses = u.position(a->n);
-      s.position = static_cast<double>(s.pulses) * a->upp;
-      s.frequency = u.frequency(a->n) * u.axis(a->n).direction();
-      s.remaining = static_cast<int32_t>(u.axis(a->n).moving() ? u.axis(a->n).remaining(u.now_ns()) : 0);
-      s.step = u.step(a->n);
-      s.busy = u.busy(a->n);
-      s.running = u.program_running(a->n);
-      s.finished = u.finished(a->n);
-      s.error = u.error(a->n);
-      st.push_back(s);
-      js.name.push_back(a->name);
-      js.position.push_back(s.position);
-      js.velocity.push_back(s.frequency * a->upp);
+    for (size_t i = 0; i < axes_.size(); ++i) {
+      const int n = axes_[i]->n;
+      r[i] = {u.position(n),
+              u.frequency(n) * u.axis(n).direction(),
+              static_cast<int32_t>(u.axis(n).moving() ? u.axis(n).remaining(u.now_ns()) : 0),
+              u.step(n),
+              u.error(n),
+              u.busy(n),
+              u.program_running(n),
+              u.finished(n)};
     }
     return 0;
   });
+  sensor_msgs::JointState js;
+  js.header.stamp = stamp;
+  js.header.frame_id = cell_.config().name;
+  std::vector<AxisStatus> st;
+  for (size_t i = 0; i < axes_.size(); ++i) {
+    const AxisRos& a = *axes_[i];
+    AxisStatus s;
+    s.header = js.header;
+    s.name = a.name;
+    s.number = static_cast<uint8_t>(a.n);
+    s.pulses = r[i].pulses;
+    s.position = static_cast<double>(s.pulses) * a.upp;
+    s.frequency = r[i].frequency;
+    s.remaining = r[i].remaining;
+    s.step = r[i].step;
+    s.busy = r[i].busy;
+    s.running = r[i].running;
+    s.finished = r[i].finished;
+    s.error = r[i].error;
+    st.push_back(s);
+    js.name.push_back(a.name);
+    js.position.push_back(s.position);
+    js.velocity.push_back(s.frequency * a.upp);
+  }
   joints_pub_.publish(js);
   for (size_t i = 0; i < axes_.size(); ++i) axes_[i]->status_pub.publish(st[i]);
 }

@@ -9,7 +9,11 @@
 #include "plc_cell/IoState.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/ros/counter_topics.h"
+#include "plc_cell/ros/motion_topics.h"
+#include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
+#include "plc_cell/ros/temperature_ros.h"
 
 namespace plc_cell {
 
@@ -61,15 +65,15 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
   pnh.param("counter_rate", counter_rate, counter_rate);
-  counters_ = std::make_unique<CounterTopics>(nh, pnh, *cell_, counter_rate);
-  motion_ = std::make_unique<MotionTopics>(nh, pnh, *cell_, pnh.param("motion_rate", 50.0));
+  topic_groups_.add(std::make_unique<CounterTopics>(pnh, *cell_, counter_rate));
+  topic_groups_.add(std::make_unique<MotionTopics>(pnh, *cell_, pnh.param("motion_rate", 50.0)));
 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);
   updater_.add("forced points", this, &PlcNode::diagnose_forced);
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   pnh.param("virtual_time", virtual_time_, false);
-  registers_ = std::make_unique<RegisterTopics>(nh, pnh, *cell_, virtual_time_);
+  add_register_topics(pnh, *cell_, &topic_groups_);
   // Virtual time publishes every change with its scan's stamp, and nothing else: the
   // periodic republish would add wall-clock stamps to a replay.
   if (!virtual_time_) io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {
@@ -100,7 +104,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   const ServerSettings& from_yaml = cell_->servers();  // read (and checked) with the cell
   add_fatek_servers(cell_->plc(), pnh, from_yaml, &servers_);
   add_modbus_servers(cell_->plc(), pnh, from_yaml, &servers_);
-  if (cell_->temperature()) temperature_ = std::make_unique<TemperatureRos>(nh, pnh, *cell_, updater_);
+  if (cell_->temperature()) topic_groups_.add(std::make_unique<TemperatureRos>(pnh, *cell_, updater_));
   for (auto& s : servers_) {
     s->start();
     ROS_INFO("plc_node: serving %s", s->describe().c_str());
@@ -114,6 +118,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
              program_path_.c_str(), scan_period * 1e3, autostart ? "RUN" : "STOP");
     return;
   }
+  // In virtual time the scans publish the groups (on_clock); a timer would stamp them now.
+  topic_groups_.start_timers(nh);
   publisher_ = std::thread([this] { publisher_loop(); });
   loop_ = std::make_unique<RealTimeLoop>(cell_->plc(),
                                          std::chrono::nanoseconds(int64_t(scan_period * 1e9)));

@@ -2,7 +2,9 @@
 // ~clock_topic (rosgraph_msgs/Clock, default /clock, e.g. `rosbag play --clock`) runs
 // every scan at times k * scan_period up to clock - ~virtual_time_lag. Stamped inputs are
 // applied before the first scan at or after their stamp, and every change is published
-// with its scan's time. So the same inputs and clock give the same outputs, bit for bit.
+// with its scan's time; the topic groups (counters, axes, temperatures, register groups)
+// are published at their rates of virtual time, stamped with their scan. So the same
+// inputs and clock give the same outputs on every topic, bit for bit.
 // The lag lets inputs that travel on other connections than the clock arrive first; an
 // input that still comes after its scan is applied at the next one and counted as late
 // (on /diagnostics), since from then on a replay may differ.
@@ -79,7 +81,7 @@ void PlcNode::on_clock(uint64_t now_us) {
       std::lock_guard<std::mutex> slk(snap_mu_);
       last_published_ = s;
     }
-    registers_->after_virtual_scan(t);
+    topic_groups_.after_virtual_scan(t);
     next_scan_us_ += period_us_;
   }
 }

@@ -40,12 +40,10 @@ std::vector<Reading> readings(SoftCell& cell) {
 
 }  // namespace
 
-TemperatureRos::TemperatureRos(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell,
-                               diagnostic_updater::Updater& updater)
+TemperatureRos::TemperatureRos(ros::NodeHandle& pnh, SoftCell& cell, diagnostic_updater::Updater& updater)
     : cell_(cell) {
-  double rate = 1.0;
-  pnh.param("temperature_rate", rate, rate);
-  if (!(rate > 0 && rate <= 100)) throw Error("~temperature_rate must be in (0, 100] Hz");
+  pnh.param("temperature_rate", rate_hz_, rate_hz_);
+  if (!(rate_hz_ > 0 && rate_hz_ <= 100)) throw Error("~temperature_rate must be in (0, 100] Hz");
   const auto& chans = cell_.temperature()->channels();
   for (size_t i = 0; i < chans.size(); ++i) {
     if (chans[i].name.empty()) continue;
@@ -57,19 +55,17 @@ TemperatureRos::TemperatureRos(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCe
     updater.add("temperature module " + std::to_string(k + 1) + " (FBs-" + temp::module_info(mods[k].kind).name + ")",
                 [this, k](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnose_module(k, s); });
   set_loop_ = pnh.advertiseService("set_pid_loop", &TemperatureRos::on_set_loop, this);
-  timer_ = nh.createTimer(ros::Duration(1.0 / rate), [this](const ros::TimerEvent&) { publish(); });
 }
 
-void TemperatureRos::publish() {
+void TemperatureRos::publish(const ros::Time& stamp) {
   const auto r = readings(cell_);
   const temp::TemperatureCell& tc = *cell_.temperature();
   const bool f = tc.config().fahrenheit;
-  const ros::Time now = ros::Time::now();
   for (size_t p = 0; p < pubs_.size(); ++p) {
     const size_t i = channel_[p];
     const temp::ChannelState& ch = tc.channels()[i];
     sensor_msgs::Temperature m;
-    m.header.stamp = now;
+    m.header.stamp = stamp;
     m.header.frame_id = ch.name;
     // sensor_msgs/Temperature is in degC whatever the modules' unit.
     const double v = r[i].raw / 10.0;

@@ -1,6 +1,9 @@
 #!/usr/bin/python3
 """rostest: replaying a bag's clock and input topics into plc_node in virtual time
-reproduces the recorded outputs bit for bit (values and stamps)."""
+reproduces the recorded outputs bit for bit (values and stamps), on every kind of topic:
+I/O, signals, register groups, counters, axes and temperatures."""
+import io
+import math
 import os
 import subprocess
 import tempfile
@@ -12,8 +15,9 @@ import rosbag
 import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import JointState, Temperature
 
-from plc_cell.msg import IoState, RegisterBlock, Signal
+from plc_cell.msg import AxisStatus, Counter, CounterArray, IoState, RegisterBlock, Signal
 
 TIMEOUT = 20.0
 T0 = 1000.0      # virtual start time, s
@@ -22,16 +26,32 @@ STEPS = 250
 LAG = 0.5        # the nodes' ~virtual_time_lag
 INPUTS = ["start", "part_present"]
 OUTPUTS = [("io", IoState), ("signals_stamped/motor", Signal), ("signals_stamped/part_seen", Signal),
-           ("registers/sums", RegisterBlock)]  # test_cell.yaml: 50 Hz of virtual time
+           ("registers/sums", RegisterBlock), ("counters", CounterArray), ("counters/belt", Counter),
+           ("joint_states", JointState), ("motion/slide/status", AxisStatus),
+           ("temperature/oven_temp", Temperature)]
+# Published at a rate of virtual time (replay_cell.yaml, replay.test): period in ns.
+PERIODIC = {"registers/sums": 20000000, "counters": 20000000, "counters/belt": 20000000,
+            "joint_states": 20000000, "motion/slide/status": 20000000, "temperature/oven_temp": 100000000}
+
+
+def zero_seq(msg):
+    """The per-connection sequence numbers, in the message and the messages it holds."""
+    if hasattr(msg, "seq") and hasattr(msg, "stamp"):
+        msg.seq = 0
+    for slot in getattr(msg, "__slots__", []):
+        v = getattr(msg, slot)
+        for m in (v if isinstance(v, list) else [v]):
+            if hasattr(m, "__slots__"):
+                zero_seq(m)
 
 
 def key(msg):
-    """What must be identical: stamps and values (not the per-connection sequence number)."""
-    if hasattr(msg, "x"):  # IoState (a bag gives its own generated class)
-        return (msg.header.stamp.to_nsec(), msg.run, tuple(msg.x), tuple(msg.y))
-    if hasattr(msg, "values"):  # RegisterBlock
-        return (msg.header.stamp.to_nsec(), tuple(msg.values))
-    return (msg.header.stamp.to_nsec(), msg.data)
+    """What must be identical: the serialized message, stamps and values, bit for bit (a
+    NaN temperature too), but not the per-connection sequence numbers."""
+    zero_seq(msg)
+    buf = io.BytesIO()
+    msg.serialize(buf)
+    return buf.getvalue()
 
 
 class Collector(object):
@@ -57,10 +77,10 @@ class Collector(object):
         return True
 
 
-def wait_connected(pub):
+def wait_connected(pub_or_sub):
     deadline = time.monotonic() + TIMEOUT
-    while pub.get_num_connections() == 0 and time.monotonic() < deadline:
-        time.sleep(0.01)  # rospy has no event for "a subscriber connected"
+    while pub_or_sub.get_num_connections() == 0 and time.monotonic() < deadline:
+        time.sleep(0.01)  # rospy has no event for "a connection is up"
 
 
 class ReplayTest(unittest.TestCase):
@@ -70,7 +90,8 @@ class ReplayTest(unittest.TestCase):
         replay = Collector("replay")
         clock = rospy.Publisher("/rec/clock", Clock, queue_size=1000)
         inputs = {n: rospy.Publisher("/rec/plc_node/inputs_stamped/" + n, Signal, queue_size=1000) for n in INPUTS}
-        for p in [clock] + list(inputs.values()):
+        # Every output from the first scan on, so that both nodes are compared from there.
+        for p in [clock] + list(inputs.values()) + rec.subs + replay.subs:
             wait_connected(p)
         bag_path = os.path.join(tempfile.mkdtemp(), "cell.bag")
         bag = rosbag.Bag(bag_path, "w")
@@ -104,11 +125,26 @@ class ReplayTest(unittest.TestCase):
         self.assertGreater(len(recorded["io"]), 10)
         self.assertGreater(len(recorded["signals_stamped/motor"]), 5)
         self.assertGreater(len(recorded["signals_stamped/part_seen"]), 1)
-        # A register group in virtual time: one block per 20 ms of virtual time, on its scan.
-        sums = [m.header.stamp.to_nsec() for m in recorded["registers/sums"]]
-        self.assertGreater(len(sums), 50)
-        self.assertEqual([t % 20000000 for t in sums], [0] * len(sums))
-        self.assertEqual([b - a for a, b in zip(sums, sums[1:])], [20000000] * (len(sums) - 1))
+        # Rate groups in virtual time: one message per period of virtual time, on the scan
+        # at the period's start (the scan period divides each).
+        for n, period in PERIODIC.items():
+            stamps = [m.header.stamp.to_nsec() for m in recorded[n]]
+            self.assertGreater(len(stamps), 1.5e9 / period, n)
+            self.assertEqual([t % period for t in stamps], [0] * len(stamps), n)
+            self.assertEqual([b - a for a, b in zip(stamps, stamps[1:])], [period] * (len(stamps) - 1), n)
+        # Each kind of topic follows the recorded inputs, else equal replays prove nothing:
+        # the start input runs the motor, which turns the belt encoder and heats the oven, and
+        # the slide's positioning table.
+        counts = [m.counters[0].count for m in recorded["counters"]]
+        self.assertEqual(counts, sorted(counts))
+        self.assertGreater(counts[-1], counts[0])
+        self.assertEqual([(m.header.stamp, m.header.frame_id, m.count) for m in recorded["counters/belt"]],
+                         [(m.header.stamp, m.header.frame_id, m.counters[0].count) for m in recorded["counters"]])
+        self.assertGreater(len({m.position[0] for m in recorded["joint_states"]}), 5)
+        self.assertGreater(len({m.pulses for m in recorded["motion/slide/status"]}), 5)
+        oven = {m.temperature for m in recorded["temperature/oven_temp"] if not math.isnan(m.temperature)}
+        self.assertGreater(len(oven), 1)
+        self.assertGreater(max(oven), 30.0)
 
         # Phase 2: rosbag play the inputs and the clock into /replay/plc_node.
         topics = ["/rec/clock"] + ["/rec/plc_node/inputs_stamped/" + n for n in INPUTS]
@@ -118,7 +154,7 @@ class ReplayTest(unittest.TestCase):
                            ["__name:=replay_player"] + remaps, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                            timeout=90)
         self.assertEqual(r.returncode, 0, r.stdout.decode(errors="replace"))
-        for n in ("io", "signals_stamped/motor"):
+        for n in ["io", "signals_stamped/motor"] + list(PERIODIC):
             self.assertTrue(replay.wait_for_stamp(n, recorded[n][-1].header.stamp.to_nsec()), n)
 
         # Outputs from the bag against the replay's, up to the same horizon.

@@ -8,26 +8,28 @@
 
 #include <ros/ros.h>
 
+#include "plc_cell/ros/topic_group.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 
-class CounterTopics {
+class CounterTopics : public TopicGroup {
  public:
   // rate_hz <= 0: the config's counters.publish_rate.
-  CounterTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz);
+  CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz);
+  double rate_hz() const override { return rate_hz_; }
+  // CounterArray and every Counter carry the same header.
+  void publish(const ros::Time& stamp) override;
 
  private:
-  void publish();
-
   SoftCell& cell_;
+  double rate_hz_;
   std::vector<int> numbers_;  // configured counters, in order
   std::vector<std::string> names_;
   ros::Publisher all_pub_;
   std::vector<ros::Publisher> one_pubs_;
   std::vector<ros::ServiceServer> services_;
   std::vector<ros::Subscriber> subs_;
-  ros::Timer timer_;
 };
 
 }  // namespace plc_cell

@@ -9,23 +9,26 @@
 
 #include <ros/ros.h>
 
+#include "plc_cell/ros/topic_group.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 
-class MotionTopics {
+class MotionTopics : public TopicGroup {
  public:
-  MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz);
-  ~MotionTopics();
+  MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz);
+  ~MotionTopics() override;
+  double rate_hz() const override { return rate_hz_; }
+  // JointState and every AxisStatus carry the same header; nothing without axes.
+  void publish(const ros::Time& stamp) override;
 
  private:
   struct AxisRos;
-  void publish();
 
   SoftCell& cell_;
+  double rate_hz_;
   std::vector<std::unique_ptr<AxisRos>> axes_;
   ros::Publisher joints_pub_;
-  ros::Timer timer_;
 };
 
 }  // namespace plc_cell

@@ -19,11 +19,8 @@
 #include "plc_cell/ReadMemory.h"
 #include "plc_cell/WriteMemory.h"
 #include "plc_cell/core/realtime_loop.h"
-#include "plc_cell/ros/counter_topics.h"
-#include "plc_cell/ros/motion_topics.h"
-#include "plc_cell/ros/register_topics.h"
 #include "plc_cell/io/server.h"
-#include "plc_cell/ros/temperature_ros.h"
+#include "plc_cell/ros/topic_group.h"
 #include "plc_cell/persist/persister.h"
 #include "plc_cell/sim/soft_cell.h"
 
@@ -71,9 +68,10 @@ class PlcNode {
   std::unique_ptr<persist::Persister> persister_;  // ~persist_file / plc.persist; may be null
   std::unique_ptr<RealTimeLoop> loop_;
   std::vector<std::unique_ptr<Server>> servers_;  // protocol servers on this PLC
-  std::unique_ptr<CounterTopics> counters_;        // high-speed counters on topics
-  std::unique_ptr<MotionTopics> motion_;           // pulse-output axes (JointState, services, action)
-  std::unique_ptr<RegisterTopics> registers_;      // ~registers/<group>
+  // Counters (with their services), axes (services, action), ~registers/<group> and
+  // temperatures (~set_pid_loop): the topics read from the cell at a rate. Before the
+  // timers, subscriptions and updater_ that call into the groups: destroyed after them.
+  TopicGroups topic_groups_;
   std::mutex path_mu_;
   std::string program_path_;
 
@@ -103,7 +101,6 @@ class PlcNode {
   ros::Timer io_timer_, diag_timer_;
   ros::WallTime started_;
   diagnostic_updater::Updater updater_;
-  std::unique_ptr<TemperatureRos> temperature_;  // ~temperature/<name>, ~set_pid_loop
 
   std::mutex snap_mu_;
   std::condition_variable snap_cv_;

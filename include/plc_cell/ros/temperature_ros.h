@@ -9,24 +9,26 @@
 #include <ros/ros.h>
 
 #include "plc_cell/SetPidLoop.h"
+#include "plc_cell/ros/topic_group.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 
-class TemperatureRos {
+class TemperatureRos : public TopicGroup {
  public:
   // Reads ~temperature_rate (Hz, default 1).
-  TemperatureRos(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, diagnostic_updater::Updater& updater);
+  TemperatureRos(ros::NodeHandle& pnh, SoftCell& cell, diagnostic_updater::Updater& updater);
+  double rate_hz() const override { return rate_hz_; }
+  void publish(const ros::Time& stamp) override;
 
  private:
-  void publish();
   void diagnose_module(size_t module, diagnostic_updater::DiagnosticStatusWrapper& stat);
   bool on_set_loop(SetPidLoop::Request& req, SetPidLoop::Response& res);
 
   SoftCell& cell_;
+  double rate_hz_ = 1.0;
   std::vector<size_t> channel_;  // channel index of each publisher
   std::vector<ros::Publisher> pubs_;
-  ros::Timer timer_;
   ros::ServiceServer set_loop_;
 };
 

@@ -1,0 +1,38 @@
+#include "plc_cell/ros/topic_group.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace plc_cell {
+
+VirtualRate::VirtualRate(double rate_hz) : period_us_(std::max<uint64_t>(1, uint64_t(std::llround(1e6 / rate_hz)))) {}
+
+bool VirtualRate::due(uint64_t now_us) {
+  if (now_us < due_us_) return false;
+  due_us_ = (now_us / period_us_ + 1) * period_us_;
+  return true;
+}
+
+void TopicGroups::add(std::unique_ptr<TopicGroup> group) {
+  const double hz = group->rate_hz();
+  entries_.push_back(Entry{std::move(group), VirtualRate(hz), ros::Timer()});
+}
+
+void TopicGroups::start_timers(ros::NodeHandle& nh) {
+  for (auto& e : entries_) {
+    TopicGroup* g = e.group.get();  // the timer dies with its entry, before the group
+    e.timer = nh.createTimer(ros::Duration(1.0 / g->rate_hz()),
+                             [g](const ros::TimerEvent&) { g->publish(ros::Time::now()); });
+  }
+}
+
+void TopicGroups::after_virtual_scan(uint64_t now_us) {
+  for (auto& e : entries_) {
+    if (!e.rate.due(now_us)) continue;
+    ros::Time stamp;
+    stamp.fromNSec(now_us * 1000);
+    e.group->publish(stamp);
+  }
+}
+
+}  // namespace plc_cell
