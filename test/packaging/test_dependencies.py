@@ -183,3 +183,15 @@ def test_message_packages_bring_their_definitions():
                 if want not in pkgs:
                     missing.append("%s: %s" % (key, want))
     assert not missing, "message keys without their definitions or Python modules: %s" % missing
+
+
+def test_python_scripts_run_on_debians_python():
+    # rospy and the message modules exist for Debian's /usr/bin/python3 only; a script that
+    # asks env for python3 gets a pyenv interpreter first on PATH, and its node dies on import.
+    bad = []
+    for f in files("test/**/*.py", "scripts/**/*.py"):
+        with open(f, encoding="utf-8") as fh:
+            first = fh.readline()
+        if first.startswith("#!") and first.strip() != "#!/usr/bin/python3":
+            bad.append("%s: %s" % (os.path.relpath(f, ROOT), first.strip()))
+    assert not bad, "\n".join(bad)

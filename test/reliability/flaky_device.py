@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rostest fixture: a TCP device that misbehaves on demand, for the bridges' rostests.
 It listens on ~listen_port and forwards to an upstream slave: ~upstream (HOST:PORT), or a
 `plc_cell run --fatek-tcp` it starts itself with ~fatek_program. Services (std_srvs/Trigger):
