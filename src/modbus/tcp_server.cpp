@@ -50,11 +50,7 @@ TcpServer::~TcpServer() { stop(); }
 
 void TcpServer::start() { listener_.start(); }
 
-void TcpServer::stop() {
-  listener_.stop();
-  std::lock_guard<std::mutex> lk(mu_);
-  st_.connections = 0;
-}
+void TcpServer::stop() { listener_.stop(); }
 
 std::string TcpServer::describe() const {
   return "Modbus TCP " + listener_.options().host + ":" + std::to_string(bound_port() ? bound_port() : opt_.port);
