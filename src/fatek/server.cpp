@@ -1,22 +1,15 @@
 #include "plc_cell/fatek/server.h"
 
-#include <arpa/inet.h>
 #include <fcntl.h>
-#include <netdb.h>
-#include <netinet/in.h>
-#include <netinet/tcp.h>
 #include <poll.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
 #include <cstring>
-#include <vector>
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/fatek/serial_port.h"
-#include "plc_cell/io/connections.h"
 
 namespace plc_cell {
 namespace fatek {
@@ -37,75 +30,45 @@ void close_fd(int& fd) {
   fd = -1;
 }
 
-void drain(int fd) {
-  char buf[64];
-  while (::read(fd, buf, sizeof buf) > 0) {
-  }
-}
-
-// What the server keeps per connection (the time bounds are io/connections.h's).
-struct Rx {
+// What the server keeps per connection besides its bytes: a decoder mid-frame.
+struct Rx : TcpProtocol::Session {
   Decoder decoder;
-  std::string out;
 };
+
+TcpListenerOptions listener_options(const TcpServerOptions& o) {
+  TcpListenerOptions l;
+  l.name = "FATEK TCP";
+  l.host = o.host;
+  l.port = o.port;
+  l.limits = ConnectionLimits{o.max_connections, o.idle_timeout_ms, o.frame_timeout_ms};
+  l.max_input = 4096;  // the decoder takes every byte read
+  l.max_pending_output = o.max_pending_output;
+  return l;
+}
 
 }  // namespace
 
 // ---- TCP -----------------------------------------------------------------------
 
-TcpServer::TcpServer(Plc& plc, TcpServerOptions opt) : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {
+TcpServer::TcpServer(Plc& plc, TcpServerOptions opt)
+    : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station), listener_(*this, listener_options(opt_)) {
   slave_.set_writable(opt_.writable);
 }
 
 TcpServer::~TcpServer() { stop(); }
 
-void TcpServer::start() {
-  if (running_) return;
-  addrinfo hints{}, *res = nullptr;
-  hints.ai_family = AF_INET;
-  hints.ai_socktype = SOCK_STREAM;
-  hints.ai_flags = AI_PASSIVE;
-  const std::string host = opt_.host.empty() ? "127.0.0.1" : opt_.host;
-  const std::string where = "FATEK TCP " + host + ":" + std::to_string(opt_.port);
-  if (getaddrinfo(host.c_str(), std::to_string(opt_.port).c_str(), &hints, &res) != 0 || !res)
-    throw Error(where + ": cannot resolve host");
-  listen_fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  int one = 1;
-  setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-  if (::bind(listen_fd_, res->ai_addr, res->ai_addrlen) != 0 || ::listen(listen_fd_, 16) != 0) {
-    const int err = errno;
-    freeaddrinfo(res);
-    close_fd(listen_fd_);
-    throw Error(where + ": cannot listen: " + std::strerror(err));
-  }
-  freeaddrinfo(res);
-  sockaddr_in sa{};
-  socklen_t len = sizeof sa;
-  getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&sa), &len);
-  bound_port_ = ntohs(sa.sin_port);
-  make_wake_pipe(wake_);
-  running_ = true;
-  thread_ = std::thread([this] { loop(); });
-}
+void TcpServer::start() { listener_.start(); }
 
-void TcpServer::stop() {
-  if (!running_) return;
-  running_ = false;
-  (void)!::write(wake_[1], "x", 1);
-  if (thread_.joinable()) thread_.join();
-  close_fd(listen_fd_);
-  close_fd(wake_[0]);
-  close_fd(wake_[1]);
-}
+void TcpServer::stop() { listener_.stop(); }
 
 std::string TcpServer::describe() const {
-  return "FATEK TCP " + (opt_.host.empty() ? std::string("127.0.0.1") : opt_.host) + ":" +
-         std::to_string(bound_port_ ? bound_port_ : opt_.port) + " station " + std::to_string(opt_.station);
+  return "FATEK TCP " + listener_.options().host + ":" + std::to_string(port() ? port() : opt_.port) + " station " +
+         std::to_string(opt_.station);
 }
 
 ServerStatus TcpServer::status() const {
   ServerStatus s;
-  s.running = running_;
+  s.running = listener_.running();
   s.requests = slave_.requests();
   s.rejected = slave_.rejected() + framing_errors_;
   s.connections = connections_;
@@ -114,99 +77,46 @@ ServerStatus TcpServer::status() const {
   return s;
 }
 
-void TcpServer::loop() {
-  Connections<Rx> conns(ConnectionLimits{opt_.max_connections, opt_.idle_timeout_ms, opt_.frame_timeout_ms});
-  std::vector<pollfd> pfds;
-  std::vector<int> dead;
-  char buf[4096];
-  auto note = [&](const std::string& e) {
-    std::lock_guard<std::mutex> lk(err_mu_);
-    last_error_ = e;
-  };
-  while (running_) {
-    pfds.clear();
-    pfds.push_back({wake_[0], POLLIN, 0});
-    pfds.push_back({listen_fd_, POLLIN, 0});
-    for (auto& c : conns.all()) pfds.push_back({c.fd, short(POLLIN | (c.x.out.empty() ? 0 : POLLOUT)), 0});
-    ::poll(pfds.data(), pfds.size(), conns.poll_timeout_ms(Clock::now()));
-    if (!running_) break;
-    if (pfds[0].revents) drain(wake_[0]);
-    dead.clear();
-    const auto now = Clock::now();
-    for (size_t i = 0; i < conns.size(); ++i) {
-      auto& c = conns.all()[i];
-      const short ev = pfds[i + 2].revents;
-      if (ev & (POLLIN | POLLHUP | POLLERR)) {
-        const ssize_t n = ::recv(c.fd, buf, sizeof buf, MSG_DONTWAIT);
-        if (n == 0 || (n < 0 && errno != EAGAIN && errno != EINTR)) {
-          dead.push_back(c.fd);
-          continue;
-        }
-        if (n > 0) {
-          c.x.decoder.feed(reinterpret_cast<const uint8_t*>(buf), size_t(n),
-                           [&](const Frame& f) {
-                             Connections<Rx>::complete(c, now);
-                             slave_.handle(f, c.x.out);
-                           },
-                           [&](Decoder::Fault f) {
-                             ++framing_errors_;
-                             note(std::string("framing: ") + fault_name(f));
-                           });
-          // Bytes outside a frame (no STX yet) start no frame deadline: they are
-          // dropped as they come, and only a complete request keeps the connection.
-          if (c.x.decoder.in_frame()) Connections<Rx>::partial(c, now);
-        }
-      }
-      if (!c.x.out.empty()) {
-        const ssize_t w = ::send(c.fd, c.x.out.data(), c.x.out.size(), MSG_DONTWAIT | MSG_NOSIGNAL);
-        if (w > 0) c.x.out.erase(0, size_t(w));
-        else if (w < 0 && errno != EAGAIN && errno != EINTR) {
-          dead.push_back(c.fd);
-          continue;
-        }
-        if (c.x.out.size() > opt_.max_pending_output) {
-          note("client does not read its answers; dropped");
-          dead.push_back(c.fd);
-          continue;
-        }
-      }
-      switch (conns.expired(c, now)) {
-        case Connections<Rx>::Expiry::Frame:
-          ++framing_errors_;
-          note("framing: frame not complete within the frame timeout; connection closed");
-          dead.push_back(c.fd);
-          break;
-        case Connections<Rx>::Expiry::Idle: dead.push_back(c.fd); break;
-        case Connections<Rx>::Expiry::None: break;
-      }
-    }
-    for (int fd : dead) {
-      ::close(fd);
-      conns.remove_fd(fd);
-    }
-    if (pfds[1].revents & POLLIN) {
-      for (int k = 0; k < 16; ++k) {  // bounded: the clients we have are served in between
-        const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
-        if (fd < 0) break;
-        int evicted = -1;
-        const auto how = conns.admit(fd, Clock::now(), &evicted);
-        if (how == Connections<Rx>::Admit::Refused) {
-          ::close(fd);  // bounded: refuse beyond max_connections
-          note("connection refused: limit reached");
-          continue;
-        }
-        if (how == Connections<Rx>::Admit::Evicted) {
-          ::close(evicted);
-          note("connection closed for a new client: no complete request within the frame timeout");
-        }
-        int one = 1;
-        setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-      }
-    }
-    connections_ = conns.size();
+void TcpServer::note(const std::string& e) {
+  std::lock_guard<std::mutex> lk(err_mu_);
+  last_error_ = e;
+}
+
+std::unique_ptr<TcpProtocol::Session> TcpServer::open() { return std::make_unique<Rx>(); }
+
+TcpProtocol::Taken TcpServer::take(uint64_t, Session* session, std::string& in, std::string& out) {
+  Decoder& dec = static_cast<Rx*>(session)->decoder;
+  Taken t;
+  dec.feed(reinterpret_cast<const uint8_t*>(in.data()), in.size(),
+           [&](const Frame& f) {
+             ++t.requests;
+             slave_.handle(f, out);
+           },
+           [&](Decoder::Fault f) {
+             ++framing_errors_;
+             note(std::string("framing: ") + fault_name(f));
+           });
+  in.clear();
+  // Bytes outside a frame (no STX yet) start no frame deadline: they are dropped as
+  // they come, and only a complete request keeps the connection.
+  t.partial = dec.in_frame();
+  return t;
+}
+
+void TcpServer::on_event(Event e, int) {
+  switch (e) {
+    case Event::Refused: note("connection refused: limit reached"); break;
+    case Event::Evicted:
+      note("connection closed for a new client: no complete request within the frame timeout");
+      break;
+    case Event::FrameTimeout:
+      ++framing_errors_;
+      note("framing: frame not complete within the frame timeout; connection closed");
+      break;
+    case Event::SlowReader: note("client does not read its answers; dropped"); break;
+    case Event::ClosedMidRequest:
+    case Event::ReplyFailed: break;
   }
-  for (auto& c : conns.all()) ::close(c.fd);
-  connections_ = 0;
 }
 
 // ---- serial ----------------------------------------------------------------------

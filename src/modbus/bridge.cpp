@@ -6,6 +6,7 @@
 #include <modbus/modbus.h>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/io/backoff.h"
 #include "plc_cell/io/serial_settings.h"
 
 namespace plc_cell {
@@ -18,7 +19,7 @@ struct Bridge::Line {
   std::vector<size_t> devices;
   modbus_t* ctx = nullptr;
   bool connected = false;
-  double backoff_s = 0;
+  Backoff backoff{0, 0};
   Clock::time_point next_attempt{};
   std::mutex mu;  // the line: one transaction at a time (polls and writes)
   std::condition_variable cv;
@@ -38,6 +39,7 @@ Bridge::Bridge(BridgeConfig cfg, Sink sink) : cfg_(std::move(cfg)), sink_(std::m
       lines_.push_back(std::make_unique<Line>());
       l = lines_.back().get();
       l->name = dev.line();
+      l->backoff = Backoff(cfg_.backoff_min_s, cfg_.backoff_max_s);
       if (!dev.tcp.empty()) {
         std::string host;
         int port;
@@ -88,7 +90,7 @@ void Bridge::recover() {
       std::lock_guard<std::mutex> lk(l->mu);
       if (l->connected) modbus_close(l->ctx);
       l->connected = false;
-      l->backoff_s = 0;
+      l->backoff.reset();
       l->next_attempt = Clock::now();
       l->recover = true;
     }
@@ -107,10 +109,9 @@ bool Bridge::ensure_connected(Line& line) {
   if (Clock::now() < line.next_attempt) return false;
   if (modbus_connect(line.ctx) == 0) {
     line.connected = true;
-    line.backoff_s = 0;
+    line.backoff.reset();
   } else {
-    line.backoff_s = line.backoff_s == 0 ? cfg_.backoff_min_s : std::min(line.backoff_s * 2, cfg_.backoff_max_s);
-    line.next_attempt = Clock::now() + std::chrono::microseconds(int64_t(line.backoff_s * 1e6));
+    line.next_attempt = Clock::now() + std::chrono::microseconds(int64_t(line.backoff.failed() * 1e6));
     const std::string why = std::string("connect: ") + modbus_strerror(errno);
     std::lock_guard<std::mutex> lk(status_mu_);
     for (size_t d : line.devices) {
@@ -143,8 +144,9 @@ void Bridge::note_error(Line& line, size_t dev, int err) {
   }
   modbus_close(line.ctx);
   line.connected = false;
-  line.backoff_s = cfg_.backoff_min_s;
-  line.next_attempt = Clock::now() + std::chrono::microseconds(int64_t(line.backoff_s * 1e6));
+  // A link that worked is retried after the shortest delay; failing again, longer ones.
+  line.backoff.reset();
+  line.next_attempt = Clock::now() + std::chrono::microseconds(int64_t(line.backoff.failed() * 1e6));
   for (size_t d : line.devices) status_[d].connected = false;
 }
 

@@ -8,6 +8,7 @@
 #include "plc_cell/RegisterBlock.h"
 #include "plc_cell/config/register_groups.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/io/backoff.h"
 
 namespace plc_cell {
 
@@ -180,7 +181,7 @@ void FatekBridge::poll_group(Group& g) {
 }
 
 void FatekBridge::worker() {
-  double backoff = 0.1;
+  Backoff backoff(0.1, max_backoff_);
   io_due_ = ros::WallTime::now();
   for (auto& g : groups_) g.due = io_due_;
   for (;;) {
@@ -189,16 +190,15 @@ void FatekBridge::worker() {
       if (stopping_) return;
       if (recover_) {
         recover_ = false;
-        backoff = 0.1;
+        backoff.reset();
       }
     }
     if (!ensure_connected()) {
       std::unique_lock<std::mutex> lk(state_mu_);
-      cv_.wait_for(lk, std::chrono::duration<double>(backoff), [this] { return stopping_ || recover_; });
-      backoff = std::min(backoff * 2, max_backoff_);
+      cv_.wait_for(lk, std::chrono::duration<double>(backoff.failed()), [this] { return stopping_ || recover_; });
       continue;
     }
-    backoff = 0.1;
+    backoff.reset();
     try {
       const auto now = ros::WallTime::now();
       if (now >= io_due_) {

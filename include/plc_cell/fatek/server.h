@@ -15,6 +15,7 @@
 #include "plc_cell/fatek/slave.h"
 #include "plc_cell/io/serial_settings.h"
 #include "plc_cell/io/server.h"
+#include "plc_cell/io/tcp_listener.h"
 
 namespace plc_cell {
 namespace fatek {
@@ -30,7 +31,8 @@ struct TcpServerOptions {
   WritableRanges writable;        // what clients may write (default everything)
 };
 
-class TcpServer : public Server {
+// The transport is io/tcp_listener.h's; this class is the FATEK side of it.
+class TcpServer : public Server, private TcpProtocol {
  public:
   TcpServer(Plc& plc, TcpServerOptions opt);
   ~TcpServer() override;
@@ -38,22 +40,23 @@ class TcpServer : public Server {
   void stop() override;
   std::string describe() const override;
   ServerStatus status() const override;
-  int port() const { return bound_port_; }  // the real port after start()
+  int port() const { return listener_.port(); }  // the real port after start()
 
  private:
-  void loop();
+  std::unique_ptr<Session> open() override;
+  Taken take(uint64_t conn, Session* session, std::string& in, std::string& out) override;
+  void on_event(Event e, int err) override;
+  void on_connections(size_t open) override { connections_ = open; }
+  void note(const std::string& e);
+
   Plc& plc_;
   TcpServerOptions opt_;
   Slave slave_;
-  int listen_fd_ = -1;
-  int wake_[2] = {-1, -1};
-  int bound_port_ = 0;
-  std::thread thread_;
-  std::atomic<bool> running_{false};
   std::atomic<uint64_t> connections_{0};
   std::atomic<uint64_t> framing_errors_{0};
   mutable std::mutex err_mu_;
   std::string last_error_;
+  TcpListener listener_;  // last: its thread stops before the members it reaches go
 };
 
 struct SerialServerOptions {

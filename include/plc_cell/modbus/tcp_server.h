@@ -3,19 +3,13 @@
 // and up to max_connections clients. Bytes are buffered per connection and a request
 // is answered once all of its bytes are there (MBAP length), so a stalling client
 // never blocks the others; the time bounds are those of io/connections.h.
-#include <atomic>
 #include <cstdint>
-#include <deque>
 #include <mutex>
 #include <string>
-#include <thread>
-#include <utility>
-#include <vector>
 
 #include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/io/server.h"
-
-typedef struct _modbus modbus_t;
+#include "plc_cell/io/tcp_listener.h"
 
 namespace plc_cell {
 
@@ -38,7 +32,8 @@ struct TcpServerOptions {
   WritableRanges writable;  // what clients may write (default everything); else exception 02
 };
 
-class TcpServer : public Server {
+// The transport is io/tcp_listener.h's; this class is the Modbus side of it.
+class TcpServer : public Server, private TcpProtocol {
  public:
   TcpServer(Plc& plc, TcpServerOptions opt);
   ~TcpServer() override;
@@ -47,24 +42,19 @@ class TcpServer : public Server {
   void stop() override;
   std::string describe() const override;
   ServerStatus status() const override;
-  int bound_port() const { return port_; }
+  int bound_port() const { return listener_.port(); }
 
  private:
-  void run();
-  void complete(uint64_t conn, std::vector<uint8_t> reply);  // from the forwarder's thread
+  Taken take(uint64_t conn, Session* session, std::string& in, std::string& out) override;
+  void on_event(Event e, int err) override;
+  void on_connections(size_t open) override;
+  void count(bool ok, const std::string& err = {});
 
   Plc& plc_;
   TcpServerOptions opt_;
-  modbus_t* ctx_ = nullptr;
-  int listen_fd_ = -1;
-  int wake_[2] = {-1, -1};
-  std::atomic<bool> stop_{false};
-  std::mutex done_mu_;
-  std::deque<std::pair<uint64_t, std::vector<uint8_t>>> done_;  // forwarded replies to send
-  int port_ = 0;
-  std::thread thread_;
   mutable std::mutex mu_;
   ServerStatus st_;
+  TcpListener listener_;  // last: its thread stops before the members it reaches go
 };
 
 }  // namespace modbus
