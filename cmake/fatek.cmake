@@ -16,7 +16,7 @@ list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/ros/fatek_params.cpp
 list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_fatek)
 
 if(CATKIN_ENABLE_TESTING)
-  file(GLOB FATEK_TESTS ${PROJECT_SOURCE_DIR}/test/fatek/*_test.cpp)
+  file(GLOB FATEK_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/fatek/*_test.cpp)
   catkin_add_gtest(fatek_tests test/core/test_main.cpp ${FATEK_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(fatek_tests plc_cell_fatek plc_cell_sim)
   target_compile_definitions(fatek_tests PRIVATE

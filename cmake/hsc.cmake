@@ -11,7 +11,7 @@ plc_cell_layer(plc_cell_hsc LINKS plc_cell_config SOURCES
   src/hsc/scan_debounce.cpp)
 
 if(CATKIN_ENABLE_TESTING)
-  file(GLOB HSC_TESTS test/hsc/*_test.cpp)
+  file(GLOB HSC_TESTS CONFIGURE_DEPENDS test/hsc/*_test.cpp)
   catkin_add_gtest(hsc_tests test/core/test_main.cpp ${HSC_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(hsc_tests plc_cell_sim)
   target_compile_definitions(hsc_tests PRIVATE

@@ -21,7 +21,7 @@ list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_modbus)
 
 if(CATKIN_ENABLE_TESTING)
   # One binary, run sequentially: several tests use the fixed port 1502.
-  file(GLOB MODBUS_TESTS test/modbus/*_test.cpp)
+  file(GLOB MODBUS_TESTS CONFIGURE_DEPENDS test/modbus/*_test.cpp)
   catkin_add_gtest(modbus_tests test/core/test_main.cpp ${MODBUS_TESTS}
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} TIMEOUT 600)
   target_link_libraries(modbus_tests plc_cell_modbus plc_cell_sim)

@@ -18,7 +18,7 @@ plc_cell_layer(plc_cell_motion LINKS plc_cell_hsc SOURCES
   src/motion/motion_functions.cpp)
 
 if(CATKIN_ENABLE_TESTING)
-  file(GLOB MOTION_TESTS test/motion/*_test.cpp)
+  file(GLOB MOTION_TESTS CONFIGURE_DEPENDS test/motion/*_test.cpp)
   catkin_add_gtest(motion_tests test/core/test_main.cpp ${MOTION_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(motion_tests plc_cell_sim)
   target_compile_definitions(motion_tests PRIVATE

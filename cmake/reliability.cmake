@@ -13,7 +13,7 @@ list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/io/stop_signal.cpp)
 list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/io/stop_signal.cpp)
 
 if(CATKIN_ENABLE_TESTING)
-  file(GLOB RELIABILITY_TESTS ${PROJECT_SOURCE_DIR}/test/reliability/*_test.cpp)
+  file(GLOB RELIABILITY_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/reliability/*_test.cpp)
   catkin_add_gtest(reliability_tests test/core/test_main.cpp ${RELIABILITY_TESTS} src/io/stop_signal.cpp WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(reliability_tests plc_cell_persist plc_cell_fatek plc_cell_modbus plc_cell_sim)
   target_compile_definitions(reliability_tests PRIVATE
@@ -68,7 +68,7 @@ endif()
 
 # ---- hostile clients against `plc_cell run` (test/reliability/abuse/) ----------
 if(CATKIN_ENABLE_TESTING)
-  file(GLOB ABUSE_TESTS ${PROJECT_SOURCE_DIR}/test/reliability/abuse/*_test.cpp)
+  file(GLOB ABUSE_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/reliability/abuse/*_test.cpp)
   catkin_add_gtest(abuse_tests test/core/test_main.cpp ${ABUSE_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} TIMEOUT 300)
   target_link_libraries(abuse_tests plc_cell_fatek plc_cell_modbus plc_cell_sim)
   target_compile_definitions(abuse_tests PRIVATE PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")

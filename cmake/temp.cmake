@@ -27,7 +27,7 @@ plc_cell_layer(plc_cell_temp LINKS plc_cell_config SOURCES
   src/temp/loop_settings.cpp)
 
 if(CATKIN_ENABLE_TESTING)
-  file(GLOB TEMP_TESTS test/temp/*_test.cpp)
+  file(GLOB TEMP_TESTS CONFIGURE_DEPENDS test/temp/*_test.cpp)
   catkin_add_gtest(temp_tests test/core/test_main.cpp ${TEMP_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(temp_tests plc_cell_sim)
   target_compile_definitions(temp_tests PRIVATE
