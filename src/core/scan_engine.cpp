@@ -29,8 +29,16 @@ bool ScanEngine::set_mode(RunMode m) {
   return true;
 }
 
+void ScanEngine::add_hook(ScanHook* h) {
+  hooks_.push_back(h);
+  h->attached(*this);
+}
+
 void ScanEngine::remove_hook(ScanHook* h) {
-  hooks_.erase(std::remove(hooks_.begin(), hooks_.end(), h), hooks_.end());
+  const auto it = std::remove(hooks_.begin(), hooks_.end(), h);
+  if (it == hooks_.end()) return;
+  hooks_.erase(it, hooks_.end());
+  h->detached(*this);
 }
 
 void ScanEngine::update_special_relays() {

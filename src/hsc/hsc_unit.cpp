@@ -110,12 +110,10 @@ void HscUnit::detach_source(EdgeSource* s) {
   bind_counters();
 }
 
-HscUnit* HscUnit::of(ScanEngine* engine) {
-  if (!engine) return nullptr;
-  for (ScanHook* h : engine->hooks())
-    if (auto* u = dynamic_cast<HscUnit*>(h)) return u;
-  return nullptr;
-}
+HscUnit* HscUnit::of(ScanEngine* engine) { return engine ? engine->extensions().get<HscUnit>() : nullptr; }
+
+void HscUnit::attached(ScanEngine& e) { e.extensions().attach(this); }
+void HscUnit::detached(ScanEngine& e) { e.extensions().detach(this); }
 
 // ---- levels and counting ------------------------------------------------------
 

@@ -75,12 +75,10 @@ void MotionUnit::at(uint64_t t, std::vector<int>* requests) {
   write_status(t);  // the routines of this instant read its position, frequency, ...
 }
 
-MotionUnit* MotionUnit::of(ScanEngine* engine) {
-  if (!engine) return nullptr;
-  for (ScanHook* h : engine->hooks())
-    if (auto* u = dynamic_cast<MotionUnit*>(h)) return u;
-  return nullptr;
-}
+MotionUnit* MotionUnit::of(ScanEngine* engine) { return engine ? engine->extensions().get<MotionUnit>() : nullptr; }
+
+void MotionUnit::attached(ScanEngine& e) { e.extensions().attach(this); }
+void MotionUnit::detached(ScanEngine& e) { e.extensions().detach(this); }
 
 // ---- memory helpers -------------------------------------------------------------
 

@@ -58,7 +58,7 @@ void SoftCell::build(const std::string& program_path) {
     if (temperature_) e.add_hook(temperature_.get());
     errors.collect([&] { rtc_ = temp::make_rtc(config_.document, file, m); }, file, modules);
     if (rtc_) e.add_hook(rtc_.get());
-    errors.collect([&] { pwmda_ = temp::make_pwmda_outputs(config_.document, file, m); }, file, modules);
+    errors.collect([&] { pwmda_ = temp::make_pwmda_outputs(config_.document, file); }, file, modules);
     if (pwmda_) e.add_hook(pwmda_.get());
     return 0;
   });
@@ -104,12 +104,12 @@ void SoftCell::release() {
   installed_.clear();
   motion_.reset();
   hsc_.reset();
-  plc_.locked([&](ScanEngine& e, Memory& m) {
+  plc_.locked([&](ScanEngine& e, Memory&) {
     if (sim_) e.remove_hook(sim_.get());
     if (temperature_) e.remove_hook(temperature_.get());
     if (rtc_) e.remove_hook(rtc_.get());
     if (pwmda_) e.remove_hook(pwmda_.get());
-    temp::hspwm_reset(m);  // FUN139's generators belong to this PLC
+    temp::hspwm_reset(e);  // FUN139's generators belong to this PLC: off with its cell
     return 0;
   });
 }

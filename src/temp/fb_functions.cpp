@@ -3,10 +3,11 @@
 
 #include <map>
 #include <memory>
-#include <mutex>
+#include <optional>
 
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/interpreter.h"
+#include "plc_cell/core/scan_engine.h"
 #include "plc_cell/temp/fb_measure.h"
 #include "plc_cell/temp/fb_tc_scaling.h"
 #include "plc_cell/temp/tpctl_loop.h"
@@ -35,12 +36,21 @@ struct Fun85Info {  // what the FB FUN86 needs of the cell's FUN85
   const uint16_t* sr = nullptr;
 };
 
+// What the FB instructions keep between scans, by instruction: the PLC's own state (its scan
+// engine keeps it), so a new PLC, even one whose memory reuses a gone one's address, starts
+// with none.
 struct Store {
-  std::mutex mu;
-  std::map<std::pair<const Memory*, uint32_t>, FbMeasureState> measure;
-  std::map<std::pair<const Memory*, uint32_t>, TpctlLoopState> loops;
-  std::map<const Memory*, Fun85Info> fun85;
+  std::map<uint32_t, FbMeasureState> measure;
+  std::map<uint32_t, TpctlLoopState> loops;
+  std::optional<Fun85Info> fun85;
 };
+
+// Runs f with the PLC's store. An FB instruction outside a scan engine (a bare interpreter)
+// has nowhere to keep its state and does nothing.
+template <class F>
+void with_store(ExecContext& c, const BoundOperand* o, F f) {
+  if (c.engine) f(c.engine->extensions().owned<Store>(), c, o);
+}
 
 bool fits(const BoundOperand& o, uint32_t n) { return o.w && o.addr.index + n <= Memory::word_count(o.addr.area); }
 bool fits_y(const BoundOperand& o, uint32_t n) { return o.addr.area == Area::Y && o.addr.index + n <= 256; }
@@ -58,8 +68,7 @@ bool fun72_points(ExecContext& c, const BoundOperand* o, const BoundOperand& wr,
 
 void fun72(Store& s, ExecContext& c, const BoundOperand* o) {
   const BoundOperand &wr = o[6], &err = o[7], &alm = o[8];
-  std::lock_guard<std::mutex> lk(s.mu);
-  FbMeasureState& st = s.measure[{&c.mem, c.instance}];
+  FbMeasureState& st = s.measure[c.instance];
   FbPoints p;
   const bool ok = fun72_points(c, o, wr, 8, &p);
   c.flag(err, c.en && !ok);  // "not performed and ERR on" (B:497)
@@ -75,9 +84,8 @@ void fun73(Store& s, ExecContext& c, const BoundOperand* o) {
   // Tp Pl Sm Ym AR TR | Yh Sh Zh Sv Os PR IR DR OR WR | ERR AO0 AO1
   const BoundOperand &yh = o[6], &wr = o[15], &err = o[16], &ao0 = o[17], &ao1 = o[18];
   const int64_t sh = c.get(o[7]), zh = c.get(o[8]);
-  std::lock_guard<std::mutex> lk(s.mu);
-  FbMeasureState& st = s.measure[{&c.mem, c.instance}];
-  TpctlLoopState& loop = s.loops[{&c.mem, c.instance}];
+  FbMeasureState& st = s.measure[c.instance];
+  TpctlLoopState& loop = s.loops[c.instance];
   FbPoints p;
   bool ok = fun72_points(c, o, wr, 17, &p) && p.tp <= kFbJ;  // PID on thermocouples only (B:686)
   ok = ok && sh >= 0 && sh <= 31 && zh >= 1 && zh <= 32 && sh + zh <= 32 && (zh <= 4 || sh >= int64_t(p.first_point)) &&
@@ -115,9 +123,9 @@ void fun85(Store& s, ExecContext& c, const BoundOperand* o) {
   // Tp Pl Zn Yn SR WR ERR ALM
   const int64_t tp = c.get(o[0]), pl = c.get(o[1]), zn = c.get(o[2]);
   const BoundOperand &yn = o[3], &sr = o[4], &wr = o[5], &err = o[6], &alm = o[7];
-  std::lock_guard<std::mutex> lk(s.mu);
-  FbMeasureState& st = s.measure[{&c.mem, c.instance}];
-  Fun85Info& info = s.fun85[&c.mem];
+  FbMeasureState& st = s.measure[c.instance];
+  if (!s.fun85) s.fun85.emplace();
+  Fun85Info& info = *s.fun85;
   // "can only be used once" (B:865): a second FUN85 executed in the same scan is an error.
   const bool second = info.instance != c.instance && info.last_us == c.now_us && info.sr;
   FbPoints p;
@@ -141,21 +149,19 @@ void fun86(Store& s, ExecContext& c, const BoundOperand* o) {
   // Yn Sn Zn Sv Os PR IR DR OR WR ERR ALM
   const BoundOperand &yn = o[0], &wr = o[9], &err = o[10], &alm = o[11];
   const int64_t sn = c.get(o[1]), zn = c.get(o[2]);
-  std::lock_guard<std::mutex> lk(s.mu);
-  TpctlLoopState& loop = s.loops[{&c.mem, c.instance}];
+  TpctlLoopState& loop = s.loops[c.instance];
   bool ok = sn >= 0 && sn <= 23 && zn >= 1 && zn <= 24 && sn + zn <= 24 && fits_y(yn, uint32_t(zn)) && fits(wr, 9);
   const uint32_t n = ok ? uint32_t(zn) : 0;
   for (int k = 3; k <= 8 && ok; ++k) ok = fits(o[k], n);
   c.flag(err, c.en && !ok);
-  auto it = s.fun85.find(&c.mem);
   // "FUN86 must be incorporated with FUN85 ... it must be enabled" (B:969): until then OFF.
-  const bool ready = it != s.fun85.end() && it->second.en && it->second.ready && it->second.points.points >= sn + zn;
+  const bool ready = s.fun85 && s.fun85->en && s.fun85->ready && s.fun85->points.points >= sn + zn;
   if (!ok || !c.en || !ready) {
     tpctl_outputs_off(loop, yn, n, !ok || !c.en);
     if (ok && !c.en) c.flag(alm, false);
     return;
   }
-  const Fun85Info& f = it->second;
+  const Fun85Info& f = *s.fun85;
   const TpctlTables t{yn, o[3], o[4], o[5], o[6], o[7], o[8]};
   const double pos = fb_pos_factor(c, f.points);
   loop.pv.resize(n);
@@ -190,11 +196,10 @@ const std::vector<OperandSpec> kMeasure = {{"Tp", R::Const}, {"Pl", R::Const},  
 }  // namespace
 
 void add_fb_temperature_functions(FunctionTable& t) {
-  auto store = std::make_shared<Store>();
   auto ops72 = kMeasure;
   ops72.insert(ops72.end(), {{"WR", R::Register, false, 8}, {"ERR", R::BitOut, true}, {"ALM", R::BitOut, true}});
   FunctionSpec s72 = spec(72, "TP4", {"EN"}, ops72);
-  s72.handler = [store](ExecContext& c, const BoundOperand* o) { fun72(*store, c, o); };
+  s72.handler = [](ExecContext& c, const BoundOperand* o) { with_store(c, o, fun72); };
   t.add(s72);
 
   auto ops73 = kMeasure;
@@ -203,7 +208,7 @@ void add_fb_temperature_functions(FunctionTable& t) {
                              {"OR", R::Register},   {"WR", R::Register, false, 17}, {"ERR", R::BitOut, true},
                              {"AO0", R::BitOut, true}, {"AO1", R::BitOut, true}});
   FunctionSpec s73 = spec(73, "TSTC", {"EN", "HC"}, ops73);
-  s73.handler = [store](ExecContext& c, const BoundOperand* o) { fun73(*store, c, o); };
+  s73.handler = [](ExecContext& c, const BoundOperand* o) { with_store(c, o, fun73); };
   t.add(s73);
 
   // The operand figure is lost; the names are the text's (B:917), in its order.
@@ -211,7 +216,7 @@ void add_fb_temperature_functions(FunctionTable& t) {
                           {{"Tp", R::Const}, {"Pl", R::Const}, {"Zn", R::Const}, {"Yn", R::BitOut},
                            {"SR", R::Register}, {"WR", R::Register, false, 5}, {"ERR", R::BitOut, true},
                            {"ALM", R::BitOut, true}});
-  s85.handler = [store](ExecContext& c, const BoundOperand* o) { fun85(*store, c, o); };
+  s85.handler = [](ExecContext& c, const BoundOperand* o) { with_store(c, o, fun85); };
   t.add(s85);
 
   FunctionSpec s86 = spec(86, "TPCTL", {"EN", "HC"},
@@ -219,7 +224,7 @@ void add_fb_temperature_functions(FunctionTable& t) {
                            {"Os", R::Register}, {"PR", R::Register}, {"IR", R::Register}, {"DR", R::Register},
                            {"OR", R::Register}, {"WR", R::Register, false, 9}, {"ERR", R::BitOut, true},
                            {"ALM", R::BitOut, true}});
-  s86.handler = [store](ExecContext& c, const BoundOperand* o) { fun86(*store, c, o); };
+  s86.handler = [](ExecContext& c, const BoundOperand* o) { with_store(c, o, fun86); };
   t.add(s86);
 }
 

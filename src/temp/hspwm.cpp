@@ -2,42 +2,33 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
-#include <mutex>
 
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/interpreter.h"
+#include "plc_cell/core/scan_engine.h"
 
 namespace plc_cell {
 namespace temp {
 namespace {
 
 using R = OperandRole;
-using Channels = std::array<HsPwmChannel, kHsPwmOutputs>;
-
-// The generators live beside the PLC's memory, like the hardware beside the CPU; a
-// FUN handler has no other per-PLC place (as temperature_cell_of for FUN86).
-std::mutex g_mu;
-std::map<const Memory*, Channels>& generators() {
-  static std::map<const Memory*, Channels> m;
-  return m;
-}
+// The generators live beside the PLC, like the hardware beside the CPU: its scan engine
+// keeps them, so they go with it and a new PLC starts with none running.
+struct Generators {
+  std::array<HsPwmChannel, kHsPwmOutputs> channels{};
+};
 
 }  // namespace
 
 double hspwm_frequency_hz(int pn, int rs) { return 18.432e6 / ((pn + 1) * (rs == 1 ? 1000.0 : 100.0)); }
 
-HsPwmChannel hspwm_channel(const Memory& mem, int pw) {
-  std::lock_guard<std::mutex> lk(g_mu);
-  auto it = generators().find(&mem);
-  if (it == generators().end() || pw < 0 || pw >= kHsPwmOutputs) return {};
-  return it->second[static_cast<size_t>(pw)];
+HsPwmChannel hspwm_channel(const ScanEngine& engine, int pw) {
+  const Generators* g = engine.extensions().get<Generators>();
+  if (!g || pw < 0 || pw >= kHsPwmOutputs) return {};
+  return g->channels[static_cast<size_t>(pw)];
 }
 
-void hspwm_reset(const Memory& mem) {
-  std::lock_guard<std::mutex> lk(g_mu);
-  generators().erase(&mem);
-}
+void hspwm_reset(ScanEngine& engine) { engine.extensions().reset<Generators>(); }
 
 void add_hspwm_function(FunctionTable& t) {
   FunctionSpec s;
@@ -69,8 +60,7 @@ void add_hspwm_function(FunctionTable& t) {
     // being generated and the Pn in use, 0 while stopped.
     o[5].w[0] = static_cast<uint16_t>(c.en ? width : 0);
     o[5].w[1] = static_cast<uint16_t>(c.en ? pn : 0);
-    std::lock_guard<std::mutex> lk(g_mu);
-    generators()[&c.mem][static_cast<size_t>(o[0].k)] = ch;
+    if (c.engine) c.engine->extensions().owned<Generators>().channels[static_cast<size_t>(o[0].k)] = ch;
   };
   t.add(s);
 }

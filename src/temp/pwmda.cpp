@@ -45,10 +45,10 @@ std::vector<PwmdaDef> parse_pwmda_config(const YAML::Node& node, const std::stri
   return defs;
 }
 
-PwmdaOutputs::PwmdaOutputs(std::vector<PwmdaDef> defs, Memory& mem)
-    : defs_(std::move(defs)), mem_(mem), volts_(defs_.size(), 0.0) {}
+PwmdaOutputs::PwmdaOutputs(std::vector<PwmdaDef> defs) : defs_(std::move(defs)), volts_(defs_.size(), 0.0) {}
 
-PwmdaOutputs::~PwmdaOutputs() { hspwm_reset(mem_); }
+void PwmdaOutputs::attached(ScanEngine& e) { engine_ = &e; }
+void PwmdaOutputs::detached(ScanEngine&) { engine_ = nullptr; }
 
 void PwmdaOutputs::before_inputs(uint64_t now_us) {
   const double dt = have_time_ && now_us > last_us_ ? (now_us - last_us_) * 1e-6 : 0.0;
@@ -57,19 +57,20 @@ void PwmdaOutputs::before_inputs(uint64_t now_us) {
   // First-order filter, exact for an input held over dt (any scan period, same curve).
   const double a = 1.0 - std::exp(-dt / kPwmdaTimeConstantS);
   for (size_t k = 0; k < defs_.size(); ++k) {
-    const HsPwmChannel ch = hspwm_channel(mem_, defs_[k].pw);
+    const HsPwmChannel ch = engine_ ? hspwm_channel(*engine_, defs_[k].pw) : HsPwmChannel{};
     const double target = ch.running ? pwmda_voltage(ch.duty, defs_[k].trimmed) : 0.0;
     volts_[k] += (target - volts_[k]) * a;
   }
 }
 
-void PwmdaOutputs::on_stop() { hspwm_reset(mem_); }
+void PwmdaOutputs::on_stop() {
+  if (engine_) hspwm_reset(*engine_);
+}
 
-std::unique_ptr<PwmdaOutputs> make_pwmda_outputs(const YAML::Node& document, const std::string& file,
-                                                 Memory& mem) {
+std::unique_ptr<PwmdaOutputs> make_pwmda_outputs(const YAML::Node& document, const std::string& file) {
   const YAML::Node modules = document.IsMap() ? document["modules"] : YAML::Node();
   if (!modules || !modules.IsMap() || !modules["pwmda"]) return nullptr;
-  return std::make_unique<PwmdaOutputs>(parse_pwmda_config(modules["pwmda"], file), mem);
+  return std::make_unique<PwmdaOutputs>(parse_pwmda_config(modules["pwmda"], file));
 }
 
 }  // namespace temp

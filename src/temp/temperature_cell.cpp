@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <mutex>
 
 #include "plc_cell/core/area.h"
 #include "plc_cell/core/error.h"
@@ -13,12 +11,6 @@
 namespace plc_cell {
 namespace temp {
 namespace {
-
-std::mutex g_registry_mu;
-std::map<const Memory*, const TemperatureCell*>& registry() {
-  static std::map<const Memory*, const TemperatureCell*> m;
-  return m;
-}
 
 // Measurable ranges from the manual (A:6760, A:7214). NTC: none given; plc_cell's -40..150.
 void range_of(const ModuleDef& m, double* lo, double* hi) {
@@ -39,10 +31,8 @@ uint16_t encode(const Address& a) { return static_cast<uint16_t>((a.area == Area
 
 }  // namespace
 
-const TemperatureCell* temperature_cell_of(const Memory& mem) {
-  std::lock_guard<std::mutex> lk(g_registry_mu);
-  auto it = registry().find(&mem);
-  return it == registry().end() ? nullptr : it->second;
+const TemperatureCell* temperature_cell_of(const ScanEngine* engine) {
+  return engine ? engine->extensions().get<TemperatureCell>() : nullptr;
 }
 
 TemperatureCell::TemperatureCell(TemperatureConfig cfg, Memory& mem) : cfg_(std::move(cfg)), mem_(mem) {
@@ -86,15 +76,12 @@ TemperatureCell::TemperatureCell(TemperatureConfig cfg, Memory& mem) : cfg_(std:
   };
   if (cfg_.has_analog) analog_ = std::make_unique<AnalogModules>(cfg_.analog, mem_, plant_c);
   if (cfg_.fb) fb_ = std::make_unique<FbModules>(*cfg_.fb, mem_, plant_c);
-  std::lock_guard<std::mutex> lk(g_registry_mu);
-  registry()[&mem_] = this;
 }
 
-TemperatureCell::~TemperatureCell() {
-  std::lock_guard<std::mutex> lk(g_registry_mu);
-  auto it = registry().find(&mem_);
-  if (it != registry().end() && it->second == this) registry().erase(it);
-}
+TemperatureCell::~TemperatureCell() = default;
+
+void TemperatureCell::attached(ScanEngine& e) { e.extensions().attach(this); }
+void TemperatureCell::detached(ScanEngine& e) { e.extensions().detach(this); }
 
 ThermalPlant* TemperatureCell::plant(const std::string& name) {
   for (size_t p = 0; p < plants_.size(); ++p)

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <vector>
 
 #include "plc_cell/core/function_table.h"
@@ -43,20 +42,22 @@ namespace {
 
 using R = OperandRole;
 
-struct Store {
-  std::mutex mu;
-  std::map<std::pair<const Memory*, uint32_t>, TpctlLoopState> by_key;
+// The loops of one PLC, by instruction: the PLC's own state (its scan engine keeps it), so
+// a new PLC, even one whose memory reuses a gone one's address, starts with none.
+struct TpctlLoops {
+  std::map<uint32_t, TpctlLoopState> by_instance;
 };
 
 // The start of the PVs: R4004 when R4003 = A55AH, else the configured readings.
-const uint16_t* pv_source(const Memory& mem, uint32_t needed, bool* ready) {
+const uint16_t* pv_source(const ExecContext& c, uint32_t needed, bool* ready) {
+  const Memory& mem = c.mem;
   *ready = true;
   if (mem.reg(Area::R, treg::kPvFromR4004) == 0xA55A) {
     const uint32_t a = mem.reg(Area::R, treg::kPvStart);
     if (a >= 10000 && a + needed <= 13840) return mem.words(Area::R) + (a - 10000);
     if (a >= 20000 && a + needed <= 24000) return mem.words(Area::D) + (a - 20000);
   }
-  const TemperatureCell* cell = temperature_cell_of(mem);
+  const TemperatureCell* cell = temperature_cell_of(c.engine);
   if (!cell) return nullptr;
   *ready = cell->all_read();  // FUN86 runs only after every channel has been read (A:7136)
   const Address& r = cell->config().readings;
@@ -70,23 +71,22 @@ bool table_fits(const BoundOperand& o, uint32_t n) {
 
 const TpctlUnits kFbsUnits{kTpctlFullScale, fbs_interval_us, 9999, 110, 17, 50, 60};
 
-void run(Store& store, ExecContext& c, const BoundOperand* o) {
-  Memory& mem = c.mem;
+void run(ExecContext& c, const BoundOperand* o) {
   const int md = int(c.get(o[0]));
   const BoundOperand& yn = o[1];
   const int64_t sn = c.get(o[2]), zn = c.get(o[3]);
   const TpctlTables t{yn, o[4], o[5], o[6], o[7], o[8], o[9]};
   const BoundOperand &wr = o[10], &err = o[11], &alm = o[12];
 
-  std::lock_guard<std::mutex> lk(store.mu);
-  TpctlLoopState& st = store.by_key[{&mem, c.instance}];
+  if (!c.engine) return c.flag(err, true);  // a loop's state lives in its PLC's scan engine
+  TpctlLoopState& st = c.engine->extensions().owned<TpctlLoops>().by_instance[c.instance];
   const bool shape_ok = md >= 0 && md <= 1 && sn >= 0 && sn <= 31 && zn >= 1 && zn <= 32 && sn + zn <= 32 &&
                         yn.addr.area == Area::Y && yn.addr.index + zn <= 256;
   const uint32_t n = shape_ok ? uint32_t(zn) : 0;
   const bool tables_ok = shape_ok && table_fits(t.sv, n) && table_fits(t.os, n) && table_fits(t.pr, n) &&
                          table_fits(t.ir, n) && table_fits(t.dr, n) && table_fits(t.out, n) && table_fits(wr, 9);
   bool ready = false;
-  const uint16_t* pvs = tables_ok ? pv_source(mem, uint32_t(sn + zn), &ready) : nullptr;
+  const uint16_t* pvs = tables_ok ? pv_source(c, uint32_t(sn + zn), &ready) : nullptr;
 
   if (!c.en || !pvs) {
     // EN off (or an error): outputs off; the next EN = 1 takes R4005 afresh (Note 1).
@@ -116,7 +116,6 @@ void run(Store& store, ExecContext& c, const BoundOperand* o) {
 uint64_t fbs_interval_us(unsigned code) { return uint64_t(1000000) << std::min(code, 5u); }  // 1, 2, 4 .. 32 s
 
 void add_tpctl_function(FunctionTable& t) {
-  auto store = std::make_shared<Store>();
   FunctionSpec s;
   s.number = 86;
   s.mnemonic = "TPCTL";
@@ -128,7 +127,7 @@ void add_tpctl_function(FunctionTable& t) {
   s.allow_32 = false;
   s.allow_pulse = false;
   s.always_runs = true;  // sees EN fall: the outputs go OFF
-  s.handler = [store](ExecContext& c, const BoundOperand* o) { run(*store, c, o); };
+  s.handler = run;
   t.add(s);
 }
 

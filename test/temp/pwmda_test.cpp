@@ -1,6 +1,8 @@
 // FUN139 HSPWM and the PWMDA analog output (manual Appendix 2) in virtual time.
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "../core/plc_fixture.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/temp/hspwm.h"
@@ -31,9 +33,8 @@ class PwmdaTest : public PlcFixture {
  protected:
   PwmdaTest() : PlcFixture(table()) {}
   void setup(const std::string& yaml, const std::string& program) {
-    plc.locked([&](ScanEngine& e, Memory& m) {
-      hspwm_reset(m);
-      out = make_pwmda_outputs(YAML::Load(yaml), "c.yaml", m);
+    plc.locked([&](ScanEngine& e, Memory&) {
+      out = make_pwmda_outputs(YAML::Load(yaml), "c.yaml");
       e.add_hook(out.get());
       return 0;
     });
@@ -75,9 +76,29 @@ TEST_F(PwmdaTest, SettlesToTheManualsVoltagesWithin50ms) {
   scans(100);
   EXPECT_NEAR(out->voltage(0), 0.0, 1e-3);
   EXPECT_EQ(get("R100"), 0u);
-  const HsPwmChannel ch = plc.locked([](ScanEngine&, Memory& m) { return hspwm_channel(m, 1); });
+  const HsPwmChannel ch = plc.locked([](ScanEngine& e, Memory&) { return hspwm_channel(e, 1); });
   EXPECT_TRUE(ch.running);
   EXPECT_NEAR(ch.frequency_hz, 9216.0, 0.5);
+}
+
+// FUN139's generators belong to their PLC: a PLC made where a gone one stood (the same
+// memory address, as a process that builds cell after cell gets) starts with none running.
+TEST(HsPwm, ANewPlcStartsWithNoGeneratorRunning) {
+  std::optional<Plc> plc;
+  plc.emplace(table());
+  const void* first_at = &*plc;
+  plc->load_program_text("ORG M0\nFUN 139 Pw=2 Op=0 Rs=1 Pn=1 OR=R0 WR=R100\nEND\n", "p.il");
+  ASSERT_TRUE(plc->set_mode(RunMode::Run));  // (RUN clears the non-retentive M and R)
+  plc->write(Address{Area::R, Width::Word, 0}, {500});
+  plc->write(Address{Area::M, Width::Bit, 0}, {1});
+  plc->scan(1000);
+  EXPECT_TRUE(plc->locked([](ScanEngine& e, Memory&) { return hspwm_channel(e, 2); }).running);
+  plc.reset();
+  plc.emplace(table());
+  ASSERT_EQ(&*plc, first_at);
+  const HsPwmChannel ch = plc->locked([](ScanEngine& e, Memory&) { return hspwm_channel(e, 2); });
+  EXPECT_FALSE(ch.running);
+  EXPECT_EQ(ch.frequency_hz, 0.0);
 }
 
 TEST_F(PwmdaTest, StopSwitchesTheOutputOff) {

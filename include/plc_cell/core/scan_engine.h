@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/core/extension_slots.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/memory.h"
 #include "plc_cell/core/scan_stats.h"
@@ -14,10 +15,16 @@ namespace plc_cell {
 
 enum class RunMode : uint8_t { Stop, Run };
 
+class ScanEngine;
+
 // Hooks for subsystems that live beside the program (high-speed I/O, motion, simulation).
 class ScanHook {
  public:
   virtual ~ScanHook() = default;
+  // add_hook/remove_hook: a subsystem whose FUN handlers need it puts itself in the
+  // engine's extension slots here, so it is reachable exactly while it is hooked.
+  virtual void attached(ScanEngine& /*engine*/) {}
+  virtual void detached(ScanEngine& /*engine*/) {}
   virtual void before_inputs(uint64_t /*now_us*/) {}   // drive input terminals (simulation)
   virtual void before_program(uint64_t /*now_us*/) {}  // after the input image is taken
   virtual void after_program(uint64_t /*now_us*/) {}   // before the output image is given
@@ -59,9 +66,12 @@ class ScanEngine {
   const std::string& fault() const { return fault_; }
   bool watchdog_tripped() const { return watchdog_tripped_; }
 
-  void add_hook(ScanHook* h) { hooks_.push_back(h); }
+  void add_hook(ScanHook* h);
   void remove_hook(ScanHook* h);
   const std::vector<ScanHook*>& hooks() const { return hooks_; }
+  // The subsystems' per-PLC objects, for the FUN handlers (core/extension_slots.h).
+  ExtensionSlots& extensions() { return extensions_; }
+  const ExtensionSlots& extensions() const { return extensions_; }
   // A subsystem's runtime fault (an interrupt routine that failed): STOP with this reason.
   void stop_with_fault(const std::string& why) { fault_stop(why); }
 
@@ -73,6 +83,7 @@ class ScanEngine {
   Interpreter interp_;
   std::vector<AreaRange> retentive_;
   std::vector<ScanHook*> hooks_;
+  ExtensionSlots extensions_;
   std::vector<bool> inputs_ = std::vector<bool>(256, false);
   RunMode mode_ = RunMode::Stop;
   bool first_scan_ = false;

@@ -62,6 +62,8 @@ class HscUnit : public ScanHook {
   void after_program(uint64_t now_us) override;
   void before_program(uint64_t now_us) override;
   void on_stop() override;
+  void attached(ScanEngine& e) override;  // FUN handlers find the unit through of()
+  void detached(ScanEngine& e) override;
 
   // ---- instructions (called from the interpreter, lock held) ----
   void read_chip(int cn);               // FUN92 HSCTR

@@ -61,6 +61,8 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   void before_program(uint64_t now_us) override;
   void after_program(uint64_t now_us) override;
   void on_stop() override;
+  void attached(ScanEngine& e) override;  // FUN handlers find the unit through of()
+  void detached(ScanEngine& e) override;
   // In the counters' event loop (if the engine has an HscUnit): step ends and
   // WAIT/ACT times happen there, PSOnI is requested at the exact instant.
   uint64_t next_event_ns() const override;

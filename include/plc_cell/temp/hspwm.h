@@ -7,7 +7,7 @@
 
 namespace plc_cell {
 class FunctionTable;
-class Memory;
+class ScanEngine;
 namespace temp {
 
 constexpr int kHsPwmOutputs = 4;  // Pw 0..3 = Y0, Y2, Y4, Y6
@@ -23,10 +23,10 @@ struct HsPwmChannel {
 // that defines Pn is not in the sources).
 double hspwm_frequency_hz(int pn, int rs);
 
-// The generator state of Memory mem's PLC for output Pw (zeroed if FUN139 never ran).
-HsPwmChannel hspwm_channel(const Memory& mem, int pw);
-// Forgets mem's generators (the PLC is going away or stopped).
-void hspwm_reset(const Memory& mem);
+// The generator state of the PLC of engine for output Pw (zeroed if FUN139 never ran).
+HsPwmChannel hspwm_channel(const ScanEngine& engine, int pw);
+// Switches the PLC's generators off (STOP).
+void hspwm_reset(ScanEngine& engine);
 
 void add_hspwm_function(FunctionTable& t);
 

@@ -31,27 +31,27 @@ std::vector<PwmdaDef> parse_pwmda_config(const YAML::Node& node, const std::stri
 
 class PwmdaOutputs : public ScanHook {
  public:
-  PwmdaOutputs(std::vector<PwmdaDef> defs, Memory& mem);
-  ~PwmdaOutputs() override;
+  explicit PwmdaOutputs(std::vector<PwmdaDef> defs);
   // The filters follow the pulse trains the last scan's FUN139 left (in STOP too:
   // the output decays).
   void before_inputs(uint64_t now_us) override;
   void on_stop() override;                       // STOP switches the pulse trains off
+  void attached(ScanEngine& e) override;         // the PLC whose FUN139 drives the filters
+  void detached(ScanEngine& e) override;
 
   const std::vector<PwmdaDef>& defs() const { return defs_; }
   double voltage(size_t k) const { return volts_.at(k); }
 
  private:
   std::vector<PwmdaDef> defs_;
-  Memory& mem_;
+  ScanEngine* engine_ = nullptr;
   std::vector<double> volts_;
   bool have_time_ = false;
   uint64_t last_us_ = 0;
 };
 
 // modules.pwmda of the cell document (nullptr when there is none).
-std::unique_ptr<PwmdaOutputs> make_pwmda_outputs(const YAML::Node& document, const std::string& file,
-                                                 Memory& mem);
+std::unique_ptr<PwmdaOutputs> make_pwmda_outputs(const YAML::Node& document, const std::string& file);
 
 }  // namespace temp
 }  // namespace plc_cell

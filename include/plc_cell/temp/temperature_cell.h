@@ -46,13 +46,15 @@ struct ChannelState {
 class TemperatureCell : public ScanHook {
  public:
   TemperatureCell(TemperatureConfig cfg, Memory& mem);
-  ~TemperatureCell() override;
+  ~TemperatureCell() override;  // out of line: the FB modules are an incomplete type here
   TemperatureCell(const TemperatureCell&) = delete;
   TemperatureCell& operator=(const TemperatureCell&) = delete;
 
   void before_inputs(uint64_t now_us) override;   // plants and sampling
   void before_program(uint64_t now_us) override;  // readings and registers into memory
   void after_program(uint64_t now_us) override;   // analog outputs take the OR values
+  void attached(ScanEngine& e) override;           // FUN86 finds it: temperature_cell_of
+  void detached(ScanEngine& e) override;
 
   // The analog I/O modules of modules.analog, or nullptr.
   const AnalogModules* analog() const { return analog_.get(); }
@@ -109,8 +111,8 @@ std::unique_ptr<TemperatureCell> make_temperature_cell(const YAML::Node& documen
 
 namespace plc_cell {
 namespace temp {
-// The temperature subsystem attached to a PLC's memory, for FUN86 (which must find
+// The temperature subsystem hooked to a PLC's scan engine, for FUN86 (which must find
 // the readings and know when all channels have been read); nullptr if none.
-const TemperatureCell* temperature_cell_of(const Memory& mem);
+const TemperatureCell* temperature_cell_of(const ScanEngine* engine);
 }  // namespace temp
 }  // namespace plc_cell
