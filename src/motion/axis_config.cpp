@@ -3,6 +3,7 @@
 
 #include <cctype>
 
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/motion/lin_table.h"
@@ -114,7 +115,7 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
       const std::string k = f.first.as<std::string>();
       const YAML::Node& v = f.second;
       if (k == "name") {
-        a.name = get<std::string>(v, file, pre + k);
+        a.name = YamlReader(file).topic_name(v, pre + k, "axis");
       } else if (k == "output") {
         const std::string m = get<std::string>(v, file, pre + k);
         if (m == "UD") a.mode = OutputMode::UD;

@@ -46,6 +46,18 @@ TEST(AxisConfig, BadKeysNameTheirLine) {
   EXPECT_THROW(parse_axes_config(YAML::Load("axes:\n  pso0: {units_per_pulse: 0}\n")["axes"], "c"), SourceError);
 }
 
+// An axis's name becomes its topics (~motion/<name>/...): letters, digits and _.
+TEST(AxisConfig, AnAxisNameIsATopicName) {
+  try {
+    parse_axes_config(YAML::Load("axes:\n  pso1:\n    name: x axis\n")["axes"], "cell.yaml");
+    FAIL() << "no error";
+  } catch (const SourceError& e) {
+    EXPECT_STREQ(e.what(), "cell.yaml:3:11: error: key 'axes.pso1.name': an axis name is letters, digits and _ "
+                           "(it becomes a ROS topic name)");
+  }
+  EXPECT_EQ(parse_axes_config(YAML::Load("axes:\n  pso1: {name: x_axis2}\n")["axes"], "cell.yaml").axes[1].name, "x_axis2");
+}
+
 TEST(AxisConfig, SwitchLevelsAndNextChanges) {
   SwitchDef w;
   w.from = -5000;
