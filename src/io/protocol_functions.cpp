@@ -1,10 +1,7 @@
 #include "plc_cell/io/protocol_functions.h"
 
-#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/fatek/client.h"
 #include "plc_cell/fatek/clink.h"
-#include "plc_cell/io/serial_settings.h"
 #include "plc_cell/modbus/fun150.h"
 
 namespace plc_cell {
