@@ -93,10 +93,10 @@ double YamlReader::number(const YAML::Node& n, const std::string& key, double lo
   return v;
 }
 
-int YamlReader::integer(const YAML::Node& n, const std::string& key, int lo, int hi) const {
-  int v = 0;
+int64_t YamlReader::integer(const YAML::Node& n, const std::string& key, int64_t lo, int64_t hi) const {
+  int64_t v = 0;
   try {
-    v = n.as<int>();
+    v = n.as<int64_t>();
   } catch (const YAML::Exception&) {
     fail(n, key, "expected a whole number");
   }

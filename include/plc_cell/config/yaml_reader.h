@@ -52,7 +52,7 @@ class YamlReader {
   std::string str(const YAML::Node& n, const std::string& key) const;
   std::string choice(const YAML::Node& n, const std::string& key, const std::set<std::string>& allowed) const;
   double number(const YAML::Node& n, const std::string& key, double lo, double hi) const;
-  int integer(const YAML::Node& n, const std::string& key, int lo, int hi) const;
+  int64_t integer(const YAML::Node& n, const std::string& key, int64_t lo, int64_t hi) const;
   uint64_t seconds_us(const YAML::Node& n, const std::string& key, double lo_s, double hi_s) const;
   uint64_t duration_us(const YAML::Node& n, const std::string& key) const;  // "2.5s", "100ms", ...
   bool boolean(const YAML::Node& n, const std::string& key) const;          // 0/1, true/false, on/off
