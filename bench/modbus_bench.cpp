@@ -125,7 +125,7 @@ devices:
   std::condition_variable cv;
   int polls = 0;
   const int target = 2000;
-  Bridge b(parse_bridge_config(YAML::Load(yaml)), [&](const GroupResult& r) {
+  Bridge b(parse_bridge_config(YAML::Load(yaml), "bench.yaml"), [&](const GroupResult& r) {
     std::lock_guard<std::mutex> lk(mu);
     if (r.ok) ++polls;
     cv.notify_all();

@@ -148,12 +148,7 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
   YamlReader r(file);
   CellConfig cfg;
   cfg.file = file;
-  YAML::Node doc;
-  try {
-    doc = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw SourceError::at(file, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
-  }
+  const YAML::Node doc = r.load(yaml_text);
   cfg.document = doc;
   if (doc.IsNull()) return cfg;
   // Not a mapping: there is no section to read on.

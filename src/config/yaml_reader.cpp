@@ -7,8 +7,15 @@
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/io/serial_settings.h"
 
 namespace plc_cell {
+
+static std::string listed(const std::set<std::string>& names) {
+  std::string list;
+  for (const auto& a : names) list += (list.empty() ? "" : ", ") + a;
+  return list;
+}
 
 static std::string fmt(double v) {
   std::string s = std::to_string(v);
@@ -23,15 +30,30 @@ void YamlReader::fail(const YAML::Node& n, const std::string& key, const std::st
                         "key '" + key + "': " + msg);
 }
 
+YAML::Node YamlReader::load(const std::string& text) const {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw SourceError::at(file_, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
+  }
+}
+
+YAML::Node YamlReader::load_file(const std::string& path) {
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::ParserException& e) {
+    throw SourceError::at(path, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
+  } catch (const YAML::BadFile&) {
+    throw Error(path + ": cannot read the file");
+  }
+}
+
 void YamlReader::only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {
   if (!map.IsMap()) fail(map, key, "expected a mapping");
   for (const auto& kv : map) {
     const std::string k = kv.first.as<std::string>();
-    if (!allowed.count(k)) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + list + ")");
-    }
+    if (!allowed.count(k))
+      fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + listed(allowed) + ")");
   }
 }
 
@@ -42,9 +64,7 @@ void YamlReader::only(const YAML::Node& map, const std::string& key, const std::
     errors->collect([&] {
       const std::string k = kv.first.as<std::string>();
       if (allowed.count(k)) return;
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + list + ")");
+      fail(kv.first, key.empty() ? k : key + "." + k, "unknown key (expected one of: " + listed(allowed) + ")");
     }, file_, kv.first);
   }
 }
@@ -52,6 +72,13 @@ void YamlReader::only(const YAML::Node& map, const std::string& key, const std::
 std::string YamlReader::str(const YAML::Node& n, const std::string& key) const {
   if (!n.IsScalar()) fail(n, key, "expected a single value");
   return n.as<std::string>();
+}
+
+std::string YamlReader::choice(const YAML::Node& n, const std::string& key,
+                               const std::set<std::string>& allowed) const {
+  const std::string v = n.IsScalar() ? n.as<std::string>() : "";
+  if (!allowed.count(v)) fail(n, key, "expected one of: " + listed(allowed));
+  return v;
 }
 
 double YamlReader::number(const YAML::Node& n, const std::string& key, double lo, double hi) const {
@@ -66,18 +93,24 @@ double YamlReader::number(const YAML::Node& n, const std::string& key, double lo
   return v;
 }
 
+int64_t YamlReader::integer(const YAML::Node& n, const std::string& key, int64_t lo, int64_t hi) const {
+  int64_t v = 0;
+  try {
+    v = n.as<int64_t>();
+  } catch (const YAML::Exception&) {
+    fail(n, key, "expected a whole number");
+  }
+  if (v < lo || v > hi) fail(n, key, "value out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return v;
+}
+
 uint64_t YamlReader::seconds_us(const YAML::Node& n, const std::string& key, double lo_s, double hi_s) const {
   return static_cast<uint64_t>(std::llround(number(n, key, lo_s, hi_s) * 1e6));
 }
 
 uint64_t YamlReader::duration_us(const YAML::Node& n, const std::string& key) const {
-  try {
-    return parse_duration_us(str(n, key));
-  } catch (const SourceError&) {
-    throw;
-  } catch (const Error& e) {
-    fail(n, key, e.what());
-  }
+  const std::string text = str(n, key);
+  return checked(n, key, [&] { return parse_duration_us(text); });
 }
 
 bool YamlReader::boolean(const YAML::Node& n, const std::string& key) const {
@@ -110,11 +143,34 @@ AreaRange YamlReader::range(const YAML::Node& n, const std::string& key) const {
   return {a.area, a.index, b.index};
 }
 
+Address YamlReader::data_register(const YAML::Node& n, const std::string& key) const {
+  const Address a = address(n, key);
+  if (a.width != Width::Word || (a.area != Area::R && a.area != Area::D)) fail(n, key, "expected an R or D register");
+  return a;
+}
+
+std::string YamlReader::host_port(const YAML::Node& n, const std::string& key) const {
+  const std::string v = str(n, key);
+  checked(n, key, [&] {
+    std::string host;
+    int port = 0;
+    parse_host_port(v, &host, &port);
+  });
+  return v;
+}
+
+std::string YamlReader::serial_line(const YAML::Node& n, const std::string& key, const char* format) const {
+  const std::string v = str(n, key);
+  checked(n, key, [&] { parse_serial_settings(v, format); });
+  return v;
+}
+
 std::string YamlReader::topic_name(const YAML::Node& n, const std::string& key, const std::string& what) const {
   const std::string name = str(n, key);
   bool ok = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
   for (char c : name) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-  if (!ok) fail(n, key, "a " + what + " name is letters, digits and _ (it becomes a ROS topic name)");
+  const bool vowel = !what.empty() && std::string("aeiou").find(what[0]) != std::string::npos;
+  if (!ok) fail(n, key, (vowel ? "an " : "a ") + what + " name is letters, digits and _ (it becomes a ROS topic name)");
   return name;
 }
 

@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <climits>
 #include <condition_variable>
 #include <map>
 #include <mutex>
 #include <thread>
 
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/memory.h"
+#include "plc_cell/io/serial_settings.h"
 
 namespace plc_cell {
 namespace fatek {
@@ -137,17 +140,46 @@ void ClinkPorts::set_port(int n, std::unique_ptr<Transport> t, int timeout_ms) {
 bool ClinkPorts::has(int n) const { return n >= 1 && n <= 4 && ports_[size_t(n)]; }
 ClinkPorts::Port* ClinkPorts::port(int n) { return has(n) ? ports_[size_t(n)].get() : nullptr; }
 
-std::shared_ptr<ClinkPorts> ClinkPorts::from_yaml(const YAML::Node& f) {
+ClinkSettings read_clink_settings(const YAML::Node& f, const std::string& file) {
+  ClinkSettings s;
+  if (!f) return s;
+  const YamlReader r(file);
+  r.only(f, "fatek", {"ports", "timeout_ms"});
+  if (f["timeout_ms"]) s.timeout_ms = r.integer(f["timeout_ms"], "fatek.timeout_ms", 1, 60000);
+  const YAML::Node ports = f["ports"];
+  if (!ports) return s;
+  if (!ports.IsMap()) r.fail(ports, "fatek.ports", "expected a mapping of ports 1..4 to lines (1: /dev/ttyS1:9600:7E1)");
+  for (const auto& kv : ports) {
+    const std::string k = "fatek.ports." + r.str(kv.first, "fatek.ports");
+    const int n = r.integer(kv.first, k, INT_MIN, INT_MAX);
+    if (n < 1 || n > 4) r.fail(kv.first, k, "FUN151 port " + std::to_string(n) + " outside 1..4");
+    const std::string where = r.str(kv.second, k);
+    if (where.rfind("tcp:", 0) == 0) {
+      r.checked(kv.second, k, [&] {
+        std::string host;
+        int port = 0;
+        parse_host_port(where.substr(4), &host, &port);
+      });
+    } else {
+      r.serial_line(kv.second, k, "7E1");
+    }
+    s.ports[n] = where;
+  }
+  return s;
+}
+
+std::shared_ptr<ClinkPorts> ClinkPorts::from_settings(const ClinkSettings& s) {
   auto ports = std::make_shared<ClinkPorts>();
-  if (!f || !f["ports"]) return ports;
-  const int timeout = f["timeout_ms"] ? f["timeout_ms"].as<int>() : 500;
-  for (const auto& kv : f["ports"]) {
-    const int n = kv.first.as<int>();
-    const std::string where = kv.second.as<std::string>();
-    if (where.rfind("tcp:", 0) == 0) ports->set_port(n, tcp_transport(where.substr(4)), timeout);
-    else ports->set_port(n, serial_transport(parse_serial_settings(where, "7E1")), timeout);
+  for (const auto& p : s.ports) {
+    const std::string& where = p.second;
+    if (where.rfind("tcp:", 0) == 0) ports->set_port(p.first, tcp_transport(where.substr(4)), s.timeout_ms);
+    else ports->set_port(p.first, serial_transport(parse_serial_settings(where, "7E1")), s.timeout_ms);
   }
   return ports;
+}
+
+std::shared_ptr<ClinkPorts> ClinkPorts::from_yaml(const YAML::Node& f, const std::string& file) {
+  return from_settings(read_clink_settings(f, file));
 }
 
 namespace {

@@ -88,7 +88,7 @@ void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
   const bool hard = n < 4;
   p.only(c, key, {"type", "mode", "a", "b", "mask", "clear", "invert", "name"});
   d.line = Parse::line(c);
-  d.name = c["name"] ? p.str(c["name"], key + ".name") : "hsc" + std::to_string(n);
+  d.name = c["name"] ? p.topic_name(c["name"], key + ".name", "counter") : "hsc" + std::to_string(n);
   if (c["type"]) {
     const std::string t = p.str(c["type"], key + ".type");
     if (t == "timer") {
@@ -254,7 +254,7 @@ HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
       const std::string key = "counters.sources";
       p.only(s, key, {"name", "type", "a", "b", "hz", "rpm", "per_rev", "follow"});
       SourceDef d;
-      d.name = s["name"] ? p.str(s["name"], key + ".name") : "source" + std::to_string(cfg.sources.size());
+      d.name = s["name"] ? p.topic_name(s["name"], key + ".name", "pulse source") : "source" + std::to_string(cfg.sources.size());
       const std::string type = s["type"] ? p.str(s["type"], key + ".type") : "pulses";
       if (type != "encoder" && type != "pulses") p.fail(s["type"], key + ".type", "expected encoder or pulses");
       if (!s["a"]) p.fail(s, key, "needs a: the input its (A) phase drives");

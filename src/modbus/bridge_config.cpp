@@ -6,6 +6,7 @@
 
 #include <modbus/modbus.h>
 
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/io/serial_settings.h"
 
@@ -27,120 +28,126 @@ const char* table_name(Table t) {
 
 namespace {
 
-template <typename T>
-T get(const YAML::Node& n, const char* key, T fallback, const std::string& where) {
-  if (!n[key]) return fallback;
-  try {
-    return n[key].as<T>();
-  } catch (const YAML::Exception&) {
-    throw Error(where + ": '" + key + "' has the wrong type");
-  }
-}
-
 // "40001"-style references: the first digit is the table, the rest is 1-based.
-void parse_ref(const std::string& ref, Point* p, const std::string& where) {
+void parse_ref(const std::string& ref, Point* p) {
   if ((ref.size() != 5 && ref.size() != 6) || ref.find_first_not_of("0123456789") != std::string::npos)
-    throw Error(where + ": ref '" + ref + "' is not a 5- or 6-digit Modbus reference like \"40001\"");
+    throw Error("ref '" + ref + "' is not a 5- or 6-digit Modbus reference like \"40001\"");
   const char kind = ref[0];
   const long n = std::stol(ref.substr(1));
-  if (n < 1 || n > 65536) throw Error(where + ": ref '" + ref + "' out of range");
+  if (n < 1 || n > 65536) throw Error("ref '" + ref + "' out of range");
   switch (kind) {
     case '0': p->table = Table::Coils; break;
     case '1': p->table = Table::DiscreteInputs; break;
     case '3': p->table = Table::InputRegisters; break;
     case '4': p->table = Table::HoldingRegisters; break;
-    default: throw Error(where + ": ref '" + ref + "' starts with " + kind + " (expected 0, 1, 3 or 4)");
+    default: throw Error("ref '" + ref + "' starts with " + kind + " (expected 0, 1, 3 or 4)");
   }
   p->address = uint32_t(n - 1);
 }
 
-Point parse_point(const YAML::Node& n, const std::string& where0) {
+constexpr double kAnyNumber = 1e300;
+
+Point parse_point(const YamlReader& r, const YAML::Node& n, const std::string& key) {
+  r.only(n, key, {"name", "ref", "table", "address", "type", "byte_order", "word_order", "scale", "offset"});
   Point p;
-  p.name = get<std::string>(n, "name", "", where0);
-  const std::string where = where0 + " point '" + p.name + "'";
-  if (p.name.empty()) throw Error(where0 + ": a point without 'name'");
-  if (n["ref"]) {
-    parse_ref(n["ref"].as<std::string>(), &p, where);
+  if (!n["name"]) r.fail(n, key + ".name", "a point needs a name");
+  p.name = r.topic_name(n["name"], key + ".name", "point");
+  if (const YAML::Node ref = n["ref"]) {
+    if (n["table"] || n["address"]) r.fail(ref, key + ".ref", "give ref (\"40001\") or table and address, not both");
+    const std::string text = r.str(ref, key + ".ref");
+    r.checked(ref, key + ".ref", [&] { parse_ref(text, &p); });
   } else {
-    if (!n["address"]) throw Error(where + ": needs 'address' (0-based) and 'table', or 'ref' (\"40001\")");
-    p.table = parse_table(get<std::string>(n, "table", "holding_register", where));
-    const long a = get<long>(n, "address", 0, where);
-    if (a < 0 || a > 65535) throw Error(where + ": address " + std::to_string(a) + " outside 0..65535");
-    p.address = uint32_t(a);
+    if (!n["address"]) r.fail(n, key, "needs 'address' (0-based) and 'table', or 'ref' (\"40001\")");
+    if (const YAML::Node t = n["table"]) {
+      const std::string text = r.str(t, key + ".table");
+      p.table = r.checked(t, key + ".table", [&] { return parse_table(text); });
+    }
+    p.address = uint32_t(r.integer(n["address"], key + ".address", 0, 65535));
   }
   const bool bits = p.table == Table::Coils || p.table == Table::DiscreteInputs;
-  p.enc.type = parse_point_type(get<std::string>(n, "type", bits ? "bool" : "uint16", where));
-  if (bits != (p.enc.type == PointType::Bool))
-    throw Error(where + ": coils and discrete inputs are bool, registers are not");
-  p.enc.byte_order = parse_order(get<std::string>(n, "byte_order", "big", where));
-  p.enc.word_order = parse_order(get<std::string>(n, "word_order", "big", where));
-  p.scale = get<double>(n, "scale", 1.0, where);
-  p.offset = get<double>(n, "offset", 0.0, where);
-  if (p.scale == 0) throw Error(where + ": scale 0");
-  if (p.address + p.width() > 65536) throw Error(where + ": runs past address 65535");
+  if (const YAML::Node t = n["type"]) {
+    const std::string text = r.str(t, key + ".type");
+    p.enc.type = r.checked(t, key + ".type", [&] { return parse_point_type(text); });
+    if (bits != (p.enc.type == PointType::Bool))
+      r.fail(t, key + ".type", "coils and discrete inputs are bool, registers are not");
+  } else {
+    p.enc.type = bits ? PointType::Bool : PointType::UInt16;
+  }
+  for (const char* k : {"byte_order", "word_order"}) {
+    if (!n[k]) continue;
+    const std::string text = r.str(n[k], key + "." + k);
+    (k[0] == 'b' ? p.enc.byte_order : p.enc.word_order) = r.checked(n[k], key + "." + k, [&] { return parse_order(text); });
+  }
+  if (n["scale"]) p.scale = r.number(n["scale"], key + ".scale", -kAnyNumber, kAnyNumber);
+  if (n["offset"]) p.offset = r.number(n["offset"], key + ".offset", -kAnyNumber, kAnyNumber);
+  if (p.scale == 0) r.fail(n["scale"], key + ".scale", "scale 0");
+  if (p.address + p.width() > 65536) r.fail(n, key, "runs past address 65535");
   return p;
 }
 
 }  // namespace
 
-BridgeConfig parse_bridge_config(const YAML::Node& root) {
+BridgeConfig parse_bridge_config(const YAML::Node& root, const std::string& file) {
+  const YamlReader r(file);
   BridgeConfig cfg;
-  cfg.backoff_min_s = get<double>(root, "backoff_min", cfg.backoff_min_s, "bridge");
-  cfg.backoff_max_s = get<double>(root, "backoff_max", cfg.backoff_max_s, "bridge");
-  if (!root["devices"] || !root["devices"].IsSequence()) throw Error("bridge: 'devices' must be a list");
+  r.only(root, "", {"backoff_min", "backoff_max", "devices"});
+  if (root["backoff_min"]) cfg.backoff_min_s = r.number(root["backoff_min"], "backoff_min", 0, 3600);
+  if (root["backoff_max"]) cfg.backoff_max_s = r.number(root["backoff_max"], "backoff_max", 0, 3600);
+  const YAML::Node devices = root["devices"];
+  if (!devices || !devices.IsSequence()) r.fail(devices ? devices : root, "devices", "expected a list of devices");
   std::set<std::string> names;
   std::map<std::string, std::string> line_format;  // devices sharing a serial line agree on its settings
-  for (const auto& dn : root["devices"]) {
+  for (size_t i = 0; i < devices.size(); ++i) {
+    const YAML::Node dn = devices[i];
+    const std::string dk = "devices[" + std::to_string(i) + "]";
+    r.only(dn, dk, {"name", "tcp", "rtu", "unit", "timeout", "max_gap", "groups"});
     Device d;
-    d.name = get<std::string>(dn, "name", "", "device");
-    const std::string where = "device '" + d.name + "'";
-    if (d.name.empty()) throw Error("bridge: a device without 'name'");
-    d.tcp = get<std::string>(dn, "tcp", "", where);
-    d.rtu = get<std::string>(dn, "rtu", "", where);
-    if (d.tcp.empty() == d.rtu.empty()) throw Error(where + ": give exactly one of 'tcp' (HOST:PORT) or 'rtu' (DEVICE[:BAUD[:FORMAT]])");
-    if (!d.tcp.empty()) {
-      std::string h;
-      int port;
-      parse_host_port(d.tcp, &h, &port);
+    if (!dn["name"]) r.fail(dn, dk + ".name", "a device needs a name");
+    d.name = r.topic_name(dn["name"], dk + ".name", "device");
+    if (!names.insert("device:" + d.name).second) r.fail(dn["name"], dk + ".name", "device '" + d.name + "' defined twice");
+    if (dn["tcp"].IsDefined() == dn["rtu"].IsDefined())
+      r.fail(dn, dk, "give exactly one of 'tcp' (HOST:PORT) or 'rtu' (DEVICE[:BAUD[:FORMAT]])");
+    if (dn["tcp"]) {
+      d.tcp = r.host_port(dn["tcp"], dk + ".tcp");
     } else {
+      d.rtu = r.serial_line(dn["rtu"], dk + ".rtu", "8E1");
       const std::string s = parse_serial_settings(d.rtu, "8E1").to_string();
       auto it = line_format.emplace(d.line(), s).first;
-      if (it->second != s) throw Error(where + ": serial line " + d.line() + " already set up as " + it->second);
+      if (it->second != s) r.fail(dn["rtu"], dk + ".rtu", "serial line " + d.line() + " already set up as " + it->second);
     }
-    d.unit = get<int>(dn, "unit", d.unit, where);
-    if (d.unit < 0 || d.unit > 255) throw Error(where + ": unit " + std::to_string(d.unit) + " outside 0..255");
-    d.timeout_s = get<double>(dn, "timeout", d.timeout_s, where);
-    d.max_gap = get<uint32_t>(dn, "max_gap", d.max_gap, where);
-    if (!dn["groups"] || !dn["groups"].IsSequence()) throw Error(where + ": 'groups' must be a list");
-    for (const auto& gn : dn["groups"]) {
+    if (dn["unit"]) d.unit = r.integer(dn["unit"], dk + ".unit", 0, 255);
+    if (dn["timeout"]) d.timeout_s = r.number(dn["timeout"], dk + ".timeout", 0.001, 3600);
+    if (dn["max_gap"]) d.max_gap = uint32_t(r.integer(dn["max_gap"], dk + ".max_gap", 0, 65535));
+    const YAML::Node groups = dn["groups"];
+    if (!groups || !groups.IsSequence()) r.fail(groups ? groups : dn, dk + ".groups", "expected a list of poll groups");
+    for (size_t j = 0; j < groups.size(); ++j) {
+      const YAML::Node gn = groups[j];
+      const std::string gk = dk + ".groups[" + std::to_string(j) + "]";
+      r.only(gn, gk, {"name", "rate", "publish_period", "points"});
       PollGroup g;
-      g.name = get<std::string>(gn, "name", "", where);
-      const std::string gw = where + " group '" + g.name + "'";
-      g.rate_hz = get<double>(gn, "rate", g.rate_hz, gw);
-      if (!(g.rate_hz > 0 && g.rate_hz <= 1000)) throw Error(gw + ": rate must be in (0, 1000] Hz");
-      g.publish_period_s = get<double>(gn, "publish_period", g.publish_period_s, gw);
-      if (!gn["points"] || !gn["points"].IsSequence()) throw Error(gw + ": 'points' must be a list");
-      for (const auto& pn : gn["points"]) {
-        g.points.push_back(parse_point(pn, gw));
+      if (gn["name"]) g.name = r.str(gn["name"], gk + ".name");
+      if (gn["rate"]) {
+        g.rate_hz = r.number(gn["rate"], gk + ".rate", 0, 1000);
+        if (g.rate_hz == 0) r.fail(gn["rate"], gk + ".rate", "rate must be in (0, 1000] Hz");
+      }
+      if (gn["publish_period"]) g.publish_period_s = r.number(gn["publish_period"], gk + ".publish_period", 0, 86400);
+      const YAML::Node points = gn["points"];
+      if (!points || !points.IsSequence()) r.fail(points ? points : gn, gk + ".points", "expected a list of points");
+      for (size_t k = 0; k < points.size(); ++k) {
+        const std::string pk = gk + ".points[" + std::to_string(k) + "]";
+        g.points.push_back(parse_point(r, points[k], pk));
         if (!names.insert(d.name + "/" + g.points.back().name).second)
-          throw Error(gw + ": point '" + g.points.back().name + "' defined twice on this device");
+          r.fail(points[k]["name"], pk + ".name", "point '" + g.points.back().name + "' defined twice on this device");
       }
       d.groups.push_back(std::move(g));
     }
-    if (!names.insert("device:" + d.name).second) throw Error(where + ": defined twice");
     cfg.devices.push_back(std::move(d));
   }
   return cfg;
 }
 
 BridgeConfig load_bridge_config(const std::string& path) {
-  try {
-    return parse_bridge_config(YAML::LoadFile(path));
-  } catch (const YAML::Exception& e) {
-    throw Error(path + ": " + e.what());
-  } catch (const Error& e) {
-    throw Error(path + ": " + e.what());
-  }
+  return parse_bridge_config(YamlReader::load_file(path), path);
 }
 
 std::vector<ReadRequest> plan_reads(const std::vector<Point>& points, uint32_t max_gap) {

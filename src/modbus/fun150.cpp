@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
@@ -9,6 +10,7 @@
 
 #include <modbus/modbus.h>
 
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/memory.h"
@@ -19,17 +21,23 @@ namespace modbus {
 
 using namespace mbus_result;
 
-std::map<int, MbusPort> parse_mbus_ports(const YAML::Node& section) {
+std::map<int, MbusPort> parse_mbus_ports(const YAML::Node& section, const std::string& file) {
   std::map<int, MbusPort> out;
-  if (!section || !section["ports"]) return out;
-  for (const auto& kv : section["ports"]) {
-    const int n = kv.first.as<int>();
-    if (n < 1 || n > 4) throw Error("modbus.ports: port " + std::to_string(n) + " (FUN150 uses ports 1..4)");
+  if (!section) return out;
+  const YamlReader r(file);
+  r.only(section, "modbus", {"ports"});
+  const YAML::Node ports = section["ports"];
+  if (!ports) return out;
+  if (!ports.IsMap()) r.fail(ports, "modbus.ports", "expected a mapping of ports 1..4 to {tcp: HOST:PORT} or {rtu: DEVICE}");
+  for (const auto& kv : ports) {
+    const std::string k = "modbus.ports." + r.str(kv.first, "modbus.ports");
+    const int n = r.integer(kv.first, k, INT_MIN, INT_MAX);
+    if (n < 1 || n > 4) r.fail(kv.first, k, "port " + std::to_string(n) + " (FUN150 uses ports 1..4)");
+    r.only(kv.second, k, {"tcp", "rtu"});
     MbusPort p;
-    if (kv.second["tcp"]) p.tcp = kv.second["tcp"].as<std::string>();
-    if (kv.second["rtu"]) p.rtu = kv.second["rtu"].as<std::string>();
-    if (p.tcp.empty() == p.rtu.empty()) throw Error("modbus.ports." + std::to_string(n) + ": give one of tcp or rtu");
-    if (!p.rtu.empty()) parse_serial_settings(p.rtu, "8E1");
+    if (kv.second["tcp"]) p.tcp = r.host_port(kv.second["tcp"], k + ".tcp");
+    if (kv.second["rtu"]) p.rtu = r.serial_line(kv.second["rtu"], k + ".rtu", "8E1");
+    if (kv.second["tcp"].IsDefined() == kv.second["rtu"].IsDefined()) r.fail(kv.second, k, "give one of tcp or rtu");
     out[n] = p;
   }
   return out;

@@ -2,7 +2,9 @@
 #include "plc_cell/motion/axis_config.h"
 
 #include <cctype>
+#include <climits>
 
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/motion/lin_table.h"
@@ -11,55 +13,44 @@ namespace plc_cell {
 namespace motion {
 
 namespace {
+constexpr double kAnyNumber = 1e300;
+
 int64_t floor_mod(int64_t a, int64_t m) {
   const int64_t r = a % m;
   return r < 0 ? r + m : r;
 }
 
-[[noreturn]] void fail(const std::string& file, const YAML::Node& n, const std::string& msg) {
-  const YAML::Mark m = n.Mark();
-  throw SourceError::at(file, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0, msg);
-}
-
-template <typename T>
-T get(const YAML::Node& n, const std::string& file, const std::string& what) {
-  try {
-    return n.as<T>();
-  } catch (const YAML::Exception&) {
-    fail(file, n, "key '" + what + "': bad value");
-  }
-}
 // Analytic (edge-exact) signals can only drive the high-speed inputs.
-int high_speed_input(const YAML::Node& v, const std::string& file, const std::string& what) {
+int high_speed_input(const YamlReader& r, const YAML::Node& v, const std::string& what) {
   Address ad;
   std::string why;
-  if (!try_parse_address(get<std::string>(v, file, what), &ad, &why) || ad.area != Area::X ||
+  if (!try_parse_address(r.str(v, what), &ad, &why) || ad.area != Area::X ||
       ad.width != Width::Bit || ad.index > 15)
-    fail(file, v, "key '" + what + "': expected a high-speed input X0-X15");
+    r.fail(v, what, "expected a high-speed input X0-X15");
   return static_cast<int>(ad.index);
 }
 
 // The `at:` register of a table or parameter image.
-Address register_at(const YAML::Node& v, const std::string& file, const std::string& key) {
+Address register_at(const YamlReader& r, const YAML::Node& v, const std::string& key) {
   Address at;
   std::string why;
-  if (!v["at"] || !try_parse_address(get<std::string>(v["at"], file, key + ".at"), &at, &why) ||
+  if (!v["at"] || !try_parse_address(r.str(v["at"], key + ".at"), &at, &why) ||
       (at.area != Area::R && at.area != Area::D) || at.width != Width::Word)
-    fail(file, v, "key '" + key + ".at': expected a register R or D");
+    r.fail(v, key + ".at", "expected a register R or D");
   return at;
 }
 
 // A table's `at:` register and its `text:` parsed by parse (FUN140 or FUN147 form);
 // a text error names its YAML line.
 template <typename T, typename Parse>
-Address table_text(const YAML::Node& v, const std::string& file, const std::string& key, Parse parse, T* out) {
-  const Address at = register_at(v, file, key);
-  if (!v["text"]) fail(file, v, "key '" + key + "': needs text (the manual's text form)");
+Address table_text(const YamlReader& r, const YAML::Node& v, const std::string& key, Parse parse, T* out) {
+  const Address at = register_at(r, v, key);
+  if (!v["text"]) r.fail(v, key, "needs text (the manual's text form)");
   TableError e;
-  if (!parse(get<std::string>(v["text"], file, key + ".text"), out, &e)) {
+  if (!parse(r.str(v["text"], key + ".text"), out, &e)) {
     const YAML::Mark m = v["text"].Mark();
     // A block scalar starts on the line after its key.
-    throw SourceError::at(file, m.line + 1 + (e.line > 0 ? e.line : 0), 1,
+    throw SourceError::at(r.file(), m.line + 1 + (e.line > 0 ? e.line : 0), 1,
                           "key '" + key + ".text': error " + std::to_string(e.code) + ": " + e.message);
   }
   return at;
@@ -88,23 +79,24 @@ int64_t SwitchDef::next_change(int64_t pos, int dir) const {
 }
 
 AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
+  const YamlReader r(file);
   AxesConfig cfg;
   cfg.file = file;
   if (!axes || axes.IsNull()) return cfg;
-  if (!axes.IsMap()) fail(file, axes, "key 'axes': expected a map of pso0..pso3");
+  if (!axes.IsMap()) r.fail(axes, "axes", "expected a map of pso0..pso3");
   for (const auto& kv : axes) {
     const std::string key = kv.first.as<std::string>();
     if (key == "gp0" || key == "gp1") {  // a FUN147 group's table: gpN: {table: {at:, text:}}
       GroupDef& g = cfg.groups[key[2] - '0'];
       for (const auto& f : kv.second) {
-        if (f.first.as<std::string>() != "table") fail(file, f.first, "key 'axes." + key + "': expected table");
-        g.table_at = table_text(f.second, file, "axes." + key + ".table", parse_lin_table, &g.table);
+        if (f.first.as<std::string>() != "table") r.fail(f.first, "axes." + key, "expected table");
+        g.table_at = table_text(r, f.second, "axes." + key + ".table", parse_lin_table, &g.table);
         g.has_table = true;
       }
       continue;
     }
     if (key.size() != 4 || key.compare(0, 3, "pso") != 0 || key[3] < '0' || key[3] > '3')
-      fail(file, kv.first, "key 'axes." + key + "': expected pso0, pso1, pso2, pso3, gp0 or gp1");
+      r.fail(kv.first, "axes." + key, "expected pso0, pso1, pso2, pso3, gp0 or gp1");
     const int n = key[3] - '0';
     AxisDef& a = cfg.axes[n];
     a.used = true;
@@ -114,21 +106,21 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
       const std::string k = f.first.as<std::string>();
       const YAML::Node& v = f.second;
       if (k == "name") {
-        a.name = get<std::string>(v, file, pre + k);
+        a.name = r.topic_name(v, pre + k, "axis");
       } else if (k == "output") {
-        const std::string m = get<std::string>(v, file, pre + k);
+        const std::string m = r.str(v, pre + k);
         if (m == "UD") a.mode = OutputMode::UD;
         else if (m == "PR") a.mode = OutputMode::PR;
         else if (m == "AB") a.mode = OutputMode::AB;
-        else fail(file, v, "key '" + pre + k + "': expected UD, PR or AB");
+        else r.fail(v, pre + k, "expected UD, PR or AB");
         a.has_output = true;
       } else if (k == "polarity") {
-        const std::string m = get<std::string>(v, file, pre + k);
+        const std::string m = r.str(v, pre + k);
         if (m == "normal_off") a.polarity = Polarity::NormalOff;
         else if (m == "normal_on") a.polarity = Polarity::NormalOn;
-        else fail(file, v, "key '" + pre + k + "': expected normal_off or normal_on");
+        else r.fail(v, pre + k, "expected normal_off or normal_on");
       } else if (k == "wiring") {
-        if (!v.IsMap()) fail(file, v, "key '" + pre + k + "': expected a map like {Y0: X0, Y1: X1}");
+        if (!v.IsMap()) r.fail(v, pre + k, "expected a map like {Y0: X0, Y1: X1}");
         a.wiring_line = v.Mark().line + 1;
         for (const auto& w : v) {
           const std::string y = w.first.as<std::string>();
@@ -137,86 +129,85 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
           const int first = 2 * n;
           if (!try_parse_address(y, &ya, &why) || ya.area != Area::Y || ya.width != Width::Bit ||
               (int(ya.index) != first && int(ya.index) != first + 1))
-            fail(file, w.first, "key '" + pre + k + "." + y + "': expected this axis's pins Y" + std::to_string(first) +
+            r.fail(w.first, pre + k + "." + y, "expected this axis's pins Y" + std::to_string(first) +
                                     " or Y" + std::to_string(first + 1));
-          a.wired[ya.index - first] = high_speed_input(w.second, file, pre + k + "." + y);
+          a.wired[ya.index - first] = high_speed_input(r, w.second, pre + k + "." + y);
         }
       } else if (k == "encoder") {
-        if (!v.IsMap() || !v["a"]) fail(file, v, "key '" + pre + k + "': expected {a: Xn, b: Xm, periods_per_pulse: k}");
+        if (!v.IsMap() || !v["a"]) r.fail(v, pre + k, "expected {a: Xn, b: Xm, periods_per_pulse: k}");
         a.encoder.used = true;
         a.encoder.line = v.Mark().line + 1;
         for (const auto& e : v) {
           const std::string ek = e.first.as<std::string>();
-          if (ek == "a") a.encoder.a = high_speed_input(e.second, file, pre + k + ".a");
-          else if (ek == "b") a.encoder.b = high_speed_input(e.second, file, pre + k + ".b");
+          if (ek == "a") a.encoder.a = high_speed_input(r, e.second, pre + k + ".a");
+          else if (ek == "b") a.encoder.b = high_speed_input(r, e.second, pre + k + ".b");
           else if (ek == "periods_per_pulse") {
-            a.encoder.periods = get<int64_t>(e.second, file, pre + k + "." + ek);
+            a.encoder.periods = r.integer(e.second, pre + k + "." + ek, INT64_MIN, INT64_MAX);
             if (a.encoder.periods < 1 || a.encoder.periods > 1000)
-              fail(file, e.second, "key '" + pre + k + "." + ek + "': expected a whole number 1-1000");
+              r.fail(e.second, pre + k + "." + ek, "expected a whole number 1-1000");
           } else {
-            fail(file, e.first, "key '" + pre + k + "." + ek + "': unknown (a, b, periods_per_pulse)");
+            r.fail(e.first, pre + k + "." + ek, "unknown (a, b, periods_per_pulse)");
           }
         }
       } else if (k == "type") {
-        const std::string t = get<std::string>(v, file, pre + k);
-        if (t != "linear" && t != "rotary") fail(file, v, "key '" + pre + k + "': expected linear or rotary");
+        const std::string t = r.str(v, pre + k);
+        if (t != "linear" && t != "rotary") r.fail(v, pre + k, "expected linear or rotary");
         a.rotary = t == "rotary";
       } else if (k == "units_per_pulse") {
-        a.units_per_pulse = get<double>(v, file, pre + k);
-        if (!(a.units_per_pulse > 0)) fail(file, v, "key '" + pre + k + "': must be > 0");
+        a.units_per_pulse = r.number(v, pre + k, -kAnyNumber, kAnyNumber);
+        if (!(a.units_per_pulse > 0)) r.fail(v, pre + k, "must be > 0");
       } else if (k == "switches") {
-        if (!v.IsSequence()) fail(file, v, "key '" + pre + k + "': expected a list");
+        if (!v.IsSequence()) r.fail(v, pre + k, "expected a list");
         for (const auto& s : v) {
           SwitchDef d;
-          if (!s["x"]) fail(file, s, "key '" + pre + "switches': each switch needs x");
+          if (!s["x"]) r.fail(s, pre + "switches", "each switch needs x");
           Address ad;
           std::string why;
-          if (!try_parse_address(get<std::string>(s["x"], file, pre + "switches.x"), &ad, &why) ||
+          if (!try_parse_address(r.str(s["x"], pre + "switches.x"), &ad, &why) ||
               ad.area != Area::X || ad.width != Width::Bit)
-            fail(file, s["x"], "key '" + pre + "switches.x': expected an input X0-X255");
+            r.fail(s["x"], pre + "switches.x", "expected an input X0-X255");
           d.x = static_cast<int>(ad.index);
           for (const auto& sf : s) {
             const std::string sk = sf.first.as<std::string>();
             if (sk == "x") continue;
-            const int64_t val = get<int64_t>(sf.second, file, pre + "switches." + sk);
+            const int64_t val = r.integer(sf.second, pre + "switches." + sk, INT64_MIN, INT64_MAX);
             if (sk == "from") d.from = val;
             else if (sk == "to") d.to = val;
             else if (sk == "period") d.period = val;
             else if (sk == "offset") d.offset = val;
             else if (sk == "width") d.width = val;
-            else fail(file, sf.first, "key '" + pre + "switches." + sk + "': unknown (x, from, to, period, offset, width)");
+            else r.fail(sf.first, pre + "switches." + sk, "unknown (x, from, to, period, offset, width)");
           }
           if (d.period < 0 || (d.period > 0 && (d.width < 1 || d.width >= d.period)))
-            fail(file, s, "key '" + pre + "switches': period > width >= 1");
-          if (d.from > d.to) fail(file, s, "key '" + pre + "switches': from must be <= to");
+            r.fail(s, pre + "switches", "period > width >= 1");
+          if (d.from > d.to) r.fail(s, pre + "switches", "from must be <= to");
           a.switches.push_back(d);
         }
       } else if (k == "table") {
-        a.table_at = table_text(v, file, pre + k, parse_table, &a.table);
+        a.table_at = table_text(r, v, pre + k, parse_table, &a.table);
         a.has_table = true;
       } else if (k == "params") {
         {
           a.has_params = true;
-          a.params_at = register_at(v, file, pre + k);
+          a.params_at = register_at(r, v, pre + k);
           for (const auto& pf : v) {
             const std::string pk = pf.first.as<std::string>();
             if (pk == "at") continue;
-            const int64_t val = get<int64_t>(pf.second, file, pre + "params." + pk);
+            const int64_t val = r.integer(pf.second, pre + "params." + pk, INT64_MIN, INT64_MAX);
             // "p0" .. "p17"
             int n = -1;
             if (pk.size() >= 2 && pk.size() <= 3 && pk[0] == 'p' && std::isdigit(static_cast<unsigned char>(pk[1])) &&
                 (pk.size() == 2 || std::isdigit(static_cast<unsigned char>(pk[2]))) && !(pk.size() == 3 && pk[1] == '0'))
               n = std::stoi(pk.substr(1));
-            if (!a.params.set(n, val)) fail(file, pf.first, "key '" + pre + "params." + pk + "': expected at, p0 ... p17");
+            if (!a.params.set(n, val)) r.fail(pf.first, pre + "params." + pk, "expected at, p0 ... p17");
           }
           ParamError pe;
           const int code = a.params.validate(&pe);
-          if (code) fail(file, v, "key '" + pre + "params': parameter error " + std::to_string(code) + ": " + pe.message);
+          if (code) r.fail(v, pre + "params", "parameter error " + std::to_string(code) + ": " + pe.message);
         }
       } else {
-        fail(file, f.first, "key '" + pre + k +
-                                 "': unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, switches, "
-                                 "table, params)");
+        r.fail(f.first, pre + k,
+               "unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, switches, table, params)");
       }
     }
   }

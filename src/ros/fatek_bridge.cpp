@@ -48,12 +48,7 @@ FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(n
 
   // Config: signals (name -> discrete) and poll groups (name, rate, points).
   if (!config.empty()) {
-    YAML::Node doc;
-    try {
-      doc = YAML::LoadFile(config);
-    } catch (const std::exception& e) {
-      throw Error(config + ": " + e.what());
-    }
+    YAML::Node doc = YamlReader::load_file(config);
     if (doc["fatek_bridge"]) doc = doc["fatek_bridge"];
     const YamlReader r(config);
     r.only(doc, "", {"signals", "groups"});

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/temp/sensor_signal.h"
 
@@ -23,65 +24,19 @@ const Kind kKinds[] = {{"6AD", 6, 0},   {"4A2D", 4, 2},  {"4DA", 0, 4},
                        {"2DA", 0, 2},   {"2A4TC", 2, 0}, {"2A4RTD", 2, 0}};
 const Kind kBoards[] = {{"B4AD", 4, 0}, {"B2DA", 0, 2}, {"B2A1D", 2, 1}};
 
-[[noreturn]] void fail(const std::string& file, const YAML::Node& n, const std::string& key, const std::string& msg) {
-  const YAML::Mark m = n.Mark();
-  throw SourceError::at(file, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
-                        "key '" + key + "': " + msg);
-}
-
-void only(const std::string& file, const YAML::Node& n, const std::string& key, const std::set<std::string>& ok) {
-  if (!n.IsMap()) fail(file, n, key, "expected a mapping");
-  for (const auto& kv : n) {
-    const std::string k = kv.first.as<std::string>();
-    if (!ok.count(k)) {
-      std::string list;
-      for (const auto& a : ok) list += (list.empty() ? "" : ", ") + a;
-      fail(file, kv.first, key + "." + k, "unknown key (expected one of: " + list + ")");
-    }
-  }
-}
-
-double num(const std::string& file, const YAML::Node& n, const std::string& key, double lo, double hi) {
-  double v = 0;
-  try {
-    v = n.as<double>();
-  } catch (const YAML::Exception&) {
-    fail(file, n, key, "expected a number");
-  }
-  if (!(v >= lo && v <= hi)) fail(file, n, key, "value " + n.as<std::string>() + " out of range");
-  return v;
-}
-
-bool flag(const std::string& file, const YAML::Node& n, const std::string& key) {
-  try {
-    return n.as<bool>();
-  } catch (const YAML::Exception&) {
-    fail(file, n, key, "expected true or false");
-  }
-}
-
-std::string choice(const std::string& file, const YAML::Node& n, const std::string& key, const std::set<std::string>& ok) {
-  const std::string v = n.IsScalar() ? n.as<std::string>() : "";
-  if (!ok.count(v)) {
-    std::string list;
-    for (const auto& a : ok) list += (list.empty() ? "" : ", ") + a;
-    fail(file, n, key, "expected one of: " + list);
-  }
-  return v;
-}
-
 // The inputs and outputs lists of a module or board with ai inputs and ao outputs.
 void parse_channels(const std::string& file, const YAML::Node& m, const std::string& mk, const std::string& type,
                     int ai, int ao, std::vector<AnalogInputDef>* ins, std::vector<AnalogOutputDef>* outs) {
+  const YamlReader r(file);
   if (const YAML::Node in = m["inputs"]) {
     if (!in.IsSequence() || int(in.size()) > ai)
-      fail(file, in, mk + ".inputs", "a list of at most " + std::to_string(ai) + " inputs for a " + type);
+      r.fail(in, mk + ".inputs", "a list of at most " + std::to_string(ai) + " inputs for a " + type);
     for (size_t j = 0; j < in.size(); ++j) {
       const std::string ik = mk + ".inputs[" + std::to_string(j) + "]";
-      only(file, in[j], ik, {"name", "current", "value", "plant", "plant_range", "offset"});
+      r.only(in[j], ik, {"name", "current", "value", "plant", "plant_range", "offset"});
       AnalogInputDef a;
-      if (in[j]["name"]) a.name = in[j]["name"].as<std::string>();
-      if (in[j]["current"]) a.current = flag(file, in[j]["current"], ik + ".current");
+      if (in[j]["name"]) a.name = r.str(in[j]["name"], ik + ".name");
+      if (in[j]["current"]) a.current = r.boolean(in[j]["current"], ik + ".current");
       if (const YAML::Node v = in[j]["value"]) {
         // A bare number is in the terminal's unit (mA with current: true, else V); with a
         // unit, mA means the I terminal and V the V terminal.
@@ -92,41 +47,41 @@ void parse_channels(const std::string& file, const YAML::Node& m, const std::str
           q = parse_quantity(text);
           unit = true;
         } catch (const Error& e) {
-          if (text.find_first_not_of("0123456789+-.eE ") == std::string::npos) q.value = num(file, v, ik + ".value", -30, 30);
-          else fail(file, v, ik + ".value", e.what());
+          if (text.find_first_not_of("0123456789+-.eE ") == std::string::npos) q.value = r.number(v, ik + ".value", -30, 30);
+          else r.fail(v, ik + ".value", e.what());
         }
         if (unit) {
           if (q.unit != Unit::Volt && q.unit != Unit::Milliamp)
-            fail(file, v, ik + ".value", "an analog input's value is in V or mA, got '" + text + "'");
+            r.fail(v, ik + ".value", "an analog input's value is in V or mA, got '" + text + "'");
           const bool ma = q.unit == Unit::Milliamp;
           if (in[j]["current"] && a.current != ma)
-            fail(file, v, ik + ".value", std::string("'") + text + "' on a " + (a.current ? "current (current: true)" : "voltage (current: false)") + " input");
+            r.fail(v, ik + ".value", std::string("'") + text + "' on a " + (a.current ? "current (current: true)" : "voltage (current: false)") + " input");
           a.current = ma;
           if (!(q.value >= -30 && q.value <= 30))
-            fail(file, v, ik + ".value", "'" + text + "' out of range -30..30 " + unit_name(q.unit));
+            r.fail(v, ik + ".value", "'" + text + "' out of range -30..30 " + unit_name(q.unit));
         }
         a.value = q.value;
       }
-      if (in[j]["plant"]) a.plant = in[j]["plant"].as<std::string>();
-      if (in[j]["offset"]) a.offset = flag(file, in[j]["offset"], ik + ".offset");
+      if (in[j]["plant"]) a.plant = r.str(in[j]["plant"], ik + ".plant");
+      if (in[j]["offset"]) a.offset = r.boolean(in[j]["offset"], ik + ".offset");
       if (const YAML::Node pr = in[j]["plant_range"]) {
-        if (!pr.IsSequence() || pr.size() != 2) fail(file, pr, ik + ".plant_range", "expected [low, high] in degC");
-        a.plant_lo = num(file, pr[0], ik + ".plant_range", -273, 3000);
-        a.plant_hi = num(file, pr[1], ik + ".plant_range", -273, 3000);
-        if (a.plant_hi <= a.plant_lo) fail(file, pr, ik + ".plant_range", "high must exceed low");
+        if (!pr.IsSequence() || pr.size() != 2) r.fail(pr, ik + ".plant_range", "expected [low, high] in degC");
+        a.plant_lo = r.number(pr[0], ik + ".plant_range", -273, 3000);
+        a.plant_hi = r.number(pr[1], ik + ".plant_range", -273, 3000);
+        if (a.plant_hi <= a.plant_lo) r.fail(pr, ik + ".plant_range", "high must exceed low");
       }
       ins->push_back(a);
     }
   }
   if (const YAML::Node out = m["outputs"]) {
     if (!out.IsSequence() || int(out.size()) > ao)
-      fail(file, out, mk + ".outputs", "a list of at most " + std::to_string(ao) + " outputs for a " + type);
+      r.fail(out, mk + ".outputs", "a list of at most " + std::to_string(ao) + " outputs for a " + type);
     for (size_t j = 0; j < out.size(); ++j) {
       const std::string ok = mk + ".outputs[" + std::to_string(j) + "]";
-      only(file, out[j], ok, {"name", "current"});
+      r.only(out[j], ok, {"name", "current"});
       AnalogOutputDef o;
-      if (out[j]["name"]) o.name = out[j]["name"].as<std::string>();
-      if (out[j]["current"]) o.current = flag(file, out[j]["current"], ok + ".current");
+      if (out[j]["name"]) o.name = r.str(out[j]["name"], ok + ".name");
+      if (out[j]["current"]) o.current = r.boolean(out[j]["current"], ok + ".current");
       outs->push_back(o);
     }
   }
@@ -145,42 +100,43 @@ double board_output_signal(int32_t code, bool current) {
 }
 
 AnalogConfig parse_analog_config(const YAML::Node& node, const std::string& file) {
+  const YamlReader r(file);
   AnalogConfig c;
   const std::string k = "modules.analog";
-  only(file, node, k, {"first_ir", "first_or", "modules", "board"});
+  r.only(node, k, {"first_ir", "first_or", "modules", "board"});
   if (const YAML::Node b = node["board"]) {
     const std::string bk = k + ".board";
-    only(file, b, bk, {"type", "inputs", "outputs"});
-    if (!b["type"]) fail(file, b, bk + ".type", "missing");
-    c.board.type = choice(file, b["type"], bk + ".type", {"B4AD", "B2DA", "B2A1D"});
+    r.only(b, bk, {"type", "inputs", "outputs"});
+    if (!b["type"]) r.fail(b, bk + ".type", "missing");
+    c.board.type = r.choice(b["type"], bk + ".type", {"B4AD", "B2DA", "B2A1D"});
     for (const auto& kd : kBoards)
       if (c.board.type == kd.name) parse_channels(file, b, bk, c.board.type, kd.ai, kd.ao, &c.board.inputs, &c.board.outputs);
   }
-  if (node["first_ir"]) c.first_ir = uint32_t(num(file, node["first_ir"], k + ".first_ir", 0, 63));
-  if (node["first_or"]) c.first_or = uint32_t(num(file, node["first_or"], k + ".first_or", 0, 63));
+  if (node["first_ir"]) c.first_ir = uint32_t(r.number(node["first_ir"], k + ".first_ir", 0, 63));
+  if (node["first_or"]) c.first_or = uint32_t(r.number(node["first_or"], k + ".first_or", 0, 63));
   const YAML::Node ms = node["modules"];
   if (!ms) return c;
-  if (!ms.IsSequence()) fail(file, ms, k + ".modules", "expected a list");
+  if (!ms.IsSequence()) r.fail(ms, k + ".modules", "expected a list");
   uint32_t irs = c.first_ir, ors = c.first_or;
   for (size_t i = 0; i < ms.size(); ++i) {
     const std::string mk = k + ".modules[" + std::to_string(i) + "]";
     const YAML::Node m = ms[i];
-    only(file, m, mk, {"type", "code", "signal", "span", "inputs", "outputs"});
+    r.only(m, mk, {"type", "code", "signal", "span", "inputs", "outputs"});
     AnalogModuleDef d;
-    if (!m["type"]) fail(file, m, mk + ".type", "missing");
-    d.type = choice(file, m["type"], mk + ".type", {"6AD", "4A2D", "4DA", "2DA", "2A4TC", "2A4RTD"});
+    if (!m["type"]) r.fail(m, mk + ".type", "missing");
+    d.type = r.choice(m["type"], mk + ".type", {"6AD", "4A2D", "4DA", "2DA", "2A4TC", "2A4RTD"});
     int ai = 0, ao = 0;
     for (const auto& kd : kKinds)
       if (d.type == kd.name) ai = kd.ai, ao = kd.ao;
-    if (m["code"]) d.bipolar_code = choice(file, m["code"], mk + ".code", {"unipolar", "bipolar"}) == "bipolar";
-    if (m["signal"]) d.bipolar_signal = choice(file, m["signal"], mk + ".signal", {"unipolar", "bipolar"}) == "bipolar";
-    if (m["span"]) d.span10 = num(file, m["span"], mk + ".span", 5, 10) == 10;
-    if (m["span"] && !d.span10 && num(file, m["span"], mk + ".span", 5, 10) != 5) fail(file, m["span"], mk + ".span", "5 or 10");
+    if (m["code"]) d.bipolar_code = r.choice(m["code"], mk + ".code", {"unipolar", "bipolar"}) == "bipolar";
+    if (m["signal"]) d.bipolar_signal = r.choice(m["signal"], mk + ".signal", {"unipolar", "bipolar"}) == "bipolar";
+    if (m["span"]) d.span10 = r.number(m["span"], mk + ".span", 5, 10) == 10;
+    if (m["span"] && !d.span10 && r.number(m["span"], mk + ".span", 5, 10) != 5) r.fail(m["span"], mk + ".span", "5 or 10");
     parse_channels(file, m, mk, d.type, ai, ao, &d.inputs, &d.outputs);
     irs += uint32_t(ai);
     ors += uint32_t(ao);
-    if (irs > 64) fail(file, m, mk, "more than 64 analog inputs (IR R3840-R3903)");
-    if (ors > 64) fail(file, m, mk, "more than 64 analog outputs (OR R3904-R3967)");
+    if (irs > 64) r.fail(m, mk, "more than 64 analog inputs (IR R3840-R3903)");
+    if (ors > 64) r.fail(m, mk, "more than 64 analog outputs (OR R3904-R3967)");
     c.modules.push_back(d);
   }
   return c;

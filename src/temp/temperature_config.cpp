@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <set>
 
 #include "plc_cell/config/error_list.h"
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/temp/fb_modules.h"
 #include "plc_cell/temp/rtd.h"
@@ -21,79 +21,17 @@ const ModuleInfo kModules[] = {
     {"2A4TC", 4, 7, 2, 4, 2},  {"2A4RTD", 4, 8, 1, 2, 2},
 };
 
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
-    const YAML::Mark m = n.Mark();
-    throw SourceError::at(file_, m.line >= 0 ? m.line + 1 : 0, m.column >= 0 ? m.column + 1 : 0,
-                          "key '" + key + "': " + msg);
-  }
-  void only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {
-    if (!map.IsMap()) fail(map, key, "expected a mapping");
-    for (const auto& kv : map) {
-      const std::string k = kv.first.as<std::string>();
-      if (allowed.count(k)) continue;
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(kv.first, key + "." + k, "unknown key (expected one of: " + list + ")");
-    }
-  }
-  std::string str(const YAML::Node& n, const std::string& key) const {
-    if (!n.IsScalar()) fail(n, key, "expected a single value");
-    return n.as<std::string>();
-  }
-  double number(const YAML::Node& n, const std::string& key, double lo, double hi) const {
-    double v = 0;
-    try {
-      v = n.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(n, key, "expected a number");
-    }
-    if (!(v >= lo && v <= hi)) fail(n, key, "value " + n.as<std::string>() + " out of range");
-    return v;
-  }
-  bool boolean(const YAML::Node& n, const std::string& key) const {
-    try {
-      return n.as<bool>();
-    } catch (const YAML::Exception&) {
-      fail(n, key, "expected true or false");
-    }
-  }
-  Address address(const YAML::Node& n, const std::string& key) const {
-    Address a;
-    std::string why;
-    if (!try_parse_address(str(n, key), &a, &why)) fail(n, key, "bad address '" + n.as<std::string>() + "': " + why);
-    return a;
-  }
-  Address reg(const YAML::Node& n, const std::string& key) const {
-    const Address a = address(n, key);
-    if (a.width != Width::Word || (a.area != Area::R && a.area != Area::D))
-      fail(n, key, "expected an R or D register");
-    return a;
-  }
-
- private:
-  std::string file_;
-};
-
-ChannelDef parse_channel(const Reader& r, const YAML::Node& n, const std::string& key) {
+ChannelDef parse_channel(const YamlReader& r, const YAML::Node& n, const std::string& key) {
   r.only(n, key, {"name", "plant", "temperature", "value", "open"});
   ChannelDef c;
-  if (n["name"]) c.name = r.str(n["name"], key + ".name");
+  if (n["name"]) c.name = r.topic_name(n["name"], key + ".name", "temperature channel");
   if (n["plant"]) c.plant = r.str(n["plant"], key + ".plant");
   if (n["temperature"]) c.fixed_c = r.number(n["temperature"], key + ".temperature", -273, 3000);
   if (n["open"]) c.open = r.boolean(n["open"], key + ".open");
   if (const YAML::Node v = n["value"]) {
     if (n["plant"] || n["temperature"]) r.fail(v, key + ".value", "give one of plant, temperature, value");
-    try {
-      c.signal = parse_quantity(r.str(v, key + ".value"));
-    } catch (const SourceError&) {
-      throw;
-    } catch (const Error& e) {
-      r.fail(v, key + ".value", e.what());
-    }
+    const std::string text = r.str(v, key + ".value");
+    c.signal = r.checked(v, key + ".value", [&] { return parse_quantity(text); });
     if (c.signal.unit == Unit::Celsius) {
       if (!(c.signal.value >= -273 && c.signal.value <= 3000))
         r.fail(v, key + ".value", "value " + v.as<std::string>() + " out of range -273..3000 C");
@@ -119,7 +57,7 @@ std::string degrees(double v) {
 // A channel's `value` in the unit of the module's sensor, inside the range where the
 // sensor's standard defines it (NIST ITS-90 emf for a thermocouple, IEC 60751 -200..850
 // degC for an RTD); an NTC takes any resistance above 0.
-void check_signal(const Reader& r, const YAML::Node& n, const std::string& key, const ModuleDef& m,
+void check_signal(const YamlReader& r, const YAML::Node& n, const std::string& key, const ModuleDef& m,
                   const ChannelDef& c) {
   if (!c.has_signal) return;
   const YAML::Node v = n["value"];
@@ -151,7 +89,7 @@ void check_signal(const Reader& r, const YAML::Node& n, const std::string& key, 
   }
 }
 
-ModuleDef parse_module(const Reader& r, const YAML::Node& n, const std::string& key) {
+ModuleDef parse_module(const YamlReader& r, const YAML::Node& n, const std::string& key) {
   r.only(n, key, {"type", "sensor", "alpha", "cold_junction", "r25", "beta", "steinhart_hart", "channels"});
   ModuleDef m;
   if (!n["type"]) r.fail(n, key + ".type", "missing");
@@ -166,11 +104,7 @@ ModuleDef parse_module(const Reader& r, const YAML::Node& n, const std::string& 
   const std::string sensor = n["sensor"] ? r.str(n["sensor"], key + ".sensor") : (tc ? "K" : ntc ? "NTC" : "PT100");
   if (tc) {
     m.sensor = SensorKind::Thermocouple;
-    try {
-      m.tc = tc_type_from_string(sensor);
-    } catch (const Error& e) {
-      r.fail(n["sensor"], key + ".sensor", e.what());
-    }
+    m.tc = r.checked(n["sensor"], key + ".sensor", [&] { return tc_type_from_string(sensor); });
   } else if (ntc) {
     if (sensor != "NTC") r.fail(n["sensor"], key + ".sensor", "a 6NTC takes NTC sensors");
     m.sensor = SensorKind::Ntc;
@@ -212,7 +146,7 @@ ModuleDef parse_module(const Reader& r, const YAML::Node& n, const std::string& 
   return m;
 }
 
-PlantDef parse_plant(const Reader& r, const YAML::Node& n, const std::string& key) {
+PlantDef parse_plant(const YamlReader& r, const YAML::Node& n, const std::string& key) {
   r.only(n, key, {"name", "ambient", "initial", "gain", "cooling_gain", "time_constant", "dead_time", "heater",
                   "cooler", "full_scale"});
   PlantDef p;
@@ -244,14 +178,14 @@ PlantDef parse_plant(const Reader& r, const YAML::Node& n, const std::string& ke
 const ModuleInfo& module_info(ModuleKind k) { return kModules[static_cast<int>(k)]; }
 
 ChannelDef parse_channel_def(const YAML::Node& n, const std::string& key, const std::string& file) {
-  return parse_channel(Reader(file), n, key);
+  return parse_channel(YamlReader(file), n, key);
 }
 
 Generation cell_generation(const YAML::Node& document, const std::string& file) {
   if (!document.IsMap() || !document["modules"] || !document["modules"].IsMap()) return Generation::FBs;
   const YAML::Node g = document["modules"]["generation"];
   if (!g) return Generation::FBs;
-  const Reader r(file);
+  const YamlReader r(file);
   const std::string v = r.str(g, "modules.generation");
   if (v != "FBs" && v != "FB") r.fail(g, "modules.generation", "FBs or FB (the older FB series)");
   return v == "FB" ? Generation::FB : Generation::FBs;
@@ -274,7 +208,7 @@ int TemperatureConfig::total_channels() const {
 }
 
 TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::string& file) {
-  Reader r(file);
+  const YamlReader r(file);
   TemperatureConfig c;
   if (!node) return c;
   r.only(node, "modules", {"generation", "temperature", "fb_temperature", "plants", "analog", "rtc", "pwmda"});  // rtc.cpp, pwmda.cpp
@@ -306,10 +240,10 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
         LoopDef l;
         if (!ls[i]["name"] || !ls[i]["sv"]) r.fail(ls[i], lk, "a loop needs name and sv");
         l.name = r.str(ls[i]["name"], lk + ".name");
-        l.sv = r.reg(ls[i]["sv"], lk + ".sv");
-        if (ls[i]["kc"]) l.kc = r.reg(ls[i]["kc"], lk + ".kc"), l.has_kc = true;
-        if (ls[i]["ki"]) l.ki = r.reg(ls[i]["ki"], lk + ".ki"), l.has_ki = true;
-        if (ls[i]["td"]) l.td = r.reg(ls[i]["td"], lk + ".td"), l.has_td = true;
+        l.sv = r.data_register(ls[i]["sv"], lk + ".sv");
+        if (ls[i]["kc"]) l.kc = r.data_register(ls[i]["kc"], lk + ".kc"), l.has_kc = true;
+        if (ls[i]["ki"]) l.ki = r.data_register(ls[i]["ki"], lk + ".ki"), l.has_ki = true;
+        if (ls[i]["td"]) l.td = r.data_register(ls[i]["td"], lk + ".td"), l.has_td = true;
         c.loops.push_back(l);
       }
     }
@@ -323,9 +257,9 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
       if (u != "C" && u != "F") r.fail(t["unit"], k + ".unit", "C or F");
       c.fahrenheit = u == "F";
     }
-    if (t["readings"]) c.readings = r.reg(t["readings"], k + ".readings");
-    if (t["working"]) c.working = r.reg(t["working"], k + ".working");
-    if (t["table"]) c.table = r.reg(t["table"], k + ".table"), c.has_table = true;
+    if (t["readings"]) c.readings = r.data_register(t["readings"], k + ".readings");
+    if (t["working"]) c.working = r.data_register(t["working"], k + ".working");
+    if (t["table"]) c.table = r.data_register(t["table"], k + ".table"), c.has_table = true;
     if (t["first_ir"]) c.first_ir = static_cast<uint32_t>(r.number(t["first_ir"], k + ".first_ir", 0, 63));
     if (t["modules"]) {
       const YAML::Node& ms = t["modules"];
@@ -345,13 +279,11 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
       c.averaging = a;
     }
     // Everything must fit in its area.
-    try {
+    r.checked(t, k, [&] {
       check_span(c.readings, std::max(1, c.total_channels()));
       check_span(c.working, 4 + 4 * uint32_t(c.modules.size()));
       if (c.has_table) check_span(c.table, 4 + uint32_t(c.modules.size()));
-    } catch (const Error& e) {
-      r.fail(t, k, e.what());
-    }
+    });
   }, file, t);
   if (const YAML::Node ps = node["plants"]) errors.collect([&] {
     if (!ps.IsSequence()) r.fail(ps, "modules.plants", "expected a list");

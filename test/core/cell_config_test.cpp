@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
 
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/apply_config.h"
@@ -86,6 +88,41 @@ TEST(CellConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(error_of("cell: [1, 2\n").find("cell.yaml:"), std::string::npos);
   EXPECT_NE(error_of("cell: [1, 2\n").find("YAML syntax"), std::string::npos);
   EXPECT_NE(error_of("bogus: 1\n").find("key 'bogus': unknown key"), std::string::npos);
+}
+
+// The reader every YAML file of plc_cell goes through (cell, fatek_bridge, modbus_bridge).
+TEST(YamlReader, FilesAndValueParsersReportTheirLine) {
+  const std::string path = "/tmp/plc_cell_yaml_reader_test.yaml";
+  std::ofstream(path) << "signals:\n  a: X1\ngroups: [\n";
+  try {
+    YamlReader::load_file(path);
+    FAIL() << "no error";
+  } catch (const SourceError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ":", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("YAML syntax"), std::string::npos) << e.what();
+  }
+  std::ofstream(path) << "signals:\n  a: X1\n";
+  EXPECT_EQ(YamlReader::load_file(path)["signals"]["a"].as<std::string>(), "X1");
+  EXPECT_THROW(YamlReader::load_file("/nonexistent/plc_cell.yaml"), Error);
+
+  const YamlReader r("cell.yaml");
+  const YAML::Node doc = r.load("line:\n  tcp: 'localhost'\n  rtu: /dev/ttyS1:9600:9Z1\n  n: 9\n  on: fast\n");
+  const auto error = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const SourceError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error([&] { r.host_port(doc["line"]["tcp"], "line.tcp"); }),
+            "cell.yaml:2:8: error: key 'line.tcp': 'localhost': expected HOST:PORT, e.g. 127.0.0.1:500");
+  EXPECT_EQ(error([&] { r.serial_line(doc["line"]["rtu"], "line.rtu", "8E1"); }).rfind("cell.yaml:3:8: error: key 'line.rtu': ", 0), 0u);
+  EXPECT_EQ(error([&] { r.integer(doc["line"]["n"], "line.n", 1, 4); }), "cell.yaml:4:6: error: key 'line.n': value out of range [1, 4]");
+  EXPECT_EQ(error([&] { r.choice(doc["line"]["on"], "line.on", {"slow", "normal"}); }),
+            "cell.yaml:5:7: error: key 'line.on': expected one of: normal, slow");
+  EXPECT_EQ(r.serial_line(YAML::Load("/dev/ttyS1:19200"), "k", "8E1"), "/dev/ttyS1:19200");
+  EXPECT_EQ(r.host_port(YAML::Load("127.0.0.1:502"), "k"), "127.0.0.1:502");
 }
 
 // ~registers/<group> of plc_node (and fatek_bridge's groups): same YAML, same checks.

@@ -5,6 +5,7 @@
 #include <functional>
 #include <thread>
 
+#include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/clink.h"
 #include "fatek_link.h"
@@ -114,10 +115,37 @@ TEST_F(Clink, AbortRestartsFromTheFirstPacket) {
 
 TEST(ClinkConfig, PortsFromTheCellYaml) {
   const YAML::Node f = YAML::Load("ports: {2: 'tcp:127.0.0.1:1'}\ntimeout_ms: 100\n");
-  auto ports = ClinkPorts::from_yaml(f);
+  auto ports = ClinkPorts::from_yaml(f, "cell.yaml");
   EXPECT_TRUE(ports->has(2));
   EXPECT_FALSE(ports->has(1));
-  EXPECT_THROW(ClinkPorts::from_yaml(YAML::Load("ports: {7: 'tcp:127.0.0.1:1'}")), Error);
+  EXPECT_THROW(ClinkPorts::from_yaml(YAML::Load("ports: {7: 'tcp:127.0.0.1:1'}"), "cell.yaml"), Error);
+}
+
+// fatek: is read by the cell's YAML reader: every key and line is checked, and an error
+// names file:line:column and the key (docs/fatek.md).
+TEST(ClinkConfig, ErrorsNameFileLineAndKey) {
+  const auto error = [](const std::string& yaml) {
+    try {
+      read_clink_settings(YAML::Load(yaml)["fatek"], "cell.yaml");
+    } catch (const SourceError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error("fatek:\n  timeout: 100\n"),
+            "cell.yaml:2:3: error: key 'fatek.timeout': unknown key (expected one of: ports, timeout_ms)");
+  EXPECT_EQ(error("fatek:\n  timeout_ms: 0\n"), "cell.yaml:2:15: error: key 'fatek.timeout_ms': value out of range [1, 60000]");
+  EXPECT_EQ(error("fatek:\n  ports:\n    7: tcp:127.0.0.1:1\n"), "cell.yaml:3:5: error: key 'fatek.ports.7': FUN151 port 7 outside 1..4");
+  EXPECT_EQ(error("fatek:\n  ports:\n    1: /dev/ttyS1:9600:7X1\n").rfind("cell.yaml:3:8: error: key 'fatek.ports.1': ", 0), 0u);
+  EXPECT_EQ(error("fatek:\n  ports:\n    2: tcp:localhost\n").rfind("cell.yaml:3:8: error: key 'fatek.ports.2': ", 0), 0u);
+  EXPECT_EQ(error("fatek:\n  ports: [tcp:127.0.0.1:1]\n").rfind("cell.yaml:2:10: error: key 'fatek.ports': expected a mapping", 0), 0u);
+  // A good section reads as before.
+  const ClinkSettings s = read_clink_settings(
+      YAML::Load("fatek:\n  timeout_ms: 100\n  ports:\n    1: /dev/ttyS1:9600:7E1\n    2: tcp:127.0.0.1:500\n")["fatek"],
+      "cell.yaml");
+  EXPECT_EQ(s.timeout_ms, 100);
+  EXPECT_EQ(s.ports, (std::map<int, std::string>{{1, "/dev/ttyS1:9600:7E1"}, {2, "tcp:127.0.0.1:500"}}));
+  EXPECT_EQ(read_clink_settings(YAML::Load("cell: {}")["fatek"], "cell.yaml").timeout_ms, 500);
 }
 
 namespace {

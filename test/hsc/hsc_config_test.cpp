@@ -96,6 +96,21 @@ TEST(HscConfig, InterruptsSourcesAndEdges) {
   EXPECT_FALSE(c.edges[0].level);
 }
 
+// A counter's and a pulse source's names become topics (~counters/<name>,
+// ~sources/<name>/rate): letters, digits and _, checked where every topic name is.
+TEST(HscConfig, NamesThatBecomeTopicsAreChecked) {
+  EXPECT_EQ(error_of("counters:\n  hsc0: {mode: MD0, name: feed-1}\n"),
+            "cell.yaml:2:27: error: key 'counters.hsc0.name': a counter name is letters, digits and _ "
+            "(it becomes a ROS topic name)");
+  EXPECT_EQ(error_of("counters:\n  sources:\n    - {name: 2disk, a: X0, hz: 10}\n"),
+            "cell.yaml:3:14: error: key 'counters.sources.name': a pulse source name is letters, digits and _ "
+            "(it becomes a ROS topic name)");
+  const HscConfig c = parse("counters:\n  hsc0: {mode: MD0, name: Feed_1}\n  sources:\n    - {name: disk2, a: X4, hz: 10}\n");
+  EXPECT_EQ(c.counters[0].name, "Feed_1");
+  ASSERT_EQ(c.sources.size(), 1u);
+  EXPECT_EQ(c.sources[0].name, "disk2");
+}
+
 TEST(HscConfig, CaptureAndFilters) {
   const HscConfig c = parse(
       "counters:\n  capture: [X3, x17]\n"

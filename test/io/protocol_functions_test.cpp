@@ -111,8 +111,41 @@ TEST(ProtocolFunctions, ABadPortSectionNamesTheFile) {
     SoftCell cell(cfg, "", install_protocol_functions);
     FAIL();
   } catch (const SourceError& e) {
-    EXPECT_NE(std::string(e.what()).find(cfg + ":3: error: section 'modbus'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(cfg + ":4:5: error: key 'modbus.ports.9'"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("ports 1..4"), std::string::npos) << e.what();
+  }
+}
+
+// `plc_cell check` reads the fatek: and modbus: sections with the same code as the running
+// cell (without opening a line), so both refuse a section with the same file:line error.
+TEST(ProtocolFunctions, CheckAndRunReadThePortSectionsAlike) {
+  const std::string prog = write_file("alike.il", "END\n");
+  const struct {
+    const char* name;
+    const char* section;
+    const char* error;
+  } bad[] = {
+      {"fatek_key", "fatek:\n  timeout: 100\n", ":3:3: error: key 'fatek.timeout': unknown key (expected one of: ports, timeout_ms)"},
+      {"fatek_port", "fatek:\n  ports:\n    7: tcp:127.0.0.1:1\n", ":4:5: error: key 'fatek.ports.7': FUN151 port 7 outside 1..4"},
+      {"fatek_line", "fatek:\n  ports:\n    1: /dev/ttyS1:9600:7X1\n", ":4:8: error: key 'fatek.ports.1': "},
+      {"modbus_key", "modbus:\n  ports:\n    1: {tpc: 127.0.0.1:502}\n",
+       ":4:9: error: key 'modbus.ports.1.tpc': unknown key (expected one of: rtu, tcp)"},
+  };
+  for (const auto& c : bad) {
+    const std::string cfg = write_file(std::string(c.name) + ".yaml", "cell: {program: " + prog + "}\n" + c.section);
+    std::string errors[2];
+    int k = 0;
+    for (const auto install : {install_protocol_functions, check_protocol_functions}) {
+      try {
+        SoftCell cell(cfg, "", install);
+        ADD_FAILURE() << c.name << ": accepted";
+      } catch (const SourceError& e) {
+        errors[k] = e.what();
+      }
+      ++k;
+    }
+    EXPECT_EQ(errors[0].rfind(cfg + c.error, 0), 0u) << c.name << ": " << errors[0];
+    EXPECT_EQ(errors[0], errors[1]) << c.name;
   }
 }
 

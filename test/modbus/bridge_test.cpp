@@ -1,6 +1,7 @@
 // The bridge's bus side: request planning, the YAML, and polling real slaves:
 // our own, libmodbus's unit-test-server, pymodbus 3.0, and a silent RTU slave.
 #include <condition_variable>
+#include <fstream>
 #include <mutex>
 
 #include <gtest/gtest.h>
@@ -48,7 +49,7 @@ class Collector {
   size_t seen_ = 0;
 };
 
-BridgeConfig yaml(const std::string& text) { return parse_bridge_config(YAML::Load(text)); }
+BridgeConfig yaml(const std::string& text) { return parse_bridge_config(YAML::Load(text), "bridge.yaml"); }
 
 Point reg_point(uint32_t a, PointType t) {
   Point p;
@@ -119,6 +120,43 @@ devices:
   EXPECT_THROW(yaml("devices: [{name: x, tcp: ':1', groups: [{name: g, points: [{name: p, ref: '20001'}]}]}]"), Error);
   EXPECT_THROW(yaml("devices: [{name: x, tcp: ':1', groups: [{name: g, points: [{name: p, ref: '40001', type: bool}]}]}]"), Error);
   EXPECT_THROW(yaml("devices: [{name: x, rtu: /dev/a:9600, groups: []}, {name: y, rtu: /dev/a:19200, groups: []}]"), Error);
+}
+
+// The bridge YAML is read by the cell's YAML reader: every key is checked, an error names
+// file:line:column and the key, and device and point names (topics ~<device>/<point>)
+// are letters, digits and _ (docs/modbus.md).
+std::string bridge_error(const std::string& name, const std::string& text, std::string* path) {
+  *path = test::tmp_dir() + "/" + name;
+  std::ofstream(*path) << text;
+  try {
+    load_bridge_config(*path);
+  } catch (const SourceError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(BridgeConfigYaml, ErrorsNameFileLineAndKey) {
+  const std::string head =
+      "devices:\n  - name: meter\n    tcp: 127.0.0.1:1502\n    groups:\n      - name: g\n        points:\n";
+  std::string f;
+  std::string e = bridge_error("ref.yaml", head + "          - {name: a, ref: \"20001\"}\n", &f);
+  EXPECT_EQ(e, f + ":7:28: error: key 'devices[0].groups[0].points[0].ref': ref '20001' starts with 2 (expected 0, 1, 3 or 4)");
+  e = bridge_error("key.yaml", head + "          - {name: a, adress: 3}\n", &f);
+  EXPECT_EQ(e, f + ":7:23: error: key 'devices[0].groups[0].points[0].adress': unknown key (expected one of: address, "
+                   "byte_order, name, offset, ref, scale, table, type, word_order)");
+  e = bridge_error("top.yaml", "backof_min: 1\ndevices: []\n", &f);
+  EXPECT_EQ(e, f + ":1:1: error: key 'backof_min': unknown key (expected one of: backoff_max, backoff_min, devices)");
+  e = bridge_error("device.yaml", "devices:\n  - name: my-meter\n    tcp: 127.0.0.1:1502\n    groups: []\n", &f);
+  EXPECT_EQ(e, f + ":2:11: error: key 'devices[0].name': a device name is letters, digits and _ (it becomes a ROS topic name)");
+  e = bridge_error("line.yaml",
+                   "devices:\n  - {name: a, rtu: /dev/a:9600, groups: []}\n  - {name: b, rtu: /dev/a:19200, groups: []}\n", &f);
+  EXPECT_EQ(e.rfind(f + ":3:20: error: key 'devices[1].rtu': serial line rtu:/dev/a already set up as ", 0), 0u) << e;
+  e = bridge_error("twice.yaml", head + "          - {name: a, ref: \"40001\"}\n          - {name: a, ref: \"40002\"}\n", &f);
+  EXPECT_EQ(e, f + ":8:20: error: key 'devices[0].groups[0].points[1].name': point 'a' defined twice on this device");
+  e = bridge_error("syntax.yaml", "devices: [\n", &f);
+  EXPECT_EQ(e.rfind(f + ":2:", 0), 0u) << e;
+  EXPECT_NE(e.find("YAML syntax"), std::string::npos) << e;
 }
 
 TEST(BridgeConfigYaml, TheShippedExampleLoads) {

@@ -132,10 +132,33 @@ TEST(Fun150Ports, UnconfiguredPortAndYaml) {
   plc.locked([](ScanEngine&, Memory& m) { m.set_bit(Area::M, 100, true); return 0; });
   plc.scan(1000);
   EXPECT_EQ(plc.locked([](ScanEngine&, Memory& m) { return m.reg(Area::R, 200); }) >> 8, mbus_result::kPort);
-  const auto ports = parse_mbus_ports(YAML::Load("ports: {1: {rtu: /dev/ttyS1:19200}, 3: {tcp: '10.0.0.2:502'}}"));
+  const auto ports = parse_mbus_ports(YAML::Load("ports: {1: {rtu: /dev/ttyS1:19200}, 3: {tcp: '10.0.0.2:502'}}"), "cell.yaml");
   ASSERT_EQ(ports.size(), 2u);
   EXPECT_EQ(ports.at(1).rtu, "/dev/ttyS1:19200");
-  EXPECT_THROW(parse_mbus_ports(YAML::Load("ports: {5: {tcp: 'a:1'}}")), Error);
+  EXPECT_THROW(parse_mbus_ports(YAML::Load("ports: {5: {tcp: 'a:1'}}"), "cell.yaml"), Error);
+}
+
+// modbus: is read by the cell's YAML reader: every key and line is checked, and an error
+// names file:line:column and the key (docs/modbus.md).
+TEST(Fun150Config, ErrorsNameFileLineAndKey) {
+  const auto error = [](const std::string& yaml) {
+    try {
+      parse_mbus_ports(YAML::Load(yaml)["modbus"], "cell.yaml");
+    } catch (const SourceError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error("modbus:\n  port: {}\n"), "cell.yaml:2:3: error: key 'modbus.port': unknown key (expected one of: ports)");
+  EXPECT_EQ(error("modbus:\n  ports:\n    1: {tpc: 127.0.0.1:502}\n"),
+            "cell.yaml:3:9: error: key 'modbus.ports.1.tpc': unknown key (expected one of: rtu, tcp)");
+  EXPECT_EQ(error("modbus:\n  ports:\n    9: {tcp: 127.0.0.1:502}\n"),
+            "cell.yaml:3:5: error: key 'modbus.ports.9': port 9 (FUN150 uses ports 1..4)");
+  EXPECT_EQ(error("modbus:\n  ports:\n    1: {tcp: 127.0.0.1:502, rtu: /dev/ttyS1}\n"),
+            "cell.yaml:3:8: error: key 'modbus.ports.1': give one of tcp or rtu");
+  EXPECT_EQ(error("modbus:\n  ports:\n    1: {rtu: /dev/ttyS1:9600:9Z1}\n").rfind("cell.yaml:3:14: error: key 'modbus.ports.1.rtu': ", 0), 0u);
+  EXPECT_EQ(error("modbus:\n  ports:\n    1: {tcp: 127.0.0.1:99999}\n").rfind("cell.yaml:3:14: error: key 'modbus.ports.1.tcp': ", 0), 0u);
+  EXPECT_EQ(parse_mbus_ports(YAML::Load("cell: {}")["modbus"], "cell.yaml").size(), 0u);
 }
 
 }  // namespace

@@ -46,6 +46,35 @@ TEST(AxisConfig, BadKeysNameTheirLine) {
   EXPECT_THROW(parse_axes_config(YAML::Load("axes:\n  pso0: {units_per_pulse: 0}\n")["axes"], "c"), SourceError);
 }
 
+// An axis's name becomes its topics (~motion/<name>/...): letters, digits and _.
+TEST(AxisConfig, AnAxisNameIsATopicName) {
+  try {
+    parse_axes_config(YAML::Load("axes:\n  pso1:\n    name: x axis\n")["axes"], "cell.yaml");
+    FAIL() << "no error";
+  } catch (const SourceError& e) {
+    EXPECT_STREQ(e.what(), "cell.yaml:3:11: error: key 'axes.pso1.name': an axis name is letters, digits and _ "
+                           "(it becomes a ROS topic name)");
+  }
+  EXPECT_EQ(parse_axes_config(YAML::Load("axes:\n  pso1: {name: x_axis2}\n")["axes"], "cell.yaml").axes[1].name, "x_axis2");
+}
+
+// axes: is read by the cell's YAML reader: values get its messages and positions.
+TEST(AxisConfig, ValuesAreReadByTheCellsReader) {
+  const auto error = [](const std::string& yaml) {
+    try {
+      parse_axes_config(YAML::Load(yaml)["axes"], "cell.yaml");
+    } catch (const SourceError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error("axes:\n  pso0: {units_per_pulse: fast}\n"),
+            "cell.yaml:2:27: error: key 'axes.pso0.units_per_pulse': expected a number");
+  EXPECT_EQ(error("axes:\n  pso0: {encoder: {a: X0, periods_per_pulse: 1.5}}\n"),
+            "cell.yaml:2:46: error: key 'axes.pso0.encoder.periods_per_pulse': expected a whole number");
+  EXPECT_EQ(error("axes:\n  pso0: {output: XY}\n"), "cell.yaml:2:18: error: key 'axes.pso0.output': expected UD, PR or AB");
+}
+
 TEST(AxisConfig, SwitchLevelsAndNextChanges) {
   SwitchDef w;
   w.from = -5000;

@@ -193,6 +193,66 @@ TEST_F(TemperatureCellTest, ConfigErrorsNameTheKey) {
   EXPECT_NE(bad("modules: {temperature: {scann: fast}}").find("unknown key"), std::string::npos);
 }
 
+// modules: is read by the cell's one YAML reader (config/yaml_reader.h): each error names
+// file:line:column and the key, and a channel's name, which becomes the topic
+// ~temperature/<name>, is letters, digits and _ (docs/analog-and-temperature.md).
+TEST(TemperatureConfig, ErrorsNameFileLineAndKey) {
+  const std::string tc6 = "modules:\n  temperature:\n    modules:\n      - type: 6TC\n        channels:\n";
+  EXPECT_EQ(config_error(tc6 + "          - {name: zone-1, temperature: 100}\n"),
+            "c.yaml:6:20: error: key 'modules.temperature.modules[0].channels[0].name': a temperature channel name "
+            "is letters, digits and _ (it becomes a ROS topic name)");
+  EXPECT_EQ(config_error(tc6 + "          - {name: zone1, open: maybe}\n"),
+            "c.yaml:6:33: error: key 'modules.temperature.modules[0].channels[0].open': expected 0/1 or true/false");
+  EXPECT_EQ(config_error("modules:\n  plants:\n    - {name: oven, gain: -1}\n"),
+            "c.yaml:3:26: error: key 'modules.plants[0].gain': value -1 out of range [0, 3000]");
+  EXPECT_EQ(config_error("modules:\n  temperature:\n    loops:\n      - {name: oven, sv: M100}\n"),
+            "c.yaml:4:26: error: key 'modules.temperature.loops[0].sv': expected an R or D register");
+  EXPECT_EQ(config_error("modules:\n  analog:\n    board: {type: B4AD, inputs: [{nam: a}]}\n"),
+            "c.yaml:3:35: error: key 'modules.analog.board.inputs[0].nam': unknown key (expected one of: current, "
+            "name, offset, plant, plant_range, value)");
+}
+
+TEST(TemperatureConfig, AGoodModulesSectionReadsAsBefore) {
+  const TemperatureConfig c = parse_temperature_config(YAML::Load(R"(
+modules:
+  temperature:
+    unit: F
+    readings: D10
+    loops:
+      - {name: oven, sv: R100, kc: D120}
+    modules:
+      - type: 6TC
+        sensor: J
+        channels: [{name: zone_1, plant: oven}, {name: Spare2, open: true}, {temperature: 40}]
+  plants:
+    - {name: oven, ambient: 20, gain: 300, time_constant: 600, heater: Y30}
+  analog:
+    board: {type: B4AD, inputs: [{name: level, current: true}]}
+)")["modules"], "c.yaml");
+  EXPECT_TRUE(c.fahrenheit);
+  EXPECT_EQ(c.readings, parse_address("D10"));
+  ASSERT_EQ(c.loops.size(), 1u);
+  EXPECT_EQ(c.loops[0].sv, parse_address("R100"));
+  EXPECT_TRUE(c.loops[0].has_kc);
+  EXPECT_FALSE(c.loops[0].has_ki);
+  ASSERT_EQ(c.modules.size(), 1u);
+  EXPECT_EQ(c.modules[0].tc, TcType::J);
+  ASSERT_EQ(c.modules[0].channels.size(), 3u);
+  EXPECT_EQ(c.modules[0].channels[0].name, "zone_1");
+  EXPECT_EQ(c.modules[0].channels[0].plant, "oven");
+  EXPECT_EQ(c.modules[0].channels[1].name, "Spare2");
+  EXPECT_TRUE(c.modules[0].channels[1].open);
+  EXPECT_EQ(c.modules[0].channels[2].fixed_c, 40);
+  ASSERT_EQ(c.plants.size(), 1u);
+  EXPECT_EQ(c.plants[0].params.ambient_c, 20);
+  EXPECT_EQ(c.plants[0].params.gain_c, 300);
+  EXPECT_TRUE(c.plants[0].has_heater);
+  EXPECT_EQ(c.plants[0].heater, parse_address("Y30"));
+  ASSERT_EQ(c.analog.board.inputs.size(), 1u);
+  EXPECT_EQ(c.analog.board.inputs[0].name, "level");
+  EXPECT_TRUE(c.analog.board.inputs[0].current);
+}
+
 TEST(ThermalPlant, FirstOrderPlusDeadTime) {
   ThermalPlantParams p;
   p.ambient_c = 25, p.initial_c = 25, p.gain_c = 100, p.tau_s = 100, p.dead_time_s = 10;

@@ -8,6 +8,7 @@
 //
 // MD3 (high-speed link, wire format undocumented) is not implemented: ERR with result 3.
 #include <array>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -24,14 +25,24 @@ enum class ClinkResult : uint8_t {
   Ok = 0, Length = 2, Command = 3, DataType = 4, Reference = 5, Inconsistent = 6, Timeout = 0xA, BadData = 0xB
 };
 
+// The cell YAML's `fatek:` section: `ports: {1: "/dev/ttyS1:9600:7E1", 2: "tcp:HOST:PORT"}`,
+// optional `timeout_ms` (default 500, the FBs R4147 default of 50 x 0.01 s).
+struct ClinkSettings {
+  int timeout_ms = 500;
+  std::map<int, std::string> ports;  // port 1..4 -> its line, as written
+};
+// Every key and line is checked here (an error names file:line:column and the key), so
+// `plc_cell check` refuses what the running cell would, without opening a line.
+ClinkSettings read_clink_settings(const YAML::Node& fatek_section, const std::string& file);
+
 // Ports 1..4 of the master PLC, each a FATEK line to its slaves.
 class ClinkPorts {
  public:
   ClinkPorts();
   ~ClinkPorts();
-  // The cell YAML's `fatek:` section: `ports: {1: "/dev/ttyS1:9600:7E1", 2: "tcp:HOST:PORT"}`,
-  // optional `timeout_ms` (default 500, the FBs R4147 default of 50 x 0.01 s).
-  static std::shared_ptr<ClinkPorts> from_yaml(const YAML::Node& fatek_section);
+  // The lines of read_clink_settings, each with its worker thread.
+  static std::shared_ptr<ClinkPorts> from_settings(const ClinkSettings& s);
+  static std::shared_ptr<ClinkPorts> from_yaml(const YAML::Node& fatek_section, const std::string& file);
   void set_port(int n, std::unique_ptr<Transport> t, int timeout_ms = 500);
   bool has(int n) const;
 

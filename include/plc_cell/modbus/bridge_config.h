@@ -53,8 +53,8 @@ struct ReadRequest {
   std::vector<size_t> points;  // indices into the group's points
 };
 
-// Throws plc_cell::Error naming the key.
-BridgeConfig parse_bridge_config(const YAML::Node& root);
+// Every key is checked; an error is a SourceError naming file:line:column and the key.
+BridgeConfig parse_bridge_config(const YAML::Node& root, const std::string& file);
 BridgeConfig load_bridge_config(const std::string& path);
 
 // Coalesces a group's points into the fewest reads within the PDU limits (125

@@ -24,8 +24,9 @@ struct MbusPort {
   std::string rtu;  // DEVICE[:BAUD[:FORMAT]], default 9600 8E1
 };
 
-// The cell YAML's `modbus: ports: {1: {rtu: ...}, 2: {tcp: ...}}`; throws plc_cell::Error.
-std::map<int, MbusPort> parse_mbus_ports(const YAML::Node& modbus_section);
+// The cell YAML's `modbus: ports: {1: {rtu: ...}, 2: {tcp: ...}}`, every key and line
+// checked; an error names file:line:column and the key.
+std::map<int, MbusPort> parse_mbus_ports(const YAML::Node& modbus_section, const std::string& file);
 
 class MbusEngine;
 
