@@ -7,7 +7,7 @@
 
 #include "args.h"
 #include "commands.h"
-#include "plc_cell/io/protocol_functions.h"
+#include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/config/server_settings.h"

@@ -6,7 +6,7 @@
 
 #include "args.h"
 #include "commands.h"
-#include "plc_cell/io/protocol_functions.h"
+#include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/sim/virtual_run.h"

@@ -1,4 +1,4 @@
-#include "plc_cell/io/protocol_functions.h"
+#include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/ros/plc_node.h"
 
 #include <sstream>

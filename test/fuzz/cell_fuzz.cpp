@@ -22,7 +22,7 @@
 #include "cell_generator.h"
 #include "cell_invariants.h"
 #include "plc_cell/core/address.h"
-#include "plc_cell/io/protocol_functions.h"
+#include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/sim/virtual_run.h"
 

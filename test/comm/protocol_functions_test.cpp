@@ -10,7 +10,7 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/fatek/server.h"
-#include "plc_cell/io/protocol_functions.h"
+#include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/modbus/slave_servers.h"
 #include "plc_cell/sim/soft_cell.h"
 
