@@ -12,6 +12,7 @@
 
 #include "plc_cell/RegisterBlock.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/ros/frame_id.h"
 
 namespace plc_cell {
 
@@ -53,6 +54,7 @@ ModbusBridgeNode::ModbusBridgeNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : 
   std::string path;
   if (!pnh.getParam("config", path)) throw Error("~config (the bridge YAML) is required");
   modbus::BridgeConfig cfg = modbus::load_bridge_config(path);
+  frame_id_ = frame_id_param(pnh);
   for (const auto& d : cfg.devices) {
     points_.emplace_back();
     last_full_.emplace_back(d.groups.size(), ros::Time(0));
@@ -114,7 +116,7 @@ void ModbusBridgeNode::on_result(const modbus::GroupResult& r) {
   for (size_t k = 0; k < r.reads.size(); ++k) {
     RegisterBlock b;
     b.header.stamp = now;
-    b.header.frame_id = dev.name;
+    b.header.frame_id = frame_id_;
     b.name = g.name;
     b.address = std::string(modbus::table_name(r.reads[k].table)) + ":" + std::to_string(r.reads[k].address);
     b.values.assign(r.blocks[k].begin(), r.blocks[k].end());

@@ -38,6 +38,7 @@ class ModbusBridgeNode {
   std::vector<std::vector<ros::Time>> last_full_;             // [device][group]
   std::vector<ros::Publisher> block_pubs_;                     // per device
   std::mutex mu_;
+  std::string frame_id_;
   std::vector<ros::ServiceServer> services_;
   diagnostic_updater::Updater updater_;
   ros::Timer diag_timer_;
