@@ -72,7 +72,9 @@ ModbusBridgeNode::ModbusBridgeNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : 
   for (size_t d = 0; d < cfg.devices.size(); ++d)
     updater_.add(cfg.devices[d].name, [this, d](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnose(d, s); });
   bridge_ = std::make_unique<modbus::Bridge>(std::move(cfg), [this](const modbus::GroupResult& r) { on_result(r); });
-  services_.push_back(pnh.advertiseService("write", &ModbusBridgeNode::on_write, this));
+  // Not ~write: that name is plc_cell/WriteMemory (raw elements at an address) on plc_node
+  // and fatek_bridge, while this one takes an engineering value for a named point.
+  services_.push_back(pnh.advertiseService("write_point", &ModbusBridgeNode::on_write, this));
   services_.push_back(pnh.advertiseService("recover", &ModbusBridgeNode::on_recover, this));
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   bridge_->start();

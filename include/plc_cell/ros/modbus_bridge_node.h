@@ -1,7 +1,7 @@
 #pragma once
 // modbus_bridge: a thin ROS layer over modbus::Bridge. Per point a typed std_msgs
 // topic ~<device>/<point>, per read a plc_cell/RegisterBlock on ~<device>/blocks,
-// ~write (plc_cell/WritePoint), ~recover (std_srvs/Trigger), /diagnostics per device.
+// ~write_point (plc_cell/WritePoint), ~recover (std_srvs/Trigger), /diagnostics per device.
 #include <memory>
 #include <mutex>
 #include <vector>
