@@ -94,7 +94,7 @@ MotionTopics::MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
     a->services.push_back(pnh.advertiseService<MotionCommand::Request, MotionCommand::Response>(
         base + "/command", [n, locked](MotionCommand::Request& req, MotionCommand::Response& res) {
           std::string why;
-          if (req.command == "home") {
+          if (req.command == MotionCommand::Request::HOME) {
             motion::Table t;
             int code = 0, line = 0;
             const std::string text = "SPD " + std::to_string(req.speed) + "\nDRVZ MD" + std::to_string(req.home_mode) +
@@ -108,13 +108,14 @@ MotionTopics::MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
             });
           } else {
             MotionUnit::Command c;
-            if (req.command == "start") c = MotionUnit::Command::Start;
-            else if (req.command == "pause") c = MotionUnit::Command::Pause;
-            else if (req.command == "resume") c = MotionUnit::Command::Resume;
-            else if (req.command == "abort") c = MotionUnit::Command::Abort;
+            if (req.command == MotionCommand::Request::START) c = MotionUnit::Command::Start;
+            else if (req.command == MotionCommand::Request::PAUSE) c = MotionUnit::Command::Pause;
+            else if (req.command == MotionCommand::Request::RESUME) c = MotionUnit::Command::Resume;
+            else if (req.command == MotionCommand::Request::ABORT) c = MotionUnit::Command::Abort;
             else {
               res.success = false;
-              res.message = "command must be start, pause, resume, abort or home";
+              res.message = "command " + std::to_string(req.command) +
+                            " unknown: START (1), PAUSE (2), RESUME (3), ABORT (4) or HOME (5)";
               return true;
             }
             res.success = locked([&](MotionUnit& u) { return u.command(n, c, &why); });

@@ -13,7 +13,7 @@ from sensor_msgs.msg import JointState
 
 from plc_cell.msg import (AxisStatus, RunMotionTableActionFeedback, RunMotionTableActionGoal,
                           RunMotionTableActionResult)
-from plc_cell.srv import LoadMotionTable, MotionCommand, ReadMemory, SetMotionParams
+from plc_cell.srv import LoadMotionTable, MotionCommand, MotionCommandRequest, ReadMemory, SetMotionParams
 
 NS = "/plc_node/motion/slide/"
 TIMEOUT = 30.0
@@ -263,8 +263,25 @@ class MotionTest(unittest.TestCase):
                                      0xFFFFFFFF, 0, 1]).success)
 
     def test_4_unknown_command(self):
-        res = self.command("jump", 0, 0)
+        res = self.command(42, 0, 0)
         self.assertFalse(res.success)
+        self.assertIn("unknown", res.message)
+        res = self.command(0, 0, 0)  # an empty request
+        self.assertFalse(res.success)
+
+    def test_6_command_constants(self):
+        self.assertEqual((MotionCommandRequest.START, MotionCommandRequest.PAUSE, MotionCommandRequest.RESUME,
+                          MotionCommandRequest.ABORT, MotionCommandRequest.HOME), (1, 2, 3, 4, 5))
+        # An axis at rest: ABORT and PAUSE are accepted or refused with a reason, never "unknown".
+        for c in (MotionCommandRequest.ABORT, MotionCommandRequest.PAUSE):
+            res = self.command(c, 0, 0)
+            self.assertNotIn("unknown", res.message)
+        x0 = self.status.wait_for(lambda m: not m.running).pulses
+        self.assertTrue(self.load("SPD 10000\nDRV ADR,+,500,Ps\nGOTO NEXT\nMEND\n").success)
+        res = self.command(MotionCommandRequest.START, 0, 0)
+        self.assertTrue(res.success, res.message)
+        st = self.status.wait_for(lambda m: m.pulses == x0 + 500 and not m.running and m.frequency == 0.0)
+        self.assertIsNotNone(st)
 
 
 if __name__ == "__main__":
