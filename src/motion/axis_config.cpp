@@ -164,6 +164,9 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
       } else if (k == "units_per_pulse") {
         a.units_per_pulse = get<double>(v, file, pre + k);
         if (!(a.units_per_pulse > 0)) fail(file, v, "key '" + pre + k + "': must be > 0");
+      } else if (k == "si_per_pulse") {
+        a.si_per_pulse = get<double>(v, file, pre + k);
+        if (!(a.si_per_pulse > 0)) fail(file, v, "key '" + pre + k + "': must be > 0 (m or rad per pulse)");
       } else if (k == "switches") {
         if (!v.IsSequence()) fail(file, v, "key '" + pre + k + "': expected a list");
         for (const auto& s : v) {
@@ -215,7 +218,8 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
         }
       } else {
         fail(file, f.first, "key '" + pre + k +
-                                 "': unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, switches, "
+                                 "': unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, si_per_pulse, "
+                                 "switches, "
                                  "table, params)");
       }
     }

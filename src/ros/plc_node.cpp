@@ -68,7 +68,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
   pnh.param("counter_rate", counter_rate, counter_rate);
   topic_groups_.add(std::make_unique<CounterTopics>(pnh, *cell_, counter_rate));
-  topic_groups_.add(std::make_unique<MotionTopics>(pnh, *cell_, pnh.param("motion_rate", 50.0)));
+  topic_groups_.add(std::make_unique<MotionTopics>(nh, pnh, *cell_, pnh.param("motion_rate", 50.0)));
 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);

@@ -98,7 +98,7 @@ class MotionTest(unittest.TestCase):
         cls.command = rospy.ServiceProxy(NS + "command", MotionCommand)
         cls.action = ActionClient(NS + "run")
         assert cls.action.wait_for_server(30)
-        cls.joints = Latest("/plc_node/joint_states", JointState)
+        cls.joints = Latest("/joint_states", JointState)  # the node's namespace, not private
         cls.status = Latest(NS + "status", AxisStatus)
         # P8 = 200 ms: 460 kHz/0.2 s = 2.3 MHz/s.
         values = [1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 1]
@@ -127,6 +127,7 @@ class MotionTest(unittest.TestCase):
         start = self.joints.wait_for(lambda m: True)
         self.assertEqual(start.name, ["slide"])
         x0 = start.position[0]
+        p0 = self.status.wait_for(lambda m: True).position
         self.action.send_goal("")
         done = self.action.wait_for_result()
         self.assertIsNotNone(done)
@@ -134,11 +135,14 @@ class MotionTest(unittest.TestCase):
         result = done.result
         feedback = self.action.feedback_of_goal()
         self.assertTrue(result.success)
-        self.assertAlmostEqual(result.position, x0 + 15.0, places=6)
+        self.assertAlmostEqual(result.position, p0 + 15.0, places=6)  # user units: mm
         self.assertTrue(any(f.step == 1 for f in feedback))
         self.assertTrue(any(f.step == 2 for f in feedback))
-        js = self.joints.wait_for(lambda m: abs(m.position[0] - (x0 + 15.0)) < 1e-9 and m.velocity[0] == 0.0)
+        # joint_states in m: 15000 pulses of 1 um.
+        js = self.joints.wait_for(lambda m: abs(m.position[0] - (x0 + 0.015)) < 1e-12 and m.velocity[0] == 0.0)
         self.assertIsNotNone(js)
+        st = self.status.wait_for(lambda m: not m.running)
+        self.assertAlmostEqual(js.position[0], st.pulses * 1e-6, places=12)
         st = self.status.wait_for(lambda m: not m.running)
         self.assertTrue(st.finished)
         self.assertEqual(st.error, 0)
