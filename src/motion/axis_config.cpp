@@ -218,8 +218,8 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
         }
       } else {
         fail(file, f.first, "key '" + pre + k +
-                                 "': unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, si_per_pulse, "
-                                 "switches, "
+                                 "': unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, "
+                                 "si_per_pulse, switches, "
                                  "table, params)");
       }
     }

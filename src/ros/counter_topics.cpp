@@ -12,7 +12,8 @@
 
 namespace plc_cell {
 
-CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz) : cell_(cell), frame_id_(frame_id_param(pnh)) {
+CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
+    : cell_(cell), frame_id_(frame_id_param(pnh)) {
   const hsc::HscConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.counters().config(); });
   for (int n = 0; n < 8; ++n) {
     if (!cfg.counters[n].used) continue;

@@ -81,7 +81,8 @@ FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(n
   frame_id_ = frame_id_param(pnh);
   io_pub_ = pnh.advertise<IoState>("io", 10);
   for (const auto& s : signals_) signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s.first, 1, true));
-  for (const auto& s : signals_) stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s.first, 100, true));
+  for (const auto& s : signals_)
+    stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s.first, 100, true));
   last_signals_.assign(signals_.size(), -1);
   services_.push_back(pnh.advertiseService("write", &FatekBridge::on_write, this));
   services_.push_back(pnh.advertiseService("set_run_mode", &FatekBridge::on_run, this));

@@ -39,7 +39,8 @@ bool parse(const std::string& text, motion::Table* t, std::string* msg, int* cod
 }
 }  // namespace
 
-MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz) : cell_(cell), frame_id_(frame_id_param(pnh)), rate_hz_(rate_hz) {
+MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
+    : cell_(cell), frame_id_(frame_id_param(pnh)), rate_hz_(rate_hz) {
   if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~motion_rate must be in (0, 1000] Hz");
   const motion::AxesConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.motion().config(); });
   const auto locked = [this](auto&& f) {
