@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""Plots the axes of a bag of sensor_msgs/JointState (plc_node's ~joint_states):
-position and velocity of every joint over time, into a PNG.
+"""Plots the axes of a bag of sensor_msgs/JointState (plc_node's joint_states, in m or
+rad and m/s or rad/s): position and velocity of every joint over time, into a PNG.
 
-    rosbag record -O run.bag /plc_node/joint_states
-    scripts/plot_motion.py run.bag -o run.png [--topic /plc_node/joint_states]
+    rosbag record -O run.bag /joint_states
+    scripts/plot_motion.py run.bag -o run.png [--topic /joint_states]
 
 Prints one summary line per joint (what test/ros/motion_plot_test.py checks):
     <name>: final position <p>, peak speed <|v| max>, <n> samples over <t> s
@@ -21,7 +21,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("bag")
     ap.add_argument("-o", "--output", default="motion.png")
-    ap.add_argument("--topic", default="/plc_node/joint_states")
+    ap.add_argument("--topic", default="/joint_states")
     args = ap.parse_args()
     t0 = None
     series = collections.OrderedDict()
@@ -40,8 +40,8 @@ def main():
     for name, (t, p, v) in series.items():
         ax_p.plot(t, p, label=name)
         ax_v.plot(t, v, label=name)
-    ax_p.set_ylabel("position")
-    ax_v.set_ylabel("velocity")
+    ax_p.set_ylabel("position (m or rad)")
+    ax_v.set_ylabel("velocity (m/s or rad/s)")
     ax_v.set_xlabel("t (s)")
     for a in (ax_p, ax_v):
         a.grid(True)

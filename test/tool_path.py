@@ -3,9 +3,10 @@ the workspace that lives inside the package, so the devel/install spaces are sea
 import os
 
 
-def find_tool():
+def find_tool(name="plc_cell"):
+    """The tool, or another of the package's executables by name (plc_node, ...)."""
     for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
-        path = os.path.join(prefix, "lib", "plc_cell", "plc_cell")
+        path = os.path.join(prefix, "lib", "plc_cell", name)
         if prefix and os.access(path, os.X_OK):
             return path
-    raise RuntimeError("plc_cell tool not found on CMAKE_PREFIX_PATH")
+    raise RuntimeError("%s not found on CMAKE_PREFIX_PATH" % name)

@@ -156,6 +156,9 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
       } else if (k == "units_per_pulse") {
         a.units_per_pulse = r.number(v, pre + k, -kAnyNumber, kAnyNumber);
         if (!(a.units_per_pulse > 0)) r.fail(v, pre + k, "must be > 0");
+      } else if (k == "si_per_pulse") {
+        a.si_per_pulse = r.number(v, pre + k, -kAnyNumber, kAnyNumber);
+        if (!(a.si_per_pulse > 0)) r.fail(v, pre + k, "must be > 0 (m or rad per pulse)");
       } else if (k == "switches") {
         if (!v.IsSequence()) r.fail(v, pre + k, "expected a list");
         for (const auto& s : v) {
@@ -207,7 +210,8 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
         }
       } else {
         r.fail(f.first, pre + k,
-               "unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, switches, table, params)");
+               "unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, si_per_pulse, switches, "
+               "table, params)");
       }
     }
   }

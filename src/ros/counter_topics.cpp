@@ -8,10 +8,12 @@
 #include "plc_cell/PresetCounter.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/ros/frame_id.h"
 
 namespace plc_cell {
 
-CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz) : cell_(cell) {
+CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
+    : cell_(cell), frame_id_(frame_id_param(pnh)) {
   const hsc::HscConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.counters().config(); });
   for (int n = 0; n < 8; ++n) {
     if (!cfg.counters[n].used) continue;
@@ -80,7 +82,7 @@ void CounterTopics::publish(const ros::Time& stamp) {
   });
   CounterArray all;
   all.header.stamp = stamp;
-  all.header.frame_id = cell_.config().name;
+  all.header.frame_id = frame_id_;
   for (size_t i = 0; i < numbers_.size(); ++i) {
     Counter c;
     c.header = all.header;

@@ -6,9 +6,11 @@
 
 #include "plc_cell/IoState.h"
 #include "plc_cell/RegisterBlock.h"
+#include "plc_cell/Signal.h"
 #include "plc_cell/config/register_groups.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/io/backoff.h"
+#include "plc_cell/ros/frame_id.h"
 
 namespace plc_cell {
 
@@ -72,12 +74,16 @@ FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(n
   for (const auto& s : signals_) io_items_.push_back({s.second, 1});
   io_plan_ = fatek::plan_poll(io_items_);
 
+  frame_id_ = frame_id_param(pnh);
   io_pub_ = pnh.advertise<IoState>("io", 10);
   for (const auto& s : signals_) signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s.first, 1, true));
+  for (const auto& s : signals_)
+    stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s.first, 100, true));
   last_signals_.assign(signals_.size(), -1);
   services_.push_back(pnh.advertiseService("write", &FatekBridge::on_write, this));
   services_.push_back(pnh.advertiseService("set_run_mode", &FatekBridge::on_run, this));
   services_.push_back(pnh.advertiseService("recover", &FatekBridge::on_recover, this));
+  advertise_plc_services(pnh);
 
   updater_.setHardwareID("fatek/" + link_name_);
   updater_.add("link", this, &FatekBridge::diagnose);
@@ -140,7 +146,7 @@ void FatekBridge::poll_io() {
   }
   IoState msg;
   msg.header.stamp = ros::Time::now();
-  msg.header.frame_id = link_name_;
+  msg.header.frame_id = frame_id_;
   msg.run = st.run;
   msg.x.resize(256);
   msg.y.resize(256);
@@ -153,10 +159,20 @@ void FatekBridge::poll_io() {
     const int now = int(v[2 + i][0] != 0);
     if (now == last_signals_[i]) continue;  // latched topics: publish on change
     last_signals_[i] = now;
-    std_msgs::Bool b;
-    b.data = now;
-    signal_pubs_[i].publish(b);
+    publish_signal(i, now, msg.header.stamp);
   }
+}
+
+// The stamp is the poll's: when the bridge saw the change, not when the PLC made it.
+void FatekBridge::publish_signal(size_t i, bool on, const ros::Time& stamp) {
+  std_msgs::Bool b;
+  b.data = on;
+  signal_pubs_[i].publish(b);
+  Signal st;
+  st.header.stamp = stamp;
+  st.header.frame_id = frame_id_;
+  st.data = on;
+  stamped_pubs_[i].publish(st);
 }
 
 void FatekBridge::poll_group(Group& g) {
@@ -167,7 +183,7 @@ void FatekBridge::poll_group(Group& g) {
   }
   RegisterBlock msg;
   msg.header.stamp = ros::Time::now();
-  msg.header.frame_id = link_name_;
+  msg.header.frame_id = frame_id_;
   msg.name = g.name;
   msg.address = g.text;
   for (const auto& item : v)

@@ -12,6 +12,7 @@
 
 #include "plc_cell/RegisterBlock.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/ros/frame_id.h"
 
 namespace plc_cell {
 
@@ -53,6 +54,7 @@ ModbusBridgeNode::ModbusBridgeNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : 
   std::string path;
   if (!pnh.getParam("config", path)) throw Error("~config (the bridge YAML) is required");
   modbus::BridgeConfig cfg = modbus::load_bridge_config(path);
+  frame_id_ = frame_id_param(pnh);
   for (const auto& d : cfg.devices) {
     points_.emplace_back();
     last_full_.emplace_back(d.groups.size(), ros::Time(0));
@@ -70,7 +72,9 @@ ModbusBridgeNode::ModbusBridgeNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : 
   for (size_t d = 0; d < cfg.devices.size(); ++d)
     updater_.add(cfg.devices[d].name, [this, d](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnose(d, s); });
   bridge_ = std::make_unique<modbus::Bridge>(std::move(cfg), [this](const modbus::GroupResult& r) { on_result(r); });
-  services_.push_back(pnh.advertiseService("write", &ModbusBridgeNode::on_write, this));
+  // Not ~write: that name is plc_cell/WriteMemory (raw elements at an address) on plc_node
+  // and fatek_bridge, while this one takes an engineering value for a named point.
+  services_.push_back(pnh.advertiseService("write_point", &ModbusBridgeNode::on_write, this));
   services_.push_back(pnh.advertiseService("recover", &ModbusBridgeNode::on_recover, this));
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   bridge_->start();
@@ -114,7 +118,7 @@ void ModbusBridgeNode::on_result(const modbus::GroupResult& r) {
   for (size_t k = 0; k < r.reads.size(); ++k) {
     RegisterBlock b;
     b.header.stamp = now;
-    b.header.frame_id = dev.name;
+    b.header.frame_id = frame_id_;
     b.name = g.name;
     b.address = std::string(modbus::table_name(r.reads[k].table)) + ":" + std::to_string(r.reads[k].address);
     b.values.assign(r.blocks[k].begin(), r.blocks[k].end());

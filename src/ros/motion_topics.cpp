@@ -11,6 +11,7 @@
 #include "plc_cell/SetMotionParams.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/motion/motion_unit.h"
+#include "plc_cell/ros/frame_id.h"
 
 namespace plc_cell {
 
@@ -21,6 +22,7 @@ struct MotionTopics::AxisRos {
   int n = 0;
   std::string name;
   double upp = 1;
+  double si = 1;  // m or rad per pulse: joint_states
   ros::Publisher status_pub;
   std::vector<ros::ServiceServer> services;
   std::unique_ptr<RunServer> run;
@@ -37,7 +39,8 @@ bool parse(const std::string& text, motion::Table* t, std::string* msg, int* cod
 }
 }  // namespace
 
-MotionTopics::MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz) : cell_(cell), rate_hz_(rate_hz) {
+MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
+    : cell_(cell), frame_id_(frame_id_param(pnh)), rate_hz_(rate_hz) {
   if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~motion_rate must be in (0, 1000] Hz");
   const motion::AxesConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.motion().config(); });
   const auto locked = [this](auto&& f) {
@@ -49,6 +52,7 @@ MotionTopics::MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
     a->n = n;
     a->name = cfg.axes[n].name;
     a->upp = cfg.axes[n].units_per_pulse;
+    a->si = cfg.axes[n].joint_scale();
     const std::string base = "motion/" + a->name;
     a->status_pub = pnh.advertise<AxisStatus>(base + "/status", 10);
     a->services.push_back(pnh.advertiseService<LoadMotionTable::Request, LoadMotionTable::Response>(
@@ -94,7 +98,7 @@ MotionTopics::MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
     a->services.push_back(pnh.advertiseService<MotionCommand::Request, MotionCommand::Response>(
         base + "/command", [n, locked](MotionCommand::Request& req, MotionCommand::Response& res) {
           std::string why;
-          if (req.command == "home") {
+          if (req.command == MotionCommand::Request::HOME) {
             motion::Table t;
             int code = 0, line = 0;
             const std::string text = "SPD " + std::to_string(req.speed) + "\nDRVZ MD" + std::to_string(req.home_mode) +
@@ -108,13 +112,14 @@ MotionTopics::MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
             });
           } else {
             MotionUnit::Command c;
-            if (req.command == "start") c = MotionUnit::Command::Start;
-            else if (req.command == "pause") c = MotionUnit::Command::Pause;
-            else if (req.command == "resume") c = MotionUnit::Command::Resume;
-            else if (req.command == "abort") c = MotionUnit::Command::Abort;
+            if (req.command == MotionCommand::Request::START) c = MotionUnit::Command::Start;
+            else if (req.command == MotionCommand::Request::PAUSE) c = MotionUnit::Command::Pause;
+            else if (req.command == MotionCommand::Request::RESUME) c = MotionUnit::Command::Resume;
+            else if (req.command == MotionCommand::Request::ABORT) c = MotionUnit::Command::Abort;
             else {
               res.success = false;
-              res.message = "command must be start, pause, resume, abort or home";
+              res.message = "command " + std::to_string(req.command) +
+                            " unknown: START (1), PAUSE (2), RESUME (3), ABORT (4) or HOME (5)";
               return true;
             }
             res.success = locked([&](MotionUnit& u) { return u.command(n, c, &why); });
@@ -198,7 +203,9 @@ MotionTopics::MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
     axes_.push_back(std::move(a));
   }
   if (axes_.empty()) return;
-  joints_pub_ = pnh.advertise<sensor_msgs::JointState>("joint_states", 10);
+  // In the node's namespace, not private: a robot stack's robot_state_publisher listens on
+  // joint_states, and a launch file remaps or namespaces it as for any driver.
+  joints_pub_ = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
 }
 
 MotionTopics::~MotionTopics() {
@@ -231,7 +238,7 @@ void MotionTopics::publish(const ros::Time& stamp) {
   });
   sensor_msgs::JointState js;
   js.header.stamp = stamp;
-  js.header.frame_id = cell_.config().name;
+  js.header.frame_id = frame_id_;
   std::vector<AxisStatus> st;
   for (size_t i = 0; i < axes_.size(); ++i) {
     const AxisRos& a = *axes_[i];
@@ -250,8 +257,8 @@ void MotionTopics::publish(const ros::Time& stamp) {
     s.error = r[i].error;
     st.push_back(s);
     js.name.push_back(a.name);
-    js.position.push_back(s.position);
-    js.velocity.push_back(s.frequency * a.upp);
+    js.position.push_back(static_cast<double>(s.pulses) * a.si);
+    js.velocity.push_back(s.frequency * a.si);
   }
   joints_pub_.publish(js);
   for (size_t i = 0; i < axes_.size(); ++i) axes_[i]->status_pub.publish(st[i]);

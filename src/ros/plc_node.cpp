@@ -10,6 +10,7 @@
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/ros/counter_topics.h"
+#include "plc_cell/ros/frame_id.h"
 #include "plc_cell/ros/motion_topics.h"
 #include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
@@ -37,6 +38,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
     throw Error("~scan_period " + std::to_string(scan_period) + " s out of range [0.0001, 1]");
   if (!(io_rate > 0 && io_rate <= 1000)) throw Error("~io_rate must be in (0, 1000] Hz");
 
+  frame_id_ = frame_id_param(pnh);
   io_pub_ = pnh.advertise<IoState>("io", 10);
   forced_pub_ = pnh.advertise<ForcedPoints>("forced", 1, /*latch=*/true);
   for (const auto& s : cfg.signals) {
@@ -66,7 +68,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
   pnh.param("counter_rate", counter_rate, counter_rate);
   topic_groups_.add(std::make_unique<CounterTopics>(pnh, *cell_, counter_rate));
-  topic_groups_.add(std::make_unique<MotionTopics>(pnh, *cell_, pnh.param("motion_rate", 50.0)));
+  topic_groups_.add(std::make_unique<MotionTopics>(nh, pnh, *cell_, pnh.param("motion_rate", 50.0)));
 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);
@@ -194,7 +196,7 @@ void PlcNode::publish(const Snapshot& s, bool all_signals) {
   if (virtual_time_) stamp.fromNSec(s.scan_us * 1000);
   else stamp = ros::Time::now();
   msg.header.stamp = stamp;
-  msg.header.frame_id = cell_->config().name;
+  msg.header.frame_id = frame_id_;
   msg.run = s.run;
   msg.x.assign(s.x.begin(), s.x.end());
   msg.y.assign(s.y.begin(), s.y.end());
@@ -212,7 +214,7 @@ void PlcNode::publish(const Snapshot& s, bool all_signals) {
     signal_pubs_[i].publish(b);
     Signal st;
     st.header.stamp = stamp;
-    st.header.frame_id = cell_->config().name;
+    st.header.frame_id = frame_id_;
     st.data = s.signals[i];
     stamped_pubs_[i].publish(st);
   }

@@ -2,18 +2,19 @@
 
 #include "plc_cell/RegisterBlock.h"
 #include "plc_cell/core/memory.h"
+#include "plc_cell/ros/frame_id.h"
 
 namespace plc_cell {
 
 RegisterTopic::RegisterTopic(ros::NodeHandle& pnh, SoftCell& cell, const RegisterGroup& group)
-    : cell_(cell), group_(group) {
+    : cell_(cell), group_(group), frame_id_(frame_id_param(pnh)) {
   pub_ = pnh.advertise<RegisterBlock>("registers/" + group_.name, 10);
 }
 
 void RegisterTopic::publish(const ros::Time& stamp) {
   RegisterBlock msg;
   msg.header.stamp = stamp;
-  msg.header.frame_id = cell_.config().name;
+  msg.header.frame_id = frame_id_;
   msg.name = group_.name;
   msg.address = group_.text;
   cell_.plc().locked([&](ScanEngine&, Memory& m) {

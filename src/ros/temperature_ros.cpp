@@ -6,6 +6,7 @@
 #include <sensor_msgs/Temperature.h>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/ros/frame_id.h"
 #include "plc_cell/temp/loop_settings.h"
 #include "plc_cell/temp/temperature_cell.h"
 
@@ -41,7 +42,7 @@ std::vector<Reading> readings(SoftCell& cell) {
 }  // namespace
 
 TemperatureRos::TemperatureRos(ros::NodeHandle& pnh, SoftCell& cell, diagnostic_updater::Updater& updater)
-    : cell_(cell) {
+    : cell_(cell), frame_id_(frame_id_param(pnh)) {
   pnh.param("temperature_rate", rate_hz_, rate_hz_);
   if (!(rate_hz_ > 0 && rate_hz_ <= 100)) throw Error("~temperature_rate must be in (0, 100] Hz");
   const auto& chans = cell_.temperature()->channels();
@@ -66,7 +67,7 @@ void TemperatureRos::publish(const ros::Time& stamp) {
     const temp::ChannelState& ch = tc.channels()[i];
     sensor_msgs::Temperature m;
     m.header.stamp = stamp;
-    m.header.frame_id = ch.name;
+    m.header.frame_id = frame_id_;
     // sensor_msgs/Temperature is in degC whatever the modules' unit.
     const double v = r[i].raw / 10.0;
     const double c = f ? (v - 32.0) * 5.0 / 9.0 : v;

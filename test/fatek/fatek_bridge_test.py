@@ -11,8 +11,8 @@ from diagnostic_msgs.msg import DiagnosticArray
 from std_msgs.msg import Bool
 from std_srvs.srv import SetBool, Trigger
 
-from plc_cell.msg import IoState, RegisterBlock
-from plc_cell.srv import WriteMemory
+from plc_cell.msg import IoState, RegisterBlock, Signal
+from plc_cell.srv import ForceDiscrete, ReadMemory, ReleaseDiscrete, WriteMemory
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from latest_message import Latest  # noqa: E402
@@ -29,11 +29,14 @@ class FatekBridgeTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("fatek_bridge_test", anonymous=True)
-        for s in ["write", "set_run_mode", "recover"]:
+        for s in ["write", "set_run_mode", "recover", "read", "force", "release"]:
             rospy.wait_for_service(NS + s, timeout=30)
         cls.write = rospy.ServiceProxy(NS + "write", WriteMemory)
         cls.set_run = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
         cls.recover = rospy.ServiceProxy(NS + "recover", Trigger)
+        cls.read = rospy.ServiceProxy(NS + "read", ReadMemory)
+        cls.force = rospy.ServiceProxy(NS + "force", ForceDiscrete)
+        cls.release = rospy.ServiceProxy(NS + "release", ReleaseDiscrete)
         cls.io = Latest(NS + "io", IoState, timeout=TIMEOUT)
         cls.regs = Latest(NS + "registers/regs", RegisterBlock, timeout=TIMEOUT)
         cls.motor = Latest(NS + "signals/motor", Bool, timeout=TIMEOUT)
@@ -96,6 +99,47 @@ class FatekBridgeTest(unittest.TestCase):
         stamp = rospy.Time.now()
         m = self.regs.wait_for(lambda m: m.header.stamp > stamp)
         self.assertGreater(m.header.stamp, stamp)
+
+    def test_7_read(self):
+        r = self.write_ok("R11", [5, 7])
+        self.assertTrue(r.success, r.message)
+        r = self.read("R11", 2)
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(list(r.values), [5, 7])
+        r = self.read("R11", 0)  # 0 reads one element
+        self.assertEqual(list(r.values), [5])
+        r = self.read("start", 0)  # a signal name, as ~write takes it
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(len(r.values), 1)
+        r = self.read("R9000", 1)
+        self.assertFalse(r.success)
+        self.assertIn("R9000", r.message)
+
+    def test_8_force_release_and_stamped_signals(self):
+        stamped = Latest(NS + "signals_stamped/motor", Signal, timeout=TIMEOUT)
+        self.assertTrue(self.write_ok("X0", [0]).success)
+        self.assertFalse(self.motor.wait_for(lambda m: not m.data).data)
+        before = rospy.Time.now()
+        r = self.force("start", True)  # X0, locked ON: the program drives Y0
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(r.message, "X0 forced ON")
+        m = stamped.wait_for(lambda m: m.data)
+        self.assertTrue(m.data)
+        self.assertGreaterEqual(m.header.stamp, before)
+        self.assertEqual(m.header.frame_id, "")  # no ~frame_id given
+        self.assertEqual(self.io.wait_for(lambda m: m.y[0]).header.frame_id, "")
+        # Locked: a write does not move it.
+        self.assertTrue(self.write("X0", [0]).success)
+        self.assertEqual(list(self.read("X0", 1).values), [1])
+        self.assertFalse(self.force("R0", True).success)
+        r = self.release("")
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(list(r.released), ["X0"])
+        r = self.release("X0")
+        self.assertTrue(r.success, r.message)
+        self.assertEqual((list(r.released), r.message), ([], "nothing was forced"))
+        self.assertTrue(self.write("X0", [0]).success)  # free again
+        self.assertFalse(stamped.wait_for(lambda m: not m.data).data)
 
     def test_6_misbehaving_device_keeps_diagnostics_and_recovers(self):
         # fatek_bridge_flaky polls a second soft PLC over TCP through flaky_device.py.

@@ -2,10 +2,14 @@
 """rostest: modbus_bridge against plc_node's Modbus/TCP slave publishes what the
 PLC holds, and its write service changes the PLC's memory."""
 import os
+import pty
+import subprocess
 import sys
+import time
 import unittest
 
 import rospy
+import rosservice
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from std_msgs.msg import Float32, Float64, Int16
@@ -18,6 +22,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from latest_message import Latest  # noqa: E402
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reliability"))
 from bridge_faults import misbehaving_device_keeps_reporting  # noqa: E402
+from tool_path import find_tool  # noqa: E402
+
+PLC_NODE = find_tool("plc_node")  # not rosrun: its search loops in the workspace inside the package
 
 TIMEOUT = 20.0
 
@@ -28,11 +35,11 @@ class ModbusBridgeTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("modbus_bridge_test")
-        for s in ("/plc_node/read", "/plc_node/write", "/modbus_bridge/write", "/modbus_bridge/recover"):
+        for s in ("/plc_node/read", "/plc_node/write", "/modbus_bridge/write_point", "/modbus_bridge/recover"):
             rospy.wait_for_service(s, timeout=30)
         cls.plc_read = rospy.ServiceProxy("/plc_node/read", ReadMemory)
         cls.plc_write = rospy.ServiceProxy("/plc_node/write", WriteMemory)
-        cls.write = rospy.ServiceProxy("/modbus_bridge/write", WritePoint)
+        cls.write = rospy.ServiceProxy("/modbus_bridge/write_point", WritePoint)
         cls.recover = rospy.ServiceProxy("/modbus_bridge/recover", Trigger)
 
     def plc(self, address):
@@ -76,11 +83,57 @@ class ModbusBridgeTest(unittest.TestCase):
         r = self.write("a", 40000)  # does not fit int16
         self.assertFalse(r.success)
 
+    def test_a_service_name_means_one_type(self):
+        # ~write is WriteMemory (raw elements at an address) on every node; the bridge's
+        # point write, an engineering value by point name, has a name of its own.
+        self.assertEqual(rosservice.get_service_type("/plc_node/write"), "plc_cell/WriteMemory")
+        self.assertEqual(rosservice.get_service_type("/modbus_bridge/write_point"), "plc_cell/WritePoint")
+        self.assertIsNone(rosservice.get_service_type("/modbus_bridge/write"))
+
+    def test_gateway_wait_is_in_seconds(self):
+        cell = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "ros", "test_cell.yaml")
+        master, slave = pty.openpty()  # the gateway's RTU line: a tty nobody answers on
+        diags = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
+
+        def gateway_status(msg):
+            return msg is not None and any(
+                "plc_node_gateway" in s.name and any("wait 250 ms" in kv.key for kv in s.values) for s in msg.status)
+        try:
+            node = subprocess.Popen(
+                [PLC_NODE, "__name:=plc_node_gateway", "_cell:=" + cell,
+                 "_modbus_tcp:=127.0.0.1:15023", "_modbus_gateway:=" + os.ttyname(slave),
+                 "_modbus_gateway_wait:=0.25"],
+                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            try:
+                # The server's description on /diagnostics gives the wait it runs with.
+                self.assertTrue(gateway_status(diags.wait_for(gateway_status)))
+            finally:
+                node.terminate()
+                node.wait(timeout=TIMEOUT)
+        finally:
+            os.close(master)
+            os.close(slave)
+        # A value in milliseconds, as the old ~modbus_gateway_wait_ms took, is refused.
+        bad = subprocess.run(
+            [PLC_NODE, "__name:=plc_node_bad_wait", "_cell:=" + cell,
+             "_modbus_gateway_wait:=150"],
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True, timeout=TIMEOUT)
+        self.assertNotEqual(bad.returncode, 0)
+        self.assertIn("~modbus_gateway_wait 150", bad.stdout)
+        self.assertIn("out of range [0.001, 60]", bad.stdout)
+        old = subprocess.run(
+            [PLC_NODE, "__name:=plc_node_old_wait", "_cell:=" + cell,
+             "_modbus_gateway_wait_ms:=150"],
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True, timeout=TIMEOUT)
+        self.assertNotEqual(old.returncode, 0)
+        self.assertIn("give ~modbus_gateway_wait in seconds", old.stdout)
+
     def test_blocks_diagnostics_and_recover(self):
         blocks = Latest("/modbus_bridge/plc/blocks", RegisterBlock, timeout=TIMEOUT)
         m = blocks.wait_for(lambda m: m.name == "fast" and m.address == "holding_register:10")
         self.assertIsNotNone(m)
         self.assertEqual(len(m.values), 3)
+        self.assertEqual(m.header.frame_id, "")  # no ~frame_id: a device name is no frame
         self.assertTrue(self.recover().success)
         diags = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
 

@@ -33,6 +33,20 @@ TEST(AxisConfig, ParsesNamesModesMechanicsAndSwitches) {
   EXPECT_EQ(c.axes[2].mode, OutputMode::PR);  // default
 }
 
+// joint_states are in m or rad: si_per_pulse when given, else units_per_pulse (the
+// user unit taken to be m or rad).
+TEST(AxisConfig, JointScaleIsSiPerPulseOrUnitsPerPulse) {
+  const YAML::Node doc = YAML::Load(R"(axes:
+  pso0: {name: slide, units_per_pulse: 0.001, si_per_pulse: 0.000001}
+  pso1: {name: stage, units_per_pulse: 0.00001}
+)");
+  const AxesConfig c = parse_axes_config(doc["axes"], "cell.yaml");
+  EXPECT_DOUBLE_EQ(c.axes[0].units_per_pulse, 1e-3);
+  EXPECT_DOUBLE_EQ(c.axes[0].joint_scale(), 1e-6);
+  EXPECT_DOUBLE_EQ(c.axes[1].joint_scale(), 1e-5);
+  EXPECT_THROW(parse_axes_config(YAML::Load("axes:\n  pso0: {si_per_pulse: 0}\n")["axes"], "c"), SourceError);
+}
+
 TEST(AxisConfig, BadKeysNameTheirLine) {
   try {
     parse_axes_config(YAML::Load("axes:\n  pso0:\n    name: a\n    outputs: UD\n")["axes"], "cell.yaml");

@@ -54,11 +54,16 @@ def key(msg):
     return buf.getvalue()
 
 
+def output_topic(ns, name):
+    """joint_states is in the node's namespace (what a robot stack remaps), the rest private."""
+    return "/%s/%s" % (ns, name) if name == "joint_states" else "/%s/plc_node/%s" % (ns, name)
+
+
 class Collector(object):
     def __init__(self, ns):
         self.cond = threading.Condition()
         self.msgs = {name: [] for name, _ in OUTPUTS}
-        self.subs = [rospy.Subscriber("/%s/plc_node/%s" % (ns, name), t, self._cb, name, queue_size=10000)
+        self.subs = [rospy.Subscriber(output_topic(ns, name), t, self._cb, name, queue_size=10000)
                      for name, t in OUTPUTS]
 
     def _cb(self, msg, name):

@@ -37,14 +37,14 @@ class CountersTest(unittest.TestCase):
         self.assertEqual(msg.counters[0].name, "conveyor")
         self.assertEqual(msg.counters[0].number, 0)
         self.assertEqual(msg.counters[0].count, 4000)
-        self.assertEqual(msg.header.frame_id, "counter_cell")
+        self.assertEqual(msg.header.frame_id, "belt_encoder")  # ~frame_id
         # One instant, one header (seq is the connection's own).
         self.assertEqual((msg.counters[0].header.stamp, msg.counters[0].header.frame_id),
                          (msg.header.stamp, msg.header.frame_id))
         one = self.one.wait_for(lambda m: m.count == 4000)
         self.assertEqual(one.count, 4000)
         # Published alone, a Counter says when and where it was read.
-        self.assertEqual(one.header.frame_id, "counter_cell")
+        self.assertEqual(one.header.frame_id, "belt_encoder")
         self.assertGreater(one.header.stamp.to_nsec(), 0)
         # Stopped: the frequency falls to 0 once the window has passed.
         one = self.one.wait_for(lambda m: m.frequency == 0.0)

@@ -2,7 +2,7 @@
 """rostest: bag of plc_node's JointState while it runs the manual's example B (DRVC
 chain 10 kHz x 20000, 50 kHz x 60000, 3 kHz x 5000 pulses), then
 scripts/plot_motion.py on it: the PNG exists and the printed summary gives the final
-position 85000 and the peak speed 50000 pulses/s (units_per_pulse 1)."""
+position 0.85 m and the peak speed 0.5 m/s (85000 pulses, 50 kHz at 10 um per pulse)."""
 import os
 import re
 import subprocess
@@ -22,10 +22,11 @@ from latest_message import Latest  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PLOT = os.path.join(HERE, "..", "..", "scripts", "plot_motion.py")
-TOPIC = "/plc_node/joint_states"
-# Manual 11.6 example B: 20000 + 60000 + 5000 pulses; the fastest section is SPD 50000.
-FINAL = 85000.0
-PEAK = 50000.0
+TOPIC = "/joint_states"  # the node's namespace, in SI units
+# Manual 11.6 example B: 20000 + 60000 + 5000 pulses; the fastest section is SPD 50000;
+# si_per_pulse 0.00001 (examples/motion/drvc_chain.yaml).
+FINAL = 0.85
+PEAK = 0.5
 RUN_TIMEOUT = 30.0  # the chain takes about 5.6 s of real time
 
 
@@ -65,8 +66,8 @@ class MotionPlotTest(unittest.TestCase):
         latest.wait_for(lambda m: rec.count > 0)  # the recorder sees the stream too
         rospy.wait_for_service("/plc_node/set_run_mode", RUN_TIMEOUT)
         self.assertTrue(rospy.ServiceProxy("/plc_node/set_run_mode", SetBool)(True).success)
-        done = latest.wait_for(lambda m: m.position[0] == FINAL and m.velocity[0] == 0.0)
-        self.assertEqual(done.position[0], FINAL, "the chain did not reach 85000 in %.0f s" % RUN_TIMEOUT)
+        done = latest.wait_for(lambda m: abs(m.position[0] - FINAL) < 1e-12 and m.velocity[0] == 0.0)
+        self.assertAlmostEqual(done.position[0], FINAL, 12, "the chain did not reach 0.85 m in %.0f s" % RUN_TIMEOUT)
         n = rec.count
         latest.wait_for(lambda m: rec.count >= n + 5)  # a few samples of the rest
         rec.close()
@@ -75,7 +76,7 @@ class MotionPlotTest(unittest.TestCase):
         self.assertTrue(os.path.getsize(png) > 10000, "PNG missing or empty: %s" % png)
         m = re.search(r"feed: final position (\S+), peak speed (\S+), (\d+) samples", out)
         self.assertIsNotNone(m, out)
-        self.assertEqual(float(m.group(1)), FINAL)
+        self.assertEqual(float(m.group(1)), FINAL)  # printed with 6 digits
         # JointState samples the cruise at 50 kHz (1.2 s long, sampled at 50 Hz).
         self.assertEqual(float(m.group(2)), PEAK)
         self.assertGreater(int(m.group(3)), 100)

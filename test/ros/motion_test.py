@@ -13,7 +13,7 @@ from sensor_msgs.msg import JointState
 
 from plc_cell.msg import (AxisStatus, RunMotionTableActionFeedback, RunMotionTableActionGoal,
                           RunMotionTableActionResult)
-from plc_cell.srv import LoadMotionTable, MotionCommand, ReadMemory, SetMotionParams
+from plc_cell.srv import LoadMotionTable, MotionCommand, MotionCommandRequest, ReadMemory, SetMotionParams
 
 NS = "/plc_node/motion/slide/"
 TIMEOUT = 30.0
@@ -98,7 +98,7 @@ class MotionTest(unittest.TestCase):
         cls.command = rospy.ServiceProxy(NS + "command", MotionCommand)
         cls.action = ActionClient(NS + "run")
         assert cls.action.wait_for_server(30)
-        cls.joints = Latest("/plc_node/joint_states", JointState)
+        cls.joints = Latest("/joint_states", JointState)  # the node's namespace, not private
         cls.status = Latest(NS + "status", AxisStatus)
         # P8 = 200 ms: 460 kHz/0.2 s = 2.3 MHz/s.
         values = [1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 1]
@@ -127,6 +127,7 @@ class MotionTest(unittest.TestCase):
         start = self.joints.wait_for(lambda m: True)
         self.assertEqual(start.name, ["slide"])
         x0 = start.position[0]
+        p0 = self.status.wait_for(lambda m: True).position
         self.action.send_goal("")
         done = self.action.wait_for_result()
         self.assertIsNotNone(done)
@@ -134,11 +135,14 @@ class MotionTest(unittest.TestCase):
         result = done.result
         feedback = self.action.feedback_of_goal()
         self.assertTrue(result.success)
-        self.assertAlmostEqual(result.position, x0 + 15.0, places=6)
+        self.assertAlmostEqual(result.position, p0 + 15.0, places=6)  # user units: mm
         self.assertTrue(any(f.step == 1 for f in feedback))
         self.assertTrue(any(f.step == 2 for f in feedback))
-        js = self.joints.wait_for(lambda m: abs(m.position[0] - (x0 + 15.0)) < 1e-9 and m.velocity[0] == 0.0)
+        # joint_states in m: 15000 pulses of 1 um.
+        js = self.joints.wait_for(lambda m: abs(m.position[0] - (x0 + 0.015)) < 1e-12 and m.velocity[0] == 0.0)
         self.assertIsNotNone(js)
+        st = self.status.wait_for(lambda m: not m.running)
+        self.assertAlmostEqual(js.position[0], st.pulses * 1e-6, places=12)
         st = self.status.wait_for(lambda m: not m.running)
         self.assertTrue(st.finished)
         self.assertEqual(st.error, 0)
@@ -263,8 +267,25 @@ class MotionTest(unittest.TestCase):
                                      0xFFFFFFFF, 0, 1]).success)
 
     def test_4_unknown_command(self):
-        res = self.command("jump", 0, 0)
+        res = self.command(42, 0, 0)
         self.assertFalse(res.success)
+        self.assertIn("unknown", res.message)
+        res = self.command(0, 0, 0)  # an empty request
+        self.assertFalse(res.success)
+
+    def test_6_command_constants(self):
+        self.assertEqual((MotionCommandRequest.START, MotionCommandRequest.PAUSE, MotionCommandRequest.RESUME,
+                          MotionCommandRequest.ABORT, MotionCommandRequest.HOME), (1, 2, 3, 4, 5))
+        # An axis at rest: ABORT and PAUSE are accepted or refused with a reason, never "unknown".
+        for c in (MotionCommandRequest.ABORT, MotionCommandRequest.PAUSE):
+            res = self.command(c, 0, 0)
+            self.assertNotIn("unknown", res.message)
+        x0 = self.status.wait_for(lambda m: not m.running).pulses
+        self.assertTrue(self.load("SPD 10000\nDRV ADR,+,500,Ps\nGOTO NEXT\nMEND\n").success)
+        res = self.command(MotionCommandRequest.START, 0, 0)
+        self.assertTrue(res.success, res.message)
+        st = self.status.wait_for(lambda m: m.pulses == x0 + 500 and not m.running and m.frequency == 0.0)
+        self.assertIsNotNone(st)
 
 
 if __name__ == "__main__":

@@ -59,7 +59,7 @@ class PlcNodeTest(unittest.TestCase):
         io = self.io.wait_for(lambda m: True)
         self.assertEqual(len(io.x), 256)
         self.assertEqual(len(io.y), 256)
-        self.assertEqual(io.header.frame_id, "test_cell")
+        self.assertEqual(io.header.frame_id, "")  # no ~frame_id: the cell name is no frame
         self.assertGreater(io.header.stamp.to_sec(), 0)
         self.assertTrue(io.run)
 
@@ -68,7 +68,7 @@ class PlcNodeTest(unittest.TestCase):
         self.assertTrue(r.success, r.message)
         m = self.sums.wait_for(lambda m: list(m.values[:3]) == [12, 5, 7])
         self.assertEqual(list(m.values[:3]), [12, 5, 7], "R10 != R11 + R12 on registers/sums")
-        self.assertEqual((m.name, m.address, m.header.frame_id), ("sums", "R10:3,R20", "test_cell"))
+        self.assertEqual((m.name, m.address, m.header.frame_id), ("sums", "R10:3,R20", ""))
         self.assertEqual(list(self.read("R11", 2).values), [5, 7])
 
     def test_named_signals_and_double_words(self):

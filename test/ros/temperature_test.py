@@ -45,18 +45,18 @@ class TemperatureTest(unittest.TestCase):
     def test_channels(self):
         room = self.room.wait_for(lambda m: not math.isnan(m.temperature))
         self.assertIsNotNone(room)
-        self.assertEqual(room.header.frame_id, "room")
+        self.assertEqual(room.header.frame_id, "")  # no ~frame_id: a channel name is no frame
         self.assertAlmostEqual(room.temperature, 21.5, places=6)
         self.assertAlmostEqual(room.variance, 0.01 / 12, places=9)  # 0.1 degC steps
         oven = self.oven.wait_for(lambda m: not math.isnan(m.temperature))
-        self.assertEqual(oven.header.frame_id, "oven_temp")
+        self.assertEqual(oven.header.frame_id, "")
         self.assertGreaterEqual(oven.temperature, 24.9)
         self.assertLess(oven.temperature, 60.0)
 
     def test_open_circuit_is_nan(self):
         m = self.broken.wait_for(lambda m: True)
         self.assertIsNotNone(m)
-        self.assertEqual(m.header.frame_id, "broken")
+        self.assertEqual(m.header.frame_id, "")
         self.assertTrue(math.isnan(m.temperature))
 
     def test_module_diagnostics(self):

@@ -56,8 +56,12 @@ struct AxisDef {
   int wired[2] = {-1, -1};
   int wiring_line = 0;
   EncoderDef encoder;
-  bool rotary = false;         // JointState position in rad (rotary) or m (linear)
-  double units_per_pulse = 1;  // JointState units per pulse
+  bool rotary = false;         // joint_states in rad (rotary) or m (linear)
+  double units_per_pulse = 1;  // user units (AxisStatus.position, the run action) per pulse
+  // m (linear) or rad (rotary) per pulse, for joint_states (REP 103: SI units); 0 = not
+  // given: units_per_pulse, the user unit taken to be m or rad.
+  double si_per_pulse = 0;
+  double joint_scale() const { return si_per_pulse > 0 ? si_per_pulse : units_per_pulse; }
   std::vector<SwitchDef> switches;
   // Written into the registers at each STOP -> RUN (what an MMI would load):
   bool has_table = false;

@@ -23,6 +23,7 @@ class CounterTopics : public TopicGroup {
 
  private:
   SoftCell& cell_;
+  std::string frame_id_;
   double rate_hz_;
   std::vector<int> numbers_;  // configured counters, in order
   std::vector<std::string> names_;

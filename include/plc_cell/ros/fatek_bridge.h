@@ -14,6 +14,9 @@
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 
+#include "plc_cell/ForceDiscrete.h"
+#include "plc_cell/ReadMemory.h"
+#include "plc_cell/ReleaseDiscrete.h"
 #include "plc_cell/WriteMemory.h"
 #include "plc_cell/fatek/client.h"
 #include "plc_cell/fatek/poll_plan.h"
@@ -46,6 +49,13 @@ class FatekBridge {
   bool on_write(WriteMemory::Request& req, WriteMemory::Response& res);
   bool on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool on_recover(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  // plc_node's ~read, ~force and ~release (fatek_bridge_services.cpp).
+  void advertise_plc_services(ros::NodeHandle& pnh);
+  Address resolve(const std::string& text) const;  // a signal name or an address
+  bool on_read(ReadMemory::Request& req, ReadMemory::Response& res);
+  bool on_force(ForceDiscrete::Request& req, ForceDiscrete::Response& res);
+  bool on_release(ReleaseDiscrete::Request& req, ReleaseDiscrete::Response& res);
+  void publish_signal(size_t i, bool on, const ros::Time& stamp);
 
   std::unique_ptr<fatek::Client> client_;
   std::string link_name_;
@@ -58,6 +68,8 @@ class FatekBridge {
 
   ros::Publisher io_pub_;
   std::vector<ros::Publisher> signal_pubs_;
+  std::vector<ros::Publisher> stamped_pubs_;  // ~signals_stamped/<name>
+  std::string frame_id_;                      // ~frame_id of every header
   std::vector<int> last_signals_;
   std::vector<ros::ServiceServer> services_;
   ros::Timer diag_timer_;

@@ -1,7 +1,7 @@
 #pragma once
 // modbus_bridge: a thin ROS layer over modbus::Bridge. Per point a typed std_msgs
 // topic ~<device>/<point>, per read a plc_cell/RegisterBlock on ~<device>/blocks,
-// ~write (plc_cell/WritePoint), ~recover (std_srvs/Trigger), /diagnostics per device.
+// ~write_point (plc_cell/WritePoint), ~recover (std_srvs/Trigger), /diagnostics per device.
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -38,6 +38,7 @@ class ModbusBridgeNode {
   std::vector<std::vector<ros::Time>> last_full_;             // [device][group]
   std::vector<ros::Publisher> block_pubs_;                     // per device
   std::mutex mu_;
+  std::string frame_id_;
   std::vector<ros::ServiceServer> services_;
   diagnostic_updater::Updater updater_;
   ros::Timer diag_timer_;

@@ -1,6 +1,6 @@
 #pragma once
-// The pulse-output axes on ROS (docs/motion.md "ROS"): ~joint_states
-// (sensor_msgs/JointState, every axis of the cell YAML's axes: section),
+// The pulse-output axes on ROS (docs/motion.md "ROS"): joint_states in the node's
+// namespace (sensor_msgs/JointState in m or rad, every axis of the cell YAML's axes: section),
 // ~motion/<axis>/status (AxisStatus), services ~motion/<axis>/load_table,
 // set_params, command, and the action ~motion/<axis>/run (RunMotionTable).
 #include <memory>
@@ -16,7 +16,7 @@ namespace plc_cell {
 
 class MotionTopics : public TopicGroup {
  public:
-  MotionTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz);
+  MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz);
   ~MotionTopics() override;
   double rate_hz() const override { return rate_hz_; }
   // JointState and every AxisStatus carry the same header; nothing without axes.
@@ -26,6 +26,7 @@ class MotionTopics : public TopicGroup {
   struct AxisRos;
 
   SoftCell& cell_;
+  std::string frame_id_;
   double rate_hz_;
   std::vector<std::unique_ptr<AxisRos>> axes_;
   ros::Publisher joints_pub_;

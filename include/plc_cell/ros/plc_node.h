@@ -74,6 +74,7 @@ class PlcNode {
   TopicGroups topic_groups_;
   std::mutex path_mu_;
   std::string program_path_;
+  std::string frame_id_;  // ~frame_id of every header
 
   ros::Publisher io_pub_;
   ros::Publisher forced_pub_;  // ~forced, latched

@@ -23,6 +23,7 @@ class RegisterTopic : public TopicGroup {
   SoftCell& cell_;
   RegisterGroup group_;
   ros::Publisher pub_;
+  std::string frame_id_;
 };
 
 // A RegisterTopic for every group of the cell.

@@ -17,7 +17,7 @@ using ServerList = std::vector<std::unique_ptr<Server>>;
 // ~fatek_tcp (HOST:PORT), ~fatek_serial (DEVICE[:BAUD[:FORMAT]]), ~fatek_station.
 void add_fatek_servers(Plc& plc, ros::NodeHandle& pnh, const ServerSettings& yaml, ServerList* servers);
 // ~modbus_tcp, ~modbus_rtu, ~modbus_id, ~modbus_max_connections, ~modbus_idle_timeout,
-// ~modbus_gateway, ~modbus_gateway_wait_ms, ~modbus_gateway_retries.
+// ~modbus_gateway, ~modbus_gateway_wait (s), ~modbus_gateway_retries.
 void add_modbus_servers(Plc& plc, ros::NodeHandle& pnh, const ServerSettings& yaml, ServerList* servers);
 
 }  // namespace plc_cell

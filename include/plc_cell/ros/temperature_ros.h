@@ -26,6 +26,7 @@ class TemperatureRos : public TopicGroup {
   bool on_set_loop(SetPidLoop::Request& req, SetPidLoop::Response& res);
 
   SoftCell& cell_;
+  std::string frame_id_;
   double rate_hz_ = 1.0;
   std::vector<size_t> channel_;  // channel index of each publisher
   std::vector<ros::Publisher> pubs_;
