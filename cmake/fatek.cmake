@@ -33,7 +33,8 @@ if(CATKIN_ENABLE_TESTING)
 endif()
 
 # ---- fatek_bridge: a real FATEK PLC on ROS ----------------------------------------
-add_executable(fatek_bridge src/ros/fatek_bridge_main.cpp src/ros/fatek_bridge.cpp src/ros/fatek_bridge_services.cpp)
+add_executable(fatek_bridge src/ros/fatek_bridge_main.cpp src/ros/fatek_bridge.cpp src/ros/fatek_bridge_services.cpp
+  src/ros/memory_services.cpp)
 target_include_directories(fatek_bridge PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(fatek_bridge plc_cell_fatek ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES})
 add_dependencies(fatek_bridge ${PROJECT_NAME}_generate_messages_cpp)

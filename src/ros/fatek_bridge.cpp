@@ -80,10 +80,9 @@ FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(n
   for (const auto& s : signals_)
     stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s.first, 100, true));
   last_signals_.assign(signals_.size(), -1);
-  services_.push_back(pnh.advertiseService("write", &FatekBridge::on_write, this));
+  services_ = advertise_memory_services(pnh, *this);
   services_.push_back(pnh.advertiseService("set_run_mode", &FatekBridge::on_run, this));
   services_.push_back(pnh.advertiseService("recover", &FatekBridge::on_recover, this));
-  advertise_plc_services(pnh);
 
   updater_.setHardwareID("fatek/" + link_name_);
   updater_.add("link", this, &FatekBridge::diagnose);
@@ -252,31 +251,6 @@ void FatekBridge::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("reconnects", reconnects_);
   stat.add("I/O poll latency (ms)", latency_ms_);
   stat.add("I/O poll latency max (ms)", latency_max_ms_);
-}
-
-bool FatekBridge::on_write(WriteMemory::Request& req, WriteMemory::Response& res) {
-  try {
-    Address a;
-    bool found = false;
-    for (const auto& s : signals_)
-      if (s.first == req.address) {
-        a = s.second;
-        found = true;
-      }
-    if (!found) a = parse_address(req.address);
-    std::vector<uint32_t> values;
-    for (int64_t v : req.values) {
-      if (v < 0 || v > 0xFFFFFFFFll) throw Error("value " + std::to_string(v) + " is negative or wider than 32 bits");
-      values.push_back(uint32_t(v));
-    }
-    std::lock_guard<std::mutex> lk(link_mu_);
-    client_->write(a, values);
-    res.success = true;
-  } catch (const std::exception& e) {
-    res.success = false;
-    res.message = e.what();
-  }
-  return true;
 }
 
 bool FatekBridge::on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {

@@ -59,10 +59,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
           });
         }));
   }
-  services_.push_back(pnh.advertiseService("read", &PlcNode::on_read, this));
-  services_.push_back(pnh.advertiseService("write", &PlcNode::on_write, this));
-  services_.push_back(pnh.advertiseService("force", &PlcNode::on_force, this));
-  services_.push_back(pnh.advertiseService("release", &PlcNode::on_release, this));
+  services_ = advertise_memory_services(pnh, *this);
   services_.push_back(pnh.advertiseService("set_run_mode", &PlcNode::on_run, this));
   services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
@@ -317,70 +314,29 @@ void PlcNode::diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat
 
 // ---- services: every failure is a reply with a message, never an exception ----
 
-bool PlcNode::on_read(ReadMemory::Request& req, ReadMemory::Response& res) {
-  try {
-    const Address a = cell_->config().resolve(req.address);
-    for (uint32_t v : cell_->plc().read(a, req.count == 0 ? 1 : req.count)) res.values.push_back(v);
-    res.success = true;
-  } catch (const std::exception& e) {
-    res.success = false;
-    res.message = e.what();
-  }
-  return true;
+Address PlcNode::resolve(const std::string& text) const { return cell_->config().resolve(text); }
+
+std::vector<uint32_t> PlcNode::read(const Address& start, uint32_t count) { return cell_->plc().read(start, count); }
+
+void PlcNode::write(const Address& start, const std::vector<uint32_t>& raw) { cell_->plc().write(start, raw); }
+
+void PlcNode::force(const Address& bit, bool value) {
+  // Lock first, then set: the program cannot overwrite the new state in between.
+  cell_->plc().force(bit, ForceAction::Disable);
+  cell_->plc().force(bit, value ? ForceAction::Set : ForceAction::Reset);
 }
 
-bool PlcNode::on_write(WriteMemory::Request& req, WriteMemory::Response& res) {
-  try {
-    const Address a = cell_->config().resolve(req.address);
-    std::vector<uint32_t> values;
-    for (size_t i = 0; i < req.values.size(); ++i)
-      values.push_back(encode_element(offset_address(a, uint32_t(i)), req.values[i]));
-    cell_->plc().write(a, values);
-    res.success = true;
-  } catch (const std::exception& e) {
-    res.success = false;
-    res.message = e.what();
+std::vector<Address> PlcNode::release(const Address* bit) {
+  std::vector<Address> points;
+  if (bit) points.push_back(*bit);
+  else points = cell_->plc().locked([](ScanEngine&, Memory& m) { return m.disabled_points(); });
+  std::vector<Address> freed;
+  for (const Address& a : points) {
+    const bool was = cell_->plc().locked([&](ScanEngine&, Memory& m) { return m.disabled(a.area, a.index); });
+    cell_->plc().force(a, ForceAction::Enable);
+    if (was) freed.push_back(a);
   }
-  return true;
-}
-
-bool PlcNode::on_force(ForceDiscrete::Request& req, ForceDiscrete::Response& res) {
-  try {
-    const Address a = cell_->config().resolve(req.address);
-    // Lock first, then set: the program cannot overwrite the new state in between.
-    cell_->plc().force(a, ForceAction::Disable);
-    cell_->plc().force(a, req.value ? ForceAction::Set : ForceAction::Reset);
-    res.success = true;
-    res.message = format_address(a) + " forced " + (req.value ? "ON" : "OFF");
-  } catch (const std::exception& e) {
-    res.success = false;
-    res.message = e.what();
-  }
-  return true;
-}
-
-bool PlcNode::on_release(ReleaseDiscrete::Request& req, ReleaseDiscrete::Response& res) {
-  try {
-    std::vector<Address> points;
-    if (req.address.empty()) {
-      points = cell_->plc().locked([](ScanEngine&, Memory& m) { return m.disabled_points(); });
-    } else {
-      const Address a = cell_->config().resolve(req.address);
-      if (a.width != Width::Bit) throw Error("release " + req.address + ": only a single discrete can be forced");
-      points.push_back(a);
-    }
-    for (const Address& a : points) {
-      const bool was = cell_->plc().locked([&](ScanEngine&, Memory& m) { return m.disabled(a.area, a.index); });
-      cell_->plc().force(a, ForceAction::Enable);
-      if (was) res.released.push_back(format_address(a));
-    }
-    res.success = true;
-    res.message = res.released.empty() ? "nothing was forced" : std::to_string(res.released.size()) + " released";
-  } catch (const std::exception& e) {
-    res.success = false;
-    res.message = e.what();
-  }
-  return true;
+  return freed;
 }
 
 bool PlcNode::on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {

@@ -114,6 +114,14 @@ class FatekBridgeTest(unittest.TestCase):
         r = self.read("R9000", 1)
         self.assertFalse(r.success)
         self.assertIn("R9000", r.message)
+        # ~write takes what plc_node's takes: two's complement within the element's range,
+        # and a value beyond it is refused with the range, before anything is written.
+        self.assertTrue(self.write_ok("R40", [-2]).success)
+        self.assertEqual(list(self.read("R40", 1).values), [65534])
+        r = self.write("R11", [1, 70000])
+        self.assertFalse(r.success)
+        self.assertIn("-32768..65535", r.message)
+        self.assertEqual(list(self.read("R11", 1).values), [5])
 
     def test_8_force_release_and_stamped_signals(self):
         stamped = Latest(NS + "signals_stamped/motor", Signal, timeout=TIMEOUT)

@@ -179,7 +179,7 @@ class MotionTest(unittest.TestCase):
             SimpleActionClient.send_goal assigns its goal handle only after the goal is
             published, so a server that accepts at once can report ACTIVE before that
             and the client logs "not tracking" (ros/actionlib#206, any server). Those
-            arrive while send_goal is still running and are kept apart; every other
+            arrive before the goal's first callback and are kept apart; every other
             record (a transition after the result, a late status) fails the test."""
 
             def __init__(self):
@@ -208,10 +208,25 @@ class MotionTest(unittest.TestCase):
         client = actionlib.SimpleActionClient(NS + "run", RunMotionTableAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(TIMEOUT)))
 
-        def send(goal, **kw):
+        def send(goal, feedback_cb=None):
+            # The race of ros/actionlib#206 logs when the server's first status for the
+            # goal beats send_goal's bookkeeping. Its log call can come after send_goal has
+            # returned (the interpreter may switch threads between the race's check and the
+            # log), so the window closes at the goal's first callback (active, feedback or
+            # done), which the client makes only once it tracks the goal.
+            tracked = threading.Event()
+
+            def seen(*_):
+                tracked.set()
+
+            def on_fb(f):
+                tracked.set()
+                if feedback_cb:
+                    feedback_cb(f)
             sending.set()
             try:
-                client.send_goal(goal, **kw)
+                client.send_goal(goal, done_cb=seen, active_cb=seen, feedback_cb=on_fb)
+                self.assertTrue(tracked.wait(TIMEOUT), "no callback for the goal")
             finally:
                 sending.clear()
         fb = []

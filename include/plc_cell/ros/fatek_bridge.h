@@ -14,16 +14,13 @@
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 
-#include "plc_cell/ForceDiscrete.h"
-#include "plc_cell/ReadMemory.h"
-#include "plc_cell/ReleaseDiscrete.h"
-#include "plc_cell/WriteMemory.h"
 #include "plc_cell/fatek/client.h"
 #include "plc_cell/fatek/poll_plan.h"
+#include "plc_cell/ros/memory_services.h"
 
 namespace plc_cell {
 
-class FatekBridge {
+class FatekBridge : private MemoryAccess {
  public:
   // Reads ~tcp or ~port/~baud/~format, ~station, ~timeout, ~retries, ~io_rate,
   // ~max_backoff and ~config (YAML of signals and poll groups); throws on bad input.
@@ -46,15 +43,15 @@ class FatekBridge {
   void poll_group(Group& g);
   void fail(const std::string& what);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
-  bool on_write(WriteMemory::Request& req, WriteMemory::Response& res);
   bool on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool on_recover(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
-  // plc_node's ~read, ~force and ~release (fatek_bridge_services.cpp).
-  void advertise_plc_services(ros::NodeHandle& pnh);
-  Address resolve(const std::string& text) const;  // a signal name or an address
-  bool on_read(ReadMemory::Request& req, ReadMemory::Response& res);
-  bool on_force(ForceDiscrete::Request& req, ForceDiscrete::Response& res);
-  bool on_release(ReleaseDiscrete::Request& req, ReleaseDiscrete::Response& res);
+  // plc_node's ~read, ~write, ~force and ~release over the link (fatek_bridge_services.cpp,
+  // ros/memory_services.h).
+  Address resolve(const std::string& text) const override;
+  std::vector<uint32_t> read(const Address& start, uint32_t count) override;
+  void write(const Address& start, const std::vector<uint32_t>& raw) override;
+  void force(const Address& bit, bool value) override;
+  std::vector<Address> release(const Address* bit) override;
   void publish_signal(size_t i, bool on, const ros::Time& stamp);
 
   std::unique_ptr<fatek::Client> client_;

@@ -13,20 +13,17 @@
 #include <std_msgs/Bool.h>
 #include <std_srvs/SetBool.h>
 
-#include "plc_cell/ForceDiscrete.h"
-#include "plc_cell/ReleaseDiscrete.h"
 #include "plc_cell/LoadProgram.h"
-#include "plc_cell/ReadMemory.h"
-#include "plc_cell/WriteMemory.h"
 #include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/io/server.h"
+#include "plc_cell/ros/memory_services.h"
 #include "plc_cell/ros/topic_group.h"
 #include "plc_cell/persist/persister.h"
 #include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 
-class PlcNode {
+class PlcNode : private MemoryAccess {
  public:
   // Reads ~program, ~cell, ~scan_period, ~io_rate, ~autostart; throws on bad input.
   PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
@@ -57,10 +54,12 @@ class PlcNode {
   void diagnose_forced(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void publish_forced(const ros::Time& stamp);
 
-  bool on_read(ReadMemory::Request& req, ReadMemory::Response& res);
-  bool on_write(WriteMemory::Request& req, WriteMemory::Response& res);
-  bool on_force(ForceDiscrete::Request& req, ForceDiscrete::Response& res);
-  bool on_release(ReleaseDiscrete::Request& req, ReleaseDiscrete::Response& res);
+  // ~read, ~write, ~force, ~release on the cell (ros/memory_services.h).
+  Address resolve(const std::string& text) const override;
+  std::vector<uint32_t> read(const Address& start, uint32_t count) override;
+  void write(const Address& start, const std::vector<uint32_t>& raw) override;
+  void force(const Address& bit, bool value) override;
+  std::vector<Address> release(const Address* bit) override;
   bool on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool on_load(LoadProgram::Request& req, LoadProgram::Response& res);
 
