@@ -5,6 +5,7 @@ add_library(plc_cell_fatek STATIC
   src/fatek/slave.cpp
   src/fatek/serial_port.cpp
   src/fatek/server.cpp
+  src/fatek/server_kind.cpp
   src/fatek/client.cpp
   src/fatek/poll_plan.cpp
   src/fatek/clink.cpp)
@@ -12,7 +13,6 @@ target_link_libraries(plc_cell_fatek PUBLIC plc_cell_config)
 set_target_properties(plc_cell_fatek PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/fatek_command.cpp)
-list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/ros/fatek_params.cpp)
 list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_fatek)
 
 if(CATKIN_ENABLE_TESTING)

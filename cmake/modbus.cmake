@@ -10,6 +10,7 @@ add_library(plc_cell_modbus STATIC
   src/modbus/tcp_server.cpp
   src/modbus/rtu_server.cpp
   src/modbus/slave_servers.cpp
+  src/modbus/server_kind.cpp
   src/modbus/codec.cpp
   src/modbus/bridge_config.cpp
   src/modbus/bridge.cpp
@@ -31,9 +32,6 @@ if(CATKIN_ENABLE_TESTING)
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
   add_dependencies(modbus_tests plc_cell_tool)
 endif()
-
-list(APPEND PLC_CELL_TOOL_SOURCES src/cli/modbus_options.cpp)
-list(APPEND PLC_CELL_NODE_SOURCES src/ros/modbus_params.cpp)
 
 # ---- modbus_bridge: ROS node over the bus-side Bridge ------------------------
 add_executable(modbus_bridge src/ros/modbus_bridge_main.cpp src/ros/modbus_bridge_node.cpp)

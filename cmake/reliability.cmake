@@ -15,7 +15,7 @@ list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/io/stop_signal.cpp)
 if(CATKIN_ENABLE_TESTING)
   file(GLOB RELIABILITY_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/reliability/*_test.cpp)
   catkin_add_gtest(reliability_tests test/core/test_main.cpp ${RELIABILITY_TESTS} src/io/stop_signal.cpp WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(reliability_tests plc_cell_persist plc_cell_fatek plc_cell_modbus plc_cell_sim)
+  target_link_libraries(reliability_tests plc_cell_runtime)
   target_compile_definitions(reliability_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")

@@ -5,8 +5,8 @@
 #include "args.h"
 #include "commands.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/comm/protocol_functions.h"
-#include "plc_cell/sim/soft_cell.h"
+#include "cell_options.h"
+#include "plc_cell/runtime/cell.h"
 
 namespace plc_cell {
 namespace cli {
@@ -16,8 +16,8 @@ int cmd_check(const std::vector<std::string>& argv) {
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   if (!args.has("config")) args.require("program");
   try {
-    // The same SoftCell as sim/run/plc_node; only FUN150/151 get no ports (nothing is opened).
-    SoftCell cell(args.get("config"), args.get("program"), check_protocol_functions);
+    // The same Cell as sim/run/plc_node; only FUN150/151 get no ports (nothing is opened).
+    Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Check);
     const auto size = cell.plc().locked([](ScanEngine& e, Memory&) {
       return std::make_pair(e.program().code.size(), e.program().labels.size());
     });

@@ -5,13 +5,9 @@
 
 #include "args.h"
 #include "plc_cell/config/cell_config.h"
-#include "plc_cell/config/server_settings.h"
-#include "plc_cell/core/writable_ranges.h"
 #include "commands.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/client.h"
-#include "plc_cell/fatek/server.h"
 
 namespace plc_cell {
 namespace cli {
@@ -127,28 +123,6 @@ int cmd_fatek(const std::vector<std::string>& argv) {
     return 1;
   }
   return 0;
-}
-
-void add_fatek_servers(const Args& args, const ServerSettings& yaml, Plc& plc,
-                       std::vector<std::unique_ptr<Server>>* servers) {
-  const auto& y = yaml.fatek;
-  const int station = args.has("station") ? parse_int(args.get("station"), "--station", 1, 254) : y.station;
-  fatek::ServerPolicy p;
-  p.writable = WritableRanges::parse(args.has("fatek-writable") ? args.get("fatek-writable") : y.writable);
-  p.max_connections = args.has("fatek-max-connections")
-                          ? parse_int(args.get("fatek-max-connections"), "--fatek-max-connections", 1, 1024)
-                          : y.max_connections;
-  p.idle_timeout_ms = y.idle_timeout_ms;
-  if (args.has("fatek-idle-timeout")) {
-    const uint64_t us = parse_duration_us(args.get("fatek-idle-timeout"));
-    if (us < 1000 || us > 86400000000ull) throw UsageError("--fatek-idle-timeout must be between 1ms and 24h");
-    p.idle_timeout_ms = int(us / 1000);
-  }
-  std::vector<std::string> tcp = args.all("fatek-tcp"), serial = args.all("fatek-serial");
-  if (tcp.empty() && !y.tcp.empty()) tcp.push_back(y.tcp);
-  if (serial.empty() && !y.serial.empty()) serial.push_back(y.serial);
-  for (const auto& hp : tcp) servers->push_back(fatek::make_tcp_server(plc, hp, station, p));
-  for (const auto& dev : serial) servers->push_back(fatek::make_serial_server(plc, dev, station, p));
 }
 
 }  // namespace cli

@@ -5,6 +5,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "plc_cell/runtime/cell.h"
 #include "plc_cell/core/error.h"
 
 namespace {
@@ -24,26 +25,45 @@ const char* kUsage =
     "         [--retries N] status|run|stop|read ADDR [COUNT]|write ADDR VALUE...|\n"
     "         force ADDR on|off|enable|disable|disabled ADDR [COUNT]|loopback TEXT\n"
     "         talk to a FATEK FBs-PLC (or plc_cell run --fatek-tcp/--fatek-serial)\n"
-    "  run    ... [--fatek-tcp HOST:PORT] [--fatek-serial DEV[:BAUD[:FMT]]] [--station N]\n"
-    "         also serve the FATEK protocol as slave station N (default 1)\n"
-    "  run    ... [--modbus-tcp HOST:PORT] [--modbus-rtu DEV[:BAUD[:FMT]]] [--modbus-id N]\n"
-    "         [--modbus-gateway DEV[:BAUD[:FMT]] --modbus-gateway-wait MS --modbus-gateway-retries N]\n"
-    "         also serve Modbus (FBs address map) and forward other unit ids to RTU\n"
-    "  run    ... [--fatek-writable RANGES] [--fatek-max-connections N] [--fatek-idle-timeout DURATION]\n"
-    "         [--modbus-writable RANGES] [--modbus-max-connections N] [--modbus-idle-timeout DURATION]\n"
-    "         RANGES: D0-D99,M800-M899 | none | all (default); writes elsewhere are refused\n"
     "  run    ... [--persist FILE] [--persist-interval DURATION]\n"
     "         keep the retentive ranges in FILE across restarts and crashes (default 100ms)\n"
+    "  run    ... [--SERVER-SETTING VALUE ...]   serve the cell's protocols (below); each\n"
+    "         option overrides the cell YAML's servers.SERVER.SETTING\n";
 
-    "\n"
-    "exit status: 0 ok, 1 program/config/runtime error, 2 usage error\n";
+const char* placeholder(plc_cell::SettingType t) {
+  using plc_cell::SettingType;
+  switch (t) {
+    case SettingType::HostPort: return "HOST:PORT";
+    case SettingType::SerialLine: return "DEV[:BAUD[:FMT]]";
+    case SettingType::Integer: return "N";
+    case SettingType::Duration: return "DURATION";
+    case SettingType::Writable: return "RANGES";
+    case SettingType::Text: break;
+  }
+  return "TEXT";
+}
+
+// The server options come from the server kinds' schemas: a new kind lists itself.
+void usage(std::ostream& out) {
+  out << kUsage;
+  for (const auto& k : plc_cell::Cell::server_kinds()) {
+    out << "\n" << k.title << ":\n";
+    for (const auto& s : k.settings) {
+      std::string names = k.option(s) + " " + placeholder(s.type);
+      if (!s.cli_alias.empty()) names += " (or --" + s.cli_alias + ")";
+      if (!s.fallback.empty()) names += " [" + s.fallback + "]";
+      out << "  " << names << "\n      " << s.help << "\n";
+    }
+  }
+  out << "\nexit status: 0 ok, 1 program/config/runtime error, 2 usage error\n";
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
-    std::cout << kUsage;
+    usage(std::cout);
     return args.empty() ? 2 : 0;
   }
   const std::string cmd = args[0];
@@ -54,10 +74,12 @@ int main(int argc, char** argv) {
     if (cmd == "check") return plc_cell::cli::cmd_check(args);
     // @commands: subsystems dispatch their commands here
     if (cmd == "fatek") return plc_cell::cli::cmd_fatek(args);
-    std::cerr << "plc_cell: unknown command '" << cmd << "'\n" << kUsage;
+    std::cerr << "plc_cell: unknown command '" << cmd << "'\n";
+    usage(std::cerr);
     return 2;
   } catch (const plc_cell::cli::UsageError& e) {
-    std::cerr << "plc_cell " << cmd << ": " << e.what() << "\n" << kUsage;
+    std::cerr << "plc_cell " << cmd << ": " << e.what() << "\n";
+    usage(std::cerr);
     return 2;
   } catch (const plc_cell::Error& e) {
     std::cerr << e.what() << "\n";

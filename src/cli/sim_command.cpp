@@ -5,10 +5,10 @@
 #include <sstream>
 
 #include "args.h"
+#include "cell_options.h"
 #include "commands.h"
-#include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/sim/soft_cell.h"
+#include "plc_cell/runtime/cell.h"
 #include "plc_cell/sim/virtual_run.h"
 
 namespace plc_cell {
@@ -24,9 +24,8 @@ int cmd_sim(const std::vector<std::string>& argv) {
   Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   const uint64_t duration = parse_duration_us(args.require("duration"));
-  SoftCell cell(args.get("config"), args.get("program"), install_protocol_functions);
-  const uint64_t scan = args.has("scan") ? parse_duration_us(args.get("scan")) : cell.config().scan_period_us;
-  if (scan == 0) throw UsageError("--scan must be positive");
+  Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Simulate);
+  const uint64_t scan = cell.scan_period_us();
 
   Plc& plc = cell.plc();
   for (const auto& s : args.all("set")) {

@@ -259,11 +259,4 @@ std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_s
 
 }  // namespace fatek
 
-std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station,
-                                          const fatek::ServerPolicy& policy) {
-  if (kind == "tcp") return fatek::make_tcp_server(plc, where, station, policy);
-  if (kind == "serial") return fatek::make_serial_server(plc, where, station, policy);
-  throw Error("FATEK server kind '" + kind + "' (expected tcp or serial)");
-}
-
 }  // namespace plc_cell

@@ -1,4 +1,3 @@
-#include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/ros/plc_node.h"
 
 #include <sstream>
@@ -19,23 +18,18 @@
 namespace plc_cell {
 
 PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::WallTime::now()), updater_(nh, pnh) {
-  std::string program, cell;
-  pnh.param<std::string>("program", program, "");
+  std::string cell;
   pnh.param<std::string>("cell", cell, "");
-  cell_ = std::make_unique<SoftCell>(cell, program, install_protocol_functions);
+  cell_ = std::make_unique<Cell>(cell, cell_overrides(pnh), Cell::Purpose::Serve,
+                                 [](const std::string& l) { ROS_INFO("plc_node: %s", l.c_str()); });
   program_path_ = cell_->program_path();
   const CellConfig& cfg = cell_->config();
+  const double scan_period = double(cell_->scan_period_us()) / 1e6;
 
-  double scan_period = double(cfg.scan_period_us) / 1e6, io_rate = 10.0;
+  double io_rate = 10.0;
   bool autostart = true;
-  int rt_priority = 0;
-  pnh.param("scan_period", scan_period, scan_period);
-  pnh.param("rt_priority", rt_priority, rt_priority);
-  if (rt_priority < 0 || rt_priority > 99) throw Error("~rt_priority must be 0 (normal) or 1..99 (SCHED_FIFO)");
   pnh.param("io_rate", io_rate, io_rate);
   pnh.param("autostart", autostart, autostart);
-  if (!(scan_period >= 0.0001 && scan_period <= 1.0))
-    throw Error("~scan_period " + std::to_string(scan_period) + " s out of range [0.0001, 1]");
   if (!(io_rate > 0 && io_rate <= 1000)) throw Error("~io_rate must be in (0, 1000] Hz");
 
   frame_id_ = frame_id_param(pnh);
@@ -53,7 +47,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
     input_subs_.push_back(pnh.subscribe<std_msgs::Bool>(
         "inputs/" + name, 10, [this, x, name](const std_msgs::Bool::ConstPtr& m) {
           cell_->plc().locked([&](ScanEngine& e, Memory&) {
-            cell_->simulation().release(x);  // the topic now plays this sensor
+            cell_->soft().simulation().release(x);  // the topic now plays this sensor
             e.set_input(x, m->data);
             return 0;
           });
@@ -64,15 +58,15 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
   pnh.param("counter_rate", counter_rate, counter_rate);
-  topic_groups_.add(std::make_unique<CounterTopics>(pnh, *cell_, counter_rate));
-  topic_groups_.add(std::make_unique<MotionTopics>(nh, pnh, *cell_, pnh.param("motion_rate", 50.0)));
+  topic_groups_.add(std::make_unique<CounterTopics>(pnh, cell_->soft(), counter_rate));
+  topic_groups_.add(std::make_unique<MotionTopics>(nh, pnh, cell_->soft(), pnh.param("motion_rate", 50.0)));
 
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);
   updater_.add("forced points", this, &PlcNode::diagnose_forced);
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   pnh.param("virtual_time", virtual_time_, false);
-  add_register_topics(pnh, *cell_, &topic_groups_);
+  add_register_topics(pnh, cell_->soft(), &topic_groups_);
   // Virtual time publishes every change with its scan's stamp, and nothing else: the
   // periodic republish would add wall-clock stamps to a replay.
   if (!virtual_time_) io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {
@@ -85,34 +79,14 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
     publish(s, false);
   });
 
-  // Retentive memory from the last run, before the first scan and the first request.
-  PersistSettings keep = cfg.persist;
-  pnh.param<std::string>("persist_file", keep.file, keep.file);
-  double persist_interval = double(keep.interval_us) / 1e6;
-  pnh.param("persist_interval", persist_interval, persist_interval);
-  if (!(persist_interval >= 0.001 && persist_interval <= 60)) throw Error("~persist_interval must be in [0.001, 60] s");
-  keep.interval_us = uint64_t(persist_interval * 1e6);
-  if (!keep.file.empty()) {
-    persister_ = std::make_unique<persist::Persister>(cell_->plc(), keep, [](const std::string& l) {
-      ROS_INFO("plc_node: %s", l.c_str());
-    });
-    updater_.add("persistence", this, &PlcNode::diagnose_persist);
-  }
-
-  // @node-servers: subsystems create their servers from ~parameters here (servers_.push_back(...))
-  const ServerSettings& from_yaml = cell_->servers();  // read (and checked) with the cell
-  add_fatek_servers(cell_->plc(), pnh, from_yaml, &servers_);
-  add_modbus_servers(cell_->plc(), pnh, from_yaml, &servers_);
-  if (cell_->temperature()) topic_groups_.add(std::make_unique<TemperatureRos>(pnh, *cell_, updater_));
-  for (auto& s : servers_) {
-    s->start();
-    ROS_INFO("plc_node: serving %s", s->describe().c_str());
-  }
-  if (!servers_.empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
+  if (cell_->persister()) updater_.add("persistence", this, &PlcNode::diagnose_persist);
+  if (cell_->soft().temperature()) topic_groups_.add(std::make_unique<TemperatureRos>(pnh, cell_->soft(), updater_));
+  cell_->start_servers([](const Server& s) { ROS_INFO("plc_node: serving %s", s.describe().c_str()); });
+  if (!cell_->servers().empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
 
   if (autostart && !cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program");
   if (virtual_time_) {
-    start_virtual_time(pnh, uint64_t(scan_period * 1e6 + 0.5));
+    start_virtual_time(pnh, cell_->scan_period_us());
     ROS_INFO("plc_node: cell '%s', program %s, scan %.3f ms of virtual time, %s", cfg.name.c_str(),
              program_path_.c_str(), scan_period * 1e3, autostart ? "RUN" : "STOP");
     return;
@@ -120,20 +94,14 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   // In virtual time the scans publish the groups (on_clock); a timer would stamp them now.
   topic_groups_.start_timers(nh);
   publisher_ = std::thread([this] { publisher_loop(); });
-  loop_ = std::make_unique<RealTimeLoop>(cell_->plc(),
-                                         std::chrono::nanoseconds(int64_t(scan_period * 1e9)));
-  loop_->set_after_scan([this] { after_scan(); });
-  loop_->set_priority(rt_priority);
-  loop_->start();
+  cell_->start_scanning([this] { after_scan(); });
   ROS_INFO("plc_node: cell '%s', program %s, scan %.3f ms, %s", cfg.name.c_str(), program_path_.c_str(),
            scan_period * 1e3, autostart ? "RUN" : "STOP");
 }
 
 PlcNode::~PlcNode() {
-  for (auto& s : servers_) s->stop();
-  if (loop_) loop_->stop();
-  services_.clear();
-  persister_.reset();  // after every writer stopped: the newest image goes to disk
+  services_.clear();  // no request writes into a stopping cell
+  cell_->stop();      // servers, scans, then the store's last image
   {
     std::lock_guard<std::mutex> lk(snap_mu_);
     stopping_ = true;
@@ -248,7 +216,7 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
 // when the server recovers (it reopens the device by itself).
 void PlcNode::diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   std::string down;
-  for (const auto& s : servers_) {
+  for (const auto& s : cell_->servers()) {
     const ServerStatus st = s->status();
     const std::string name = s->describe();
     if (!st.running || !st.link_up) down += (down.empty() ? "" : "; ") + name + ": " + st.last_error;
@@ -300,7 +268,7 @@ void PlcNode::diagnose_forced(diagnostic_updater::DiagnosticStatusWrapper& stat)
 }
 
 void PlcNode::diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat) {
-  const persist::PersistStatus p = persister_->status();
+  const persist::PersistStatus p = cell_->persister()->status();
   if (!p.error.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, p.error);
   else if (!p.problems.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "started from a fallback copy");
   else stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "retentive ranges persisted");

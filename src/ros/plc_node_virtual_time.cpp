@@ -41,7 +41,7 @@ void PlcNode::start_virtual_time(ros::NodeHandle& pnh, uint64_t period_us) {
 void PlcNode::on_stamped_input(uint32_t x, uint64_t stamp_us, bool v) {
   if (!virtual_time_) {
     cell_->plc().locked([&](ScanEngine& e, Memory&) {
-      cell_->simulation().release(x);
+      cell_->soft().simulation().release(x);
       e.set_input(x, v);
       return 0;
     });
@@ -65,7 +65,7 @@ void PlcNode::on_clock(uint64_t now_us) {
     size_t k = 0;
     cell_->plc().locked([&](ScanEngine& e, Memory&) {
       for (; k < pending_.size() && pending_[k].stamp_us <= t; ++k) {
-        cell_->simulation().release(pending_[k].x);  // the topic now plays this sensor
+        cell_->soft().simulation().release(pending_[k].x);  // the topic now plays this sensor
         e.set_input(pending_[k].x, pending_[k].v);
       }
       return 0;

@@ -32,11 +32,11 @@ FunctionTable SoftCell::functions_for(const CellConfig& cfg, const CellFunctionI
 }
 
 SoftCell::SoftCell(const std::string& config_path, const std::string& program_path,
-                   const CellFunctionInstaller& install)
+                   const CellFunctionInstaller& install, const std::vector<CellSection>& sections)
     : config_(config_path.empty() ? CellConfig() : load_cell_config(config_path, &errors_)),
       plc_(functions_for(config_, install, &installed_, &errors_, &functions_complete_)) {
   try {
-    build(program_path);
+    build(program_path, sections);
   } catch (...) {
     release();
     throw;
@@ -45,7 +45,7 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
 
 // Each subsystem reads its own section; a section in error leaves its subsystem as an
 // empty one, so the sections after it are still read and reported.
-void SoftCell::build(const std::string& program_path) {
+void SoftCell::build(const std::string& program_path, const std::vector<CellSection>& sections) {
   const std::string& file = config_.file;
   ErrorList& errors = errors_;
   program_path_ = program_path.empty() ? config_.program : program_path;
@@ -62,7 +62,7 @@ void SoftCell::build(const std::string& program_path) {
     if (pwmda_) e.add_hook(pwmda_.get());
     return 0;
   });
-  errors.collect([&] { servers_ = parse_server_settings(config_); }, file, section(config_, "servers"));
+  for (const auto& s : sections) errors.collect([&] { s.read(config_); }, file, section(config_, s.name.c_str()));
   const YAML::Node counters = section(config_, "counters");
   hsc::HscConfig hc;
   if (!errors.collect([&] { hc = hsc::parse_hsc_config(counters, file); }, file, counters)) hc = hsc::HscConfig();

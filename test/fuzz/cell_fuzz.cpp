@@ -3,8 +3,8 @@
 // the DOG, counters in every mode, interrupts, modules with PID, FUN150/151), and the
 // wired axes' invariants are checked (cell_invariants.h). Any other input is a cell as
 // text, "<yaml>\n%%IL%%\n<il>\n%%RUN%%\n<bytes>", mutated from the examples/ seeds.
-// Both are built the way `plc_cell sim` builds a cell (SoftCell with the protocol
-// functions, RUN, VirtualRun). A cell the builder rejects must throw with a message; a
+// Both are built the way `plc_cell sim` builds a cell (a Cell for simulation: the
+// protocol functions with their ports, the servers made and not started; RUN, VirtualRun). A cell the builder rejects must throw with a message; a
 // crash, sanitizer report, invariant violation or a virtual second slower than the budget
 // is a finding.
 #include <fuzzer/FuzzedDataProvider.h>
@@ -22,8 +22,7 @@
 #include "cell_generator.h"
 #include "cell_invariants.h"
 #include "plc_cell/core/address.h"
-#include "plc_cell/comm/protocol_functions.h"
-#include "plc_cell/sim/soft_cell.h"
+#include "plc_cell/runtime/cell.h"
 #include "plc_cell/sim/virtual_run.h"
 
 namespace {
@@ -74,12 +73,18 @@ void run_bounded(plc_cell::Plc& plc, uint64_t span_us, uint64_t scan_us) {
   }
 }
 
+plc_cell::CellOverrides program(const std::string& path) {
+  plc_cell::CellOverrides o;
+  o.program = path;
+  return o;
+}
+
 // The one place the target builds a cell, as `plc_cell sim` does (src/cli/sim_command.cpp).
 struct BuiltCell {
-  plc_cell::SoftCell cell;
+  plc_cell::Cell cell;
   BuiltCell(const std::string& yaml, const std::string& il)
       : cell((write(scratch() + "/cell.yaml", yaml), write(scratch() + "/cell.il", il), scratch() + "/cell.yaml"),
-             scratch() + "/cell.il", plc_cell::install_protocol_functions) {}
+             program(scratch() + "/cell.il"), plc_cell::Cell::Purpose::Simulate) {}
 };
 
 void run_text_cell(const std::string& yaml, const std::string& il, uint64_t span_us, uint64_t scan_us) {
@@ -90,7 +95,7 @@ void run_text_cell(const std::string& yaml, const std::string& il, uint64_t span
 
 void run_generated(const plc_cell_fuzz::GeneratedCell& g) {
   BuiltCell b(g.yaml, g.il);
-  plc_cell_fuzz::WiredAxisCheck check(b.cell, g.wired);
+  plc_cell_fuzz::WiredAxisCheck check(b.cell.soft(), g.wired);
   if (!b.cell.plc().set_mode(plc_cell::RunMode::Run)) return;
   run_bounded(b.cell.plc(), g.span_us, g.scan_us);
   check.check_at_rest();

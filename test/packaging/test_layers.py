@@ -25,6 +25,8 @@ BELOW = {
     "modbus": {"core", "io", "config"},
     # FUN150/151: the cell's ports reach both protocol masters.
     "comm": {"core", "io", "config", "fatek", "modbus"},
+    # The composition root: the Cell sits on every library layer.
+    "runtime": {"core", "io", "config", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus", "comm"},
     "cli": None,  # the tool and the nodes sit on top and may use any layer
     "ros": None,
 }

@@ -1,13 +1,14 @@
-// The cell YAML's servers: section: parsed with file:line errors, used by `plc_cell run`,
-// each field overridden by its command-line option.
+// The cell YAML's servers: section, read against the server kinds' schemas with
+// file:line errors, used by `plc_cell run`, each field overridden by its command-line option.
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "plc_cell/config/server_settings.h"
+#include "plc_cell/config/server_kind.h"
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/fatek/client.h"
+#include "plc_cell/runtime/cell.h"
 #include "run_child.h"
 #include "temp_dir.h"
 
@@ -15,7 +16,15 @@ using namespace plc_cell;
 
 namespace {
 
-ServerSettings parse(const std::string& yaml) { return parse_server_settings(parse_cell_config(yaml, "cell.yaml")); }
+struct Parsed {
+  std::map<std::string, Settings> kinds;
+  const Settings& fatek() const { return kinds.at("fatek"); }
+  const Settings& modbus() const { return kinds.at("modbus"); }
+};
+
+Parsed parse(const std::string& yaml) {
+  return {merge_server_settings(Cell::server_kinds(), parse_cell_config(yaml, "cell.yaml"))};
+}
 
 std::string error_of(const std::string& yaml) {
   try {
@@ -33,20 +42,21 @@ TEST(ServerSettings, ParsesBothProtocols) {
       "servers:\n"
       "  fatek: {tcp: ':500', station: 3, writable: [D0-D9, M800], max_connections: 2, idle_timeout: 5s}\n"
       "  modbus: {tcp: '0.0.0.0:502', rtu: /dev/ttyS1, id: 7, writable: none, idle_timeout: 250ms}\n");
-  EXPECT_EQ(s.fatek.tcp, ":500");
-  EXPECT_EQ(s.fatek.station, 3);
-  EXPECT_EQ(s.fatek.writable, "D0-D9,M800");
-  EXPECT_EQ(s.fatek.max_connections, 2);
-  EXPECT_EQ(s.fatek.idle_timeout_ms, 5000);
-  EXPECT_EQ(s.modbus.tcp, "0.0.0.0:502");
-  EXPECT_EQ(s.modbus.rtu, "/dev/ttyS1");
-  EXPECT_EQ(s.modbus.id, 7);
-  EXPECT_EQ(s.modbus.writable, "none");
-  EXPECT_EQ(s.modbus.max_connections, 16);
-  EXPECT_EQ(s.modbus.idle_timeout_ms, 250);
+  EXPECT_EQ(s.fatek().text("tcp"), ":500");
+  EXPECT_EQ(s.fatek().integer("station"), 3);
+  EXPECT_EQ(s.fatek().text("writable"), "D0-D9,M800");
+  EXPECT_EQ(s.fatek().integer("max_connections"), 2);
+  EXPECT_EQ(s.fatek().duration_us("idle_timeout") / 1000, 5000u);
+  EXPECT_EQ(s.modbus().text("tcp"), "0.0.0.0:502");
+  EXPECT_EQ(s.modbus().text("rtu"), "/dev/ttyS1");
+  EXPECT_EQ(s.modbus().integer("id"), 7);
+  EXPECT_EQ(s.modbus().text("writable"), "none");
+  EXPECT_EQ(s.modbus().integer("max_connections"), 16);
+  EXPECT_EQ(s.modbus().duration_us("idle_timeout") / 1000, 250u);
   const auto none = parse("cell: {name: x}\n");
-  EXPECT_TRUE(none.fatek.tcp.empty() && none.fatek.serial.empty() && none.modbus.tcp.empty() && none.modbus.rtu.empty());
-  EXPECT_EQ(none.fatek.writable, "all");
+  EXPECT_TRUE(none.fatek().text("tcp").empty() && none.fatek().text("serial").empty() && none.modbus().text("tcp").empty() &&
+              none.modbus().text("rtu").empty());
+  EXPECT_EQ(none.fatek().text("writable"), "all");
 }
 
 TEST(ServerSettings, ErrorsNameTheLineAndKey) {

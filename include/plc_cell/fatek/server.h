@@ -106,8 +106,4 @@ std::unique_ptr<Server> make_serial_server(Plc& plc, const std::string& device_s
 
 }  // namespace fatek
 
-// kind "tcp" or "serial"; for plc_node, which declares it at its @node-servers anchor.
-std::unique_ptr<Server> make_fatek_server(Plc& plc, const std::string& kind, const std::string& where, int station,
-                                          const fatek::ServerPolicy& policy = {});
-
 }  // namespace plc_cell

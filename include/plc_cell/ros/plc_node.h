@@ -1,6 +1,6 @@
 #pragma once
-// plc_node: the soft PLC on ROS. A thin layer: SoftCell does the work, this class
-// maps it to topics, services and /diagnostics.
+// plc_node: the soft PLC on ROS. A thin layer: the Cell (runtime/cell.h) does the work,
+// this class maps it to topics, services and /diagnostics.
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -14,18 +14,16 @@
 #include <std_srvs/SetBool.h>
 
 #include "plc_cell/LoadProgram.h"
-#include "plc_cell/core/realtime_loop.h"
-#include "plc_cell/io/server.h"
 #include "plc_cell/ros/memory_services.h"
 #include "plc_cell/ros/topic_group.h"
-#include "plc_cell/persist/persister.h"
-#include "plc_cell/sim/soft_cell.h"
+#include "plc_cell/runtime/cell.h"
 
 namespace plc_cell {
 
 class PlcNode : private MemoryAccess {
  public:
-  // Reads ~program, ~cell, ~scan_period, ~io_rate, ~autostart; throws on bad input.
+  // Reads ~cell, the cell's overrides (ros/server_params.h), ~io_rate, ~autostart and the
+  // topics' parameters; throws on bad input.
   PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   ~PlcNode();
 
@@ -63,10 +61,7 @@ class PlcNode : private MemoryAccess {
   bool on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool on_load(LoadProgram::Request& req, LoadProgram::Response& res);
 
-  std::unique_ptr<SoftCell> cell_;
-  std::unique_ptr<persist::Persister> persister_;  // ~persist_file / plc.persist; may be null
-  std::unique_ptr<RealTimeLoop> loop_;
-  std::vector<std::unique_ptr<Server>> servers_;  // protocol servers on this PLC
+  std::unique_ptr<Cell> cell_;  // the PLC, its servers, store and scan loop
   // Counters (with their services), axes (services, action), ~registers/<group> and
   // temperatures (~set_pid_loop): the topics read from the cell at a rate. Before the
   // timers, subscriptions and updater_ that call into the groups: destroyed after them.

@@ -1,23 +1,15 @@
 #pragma once
-// Protocol servers that plc_node starts from its ~parameters (empty strings leave one off);
-// each parameter defaults to the cell YAML's servers: section.
-#include <memory>
-#include <vector>
-
+// plc_node's parameters as a cell's overrides: every server setting of Cell::server_kinds()
+// is a parameter ~<kind>_<key> (so a new server kind needs nothing here), and the run
+// settings are ~scan_period, ~rt_priority, ~persist_file and ~persist_interval (s).
 #include <ros/node_handle.h>
 
-#include "plc_cell/config/server_settings.h"
-#include "plc_cell/core/plc.h"
-#include "plc_cell/io/server.h"
+#include "plc_cell/runtime/cell.h"
 
 namespace plc_cell {
 
-using ServerList = std::vector<std::unique_ptr<Server>>;
-
-// ~fatek_tcp (HOST:PORT), ~fatek_serial (DEVICE[:BAUD[:FORMAT]]), ~fatek_station.
-void add_fatek_servers(Plc& plc, ros::NodeHandle& pnh, const ServerSettings& yaml, ServerList* servers);
-// ~modbus_tcp, ~modbus_rtu, ~modbus_id, ~modbus_max_connections, ~modbus_idle_timeout,
-// ~modbus_gateway, ~modbus_gateway_wait (s), ~modbus_gateway_retries.
-void add_modbus_servers(Plc& plc, ros::NodeHandle& pnh, const ServerSettings& yaml, ServerList* servers);
+// The parameters that are set, as text with their names as origins; ~program too.
+// Throws plc_cell::Error for a parameter no longer read, naming its replacement.
+CellOverrides cell_overrides(const ros::NodeHandle& pnh);
 
 }  // namespace plc_cell

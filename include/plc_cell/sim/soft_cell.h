@@ -10,7 +10,6 @@
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
-#include "plc_cell/config/server_settings.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/simulated_cell.h"
 #include "plc_cell/temp/pwmda.h"
@@ -31,6 +30,13 @@ class MotionUnit;
 using CellFunctionInstaller =
     std::function<std::vector<std::shared_ptr<void>>(const CellConfig&, FunctionTable&)>;
 
+// A section of the cell YAML that a layer above the simulation reads (the protocol
+// servers' `servers:`): read with the other sections, so its errors are listed with theirs.
+struct CellSection {
+  std::string name;
+  std::function<void(const CellConfig&)> read;  // throws plc_cell::Error or SourceError
+};
+
 class SoftCell {
  public:
   // config_path may be empty (no signals, no simulation); program_path overrides the
@@ -39,7 +45,7 @@ class SoftCell {
   // sound); one SourceError lists every error found, each with file:line:column.
   // A config or program that cannot be opened, or "no program", throws at once.
   SoftCell(const std::string& config_path, const std::string& program_path,
-           const CellFunctionInstaller& install = {});
+           const CellFunctionInstaller& install = {}, const std::vector<CellSection>& sections = {});
   // The instruction set of a cell of generation g (modules.generation): the core's
   // plus the subsystems' FUNs.
   static FunctionTable functions(temp::Generation g = temp::Generation::FBs);
@@ -55,8 +61,6 @@ class SoftCell {
   // Pulse-output axes PSO0-PSO3 and FUN140 programs. Only touch it under plc().locked().
   motion::MotionUnit& motion() { return *motion_; }
   const std::string& program_path() const { return program_path_; }
-  // The config's `servers:` section (what `plc_cell run` and plc_node serve by default).
-  const ServerSettings& servers() const { return servers_; }
   // The temperature modules and thermal plants of `modules:`, or nullptr.
   temp::TemperatureCell* temperature() { return temperature_.get(); }
   temp::Rtc* rtc() { return rtc_.get(); }
@@ -65,7 +69,7 @@ class SoftCell {
  private:
   static FunctionTable functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
                                      std::vector<std::shared_ptr<void>>* keep, ErrorList* errors, bool* complete);
-  void build(const std::string& program_path);
+  void build(const std::string& program_path, const std::vector<CellSection>& sections);
   void release();  // hooks off the engine, port owners first
 
   ErrorList errors_;           // while building; before config_, which fills it
@@ -73,7 +77,6 @@ class SoftCell {
   CellConfig config_;
   std::vector<std::shared_ptr<void>> installed_;  // released first: ports stop before the PLC goes
   std::string program_path_;
-  ServerSettings servers_;
   Plc plc_;
   std::unique_ptr<SimulatedCell> sim_;
   std::unique_ptr<hsc::HscUnit> hsc_;  // after sim_: its hook sees the simulated inputs

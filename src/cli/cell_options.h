@@ -1,0 +1,21 @@
+#pragma once
+// The options through which `plc_cell run`, `sim` and `check` set a cell's run and server
+// settings. The server options come from Cell::server_kinds(): every setting of every
+// kind is an option --<kind>-<key>, so a new server kind needs nothing here.
+#include <string>
+#include <vector>
+
+#include "args.h"
+#include "plc_cell/runtime/cell.h"
+
+namespace plc_cell {
+namespace cli {
+
+// The option names (without --) of every server setting, aliases included.
+std::vector<std::string> server_options();
+// --program, --scan, --persist, --persist-interval, --rt-priority and the server options
+// given in args, each checked: a bad value is a UsageError naming the option.
+CellOverrides cell_overrides(const Args& args);
+
+}  // namespace cli
+}  // namespace plc_cell

@@ -1,0 +1,100 @@
+#include "plc_cell/runtime/cell.h"
+
+#include <algorithm>
+
+#include "plc_cell/comm/protocol_functions.h"
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+namespace {
+
+SettingSpec spec(const char* key, SettingType type, int64_t lo, int64_t hi, const char* help) {
+  SettingSpec s;
+  s.key = key, s.type = type, s.lo = lo, s.hi = hi, s.help = help;
+  return s;
+}
+
+// The last override of key, checked against its spec (every override is checked);
+// nullptr when none.
+const std::string* run_value(const std::vector<SettingOverride>& run, const std::string& key,
+                             std::string* checked) {
+  const std::string* out = nullptr;
+  for (const auto& o : run) {
+    const auto& specs = Cell::run_settings();
+    const auto s = std::find_if(specs.begin(), specs.end(), [&](const SettingSpec& x) { return x.key == o.key; });
+    if (s == specs.end()) throw Error(o.origin + ": no run setting '" + o.key + "'");
+    if (o.key != key) continue;
+    if (o.values.size() != 1) throw Error(o.origin + ": takes one value");
+    try {
+      *checked = check_setting(*s, o.values[0]);
+    } catch (const Error& e) {
+      throw Error(o.origin + " " + o.values[0] + ": " + e.what());
+    }
+    out = checked;
+  }
+  return out;
+}
+
+}  // namespace
+
+const std::vector<SettingSpec>& Cell::run_settings() {
+  // The bounds are the YAML's (plc.scan_period, plc.persist.interval): a value refused in
+  // the file is refused as an option or a parameter too.
+  static const std::vector<SettingSpec> specs = {
+      spec("scan_period", SettingType::Duration, 100, 1000000, "scan period (default plc.scan_period)"),
+      spec("rt_priority", SettingType::Integer, 0, 99, "SCHED_FIFO priority of the scan thread, 0 = normal"),
+      spec("persist_file", SettingType::Text, 0, 0, "retentive store (default plc.persist.file)"),
+      spec("persist_interval", SettingType::Duration, 1000, 60000000, "store flush interval (default plc.persist.interval)"),
+  };
+  return specs;
+}
+
+Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpose,
+           std::function<void(const std::string&)> log) {
+  const auto& kinds = server_kinds();
+  // Read with the YAML's other sections (errors listed together); the overrides are
+  // applied after the cell is built, so an error of the file comes first.
+  std::vector<CellSection> sections = {{"servers", [&](const CellConfig& cfg) { merge_server_settings(kinds, cfg); }}};
+  soft_ = std::make_unique<SoftCell>(config_path, o.program,
+                                     purpose == Purpose::Check ? check_protocol_functions : install_protocol_functions,
+                                     sections);
+  const CellConfig& cfg = soft_->config();
+  server_settings_ = merge_server_settings(kinds, cfg, o.servers);
+
+  std::string v;
+  scan_us_ = run_value(o.run, "scan_period", &v) ? parse_duration_us(v) : cfg.scan_period_us;
+  rt_priority_ = run_value(o.run, "rt_priority", &v) ? std::stoi(v) : 0;
+  persist_ = cfg.persist;
+  if (run_value(o.run, "persist_file", &v)) persist_.file = v;  // "" turns the store off
+  if (run_value(o.run, "persist_interval", &v)) persist_.interval_us = parse_duration_us(v);
+
+  for (const auto& k : kinds)
+    for (auto& s : k.make(plc(), server_settings_.at(k.name))) servers_.push_back(std::move(s));
+  // Retentive memory from the last run, before the first scan and the first request.
+  if (purpose == Purpose::Serve && !persist_.file.empty())
+    persister_ = std::make_unique<persist::Persister>(plc(), persist_, std::move(log));
+}
+
+Cell::~Cell() { stop(); }
+
+void Cell::start_servers(const std::function<void(const Server&)>& served) {
+  for (auto& s : servers_) {
+    s->start();
+    if (served) served(*s);
+  }
+}
+
+void Cell::start_scanning(std::function<void()> after_scan) {
+  loop_ = std::make_unique<RealTimeLoop>(plc(), std::chrono::microseconds(scan_us_));
+  if (after_scan) loop_->set_after_scan(std::move(after_scan));
+  loop_->set_priority(rt_priority_);
+  loop_->start();
+}
+
+void Cell::stop() {
+  for (auto& s : servers_) s->stop();
+  if (loop_) loop_->stop();
+  persister_.reset();  // after every writer stopped: the newest image goes to disk
+}
+
+}  // namespace plc_cell
