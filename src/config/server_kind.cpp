@@ -25,7 +25,7 @@ int64_t parse_integer(const std::string& text) {
   } catch (const std::exception&) {
     pos = 0;
   }
-  if (pos == 0 || pos != text.size()) throw Error("not an integer");
+  if (pos == 0 || pos != text.size()) throw Error("expected a whole number");
   return v;
 }
 
@@ -48,13 +48,18 @@ std::string check_setting(const SettingSpec& spec, const std::string& text) {
     case SettingType::Integer: {
       const int64_t v = parse_integer(text);
       if (v < spec.lo || v > spec.hi)
-        throw Error("out of range [" + std::to_string(spec.lo) + ", " + std::to_string(spec.hi) + "]");
+        throw Error("value out of range [" + std::to_string(spec.lo) + ", " + std::to_string(spec.hi) + "]");
       return std::to_string(v);
     }
     case SettingType::Duration: {
-      const uint64_t us = parse_duration_us(text);
+      uint64_t us = 0;
+      try {
+        us = parse_duration_us(text);
+      } catch (const Error& e) {
+        throw Error(std::string("expected a duration such as 60s or 250ms: ") + e.what());
+      }
       if (int64_t(us) < spec.lo || int64_t(us) > spec.hi)
-        throw Error("out of range [" + seconds(spec.lo) + ", " + seconds(spec.hi) + "] s");
+        throw Error("value out of range [" + seconds(spec.lo) + ", " + seconds(spec.hi) + "] s");
       return std::to_string(us) + "us";
     }
     case SettingType::Writable:
@@ -101,8 +106,9 @@ std::map<std::string, Settings> merge_server_settings(const std::vector<ServerKi
     for (const auto& s : k.settings)
       values[k.name][s.key] = s.fallback.empty() ? std::vector<std::string>{} : std::vector<std::string>{s.fallback};
 
-  const YAML::Node section = cfg.document.IsMap() ? cfg.document["servers"] : YAML::Node();
-  if (section) {
+  // A cell without a file has no document: every setting keeps its default.
+  const YAML::Node section = cfg.document.IsMap() ? cfg.document["servers"] : YAML::Node(YAML::NodeType::Undefined);
+  if (section.IsDefined()) {
     const YamlReader r(cfg.file);
     std::set<std::string> names;
     for (const auto& k : kinds) names.insert(k.name);

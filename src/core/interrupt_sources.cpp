@@ -1,5 +1,7 @@
 #include "plc_cell/core/interrupt_sources.h"
 
+#include <unordered_map>
+
 namespace plc_cell {
 namespace irq {
 
@@ -26,10 +28,15 @@ std::vector<std::string> source_labels(int s) {
 }
 
 int source_of_label(const std::string& label) {
-  for (int s = 0; s < kSourceCount; ++s)
-    for (const auto& l : source_labels(s))
-      if (l == label) return s;
-  return -1;
+  // Every label of the program is looked up when it loads: the table is built once.
+  static const std::unordered_map<std::string, int> table = [] {
+    std::unordered_map<std::string, int> t;
+    for (int s = 0; s < kSourceCount; ++s)
+      for (const auto& l : source_labels(s)) t.emplace(l, s);
+    return t;
+  }();
+  const auto it = table.find(label);
+  return it == table.end() ? -1 : it->second;
 }
 
 }  // namespace irq

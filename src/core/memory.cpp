@@ -63,7 +63,7 @@ void Memory::clear_non_retentive(const std::vector<AreaRange>& retentive) {
   for (int ai = 0; ai < kAreaCount; ++ai) {
     const Area a = static_cast<Area>(ai);
     const uint32_t n = area_size(a);
-    std::vector<bool> keep(n, false);
+    std::vector<uint8_t> keep(n, 0);  // bytes: read once per element of every area
     for (const auto& r : retentive)
       if (r.area == a)
         for (uint32_t i = r.first; i <= std::min(r.last, n - 1); ++i) keep[i] = true;

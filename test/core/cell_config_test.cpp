@@ -9,6 +9,7 @@
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/apply_config.h"
 #include "plc_cell/sim/simulated_cell.h"
+#include "plc_cell/runtime/cell.h"
 #include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/sim/virtual_run.h"
 
@@ -268,8 +269,9 @@ TEST(CellConfig, ListsEveryErrorOfTheFile) {
   }
 }
 
-// SoftCell reads the subsystems' sections after a failed one and the program after them.
-TEST(SoftCell, ReportsEverySectionAndTheProgram) {
+// A cell is built reading the subsystems' sections after a failed one, the servers' with
+// them, and the program after them.
+TEST(CellBuild, ReportsEverySectionAndTheProgram) {
   std::ofstream("/tmp/plc_cell_softcell_bad.il") << "ORG X0\nOUT Q1\nEND\n";
   std::ofstream("/tmp/plc_cell_softcell_bad.yaml")
       << "cell: {program: plc_cell_softcell_bad.il}\n"
@@ -279,7 +281,7 @@ TEST(SoftCell, ReportsEverySectionAndTheProgram) {
          "modules: {temperature: {modules: [{type: 7TC}]}}\n"
          "servers: {modbus: {id: 0}}\n";
   try {
-    SoftCell cell("/tmp/plc_cell_softcell_bad.yaml", "");
+    Cell cell("/tmp/plc_cell_softcell_bad.yaml", {}, Cell::Purpose::Check);
     FAIL() << "built";
   } catch (const SourceError& e) {
     const std::string w = e.what();

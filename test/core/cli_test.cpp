@@ -99,6 +99,30 @@ TEST(Cli, RunRejectsABadPriority) {
   EXPECT_EQ(tool("run --config " + kDemo + " --duration 10ms --rt-priority 100").status, 2);
 }
 
+// Every server setting is an option, from the server kinds' schemas, checked as the YAML's.
+TEST(Cli, ServerOptionsComeFromTheSchemas) {
+  const Result help = tool("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("--modbus-gateway-wait DURATION [150ms]"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--fatek-station N (or --station) [1]"), std::string::npos) << help.out;
+  const Result id = tool("run --config " + kDemo + " --duration 10ms --modbus-id 300");
+  EXPECT_EQ(id.status, 2);
+  EXPECT_NE(id.out.find("--modbus-id 300: value out of range [1, 247]"), std::string::npos) << id.out;
+  const Result ms = tool("run --config " + kDemo + " --duration 10ms --modbus-gateway-wait 150");
+  EXPECT_EQ(ms.status, 2);
+  EXPECT_NE(ms.out.find("--modbus-gateway-wait 150: value out of range [0.001, 60] s"), std::string::npos) << ms.out;
+  const Result twice = tool("run --config " + kDemo + " --duration 10ms --modbus-tcp :0 --modbus-tcp :1");
+  EXPECT_EQ(twice.status, 2);
+  EXPECT_NE(twice.out.find("--modbus-tcp given more than once"), std::string::npos) << twice.out;
+  const Result scan = tool("sim --config " + kDemo + " --duration 10ms --scan 2s");
+  EXPECT_EQ(scan.status, 2);
+  EXPECT_NE(scan.out.find("--scan 2s: value out of range [0.0001, 1] s"), std::string::npos) << scan.out;
+  const Result served = tool("run --config " + kDemo + " --duration 50ms --fatek-tcp 127.0.0.1:0 --station 7");
+  EXPECT_EQ(served.status, 0) << served.out;
+  EXPECT_NE(served.out.find("serving FATEK TCP 127.0.0.1:"), std::string::npos) << served.out;
+  EXPECT_NE(served.out.find("station 7"), std::string::npos) << served.out;
+}
+
 TEST(Cli, CheckKnowsEveryInstalledFunction) {
   const std::string prog = "/tmp/plc_cell_cli_funs.il";
   std::ofstream(prog) << "ORG M0\nLD M1\nLD M2\nFUN 151 Pt=1 MD=0 SR=R100 WR=R200 ACT=Y0 ERR=Y1 DN=Y2\n"

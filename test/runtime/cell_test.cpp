@@ -16,7 +16,7 @@ namespace {
 struct Files {
   TempDir dir;
   std::string yaml(const std::string& text) {
-    std::ofstream(dir.path() + "/p.il") << "LD M1924\nOUT Y0\nEND\n";
+    std::ofstream(dir.path() + "/p.il") << "ORG M1925\nOUT Y0\nEND\n";
     std::ofstream(dir.path() + "/cell.yaml") << "cell: {program: p.il}\n" << text;
     return dir.path() + "/cell.yaml";
   }
@@ -66,11 +66,11 @@ TEST(CellSettings, ABadOverrideNamesItsOriginAndValue) {
   const std::string cfg = f.yaml("");
   CellOverrides o;
   o.servers.push_back(over("modbus", "id", {"300"}, "--modbus-id"));
-  EXPECT_EQ(error_of(cfg, o), "--modbus-id 300: out of range [1, 247]");
+  EXPECT_EQ(error_of(cfg, o), "--modbus-id 300: value out of range [1, 247]");
   o.servers = {over("modbus", "gateway_wait", {"150"}, "~modbus_gateway_wait")};
-  EXPECT_EQ(error_of(cfg, o), "~modbus_gateway_wait 150: out of range [0.001, 60] s");
+  EXPECT_EQ(error_of(cfg, o), "~modbus_gateway_wait 150: value out of range [0.001, 60] s");
   o.servers = {over("fatek", "idle_timeout", {"forever"}, "--fatek-idle-timeout")};
-  EXPECT_NE(error_of(cfg, o).find("--fatek-idle-timeout forever: bad duration 'forever'"), std::string::npos);
+  EXPECT_NE(error_of(cfg, o).find("--fatek-idle-timeout forever: expected a duration such as 60s or 250ms: bad duration 'forever'"), std::string::npos);
   o.servers = {over("modbus", "tcp", {"a:1", "b:2"}, "--modbus-tcp")};
   EXPECT_EQ(error_of(cfg, o), "--modbus-tcp: given more than once");
   o.servers = {over("modbus", "speed", {"1"}, "--modbus-speed")};
@@ -97,7 +97,7 @@ TEST(CellSettings, TheGatewayIsSetFromTheYamlToo) {
   EXPECT_NE(error_of(f.yaml("servers:\n  modbus: {gateway: /dev/ttyS7}\n"), {}).find("needs a Modbus/TCP endpoint too"),
             std::string::npos);
   EXPECT_NE(error_of(f.yaml("servers:\n  modbus: {tcp: ':0', gateway_retries: 11}\n"), {})
-                .find("key 'servers.modbus.gateway_retries': out of range [0, 10]"),
+                .find("key 'servers.modbus.gateway_retries': value out of range [0, 10]"),
             std::string::npos);
 }
 
@@ -109,11 +109,11 @@ TEST(CellSettings, RunSettingsHaveTheYamlsBounds) {
   o.run.push_back(over("", "scan_period", {"2ms"}, "--scan"));
   EXPECT_EQ(Cell(cfg, o, Cell::Purpose::Check).scan_period_us(), 2000u);
   o.run = {over("", "scan_period", {"50us"}, "--scan")};
-  EXPECT_EQ(error_of(cfg, o), "--scan 50us: out of range [0.0001, 1] s");
+  EXPECT_EQ(error_of(cfg, o), "--scan 50us: value out of range [0.0001, 1] s");
   o.run = {over("", "persist_interval", {"61"}, "~persist_interval")};
-  EXPECT_EQ(error_of(cfg, o), "~persist_interval 61: out of range [0.001, 60] s");
+  EXPECT_EQ(error_of(cfg, o), "~persist_interval 61: value out of range [0.001, 60] s");
   o.run = {over("", "rt_priority", {"100"}, "~rt_priority")};
-  EXPECT_EQ(error_of(cfg, o), "~rt_priority 100: out of range [0, 99]");
+  EXPECT_EQ(error_of(cfg, o), "~rt_priority 100: value out of range [0, 99]");
 }
 
 // plc_cell check reports the servers: section with every other error of the file.

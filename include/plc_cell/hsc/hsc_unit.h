@@ -198,8 +198,9 @@ class HscUnit : public ScanHook {
   uint16_t hsta_pv_ = 0;
   uint32_t hsta_cv0_ = 0;
   uint64_t hsta_t0_ = 0;
-  std::vector<bool> phys_y_ = std::vector<bool>(256, false);
-  std::vector<bool> owned_y_ = std::vector<bool>(256, false);
+  // Plain arrays, not vector<bool>: every scan compares all 256 outputs.
+  std::array<bool, 256> phys_y_{};
+  std::array<bool, 256> owned_y_{};
   std::vector<int> fired_;   // sources requested at the present instant
   std::vector<EventSource*> ext_;
   std::vector<OutputObserver> output_obs_;
