@@ -8,7 +8,8 @@ plc_cell_layer(plc_cell_hsc LINKS plc_cell_config SOURCES
   src/hsc/hsc_unit.cpp
   src/hsc/hsc_functions.cpp
   src/hsc/input_filter.cpp
-  src/hsc/scan_debounce.cpp)
+  src/hsc/scan_debounce.cpp
+  src/hsc/counters_extension.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB HSC_TESTS CONFIGURE_DEPENDS test/hsc/*_test.cpp)

@@ -15,7 +15,8 @@ plc_cell_layer(plc_cell_motion LINKS plc_cell_hsc SOURCES
   src/motion/pulse_pins.cpp
   src/motion/axis_config.cpp
   src/motion/motion_unit.cpp
-  src/motion/motion_functions.cpp)
+  src/motion/motion_functions.cpp
+  src/motion/axes_extension.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB MOTION_TESTS CONFIGURE_DEPENDS test/motion/*_test.cpp)

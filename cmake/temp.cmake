@@ -24,7 +24,8 @@ plc_cell_layer(plc_cell_temp LINKS plc_cell_config SOURCES
   src/temp/fb_measure.cpp
   src/temp/fb_functions.cpp
   src/temp/sensor_signal.cpp
-  src/temp/loop_settings.cpp)
+  src/temp/loop_settings.cpp
+  src/temp/modules_extension.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS CONFIGURE_DEPENDS test/temp/*_test.cpp)

@@ -52,4 +52,8 @@ std::vector<std::shared_ptr<void>> check_protocol_functions(const CellConfig& cf
   return keep;
 }
 
+void ProtocolFunctions::install(const CellConfig& cfg, FunctionTable& t) {
+  ports_ = open_ports_ ? install_protocol_functions(cfg, t) : check_protocol_functions(cfg, t);
+}
+
 }  // namespace plc_cell

@@ -144,7 +144,17 @@ SimInputDef parse_sim_input(const YamlReader& r, const CellConfig& cfg, const YA
 
 }  // namespace
 
+const std::set<std::string>& builtin_extension_sections() {
+  static const std::set<std::string> s = {"counters", "axes", "modules", "fatek", "modbus", "servers"};
+  return s;
+}
+
 CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors) {
+  return parse_cell_config(yaml_text, file, errors, builtin_extension_sections());
+}
+
+CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors,
+                             const std::set<std::string>& sections) {
   YamlReader r(file);
   CellConfig cfg;
   cfg.file = file;
@@ -155,8 +165,9 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
   if (!doc.IsMap()) r.fail(doc, "", "expected a mapping of sections (cell, plc, signals, simulation, ...)");
   // Each section, and each key or entry where they are independent, is read even when
   // an earlier one failed: every error of the file is reported in one run.
-  r.only(doc, "", {"cell", "plc", "signals", "simulation", "counters", "axes", "modules", "fatek", "modbus", "servers",
-                   "registers"}, errors);
+  std::set<std::string> keys = {"cell", "plc", "signals", "simulation", "registers"};
+  keys.insert(sections.begin(), sections.end());
+  r.only(doc, "", keys, errors);
   if (const auto cell = doc["cell"]) errors->collect([&] {
     r.only(cell, "cell", {"name", "program"});
     if (cell["name"]) cfg.name = r.str(cell["name"], "cell.name");
@@ -197,12 +208,16 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
   return cfg;
 }
 
-CellConfig load_cell_config(const std::string& path, ErrorList* errors) {
+CellConfig load_cell_config(const std::string& path, ErrorList* errors, const std::set<std::string>& sections) {
   std::ifstream f(path);
   if (!f) throw SourceError::at(path, 0, 0, "cannot open the cell config");
   std::stringstream ss;
   ss << f.rdbuf();
-  return parse_cell_config(ss.str(), path, errors);
+  return parse_cell_config(ss.str(), path, errors, sections);
+}
+
+CellConfig load_cell_config(const std::string& path, ErrorList* errors) {
+  return load_cell_config(path, errors, builtin_extension_sections());
 }
 
 CellConfig load_cell_config(const std::string& path) {

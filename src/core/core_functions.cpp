@@ -224,7 +224,6 @@ FunctionTable FunctionTable::with_core_functions() {
     };
     t.add(s);
   }
-  run_installers(t);
   return t;
 }
 

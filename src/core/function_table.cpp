@@ -11,21 +11,6 @@ static std::string upper(std::string s) {
   return s;
 }
 
-static std::vector<void (*)(FunctionTable&)>& installers() {
-  static std::vector<void (*)(FunctionTable&)> v;  // built on first use: safe at static init
-  return v;
-}
-
-void FunctionTable::add_installer(void (*install)(FunctionTable&)) {
-  for (auto f : installers())
-    if (f == install) return;
-  installers().push_back(install);
-}
-
-void FunctionTable::run_installers(FunctionTable& t) {
-  for (auto f : installers()) f(t);
-}
-
 void FunctionTable::add(FunctionSpec spec) {
   if (spec.number >= by_number_.size()) throw Error("function number " + std::to_string(spec.number) + " too large");
   if (by_number_[spec.number] >= 0) throw Error("FUN " + std::to_string(spec.number) + " registered twice");

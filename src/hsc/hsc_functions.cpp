@@ -1,5 +1,7 @@
 // FUN92 HSCTR, FUN93 HSCTW, FUN145 EN, FUN146 DIS and FUN74 IMDIO: the
 // instructions of the high-speed counter and interrupt subsystem.
+#include "plc_cell/hsc/hsc_functions.h"
+
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/hsc/hsc_unit.h"
@@ -14,7 +16,7 @@ std::string check_cn(const std::vector<Operand>& o) {
 }
 }  // namespace
 
-void install_functions(FunctionTable& t) {
+void add_functions(FunctionTable& t) {
   using R = OperandRole;
   FunctionSpec s;
 
@@ -73,10 +75,6 @@ void install_functions(FunctionTable& t) {
   };
   t.add(s);
 }
-
-namespace {
-const bool installed = (FunctionTable::add_installer(&install_functions), true);
-}  // namespace
 
 }  // namespace hsc
 }  // namespace plc_cell

@@ -1,6 +1,8 @@
 // FUN140 HSPSO, FUN141 MPARA, FUN142 PSOFF, FUN143 PSCNV, FUN147 MHSP0, FUN148 MPG: the positioning
 // instructions. They act on the MotionUnit installed on the engine (SoftCell
 // creates one for every cell); without one they do nothing.
+#include "plc_cell/motion/motion_functions.h"
+
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/motion/interpolation.h"
@@ -56,7 +58,7 @@ std::string check_program(const std::vector<plc_cell::Operand>& o, std::string e
 }
 }  // namespace
 
-void install_functions(FunctionTable& t) {
+void add_functions(FunctionTable& t) {
   using R = OperandRole;
   FunctionSpec s;
 
@@ -161,10 +163,6 @@ void install_functions(FunctionTable& t) {
   };
   t.add(s);
 }
-
-namespace {
-const bool installed = (FunctionTable::add_installer(&install_functions), true);
-}  // namespace
 
 }  // namespace motion
 }  // namespace plc_cell

@@ -126,5 +126,9 @@ std::string format_table(const Table& t) {
   return o.str();
 }
 
+bool homing_table(uint32_t speed, int mode, Table* out, TableError* err) {
+  return parse_table("SPD " + std::to_string(speed) + "\nDRVZ MD" + std::to_string(mode) + "\nGOTO NEXT\nMEND\n", out, err);
+}
+
 }  // namespace motion
 }  // namespace plc_cell

@@ -29,12 +29,16 @@ struct MotionTopics::AxisRos {
 };
 
 namespace {
+std::string describe(const motion::TableError& e) {
+  return "line " + std::to_string(e.line) + ": error " + std::to_string(e.code) + ": " + e.message;
+}
+
 bool parse(const std::string& text, motion::Table* t, std::string* msg, int* code, int* line) {
   motion::TableError e;
   if (motion::parse_table(text, t, &e)) return true;
   *code = e.code;
   *line = e.line;
-  *msg = "line " + std::to_string(e.line) + ": error " + std::to_string(e.code) + ": " + e.message;
+  *msg = describe(e);
   return false;
 }
 }  // namespace
@@ -100,11 +104,10 @@ MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& 
           std::string why;
           if (req.command == MotionCommand::Request::HOME) {
             motion::Table t;
-            int code = 0, line = 0;
-            const std::string text = "SPD " + std::to_string(req.speed) + "\nDRVZ MD" + std::to_string(req.home_mode) +
-                                     "\nGOTO NEXT\nMEND\n";
-            if (!parse(text, &t, &res.message, &code, &line)) {
+            motion::TableError e;
+            if (!motion::homing_table(req.speed, req.home_mode, &t, &e)) {
               res.success = false;
+              res.message = describe(e);
               return true;
             }
             res.success = locked([&](MotionUnit& u) {

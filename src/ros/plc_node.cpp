@@ -9,6 +9,7 @@
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/ros/counter_topics.h"
+#include "plc_cell/ros/extension_diagnostics.h"
 #include "plc_cell/ros/frame_id.h"
 #include "plc_cell/ros/motion_topics.h"
 #include "plc_cell/ros/register_topics.h"
@@ -64,6 +65,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);
   updater_.add("forced points", this, &PlcNode::diagnose_forced);
+  add_extension_diagnostics(updater_, cell_->soft());
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   pnh.param("virtual_time", virtual_time_, false);
   add_register_topics(pnh, cell_->soft(), &topic_groups_);

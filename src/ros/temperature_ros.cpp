@@ -1,8 +1,5 @@
 #include "plc_cell/ros/temperature_ros.h"
 
-#include <cmath>
-#include <limits>
-
 #include <sensor_msgs/Temperature.h>
 
 #include "plc_cell/core/error.h"
@@ -13,30 +10,15 @@
 namespace plc_cell {
 namespace {
 
-struct Reading {
-  int16_t raw = 0;
-  bool installed = false, abnormal = false;
+// What the PLC itself sees (temp::TemperatureCell::readings), copied under the lock.
+struct Readings {
+  std::vector<temp::ChannelReading> channels;
   bool all_read = false;  // the module set has read every channel once
 };
 
-// What the PLC itself sees: the reading registers and the abnormal / installed bits.
-std::vector<Reading> readings(SoftCell& cell) {
-  temp::TemperatureCell& tc = *cell.temperature();
-  return cell.plc().locked([&](ScanEngine&, Memory& m) {
-    const auto& cfg = tc.config();
-    const size_t n = tc.channels().size();
-    std::vector<Reading> r(n);
-    const uint32_t inst = m.reg(Area::R, temp::treg::kInstalled) | uint32_t(m.reg(Area::R, temp::treg::kInstalled + 1)) << 16;
-    const uint16_t* wr = m.words(cfg.working.area) + cfg.working.index;
-    const uint32_t abn = wr[1] | uint32_t(wr[2]) << 16;
-    for (size_t i = 0; i < n; ++i) {
-      r[i].raw = int16_t(m.reg(cfg.readings.area, cfg.readings.index + uint32_t(i)));
-      r[i].installed = inst >> i & 1u;
-      r[i].abnormal = abn >> i & 1u;
-      r[i].all_read = tc.all_read();
-    }
-    return r;
-  });
+Readings readings(SoftCell& cell) {
+  const temp::TemperatureCell& tc = *cell.temperature();
+  return cell.plc().locked([&](ScanEngine&, Memory& m) { return Readings{tc.readings(m), tc.all_read()}; });
 }
 
 }  // namespace
@@ -60,22 +42,13 @@ TemperatureRos::TemperatureRos(ros::NodeHandle& pnh, SoftCell& cell, diagnostic_
 
 void TemperatureRos::publish(const ros::Time& stamp) {
   const auto r = readings(cell_);
-  const temp::TemperatureCell& tc = *cell_.temperature();
-  const bool f = tc.config().fahrenheit;
   for (size_t p = 0; p < pubs_.size(); ++p) {
-    const size_t i = channel_[p];
-    const temp::ChannelState& ch = tc.channels()[i];
-    sensor_msgs::Temperature m;
+    const temp::ChannelReading& c = r.channels[channel_[p]];
+    sensor_msgs::Temperature m;  // degC whatever the modules' unit; NaN while broken
     m.header.stamp = stamp;
     m.header.frame_id = frame_id_;
-    // sensor_msgs/Temperature is in degC whatever the modules' unit.
-    const double v = r[i].raw / 10.0;
-    const double c = f ? (v - 32.0) * 5.0 / 9.0 : v;
-    const bool broken = !r[i].installed || r[i].raw == temp::kLineBrokenValue;
-    m.temperature = broken ? std::numeric_limits<double>::quiet_NaN() : c;
-    // A reading rounded to a step q has variance q^2/12 (uniform rounding error).
-    const double q = ch.resolution_c * (f ? 5.0 / 9.0 : 1.0);
-    m.variance = q * q / 12.0;
+    m.temperature = c.celsius;
+    m.variance = c.variance_c2;
     pubs_[p].publish(m);
   }
 }
@@ -83,22 +56,17 @@ void TemperatureRos::publish(const ros::Time& stamp) {
 void TemperatureRos::diagnose_module(size_t k, diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const auto r = readings(cell_);
   const temp::TemperatureCell& tc = *cell_.temperature();
-  const bool ready = !r.empty() && r[0].all_read;
   std::string bad;
   int n = 0;
   for (size_t i = 0; i < tc.channels().size(); ++i) {
     if (tc.channels()[i].module != int(k)) continue;
     const auto& ch = tc.channels()[i];
     const std::string label = ch.name.empty() ? "ch" + std::to_string(n) : ch.name;
-    std::string state = !r[i].installed ? "not installed"
-                        : r[i].raw == temp::kLineBrokenValue ? "line broken"
-                        : r[i].abnormal ? "out of range"
-                                         : std::to_string(r[i].raw / 10.0);
-    stat.add(label, state);
-    if (r[i].installed && r[i].abnormal) bad += (bad.empty() ? "" : ", ") + label;
+    stat.add(label, r.channels[i].state());
+    if (r.channels[i].installed && r.channels[i].abnormal) bad += (bad.empty() ? "" : ", ") + label;
     ++n;
   }
-  if (!ready) stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "first multiplexed scan not complete");
+  if (!r.all_read) stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "first multiplexed scan not complete");
   else if (!bad.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "sensor abnormal: " + bad);
   else stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "measuring");
 }

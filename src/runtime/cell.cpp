@@ -35,6 +35,23 @@ const std::string* run_value(const std::vector<SettingOverride>& run, const std:
   return out;
 }
 
+// The servers: section, read with the cell's other sections so that its errors are listed
+// with theirs; the servers themselves are made once the overrides are merged.
+class ServerSettingsSection : public CellExtension {
+ public:
+  explicit ServerSettingsSection(const std::vector<ServerKind>& kinds) : kinds_(kinds) {}
+  std::string name() const override { return "servers"; }
+  std::vector<std::string> sections() const override { return {"servers"}; }
+  void attach(const CellConfig& cfg, Plc&, ErrorList& errors) override {
+    const YAML::Node at = cfg.document.IsMap() ? cfg.document["servers"] : YAML::Node();
+    errors.collect([&] { merge_server_settings(kinds_, cfg); }, cfg.file, at);
+  }
+  void detach(Plc&) override {}
+
+ private:
+  const std::vector<ServerKind>& kinds_;
+};
+
 }  // namespace
 
 const std::vector<SettingSpec>& Cell::run_settings() {
@@ -52,12 +69,10 @@ const std::vector<SettingSpec>& Cell::run_settings() {
 Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpose,
            std::function<void(const std::string&)> log) {
   const auto& kinds = server_kinds();
-  // Read with the YAML's other sections (errors listed together); the overrides are
-  // applied after the cell is built, so an error of the file comes first.
-  std::vector<CellSection> sections = {{"servers", [&](const CellConfig& cfg) { merge_server_settings(kinds, cfg); }}};
-  soft_ = std::make_unique<SoftCell>(config_path, o.program,
-                                     purpose == Purpose::Check ? check_protocol_functions : install_protocol_functions,
-                                     sections);
+  CellExtensions more;
+  more.push_back(std::make_unique<ProtocolFunctions>(purpose != Purpose::Check));
+  more.push_back(std::make_unique<ServerSettingsSection>(kinds));
+  soft_ = std::make_unique<SoftCell>(config_path, o.program, std::move(more));
   const CellConfig& cfg = soft_->config();
   server_settings_ = merge_server_settings(kinds, cfg, o.servers);
 

@@ -1,85 +1,100 @@
 #include "plc_cell/sim/soft_cell.h"
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/hsc/counters_extension.h"
+#include "plc_cell/hsc/hsc_functions.h"
+#include "plc_cell/motion/axes_extension.h"
+#include "plc_cell/motion/motion_functions.h"
 #include "plc_cell/sim/apply_config.h"
-#include "plc_cell/hsc/hsc_unit.h"
-#include "plc_cell/temp/hspwm.h"
+#include "plc_cell/temp/modules_extension.h"
 #include "plc_cell/temp/temp_functions.h"
-#include "plc_cell/motion/motion_unit.h"
 
 namespace plc_cell {
 namespace {
 
-YAML::Node section(const CellConfig& cfg, const char* name) {
-  return cfg.document.IsMap() ? cfg.document[name] : YAML::Node();
+YAML::Node first_section(const CellConfig& cfg, const CellExtension& x) {
+  const auto s = x.sections();
+  return cfg.document.IsMap() && !s.empty() ? cfg.document[s.front()] : YAML::Node();
 }
 
 }  // namespace
 
+// The instruction set of a cell's program, in one place: the core's, then each built-in
+// subsystem's (the same lists their extensions install).
 FunctionTable SoftCell::functions(temp::Generation g) {
   FunctionTable t = FunctionTable::with_core_functions();
+  hsc::add_functions(t);                  // FUN92/93 HSC, FUN145/146 interrupts, FUN74 IMDIO
+  motion::add_functions(t);               // FUN140-143 pulse axes, MPG, interpolation
   temp::add_temperature_functions(t, g);  // FUN86 TPCTL (FBs or FB), FUN30 PID, FB: FUN72/73/85
   return t;
 }
 
-FunctionTable SoftCell::functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
-                                      std::vector<std::shared_ptr<void>>* keep, ErrorList* errors, bool* complete) {
-  temp::Generation g = temp::Generation::FBs;
-  *complete &= errors->collect([&] { g = temp::cell_generation(cfg.document, cfg.file); }, cfg.file);
-  FunctionTable t = functions(g);
-  if (install) *complete &= errors->collect([&] { *keep = install(cfg, t); }, cfg.file);
+// The built-in subsystems come first, in the order they attach: the temperature modules,
+// the counters (whose event loop the axes run on), the axes.
+CellExtensions SoftCell::with_builtins(CellExtensions more) {
+  CellExtensions all;
+  all.push_back(std::make_unique<temp::ModulesExtension>());
+  all.push_back(std::make_unique<hsc::CountersExtension>());
+  all.push_back(std::make_unique<motion::AxesExtension>());
+  for (auto& x : more) all.push_back(std::move(x));
+  return all;
+}
+
+// The file's sections are the core's and those the extensions claim.
+CellConfig SoftCell::load(const std::string& path) {
+  if (path.empty()) return CellConfig();
+  std::set<std::string> sections;
+  for (const auto& x : extensions_)
+    for (const auto& s : x->sections()) sections.insert(s);
+  return load_cell_config(path, &errors_, sections);
+}
+
+FunctionTable SoftCell::install() {
+  FunctionTable t = FunctionTable::with_core_functions();
+  for (auto& x : extensions_)
+    functions_complete_ &= errors_.collect([&] { x->install(config_, t); }, config_.file, first_section(config_, *x));
   return t;
 }
 
-SoftCell::SoftCell(const std::string& config_path, const std::string& program_path,
-                   const CellFunctionInstaller& install, const std::vector<CellSection>& sections)
-    : config_(config_path.empty() ? CellConfig() : load_cell_config(config_path, &errors_)),
-      plc_(functions_for(config_, install, &installed_, &errors_, &functions_complete_)) {
+SoftCell::SoftCell(const std::string& config_path, const std::string& program_path, CellExtensions more)
+    : extensions_(with_builtins(std::move(more))),
+      config_(load(config_path)),
+      modules_(static_cast<temp::ModulesExtension*>(extensions_[0].get())),
+      counters_(static_cast<hsc::CountersExtension*>(extensions_[1].get())),
+      axes_(static_cast<motion::AxesExtension*>(extensions_[2].get())),
+      plc_(install()) {
   try {
-    build(program_path, sections);
+    build(program_path);
   } catch (...) {
     release();
     throw;
   }
 }
 
-// Each subsystem reads its own section; a section in error leaves its subsystem as an
+// Each extension reads its own sections; a section in error leaves its subsystem as an
 // empty one, so the sections after it are still read and reported.
-void SoftCell::build(const std::string& program_path, const std::vector<CellSection>& sections) {
+void SoftCell::build(const std::string& program_path) {
   const std::string& file = config_.file;
   ErrorList& errors = errors_;
   program_path_ = program_path.empty() ? config_.program : program_path;
   sim_ = plc_.locked([&](ScanEngine& e, Memory& m) { return std::make_unique<SimulatedCell>(e, m); });
   apply_cell_config(config_, plc_, *sim_);
-  const YAML::Node modules = section(config_, "modules");
-  plc_.locked([&](ScanEngine& e, Memory& m) {
+  plc_.locked([&](ScanEngine& e, Memory&) {
     e.add_hook(sim_.get());
-    errors.collect([&] { temperature_ = temp::make_temperature_cell(config_.document, file, m); }, file, modules);
-    if (temperature_) e.add_hook(temperature_.get());
-    errors.collect([&] { rtc_ = temp::make_rtc(config_.document, file, m); }, file, modules);
-    if (rtc_) e.add_hook(rtc_.get());
-    errors.collect([&] { pwmda_ = temp::make_pwmda_outputs(config_.document, file); }, file, modules);
-    if (pwmda_) e.add_hook(pwmda_.get());
     return 0;
   });
-  for (const auto& s : sections) errors.collect([&] { s.read(config_); }, file, section(config_, s.name.c_str()));
-  const YAML::Node counters = section(config_, "counters");
-  hsc::HscConfig hc;
-  if (!errors.collect([&] { hc = hsc::parse_hsc_config(counters, file); }, file, counters)) hc = hsc::HscConfig();
-  hsc_ = std::make_unique<hsc::HscUnit>(plc_, hc);
-  motion_ = std::make_unique<motion::MotionUnit>(plc_);
-  const YAML::Node axes = section(config_, "axes");
-  errors.collect([&] { motion_->configure(motion::parse_axes_config(axes, file)); }, file, axes);
+  for (auto& x : extensions_) x->attach(config_, plc_, errors);
+  hsc::HscUnit& hsc = counters();
   // Pulse and step signals on the high-speed inputs X0-X15 become exact-time edges,
   // so counters and edge interrupts see every pulse, not the scan's samples.
   plc_.locked([&](ScanEngine&, Memory&) {
     for (const auto& d : config_.sim_inputs) {
-      if (d.x > 15 || d.kind == SimInputDef::Kind::Follow || hsc_->source_on(static_cast<int>(d.x))) continue;
+      if (d.x > 15 || d.kind == SimInputDef::Kind::Follow || hsc.source_on(static_cast<int>(d.x))) continue;
       sim_->release(d.x);
       if (d.kind == SimInputDef::Kind::Steps) {
-        for (const auto& st : d.steps) hsc_->schedule_edge(static_cast<int>(d.x), st.first * 1000, st.second);
+        for (const auto& st : d.steps) hsc.schedule_edge(static_cast<int>(d.x), st.first * 1000, st.second);
       } else {
-        hsc_->add_pulse_train(static_cast<int>(d.x), d.period_us * 1000, d.width_us * 1000, d.delay_us * 1000);
+        hsc.add_pulse_train(static_cast<int>(d.x), d.period_us * 1000, d.width_us * 1000, d.delay_us * 1000);
       }
     }
     return 0;
@@ -87,11 +102,9 @@ void SoftCell::build(const std::string& program_path, const std::vector<CellSect
   // Capture inputs beyond X15 are sampled at the scans: the simulation latches them.
   plc_.locked([&](ScanEngine&, Memory&) {
     for (uint32_t x = 16; x < hsc::kFilteredInputs; ++x)
-      if (hsc_->config().capture[x]) sim_->capture(x);
+      if (hsc.config().capture[x]) sim_->capture(x);
     return 0;
   });
-  // The program needs the whole instruction set: with modules.generation, fatek: or
-  // modbus: in error its FUN lines would only repeat those errors.
   if (program_path_.empty()) {
     errors.throw_if_any();  // a cell: section in error may be why there is no program
     throw Error("no program: give --program or set cell.program in the cell config");
@@ -101,19 +114,19 @@ void SoftCell::build(const std::string& program_path, const std::vector<CellSect
 }
 
 void SoftCell::release() {
-  installed_.clear();
-  motion_.reset();
-  hsc_.reset();
+  for (auto it = extensions_.rbegin(); it != extensions_.rend(); ++it) (*it)->detach(plc_);
   plc_.locked([&](ScanEngine& e, Memory&) {
     if (sim_) e.remove_hook(sim_.get());
-    if (temperature_) e.remove_hook(temperature_.get());
-    if (rtc_) e.remove_hook(rtc_.get());
-    if (pwmda_) e.remove_hook(pwmda_.get());
-    temp::hspwm_reset(e);  // FUN139's generators belong to this PLC: off with its cell
     return 0;
   });
 }
 
 SoftCell::~SoftCell() { release(); }
+
+hsc::HscUnit& SoftCell::counters() { return counters_->unit(); }
+motion::MotionUnit& SoftCell::motion() { return axes_->unit(); }
+temp::TemperatureCell* SoftCell::temperature() { return modules_->temperature(); }
+temp::Rtc* SoftCell::rtc() { return modules_->rtc(); }
+temp::PwmdaOutputs* SoftCell::pwmda() { return modules_->pwmda(); }
 
 }  // namespace plc_cell

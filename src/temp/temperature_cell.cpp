@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "plc_cell/core/area.h"
 #include "plc_cell/core/error.h"
@@ -202,6 +203,33 @@ void TemperatureCell::before_inputs(uint64_t now_us) {
     all &= m.reads >= uint32_t(m.count);
   }
   all_read_ = all;
+}
+
+std::string ChannelReading::state() const {
+  if (!installed) return "not installed";
+  if (raw == kLineBrokenValue) return "line broken";
+  if (abnormal) return "out of range";
+  return std::to_string(raw / 10.0);
+}
+
+std::vector<ChannelReading> TemperatureCell::readings(const Memory& m) const {
+  const uint32_t inst = m.reg(Area::R, treg::kInstalled) | uint32_t(m.reg(Area::R, treg::kInstalled + 1)) << 16;
+  const uint16_t* wr = m.words(cfg_.working.area) + cfg_.working.index;
+  const uint32_t abn = wr[1] | uint32_t(wr[2]) << 16;
+  const bool f = cfg_.fahrenheit;
+  std::vector<ChannelReading> out(channels_.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    ChannelReading& r = out[i];
+    r.raw = int16_t(m.reg(cfg_.readings.area, cfg_.readings.index + uint32_t(i)));
+    r.installed = inst >> i & 1u;
+    r.abnormal = abn >> i & 1u;
+    r.broken = !r.installed || r.raw == kLineBrokenValue;
+    const double v = r.raw / 10.0;
+    r.celsius = r.broken ? std::numeric_limits<double>::quiet_NaN() : f ? (v - 32.0) * 5.0 / 9.0 : v;
+    const double q = channels_[i].resolution_c * (f ? 5.0 / 9.0 : 1.0);
+    r.variance_c2 = q * q / 12.0;
+  }
+  return out;
 }
 
 int16_t TemperatureCell::register_value(double c, double resolution_c) const {

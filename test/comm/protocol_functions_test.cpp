@@ -1,5 +1,5 @@
 // FUN151 and FUN150 reach the running PLC: a SoftCell built as `plc_cell run` and plc_node
-// build it (with install_protocol_functions) takes its ports from the cell YAML.
+// build it (with the ProtocolFunctions extension) takes its ports from the cell YAML.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -17,6 +17,14 @@
 using namespace plc_cell;
 
 namespace {
+
+// FUN150/151 with the cell's ports, as the Cell adds them (check: open_ports false).
+CellExtensions protocol(bool open_ports = true) {
+  CellExtensions x;
+  x.push_back(std::make_unique<ProtocolFunctions>(open_ports));
+  return x;
+}
+
 
 std::string write_file(const std::string& name, const std::string& text) {
   const std::string path = "/tmp/plc_cell_protocol_functions_" + name;
@@ -76,7 +84,7 @@ TEST(ProtocolFunctions, Fun151ReadsAnotherPlcThroughTheCellsFatekPort) {
   const std::string cfg = write_file("clink.yaml", "cell: {program: " + prog +
                                                        "}\nfatek:\n  ports:\n    1: tcp:127.0.0.1:" +
                                                        std::to_string(server.port()) + "\n");
-  SoftCell cell(cfg, "", install_protocol_functions);
+  SoftCell cell(cfg, "", protocol());
   Plc& master = cell.plc();
   ASSERT_TRUE(master.set_mode(RunMode::Run));
   // One packet: read slave R0..R2 (type 12) into master R10.. (type 12).
@@ -93,7 +101,7 @@ TEST(ProtocolFunctions, Fun150ReadsAModbusSlaveThroughTheCellsModbusPort) {
   slave.write(parse_address("R7"), {1234, 5678});
   ModbusSlave server(slave);
   const std::string cfg = mbus_cell("mbus", server.port);
-  SoftCell cell(cfg, "", install_protocol_functions);
+  SoftCell cell(cfg, "", protocol());
   Plc& master = cell.plc();
   ASSERT_TRUE(master.set_mode(RunMode::Run));
   // A550H, 07H/1 transaction: station 1, read, 2 words, into R (12) at 20, from 4x (4) reference 8 = R7.
@@ -108,7 +116,7 @@ TEST(ProtocolFunctions, ABadPortSectionNamesTheFile) {
   const std::string prog = write_file("bad.il", "END\n");
   const std::string cfg = write_file("bad.yaml", "cell: {program: " + prog + "}\nmodbus:\n  ports:\n    9: {tcp: x:1}\n");
   try {
-    SoftCell cell(cfg, "", install_protocol_functions);
+    SoftCell cell(cfg, "", protocol());
     FAIL();
   } catch (const SourceError& e) {
     EXPECT_NE(std::string(e.what()).find(cfg + ":4:5: error: key 'modbus.ports.9'"), std::string::npos) << e.what();
@@ -135,9 +143,9 @@ TEST(ProtocolFunctions, CheckAndRunReadThePortSectionsAlike) {
     const std::string cfg = write_file(std::string(c.name) + ".yaml", "cell: {program: " + prog + "}\n" + c.section);
     std::string errors[2];
     int k = 0;
-    for (const auto install : {install_protocol_functions, check_protocol_functions}) {
+    for (const bool open_ports : {true, false}) {  // as run, as check
       try {
-        SoftCell cell(cfg, "", install);
+        SoftCell cell(cfg, "", protocol(open_ports));
         ADD_FAILURE() << c.name << ": accepted";
       } catch (const SourceError& e) {
         errors[k] = e.what();
@@ -156,7 +164,7 @@ TEST(ProtocolFunctions, Fun150KeepsTheDestinationItSubmittedWith) {
   slave.write(parse_address("R7"), {4321});
   ModbusSlave server(slave);
   const std::string cfg = mbus_cell("mbus2", server.port);
-  SoftCell cell(cfg, "", install_protocol_functions);
+  SoftCell cell(cfg, "", protocol());
   Plc& master = cell.plc();
   ASSERT_TRUE(master.set_mode(RunMode::Run));
   master.write(parse_address("R100"), {0xA550, 0x0701, 1, 1, 1, 12, 20, 4, 8});

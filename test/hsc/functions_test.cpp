@@ -3,12 +3,13 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
+#include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 namespace {
 
 std::string error_of(const std::string& il) {
-  Plc plc;
+  Plc plc{SoftCell::functions()};
   try {
     plc.load_program_text(il, "t.il");
   } catch (const SourceError& e) {

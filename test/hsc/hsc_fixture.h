@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "plc_cell/core/plc.h"
+#include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/hsc/hsc_unit.h"
 
 namespace plc_cell {
@@ -29,7 +30,7 @@ struct IsrRun {
 class HscCell {
  public:
   HscCell(const std::string& yaml, const std::string& il,
-          FunctionTable table = FunctionTable::with_core_functions())
+          FunctionTable table = SoftCell::functions())
       : plc(std::move(table)) {
     const YAML::Node doc = YAML::Load(yaml);
     unit = std::make_unique<HscUnit>(plc, parse_hsc_config(doc["counters"], "cell.yaml"));

@@ -12,7 +12,7 @@ namespace hsc {
 namespace {
 
 FunctionTable with_raise() {
-  FunctionTable t = FunctionTable::with_core_functions();
+  FunctionTable t = SoftCell::functions();
   FunctionSpec s;
   s.number = 250;
   s.mnemonic = "RAISE";
@@ -134,7 +134,7 @@ TEST(Interrupts, LabelsAndOldNames) {
 // parser refuses it as a JMP/CALL target or as a label in the main program.
 std::string parse_error(const std::string& il) {
   try {
-    parse_program(il, "p.il", FunctionTable::with_core_functions());
+    parse_program(il, "p.il", SoftCell::functions());
   } catch (const SourceError& e) {
     return e.diagnostics().at(0).to_string();
   }

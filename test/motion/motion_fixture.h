@@ -9,6 +9,7 @@
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/plc.h"
+#include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/hsc/hsc_unit.h"
 #include "plc_cell/motion/interpolation.h"
 #include "plc_cell/motion/lin_table.h"
@@ -149,7 +150,7 @@ class MotionCell {
     return plc.locked([&](ScanEngine&, Memory&) { return f(*unit); });
   }
 
-  Plc plc;
+  Plc plc{SoftCell::functions()};
   std::unique_ptr<hsc::HscUnit> counters;
   std::unique_ptr<MotionUnit> unit;  // after counters: removed from its loop first
   std::vector<std::pair<uint64_t, int>> isrs;

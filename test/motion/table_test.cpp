@@ -171,3 +171,20 @@ TEST(Table, BadRegisterImagesAreRejected) {
 }  // namespace
 }  // namespace motion
 }  // namespace plc_cell
+
+// The ROS command's homing is a one-step table of the motion layer: DRVZ MDn at the given
+// speed, checked as any table (error 31: speed 0; error 50: no MD3).
+TEST(Table, HomingIsAOneStepZeroReturnTable) {
+  plc_cell::motion::Table t;
+  plc_cell::motion::TableError e;
+  ASSERT_TRUE(plc_cell::motion::homing_table(5000, 2, &t, &e)) << e.message;
+  ASSERT_EQ(t.steps.size(), 1u);
+  EXPECT_EQ(t.steps[0].motion, plc_cell::motion::Motion::Drvz);
+  EXPECT_EQ(t.steps[0].zero_mode, 2);
+  EXPECT_EQ(t.steps[0].speed.value, 5000);
+  EXPECT_EQ(t.steps[0].goto_kind, plc_cell::motion::Step::Next);
+  EXPECT_FALSE(plc_cell::motion::homing_table(5000, 3, &t, &e));
+  EXPECT_EQ(e.code, 50);
+  EXPECT_FALSE(plc_cell::motion::homing_table(0, 0, &t, &e));
+  EXPECT_EQ(e.code, 31);
+}

@@ -112,6 +112,27 @@ TEST_F(TemperatureCellTest, BreakAndMendALine) {
   EXPECT_FALSE(get("D1") & 1u);
 }
 
+// What a topic publishes is what the registers say: the reading in 0.1 degree, NaN while
+// a line is broken or a channel not installed, and degrees Celsius whatever the unit.
+TEST_F(TemperatureCellTest, ReadingsDecodeTheRegistersTheProgramSees) {
+  setup(kTwoModules);
+  scans(4000);
+  const auto r = plc.locked([&](ScanEngine&, Memory& m) { return cell->readings(m); });
+  ASSERT_EQ(r.size(), 12u);  // 6TC + 6RTD
+  EXPECT_EQ(r[0].raw, 1234);
+  EXPECT_DOUBLE_EQ(r[0].celsius, 123.4);
+  EXPECT_EQ(r[0].state(), std::to_string(123.4));
+  EXPECT_DOUBLE_EQ(r[0].variance_c2, 0.1 * 0.1 / 12.0);
+  EXPECT_TRUE(r[3].broken);  // open: the line-broken value
+  EXPECT_EQ(r[3].raw, kLineBrokenValue);
+  EXPECT_TRUE(std::isnan(r[3].celsius));
+  EXPECT_EQ(r[3].state(), "line broken");
+  put("R4010", 0xFFFE);  // the installed bits (treg::kInstalled): channel 0 taken out
+  const auto out = plc.locked([&](ScanEngine&, Memory& m) { return cell->readings(m); });
+  EXPECT_TRUE(out[0].broken);
+  EXPECT_EQ(out[0].state(), "not installed");
+}
+
 TEST_F(TemperatureCellTest, FastScanFahrenheitAndAveraging) {
   setup(R"(
 modules:

@@ -1,11 +1,12 @@
 #pragma once
 // FUN150 (Modbus master) and FUN151 (FATEK CPU link, free protocol) with the ports of
-// the cell YAML's `modbus:` and `fatek:` sections. `plc_cell run/sim` and plc_node pass
-// this to SoftCell; the core library stays free of the protocol libraries.
+// the cell YAML's `modbus:` and `fatek:` sections. The Cell (runtime/cell.h) adds the
+// extension to every cell; the simulation layers stay free of the protocol libraries.
 #include <memory>
 #include <vector>
 
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/cell_extension.h"
 #include "plc_cell/core/function_table.h"
 
 namespace plc_cell {
@@ -15,5 +16,21 @@ std::vector<std::shared_ptr<void>> install_protocol_functions(const CellConfig& 
 // For `plc_cell check`: the same sections read with the same errors, and FUN150/151
 // installed, but no port is opened and no thread started.
 std::vector<std::shared_ptr<void>> check_protocol_functions(const CellConfig& cfg, FunctionTable& t);
+
+// Both as a cell extension: open_ports false is `plc_cell check`'s (the sections read
+// alike, the FUNs installed, no line opened and no thread started).
+class ProtocolFunctions : public CellExtension {
+ public:
+  explicit ProtocolFunctions(bool open_ports = true) : open_ports_(open_ports) {}
+  std::string name() const override { return "protocol functions"; }
+  std::vector<std::string> sections() const override { return {"fatek", "modbus"}; }
+  void install(const CellConfig& cfg, FunctionTable& t) override;
+  void attach(const CellConfig&, Plc&, ErrorList&) override {}
+  void detach(Plc&) override { ports_.clear(); }  // the port threads stop before the PLC goes
+
+ private:
+  bool open_ports_;
+  std::vector<std::shared_ptr<void>> ports_;  // port owners and FUN150's engine
+};
 
 }  // namespace plc_cell

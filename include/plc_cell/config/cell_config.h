@@ -2,6 +2,7 @@
 // The cell YAML: program, scan settings, retentive ranges, named signals and the
 // simulated cell's input signals. docs/cell-config.md describes every key.
 #include <cstdint>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,6 +66,14 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
 // read or is not YAML: then there is nothing to go on with.
 CellConfig load_cell_config(const std::string& path, ErrorList* errors);
 CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors);
+// The top-level keys of a cell file besides the core's (cell, plc, signals, registers,
+// simulation) are the sections its extensions claim (config/cell_extension.h); a key no
+// one claims is an error. SoftCell passes its extensions' claims; the overloads above
+// take the built-in extensions' (test/runtime/extension_test.cpp keeps the two equal).
+const std::set<std::string>& builtin_extension_sections();
+CellConfig load_cell_config(const std::string& path, ErrorList* errors, const std::set<std::string>& sections);
+CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors,
+                             const std::set<std::string>& sections);
 
 // "1.5s", "250ms", "100us", "2" (seconds); throws Error.
 uint64_t parse_duration_us(const std::string& text);

@@ -60,12 +60,9 @@ struct FunctionSpec {
 
 class FunctionTable {
  public:
-  // A table with the core functions and every installed subsystem's functions.
+  // A table with the core's functions. A cell's whole instruction set adds each
+  // subsystem's (SoftCell::functions()): the core knows none of them.
   static FunctionTable with_core_functions();
-  // Subsystems (counters, motion, ...) add their FUNs through an installer that
-  // with_core_functions() runs; register it from a static initialiser or at start-up.
-  static void add_installer(void (*install)(FunctionTable&));
-  static void run_installers(FunctionTable& t);  // what with_core_functions() ends with
 
   void add(FunctionSpec spec);  // throws if the number or mnemonic is taken
   const FunctionSpec* find(uint16_t number) const;

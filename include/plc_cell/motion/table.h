@@ -56,6 +56,9 @@ struct TableError {
 // Parses the manual's text form (docs/motion.md "Text form"). Returns false and fills
 // *err (code and line) on the first error.
 bool parse_table(const std::string& text, Table* out, TableError* err);
+// A zero return (DRVZ MDmode at speed pps, docs/motion.md "Homing") as a one-step table,
+// for a unit-run homing (the ROS command): speed and mode are checked as in any table.
+bool homing_table(uint32_t speed, int mode, Table* out, TableError* err);
 std::string format_table(const Table& t);
 
 // Register form: N * 9 + 2 words.

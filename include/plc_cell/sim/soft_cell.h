@@ -1,53 +1,51 @@
 #pragma once
-// A soft PLC with its cell config and simulated inputs: the one way a cell is built.
-// `plc_cell sim`, `run` and `check` and plc_node all construct a SoftCell, so what one of
-// them rejects every one rejects, with the same messages. Building starts nothing: no
-// thread, no port, no server (the installer decides about FUN150/151's ports).
-#include <functional>
+// A soft PLC with its cell config, its subsystems and simulated inputs: how every cell is
+// assembled (the Cell of runtime/cell.h builds one for check, sim, run and plc_node). The
+// subsystems are cell extensions (config/cell_extension.h), each taken through the same
+// steps: the counters, the axes and the temperature modules always, and the extensions
+// the caller adds (FUN150/151 and their ports, the servers' settings). Building starts
+// nothing: no thread, no port, no server (the extensions decide about their own).
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/cell_extension.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/simulated_cell.h"
 #include "plc_cell/temp/pwmda.h"
 #include "plc_cell/temp/rtc.h"
 #include "plc_cell/temp/temperature_cell.h"
+#include "plc_cell/temp/temperature_config.h"
 
 namespace plc_cell {
 
 namespace hsc {
 class HscUnit;
+class CountersExtension;
 }
 namespace motion {
 class MotionUnit;
+class AxesExtension;
+}
+namespace temp {
+class ModulesExtension;
 }
 
-// Adds FUN instructions that need the cell's config (FUN150/151 and their ports) before
-// the program is parsed. What it returns (port threads, engines) lives as long as the cell.
-using CellFunctionInstaller =
-    std::function<std::vector<std::shared_ptr<void>>(const CellConfig&, FunctionTable&)>;
-
-// A section of the cell YAML that a layer above the simulation reads (the protocol
-// servers' `servers:`): read with the other sections, so its errors are listed with theirs.
-struct CellSection {
-  std::string name;
-  std::function<void(const CellConfig&)> read;  // throws plc_cell::Error or SourceError
-};
+using CellExtensions = std::vector<std::unique_ptr<CellExtension>>;
 
 class SoftCell {
  public:
   // config_path may be empty (no signals, no simulation); program_path overrides the
   // config's cell.program. Every section of the config is read even when an earlier one
-  // failed, then the program (when the sections that make its instruction set are
-  // sound); one SourceError lists every error found, each with file:line:column.
-  // A config or program that cannot be opened, or "no program", throws at once.
-  SoftCell(const std::string& config_path, const std::string& program_path,
-           const CellFunctionInstaller& install = {}, const std::vector<CellSection>& sections = {});
+  // failed, then the program (when every extension installed its FUNs, so that the
+  // program's FUN lines would not only repeat those errors); one SourceError lists every
+  // error found, each with file:line:column. A config or program that cannot be opened,
+  // or "no program", throws at once. more: extensions after the built-in ones.
+  SoftCell(const std::string& config_path, const std::string& program_path, CellExtensions more = {});
   // The instruction set of a cell of generation g (modules.generation): the core's
-  // plus the subsystems' FUNs.
+  // plus every built-in subsystem's FUNs (what a Plc needs to run a cell's program).
   static FunctionTable functions(temp::Generation g = temp::Generation::FBs);
   ~SoftCell();
 
@@ -55,35 +53,36 @@ class SoftCell {
   // Only touch it under plc().locked(): the scan calls into it.
   SimulatedCell& simulation() { return *sim_; }
   const CellConfig& config() const { return config_; }
+  // Every extension, built-in first, in the order they were attached.
+  const CellExtensions& extensions() const { return extensions_; }
   // High-speed counters, timers and interrupts (the config's counters: section).
   // Only touch it under plc().locked().
-  hsc::HscUnit& counters() { return *hsc_; }
+  hsc::HscUnit& counters();
   // Pulse-output axes PSO0-PSO3 and FUN140 programs. Only touch it under plc().locked().
-  motion::MotionUnit& motion() { return *motion_; }
+  motion::MotionUnit& motion();
   const std::string& program_path() const { return program_path_; }
   // The temperature modules and thermal plants of `modules:`, or nullptr.
-  temp::TemperatureCell* temperature() { return temperature_.get(); }
-  temp::Rtc* rtc() { return rtc_.get(); }
-  temp::PwmdaOutputs* pwmda() { return pwmda_.get(); }
+  temp::TemperatureCell* temperature();
+  temp::Rtc* rtc();
+  temp::PwmdaOutputs* pwmda();
 
  private:
-  static FunctionTable functions_for(const CellConfig& cfg, const CellFunctionInstaller& install,
-                                     std::vector<std::shared_ptr<void>>* keep, ErrorList* errors, bool* complete);
-  void build(const std::string& program_path, const std::vector<CellSection>& sections);
-  void release();  // hooks off the engine, port owners first
+  static CellExtensions with_builtins(CellExtensions more);
+  CellConfig load(const std::string& path);
+  FunctionTable install();
+  void build(const std::string& program_path);
+  void release();  // extensions off the engine in reverse order (port owners first)
 
-  ErrorList errors_;           // while building; before config_, which fills it
-  bool functions_complete_ = true;  // modules.generation, fatek: and modbus: were read
+  ErrorList errors_;                // while building; before config_, which fills it
+  bool functions_complete_ = true;  // every extension installed its FUNs
+  CellExtensions extensions_;       // before config_ (their sections) and plc_ (their FUNs)
   CellConfig config_;
-  std::vector<std::shared_ptr<void>> installed_;  // released first: ports stop before the PLC goes
+  temp::ModulesExtension* modules_ = nullptr;
+  hsc::CountersExtension* counters_ = nullptr;
+  motion::AxesExtension* axes_ = nullptr;
   std::string program_path_;
   Plc plc_;
-  std::unique_ptr<SimulatedCell> sim_;
-  std::unique_ptr<hsc::HscUnit> hsc_;  // after sim_: its hook sees the simulated inputs
-  std::unique_ptr<temp::TemperatureCell> temperature_;
-  std::unique_ptr<temp::Rtc> rtc_;
-  std::unique_ptr<temp::PwmdaOutputs> pwmda_;  // nullptr without modules.pwmda
-  std::unique_ptr<motion::MotionUnit> motion_;
+  std::unique_ptr<SimulatedCell> sim_;  // its hook runs before the extensions': they see the simulated inputs
 };
 
 }  // namespace plc_cell

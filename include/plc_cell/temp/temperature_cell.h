@@ -43,6 +43,20 @@ struct ChannelState {
   double resolution_c = 0.1;
 };
 
+// One channel as the PLC's own registers show it, which is what a program (and so a
+// robot stack) sees: the reading register in 0.1 of the modules' unit, the installed and
+// abnormal bits, and the same in degrees Celsius for topics that are SI.
+struct ChannelReading {
+  int16_t raw = 0;
+  bool installed = false;
+  bool abnormal = false;    // the module's out-of-range bit
+  bool broken = false;      // not installed, or the line-broken value
+  double celsius = 0;       // NaN when broken
+  double variance_c2 = 0;   // of celsius: rounding to the channel's step q gives q^2/12
+  // "not installed", "line broken", "out of range", or the reading in the modules' unit.
+  std::string state() const;
+};
+
 class TemperatureCell : public ScanHook {
  public:
   TemperatureCell(TemperatureConfig cfg, Memory& mem);
@@ -65,6 +79,8 @@ class TemperatureCell : public ScanHook {
   const std::vector<ChannelState>& channels() const { return channels_; }
   ThermalPlant* plant(const std::string& name);
   bool all_read() const { return all_read_; }
+  // Every channel decoded from m (the PLC's memory, its lock held: a copy and no more).
+  std::vector<ChannelReading> readings(const Memory& m) const;
   // Breaks or mends a channel's sensor line (tests, fault injection).
   void set_open(size_t channel, bool open) { wired_open_.at(channel) = open; }
   // The engineering value a reading register holds for degC (unit, resolution, rounding).

@@ -1,0 +1,31 @@
+#pragma once
+// The positioning subsystem as a cell extension: the `axes:` section, FUN140-143 and the
+// MPG and interpolation FUNs, and the MotionUnit driving PSO0-PSO3 (on the counters'
+// event loop, so it attaches after the counters extension).
+#include <memory>
+
+#include "plc_cell/config/cell_extension.h"
+#include "plc_cell/motion/motion_unit.h"
+
+namespace plc_cell {
+namespace motion {
+
+class AxesExtension : public CellExtension {
+ public:
+  std::string name() const override { return "axes"; }
+  std::vector<std::string> sections() const override { return {"axes"}; }
+  void install(const CellConfig& cfg, FunctionTable& t) override;
+  // An axes: section in error leaves every axis unconfigured (FUN140 still runs them).
+  void attach(const CellConfig& cfg, Plc& plc, ErrorList& errors) override;
+  std::vector<ExtensionStatus> status(Plc& plc) const override;
+  void detach(Plc& plc) override;
+
+  // Only touch it under plc.locked(): the scan calls into it.
+  MotionUnit& unit() { return *unit_; }
+
+ private:
+  std::unique_ptr<MotionUnit> unit_;
+};
+
+}  // namespace motion
+}  // namespace plc_cell

@@ -1,0 +1,13 @@
+#pragma once
+// Every cell extension's status (config/cell_extension.h) on /diagnostics: one entry per
+// extension that reports anything, its level the worst of its statuses. A new subsystem
+// reports through its extension and appears here with no change to the node.
+#include <diagnostic_updater/diagnostic_updater.h>
+
+#include "plc_cell/sim/soft_cell.h"
+
+namespace plc_cell {
+
+void add_extension_diagnostics(diagnostic_updater::Updater& updater, SoftCell& cell);
+
+}  // namespace plc_cell
