@@ -54,7 +54,7 @@ std::string program(bool isr, int64_t hz) {
 
 void run(benchmark::State& state, bool isr) {
   const int64_t hz = state.range(0);
-  Plc plc{SoftCell::functions()};  // the cell's instruction set: FUN140-143 and the HSC FUNs
+  Plc plc{plc_cell::SoftCell::functions()};  // the cell's instruction set: FUN140-143 and the HSC FUNs
   HscUnit unit(plc, plc_cell::hsc::parse_hsc_config(YAML::Load(cell_yaml(hz))["counters"], "bench.yaml"));
   plc.load_program_text(program(isr, hz), "bench.il");
   plc.set_mode(RunMode::Run);

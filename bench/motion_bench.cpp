@@ -29,7 +29,7 @@ using motion::MotionUnit;
 
 void run(benchmark::State& state, bool moves, bool looped = false) {
   const int64_t hz = state.range(0);
-  Plc plc{SoftCell::functions()};  // the cell's instruction set: FUN140-143 and the HSC FUNs
+  Plc plc{plc_cell::SoftCell::functions()};  // the cell's instruction set: FUN140-143 and the HSC FUNs
   std::unique_ptr<hsc::HscUnit> counters;
   if (looped)  // HHSC n counts U on X(4n), D on X(4n+1)
     counters = std::make_unique<hsc::HscUnit>(
@@ -100,7 +100,7 @@ void run(benchmark::State& state, bool moves, bool looped = false) {
 // 10 ms, the lead axis at hz: the cost per scan of a 4-axis interpolation.
 void BM_FourAxisInterpolationStepEvery10ms(benchmark::State& state) {
   const int64_t hz = state.range(0);
-  Plc plc{SoftCell::functions()};  // the cell's instruction set: FUN140-143 and the HSC FUNs
+  Plc plc{plc_cell::SoftCell::functions()};  // the cell's instruction set: FUN140-143 and the HSC FUNs
   MotionUnit unit(plc);
   plc.load_program_text("ORG M1925\nLD M1000\nLD M1001\nMHSP0 Gp=0 SR=R0 WR=R1000\nEND\n", "bench.il");
   plc.set_mode(RunMode::Run);
