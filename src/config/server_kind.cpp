@@ -69,6 +69,37 @@ std::string check_setting(const SettingSpec& spec, const std::string& text) {
   return text;
 }
 
+SettingSpec setting(std::string key, SettingType type, std::string help, std::string fallback) {
+  SettingSpec s;
+  s.key = std::move(key), s.type = type, s.help = std::move(help), s.fallback = std::move(fallback);
+  return s;
+}
+
+SettingSpec serial_setting(std::string key, std::string format, std::string help) {
+  SettingSpec s = setting(std::move(key), SettingType::SerialLine, std::move(help));
+  s.format = std::move(format);
+  return s;
+}
+
+SettingSpec integer_setting(std::string key, int64_t fallback, int64_t lo, int64_t hi, std::string help) {
+  SettingSpec s = setting(std::move(key), SettingType::Integer, std::move(help), std::to_string(fallback));
+  s.lo = lo, s.hi = hi;
+  return s;
+}
+
+SettingSpec duration_setting(std::string key, std::string fallback, int64_t lo_us, int64_t hi_us, std::string help) {
+  SettingSpec s = setting(std::move(key), SettingType::Duration, std::move(help), std::move(fallback));
+  s.lo = lo_us, s.hi = hi_us;
+  return s;
+}
+
+std::vector<SettingSpec> client_limits(int max_connections) {
+  return {setting("writable", SettingType::Writable,
+                  "what clients may write: all, none, or ranges such as D0-D99,M800 (docs/security.md)", "all"),
+          integer_setting("max_connections", max_connections, 1, 1024, "open TCP connections at most; one more is refused"),
+          duration_setting("idle_timeout", "60s", 1000, 86400000000, "a TCP connection silent this long is closed (1ms-24h)")};
+}
+
 const std::string& Settings::text(const std::string& key) const {
   static const std::string none;
   const auto& v = all(key);

@@ -8,12 +8,6 @@
 namespace plc_cell {
 namespace {
 
-SettingSpec spec(const char* key, SettingType type, int64_t lo, int64_t hi, const char* help) {
-  SettingSpec s;
-  s.key = key, s.type = type, s.lo = lo, s.hi = hi, s.help = help;
-  return s;
-}
-
 // The last override of key, checked against its spec (every override is checked);
 // nullptr when none.
 const std::string* run_value(const std::vector<SettingOverride>& run, const std::string& key,
@@ -58,10 +52,10 @@ const std::vector<SettingSpec>& Cell::run_settings() {
   // The bounds are the YAML's (plc.scan_period, plc.persist.interval): a value refused in
   // the file is refused as an option or a parameter too.
   static const std::vector<SettingSpec> specs = {
-      spec("scan_period", SettingType::Duration, 100, 1000000, "scan period (default plc.scan_period)"),
-      spec("rt_priority", SettingType::Integer, 0, 99, "SCHED_FIFO priority of the scan thread, 0 = normal"),
-      spec("persist_file", SettingType::Text, 0, 0, "retentive store (default plc.persist.file)"),
-      spec("persist_interval", SettingType::Duration, 1000, 60000000, "store flush interval (default plc.persist.interval)"),
+      duration_setting("scan_period", "", 100, 1000000, "scan period (default plc.scan_period)"),
+      integer_setting("rt_priority", 0, 0, 99, "SCHED_FIFO priority of the scan thread, 0 = normal"),
+      setting("persist_file", SettingType::Text, "retentive store (default plc.persist.file)"),
+      duration_setting("persist_interval", "", 1000, 60000000, "store flush interval (default plc.persist.interval)"),
   };
   return specs;
 }

@@ -105,18 +105,20 @@ TEST(Cli, ServerOptionsComeFromTheSchemas) {
   EXPECT_EQ(help.status, 0);
   EXPECT_NE(help.out.find("--modbus-gateway-wait DURATION [150ms]"), std::string::npos) << help.out;
   EXPECT_NE(help.out.find("--fatek-station N (or --station) [1]"), std::string::npos) << help.out;
-  const Result id = tool("run --config " + kDemo + " --duration 10ms --modbus-id 300");
-  EXPECT_EQ(id.status, 2);
-  EXPECT_NE(id.out.find("--modbus-id 300: value out of range [1, 247]"), std::string::npos) << id.out;
-  const Result ms = tool("run --config " + kDemo + " --duration 10ms --modbus-gateway-wait 150");
-  EXPECT_EQ(ms.status, 2);
-  EXPECT_NE(ms.out.find("--modbus-gateway-wait 150: value out of range [0.001, 60] s"), std::string::npos) << ms.out;
-  const Result twice = tool("run --config " + kDemo + " --duration 10ms --modbus-tcp :0 --modbus-tcp :1");
-  EXPECT_EQ(twice.status, 2);
-  EXPECT_NE(twice.out.find("--modbus-tcp given more than once"), std::string::npos) << twice.out;
-  const Result scan = tool("sim --config " + kDemo + " --duration 10ms --scan 2s");
-  EXPECT_EQ(scan.status, 2);
-  EXPECT_NE(scan.out.find("--scan 2s: value out of range [0.0001, 1] s"), std::string::npos) << scan.out;
+  const struct {
+    const char* args;
+    const char* error;
+  } refused[] = {
+      {"run --duration 10ms --modbus-id 300", "--modbus-id 300: value out of range [1, 247]"},
+      {"run --duration 10ms --modbus-gateway-wait 150", "--modbus-gateway-wait 150: value out of range [0.001, 60] s"},
+      {"run --duration 10ms --modbus-tcp :0 --modbus-tcp :1", "--modbus-tcp given more than once"},
+      {"sim --duration 10ms --scan 2s", "--scan 2s: value out of range [0.0001, 1] s"},
+  };
+  for (const auto& c : refused) {
+    const Result r = tool(std::string(c.args) + " --config " + kDemo);
+    EXPECT_EQ(r.status, 2) << c.args;
+    EXPECT_NE(r.out.find(c.error), std::string::npos) << c.args << "\n" << r.out;
+  }
   const Result served = tool("run --config " + kDemo + " --duration 50ms --fatek-tcp 127.0.0.1:0 --station 7");
   EXPECT_EQ(served.status, 0) << served.out;
   EXPECT_NE(served.out.find("serving FATEK TCP 127.0.0.1:"), std::string::npos) << served.out;

@@ -94,4 +94,13 @@ std::map<std::string, Settings> merge_server_settings(const std::vector<ServerKi
 // plc_cell::Error saying why.
 std::string check_setting(const SettingSpec& spec, const std::string& text);
 
+// A schema's entries, written as one line each.
+SettingSpec setting(std::string key, SettingType type, std::string help, std::string fallback = "");
+SettingSpec serial_setting(std::string key, std::string format, std::string help);
+SettingSpec integer_setting(std::string key, int64_t fallback, int64_t lo, int64_t hi, std::string help);
+SettingSpec duration_setting(std::string key, std::string fallback, int64_t lo_us, int64_t hi_us, std::string help);
+// What clients may do, the same for every server kind (docs/security.md): writable
+// (default all), max_connections (this kind's default; 1-1024) and idle_timeout (60s).
+std::vector<SettingSpec> client_limits(int max_connections);
+
 }  // namespace plc_cell
