@@ -31,5 +31,11 @@ int cmd_check(const std::vector<std::string>& argv) {
   }
 }
 
+Command check_command() {
+  return {"check",
+          "--program FILE [--config CELL.yaml]   build the cell, stop, and report every error\n",
+          cmd_check};
+}
+
 }  // namespace cli
 }  // namespace plc_cell

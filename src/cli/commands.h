@@ -1,17 +1,26 @@
 #pragma once
-// Subcommands of the plc_cell tool. Each returns the process exit status.
-#include <memory>
+// The subcommands of the plc_cell tool. Each command's file defines its Command (name,
+// usage lines, entry point); commands.cpp lists them, and main.cpp dispatches and prints
+// --help from that list alone.
 #include <string>
 #include <vector>
 
 namespace plc_cell {
 namespace cli {
 
-int cmd_sim(const std::vector<std::string>& args);
-int cmd_run(const std::vector<std::string>& args);
-int cmd_check(const std::vector<std::string>& args);
-// FATEK master tool (src/cli/fatek_command.cpp).
-int cmd_fatek(const std::vector<std::string>& args);
+struct Command {
+  const char* name;
+  const char* usage;  // its lines of --help, each indented to the usage column
+  int (*run)(const std::vector<std::string>& args);  // the process exit status
+};
+
+Command sim_command();
+Command run_command();
+Command check_command();
+Command fatek_command();  // a FATEK master for commissioning (src/cli/fatek_command.cpp)
+
+// Every subcommand, in the order --help lists them.
+const std::vector<Command>& commands();
 
 }  // namespace cli
 }  // namespace plc_cell

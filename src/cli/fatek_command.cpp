@@ -125,5 +125,14 @@ int cmd_fatek(const std::vector<std::string>& argv) {
   return 0;
 }
 
+Command fatek_command() {
+  return {"fatek",
+          "(--tcp HOST:PORT | --serial DEV[:BAUD[:FMT]]) [--station N] [--timeout MS]\n"
+          "         [--retries N] status|run|stop|read ADDR [COUNT]|write ADDR VALUE...|\n"
+          "         force ADDR on|off|enable|disable|disabled ADDR [COUNT]|loopback TEXT\n"
+          "         talk to a FATEK FBs-PLC (or plc_cell run --fatek-tcp/--fatek-serial)\n",
+          cmd_fatek};
+}
+
 }  // namespace cli
 }  // namespace plc_cell

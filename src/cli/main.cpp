@@ -10,26 +10,6 @@
 
 namespace {
 
-const char* kUsage =
-    "usage: plc_cell COMMAND [options]\n"
-    "\n"
-    "commands:\n"
-    "  sim    --program FILE [--config FILE] --duration 2.5s [--scan 1ms]\n"
-    "         [--set ADDR=VALUE ...] [--watch ADDR,...] [--trace FILE.csv]\n"
-    "         run the program in virtual time and print the watched values\n"
-    "  run    --program FILE [--config FILE] [--scan 1ms] [--duration T] [--rt-priority N]\n"
-    "         run the soft PLC in real time until interrupted\n"
-    "  check  --program FILE [--config CELL.yaml]   parse a program and report every error\n"
-    // @usage: subsystems add their commands' usage lines here
-    "  fatek  (--tcp HOST:PORT | --serial DEV[:BAUD[:FMT]]) [--station N] [--timeout MS]\n"
-    "         [--retries N] status|run|stop|read ADDR [COUNT]|write ADDR VALUE...|\n"
-    "         force ADDR on|off|enable|disable|disabled ADDR [COUNT]|loopback TEXT\n"
-    "         talk to a FATEK FBs-PLC (or plc_cell run --fatek-tcp/--fatek-serial)\n"
-    "  run    ... [--persist FILE] [--persist-interval DURATION]\n"
-    "         keep the retentive ranges in FILE across restarts and crashes (default 100ms)\n"
-    "  run    ... [--SERVER-SETTING VALUE ...]   serve the cell's protocols (below); each\n"
-    "         option overrides the cell YAML's servers.SERVER.SETTING\n";
-
 const char* placeholder(plc_cell::SettingType t) {
   using plc_cell::SettingType;
   switch (t) {
@@ -43,9 +23,15 @@ const char* placeholder(plc_cell::SettingType t) {
   return "TEXT";
 }
 
-// The server options come from the server kinds' schemas: a new kind lists itself.
+// The commands and the server options come from their lists (cli::commands(), the server
+// kinds' schemas): a new command or server kind lists itself.
 void usage(std::ostream& out) {
-  out << kUsage;
+  out << "usage: plc_cell COMMAND [options]\n\ncommands:\n";
+  for (const auto& c : plc_cell::cli::commands()) {
+    std::string name = c.name;
+    name.resize(7, ' ');
+    out << "  " << name << c.usage;
+  }
   for (const auto& k : plc_cell::Cell::server_kinds()) {
     out << "\n" << k.title << ":\n";
     for (const auto& s : k.settings) {
@@ -69,11 +55,8 @@ int main(int argc, char** argv) {
   const std::string cmd = args[0];
   args.erase(args.begin());
   try {
-    if (cmd == "sim") return plc_cell::cli::cmd_sim(args);
-    if (cmd == "run") return plc_cell::cli::cmd_run(args);
-    if (cmd == "check") return plc_cell::cli::cmd_check(args);
-    // @commands: subsystems dispatch their commands here
-    if (cmd == "fatek") return plc_cell::cli::cmd_fatek(args);
+    for (const auto& c : plc_cell::cli::commands())
+      if (cmd == c.name) return c.run(args);
     std::cerr << "plc_cell: unknown command '" << cmd << "'\n";
     usage(std::cerr);
     return 2;

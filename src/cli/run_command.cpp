@@ -58,5 +58,15 @@ int cmd_run(const std::vector<std::string>& argv) {
   return fault.empty() ? 0 : 1;
 }
 
+Command run_command() {
+  return {"run",
+          "--program FILE [--config FILE] [--scan 1ms] [--duration T] [--rt-priority N]\n"
+          "         [--persist FILE] [--persist-interval DURATION] [--SERVER-SETTING VALUE ...]\n"
+          "         run the soft PLC in real time until interrupted; keep the retentive ranges in\n"
+          "         FILE across restarts and crashes (default 100ms); serve the cell's protocols\n"
+          "         (below), each option overriding the cell YAML's servers.SERVER.SETTING\n",
+          cmd_run};
+}
+
 }  // namespace cli
 }  // namespace plc_cell

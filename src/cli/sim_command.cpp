@@ -94,5 +94,13 @@ int cmd_sim(const std::vector<std::string>& argv) {
   return fault.empty() ? 0 : 1;
 }
 
+Command sim_command() {
+  return {"sim",
+          "--program FILE [--config FILE] --duration 2.5s [--scan 1ms]\n"
+          "         [--set ADDR=VALUE ...] [--watch ADDR,...] [--trace FILE.csv]\n"
+          "         run the program in virtual time and print the watched values\n",
+          cmd_sim};
+}
+
 }  // namespace cli
 }  // namespace plc_cell

@@ -8,6 +8,7 @@ import rospy
 import rostest
 from std_srvs.srv import Trigger
 
+from diagnostic_msgs.msg import DiagnosticArray
 from plc_cell.msg import Counter, CounterArray
 from plc_cell.srv import PresetCounter
 
@@ -57,6 +58,21 @@ class CountersTest(unittest.TestCase):
         self.assertEqual(self.one.wait_for(lambda m: m.count == 123).count, 123)
         self.assertTrue(self.clear().success)
         self.assertEqual(self.one.wait_for(lambda m: m.count == 0).count, 0)
+
+    def test_3_the_counters_extension_reports_on_diagnostics(self):
+        # Each cell extension's status is a /diagnostics entry: the counters name theirs.
+        diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
+        # Not diagnostic_updater's "Node starting up" announcement, which has no values.
+        def counters(m):
+            return [s for s in m.status if s.name.endswith(": counters") and s.values]
+        msg = diag.wait_for(lambda m: bool(counters(m)))
+        self.assertIsNotNone(msg)
+        st = counters(msg)[0]
+        self.assertEqual(st.level, 0, st.message)
+        self.assertEqual(st.message, "1 counter configured")
+        values = dict((kv.key, kv.value) for kv in st.values)
+        self.assertEqual(list(values), ["conveyor"])
+        self.assertGreaterEqual(int(values["conveyor"]), 0)
 
 
 if __name__ == "__main__":

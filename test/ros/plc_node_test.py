@@ -195,9 +195,12 @@ class PlcNodeTest(unittest.TestCase):
 
     def test_diagnostics_report_the_scan(self):
         diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
-        msg = diag.wait_for(lambda m: any(s.name.endswith("scan") for s in m.status), timeout=15)
+        # Not diagnostic_updater's "Node starting up" announcement, which has no values.
+        def scan(m):
+            return [s for s in m.status if s.name.endswith("scan") and s.values]
+        msg = diag.wait_for(lambda m: bool(scan(m)), timeout=15)
         self.assertIsNotNone(msg)
-        st = [s for s in msg.status if s.name.endswith("scan")][0]
+        st = scan(msg)[0]
         self.assertEqual(st.level, 0, st.message)
         keys = dict((kv.key, kv.value) for kv in st.values)
         self.assertGreater(int(keys["scans"]), 0)

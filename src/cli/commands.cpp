@@ -1,0 +1,12 @@
+#include "commands.h"
+
+namespace plc_cell {
+namespace cli {
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> all = {sim_command(), run_command(), check_command(), fatek_command()};
+  return all;
+}
+
+}  // namespace cli
+}  // namespace plc_cell
