@@ -1,10 +1,10 @@
-# High-speed counters, timers and interrupts: the plc_cell_hsc layer. The soft cell
+# High-speed counters, timers and their interrupt sources: the plc_cell_hsc layer, a
+# source of the cell's scheduler (plc_cell_timeline). The soft cell
 # creates the unit for every program (time-base interrupts need no configuration).
-plc_cell_layer(plc_cell_hsc LINKS plc_cell_config SOURCES
+plc_cell_layer(plc_cell_hsc LINKS plc_cell_config plc_cell_timeline SOURCES
   src/hsc/count_rule.cpp
   src/hsc/pulse_source.cpp
   src/hsc/hsc_config.cpp
-  src/hsc/interrupts.cpp
   src/hsc/hsc_unit.cpp
   src/hsc/hsc_functions.cpp
   src/hsc/input_filter.cpp

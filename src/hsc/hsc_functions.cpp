@@ -5,7 +5,6 @@
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/hsc/hsc_unit.h"
-#include "plc_cell/hsc/interrupts.h"
 
 namespace plc_cell {
 namespace hsc {

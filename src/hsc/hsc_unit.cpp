@@ -16,7 +16,11 @@ int counter_source(int n) { return n < 4 ? kHsc0I + n : kHsc4I + (n - 4); }
 }  // namespace
 
 HscUnit::HscUnit(Plc& plc, HscConfig cfg)
-    : engine_(engine_of(plc)), mem_(memory_of(plc)), plc_(plc), cfg_(std::move(cfg)) {
+    : engine_(engine_of(plc)),
+      mem_(memory_of(plc)),
+      plc_(plc),
+      sched_(*plc.locked([](ScanEngine& e, Memory&) { return &timeline::Scheduler::of(e); })),
+      cfg_(std::move(cfg)) {
   pin_phase_.fill(-1);
   for (const auto& d : cfg_.sources) {
     sources_.push_back(std::make_unique<PulseSource>(d.name, d.pin_a, d.pin_b));
@@ -27,17 +31,19 @@ HscUnit::HscUnit(Plc& plc, HscConfig cfg)
   bind_counters();
   for (int n = 0; n < 8; ++n)
     if (counters_[n].def.used && !counters_[n].def.timer && n >= 4)
-      irq_.set_priority(counter_source(n), x_edge_source(counters_[n].def.pin_a, false) + 1);
+      irq().set_priority(counter_source(n), x_edge_source(counters_[n].def.pin_a, false) + 1);
   for (int x = 16; x < kFilteredInputs; ++x) scan_filter_[x - 16] = ScanDebounce(cfg_.filter_ns[x]);
   for (const auto& e : cfg_.edges) schedule_edge(e.x, e.t_ns, e.level);
   plc_.locked([this](ScanEngine& e, Memory&) {
-    e.add_hook(this);
+    e.add_hook(this);  // after the scheduler's: each scan finds the clock at the scan's instant
+    sched_.add_source(this);
     return 0;
   });
 }
 
 HscUnit::~HscUnit() {
   plc_.locked([this](ScanEngine& e, Memory&) {
+    sched_.remove_source(this);
     e.remove_hook(this);
     return 0;
   });
@@ -77,7 +83,7 @@ void HscUnit::bind_counters() {
       if (x >= 0 && pin_src_[x])
         throw Error("HSC" + std::to_string(n) + ": X" + std::to_string(x) +
                     " is a MASK/CLEAR input; pulse sources drive counting or interrupt inputs only");
-    if (running_ && c.src) take_quarter(c);
+    if (running() && c.src) take_quarter(c);
   }
 }
 
@@ -98,7 +104,7 @@ void HscUnit::attach_source(EdgeSource* s, int pin_a, int pin_b) {
     throw;
   }
   for (int x : {pin_a, pin_b})
-    if (x >= 0 && running_) cap_q_[x] = s->quarter(cur_ns_);
+    if (x >= 0 && running()) cap_q_[x] = s->quarter(now());
 }
 
 void HscUnit::detach_source(EdgeSource* s) {
@@ -144,7 +150,7 @@ bool HscUnit::cleared(const Counter& c) const {
 bool HscUnit::counting(const Counter& c) const {
   if (!c.def.used || c.def.timer || cleared(c)) return false;
   if ((c.def.pin_mask >= 0 && term_[c.def.pin_mask] != c.def.inv_mask) || c.sw_mask) return false;
-  if (c.n >= 4 && !irq_.enabled(counter_source(c.n))) return false;  // a disabled SHSC stops counting
+  if (c.n >= 4 && !irq().enabled(counter_source(c.n))) return false;  // a disabled SHSC stops counting
   return true;
 }
 
@@ -192,23 +198,23 @@ void HscUnit::add_count(Counter& c, int64_t d, bool check) {
   set_cv(c, v);
   c.total += d;
   if (check && v == get_pv(c)) {
-    fired_.push_back(counter_source(c.n));
-    for (auto& f : match_obs_) f(cur_ns_, c.n, c.def.timer);
+    sched_.raise(counter_source(c.n));
+    for (auto& f : match_obs_) f(now(), c.n, c.def.timer);
   }
 }
 
 void HscUnit::take_quarter(Counter& c) {
-  c.q = c.src->quarter(cur_ns_);
+  c.q = c.src->quarter(now());
   c.last = pins_at(c, c.q);
   c.epoch = c.src->epoch();
 }
 
-// The source changed at cur_ns_ (a move started, was cut or ended): its levels
+// The source changed at now() (a move started, was cut or ended): its levels
 // before and after are one transition of the counting inputs. Counts are exact
 // through a cut too, since an axis completes a pulse whose edge has left the pin
 // (docs/motion.md "Pulse pins").
 void HscUnit::resync(Counter& c) {
-  const int64_t q = c.src->quarter(cur_ns_);
+  const int64_t q = c.src->quarter(now());
   const Pins now = pins_at(c, q);
   if (counting(c) && !blocked(c)) add_count(c, count_delta(c.def.mode, c.last, now), true);
   c.q = q;
@@ -239,7 +245,7 @@ void HscUnit::advance_counters(uint64_t t) {
 // the source crosses, solved in O(1) from the 4-periodic weights.
 uint64_t HscUnit::next_match(const Counter& c) const {
   const int s = counter_source(c.n);
-  if (!c.src || c.src->direction() == 0 || !irq_.present(s) || !irq_.enabled(s) || !counting(c) || blocked(c))
+  if (!c.src || c.src->direction() == 0 || !irq().present(s) || !irq().enabled(s) || !counting(c) || blocked(c))
     return kNever;
   std::array<int, 4> seq;
   weights(c, &seq);
@@ -260,7 +266,7 @@ uint64_t HscUnit::next_match(const Counter& c) const {
     if (k > 0 && (best < 0 || k < best)) best = k;
   }
   if (best < 0) return kNever;
-  return c.src->time_of_quarter(c.q + best * c.src->direction(), cur_ns_);
+  return c.src->time_of_quarter(c.q + best * c.src->direction(), now());
 }
 
 // ---- timers ------------------------------------------------------------------
@@ -271,24 +277,24 @@ uint32_t HscUnit::hst_cv(const Counter& c, uint64_t t) const {
 
 uint64_t HscUnit::hst_match(const Counter& c) const {
   const int s = kHsc0I + c.n;
-  if (!irq_.present(s) || !irq_.enabled(s)) return kNever;
+  if (!irq().present(s) || !irq().enabled(s)) return kNever;
   uint64_t ticks = static_cast<uint32_t>(c.pv - c.t_cv0);
   if (ticks == 0) ticks = 1ull << 32;
   uint64_t t = c.t_base + ticks * kTick;
-  while (t <= cur_ns_) t += (1ull << 32) * kTick;
+  while (t <= now()) t += (1ull << 32) * kTick;
   return t;
 }
 
 uint64_t HscUnit::hsta_next() const {
-  if (hsta_pv_ == 0 || !irq_.present(kHstaI) || !irq_.enabled(kHstaI)) return kNever;
+  if (hsta_pv_ == 0 || !irq().present(kHstaI) || !irq().enabled(kHstaI)) return kNever;
   const uint64_t period = std::max<uint64_t>(hsta_pv_, 2) * kTick;  // PV = 1 acts as 2 (AMBIG-12)
-  return hsta_t0_ + ((cur_ns_ - hsta_t0_) / period + 1) * period;
+  return hsta_t0_ + ((now() - hsta_t0_) / period + 1) * period;
 }
 
 int HscUnit::active_time_base() const {
   const uint16_t mask = mem_.reg(Area::R, kTimeBaseMask);
   for (int i = 0; i < 8; ++i)
-    if (!((mask >> i) & 1) && irq_.present(kTimeBase0 + i)) return i;  // the smallest unmasked
+    if (!((mask >> i) & 1) && irq().present(kTimeBase0 + i)) return i;  // the smallest unmasked
   return -1;
 }
 
@@ -296,18 +302,18 @@ uint64_t HscUnit::next_pin_edge(int x, bool rising) const {
   const EdgeSource* s = pin_src_[x];
   const int dir = s->direction();
   if (dir == 0 || blocked(x)) return kNever;
-  const int64_t q = s->quarter(cur_ns_);
+  const int64_t q = s->quarter(now());
   for (int i = 1; i <= 4; ++i) {
     const bool a = s->level(pin_phase_[x], q + (i - 1) * dir), b = s->level(pin_phase_[x], q + i * dir);
-    if (a != b && b == rising) return s->time_of_quarter(q + i * dir, cur_ns_);
+    if (a != b && b == rising) return s->time_of_quarter(q + i * dir, now());
   }
   return kNever;
 }
 
-// ---- the event loop ------------------------------------------------------------
+// ---- in the scheduler's loop -----------------------------------------------------
 
 void HscUnit::start(uint64_t t) {
-  cur_ns_ = run_ns_ = t;
+  run_ns_ = prev_ns_ = t;
   for (auto& c : counters_) {
     c.cv = c.pv = 0;
     c.sw_mask = c.sw_clear = c.sw_dir = false;
@@ -320,8 +326,6 @@ void HscUnit::start(uint64_t t) {
   hsta_pv_ = 0;
   hsta_cv0_ = 0;
   hsta_t0_ = t;
-  for (int s = 0; s < kSourceCount; ++s) irq_.set_enabled(s, true);
-  irq_.reset();
   for (int x = 0; x < 16; ++x) {
     if (!pin_src_[x]) term_[x] = raw_[x] = engine_.input(x);
     else cap_q_[x] = pin_src_[x]->quarter(t);
@@ -329,98 +333,95 @@ void HscUnit::start(uint64_t t) {
     latch_[x] = false;
   }
   for (auto& f : scan_filter_) f.reset();
-  running_ = true;
 }
 
-void HscUnit::advance(uint64_t to) {
-  std::array<uint64_t, 8> match;
-  for (;;) {
-    for (auto& c : counters_)
-      if (c.src && c.src->epoch() != c.epoch) resync(c);
-    if (!fired_.empty()) {  // a CV=PV reached by such a jump interrupts at its instant
-      fire_pending();
-      if (!running_) return;
-    }
-    uint64_t t = to;
-    for (auto& c : counters_) {
-      match[c.n] = !c.def.used ? kNever : c.def.timer ? hst_match(c) : next_match(c);
-      t = std::min(t, match[c.n]);
-    }
-    const uint64_t hsta = hsta_next();
-    t = std::min(t, hsta);
-    const int tb = active_time_base();
-    uint64_t tb_next = kNever;
-    if (tb >= 0) {
-      const uint64_t p = uint64_t(kTimeBaseMs[tb]) * 1000000;
-      tb_next = run_ns_ + ((cur_ns_ - run_ns_) / p + 1) * p;
-      t = std::min(t, tb_next);
-    }
-    std::array<uint64_t, 32> pin_edge;
-    pin_edge.fill(kNever);
-    for (int e : cfg_.edge_interrupts) {
-      const int x = e / 2;
-      if (!pin_src_[x] || !irq_.present(kX0Up + e) || !irq_.enabled(kX0Up + e)) continue;
-      pin_edge[e] = next_pin_edge(x, e % 2 == 0);
-      t = std::min(t, pin_edge[e]);
-    }
-    if (!edges_.empty()) t = std::min(t, std::max(edges_.top().t, cur_ns_));
-    for (const EventSource* es : ext_) t = std::min(t, std::max(es->next_event_ns(), cur_ns_));
-    for (const auto& tr : trains_) {
-      bool up;
-      t = std::min(t, tr.next_after(cur_ns_, &up));
-    }
+void HscUnit::stop() { refresh_outputs(0, 256); }
 
-    advance_counters(t);
-    const uint64_t prev = cur_ns_;
-    cur_ns_ = t;
-    fired_.clear();
-    for (auto& c : counters_)
-      if (match[c.n] == t) {
-        fired_.push_back(counter_source(c.n));
-        for (auto& f : match_obs_) f(t, c.n, c.def.timer);
-      }
-    if (hsta == t) fired_.push_back(kHstaI);
-    if (tb_next == t) fired_.push_back(kTimeBase0 + tb);
-    for (int e = 0; e < 32; ++e)
-      if (pin_edge[e] == t) fired_.push_back(kX0Up + e);
-    std::vector<std::pair<int, bool>> group;
-    for (const auto& tr : trains_) {
-      bool up;
-      if (tr.next_after(prev, &up) == t) group.push_back({tr.x, up});
+void HscUnit::settle() {
+  for (auto& c : counters_)
+    if (c.src && c.src->epoch() != c.epoch) resync(c);
+}
+
+uint64_t HscUnit::next_event_ns() {
+  uint64_t t = kNever;
+  for (auto& c : counters_) {
+    match_[c.n] = !c.def.used ? kNever : c.def.timer ? hst_match(c) : next_match(c);
+    t = std::min(t, match_[c.n]);
+  }
+  hsta_next_ = hsta_next();
+  t = std::min(t, hsta_next_);
+  tb_ = active_time_base();
+  tb_next_ = kNever;
+  if (tb_ >= 0) {
+    const uint64_t p = uint64_t(kTimeBaseMs[tb_]) * 1000000;
+    tb_next_ = run_ns_ + ((now() - run_ns_) / p + 1) * p;
+    t = std::min(t, tb_next_);
+  }
+  pin_edge_.fill(kNever);
+  for (int e : cfg_.edge_interrupts) {
+    const int x = e / 2;
+    if (!pin_src_[x] || !irq().present(kX0Up + e) || !irq().enabled(kX0Up + e)) continue;
+    pin_edge_[e] = next_pin_edge(x, e % 2 == 0);
+    t = std::min(t, pin_edge_[e]);
+  }
+  if (!edges_.empty()) t = std::min(t, std::max(edges_.top().t, now()));
+  for (const auto& tr : trains_) {
+    bool up;
+    t = std::min(t, tr.next_after(now(), &up));
+  }
+  return t;
+}
+
+void HscUnit::advance_to(uint64_t t) {
+  advance_counters(t);
+  prev_ns_ = now();
+}
+
+void HscUnit::at(uint64_t t) {
+  for (auto& c : counters_)
+    if (match_[c.n] == t) {
+      sched_.raise(counter_source(c.n));
+      for (auto& f : match_obs_) f(t, c.n, c.def.timer);
     }
-    while (!edges_.empty() && edges_.top().t <= t) {
-      const Edge e = edges_.top();
-      edges_.pop();
-      raw_edge(e, &group);
-    }
-    if (!group.empty()) {
-      // Edges at one instant act together: simultaneous U and D edges cancel.
-      std::array<Pins, 8> before;
-      for (auto& c : counters_)
-        if (c.def.used && !c.def.timer) before[c.n] = pins_at(c, c.q);
-      std::array<bool, 16> old = term_;
-      for (const auto& g : group)
-        if (!pin_src_[g.first]) term_[g.first] = raw_[g.first] = g.second;
-      std::array<bool, 16> now = term_;
-      for (auto& c : counters_) {
-        if (!c.def.used || c.def.timer) continue;
-        term_ = old;
-        const bool was_counting = counting(c);
-        term_ = now;
-        if (was_counting && counting(c)) add_count(c, count_delta(c.def.mode, before[c.n], pins_at(c, c.q)), true);
-        if (cleared(c)) set_cv(c, 0);
-      }
-      for (int x = 0; x < 16; ++x) {
-        if (old[x] == now[x]) continue;
-        engine_.set_input(x, now[x]);
-        if (now[x]) latch_[x] = true;
-        fired_.push_back(x_edge_source(x, !now[x]));  // ignored unless configured with a routine
-      }
-    }
-    for (EventSource* es : ext_)
-      if (es->next_event_ns() <= t) es->at(t, &fired_);
-    fire_pending();
-    if (!running_ || t >= to) return;
+  if (hsta_next_ == t) sched_.raise(kHstaI);
+  if (tb_next_ == t) sched_.raise(kTimeBase0 + tb_);
+  for (int e = 0; e < 32; ++e)
+    if (pin_edge_[e] == t) sched_.raise(kX0Up + e);
+  std::vector<std::pair<int, bool>> group;
+  for (const auto& tr : trains_) {
+    bool up;
+    if (tr.next_after(prev_ns_, &up) == t) group.push_back({tr.x, up});
+  }
+  while (!edges_.empty() && edges_.top().t <= t) {
+    const Edge e = edges_.top();
+    edges_.pop();
+    raw_edge(e, &group);
+  }
+  if (group.empty()) return;
+  // Edges at one instant act together: simultaneous U and D edges cancel.
+  std::array<Pins, 8> before;
+  for (auto& c : counters_)
+    if (c.def.used && !c.def.timer) before[c.n] = pins_at(c, c.q);
+  std::array<bool, 16> old = term_;
+  for (const auto& g : group)
+    if (!pin_src_[g.first]) term_[g.first] = raw_[g.first] = g.second;
+  std::array<bool, 16> level = term_;
+  for (auto& c : counters_) {
+    if (!c.def.used || c.def.timer) continue;
+    term_ = old;
+    const bool was_counting = counting(c);
+    term_ = level;
+    if (was_counting && counting(c)) add_count(c, count_delta(c.def.mode, before[c.n], pins_at(c, c.q)), true);
+    if (cleared(c)) set_cv(c, 0);
+  }
+  for (int x = 0; x < 16; ++x) {
+    if (old[x] == level[x]) continue;
+    engine_.set_input(x, level[x]);
+    if (level[x]) latch_[x] = true;
+    // An input edge interrupts only if configured with a routine (manual §9.5).
+    const int e = 2 * x + (level[x] ? 0 : 1);
+    if (std::find(cfg_.edge_interrupts.begin(), cfg_.edge_interrupts.end(), e) != cfg_.edge_interrupts.end())
+      sched_.raise(x_edge_source(x, !level[x]));
   }
 }
 
@@ -442,34 +443,6 @@ void HscUnit::raw_edge(const Edge& e, std::vector<std::pair<int, bool>>* group) 
   engine_.set_input(e.x, e.level);
   ++gen_[e.x];
   if (e.level != term_[e.x]) edges_.push({e.t + w, edge_seq_++, e.x, e.level, true, gen_[e.x]});
-}
-
-void HscUnit::fire_pending() {
-  for (int s : fired_) {
-    if (s >= kX0Up && s < kHsc4I) {
-      const int e = s - kX0Up;
-      if (std::find(cfg_.edge_interrupts.begin(), cfg_.edge_interrupts.end(), e) == cfg_.edge_interrupts.end())
-        continue;  // an input edge interrupts only if configured (manual §9.5)
-    }
-    irq_.request(s);
-  }
-  fired_.clear();
-  irq_.dispatch([this](int s, const std::string&) { return run_isr(s); });
-}
-
-bool HscUnit::run_isr(int source) {
-  for (auto& f : isr_obs_) f(cur_ns_, source);
-  const std::string label = irq_.label(source);
-  Interpreter& in = engine_.interpreter();
-  if (in.run_routine(label, cur_ns_ / 1000, &engine_)) return true;
-  engine_.stop_with_fault("interrupt " + label + ": " + in.fault());
-  return false;
-}
-
-void HscUnit::remove_event_source(EventSource* s) { ext_.erase(std::remove(ext_.begin(), ext_.end(), s), ext_.end()); }
-
-void HscUnit::raise(int source) {
-  irq_.raise(source, [this](int s, const std::string&) { return run_isr(s); });
 }
 
 void HscUnit::schedule_edge(int x, uint64_t t_ns, bool level) { edges_.push({t_ns, edge_seq_++, x, level}); }
@@ -513,45 +486,32 @@ uint64_t HscUnit::Train::next_after(uint64_t t, bool* rising) const {
 
 // ---- scan hooks ------------------------------------------------------------------
 
-void HscUnit::before_inputs(uint64_t now_us) {
-  const uint64_t now = now_us * 1000;
-  if (engine_.mode() != RunMode::Run) {
-    running_ = false;
-    return;
-  }
-  const Program& prog = engine_.program();
-  if (prog.code.data() != bound_code_ || prog.code.size() != bound_size_) {
-    irq_.bind(prog);
-    bound_code_ = prog.code.data();
-    bound_size_ = prog.code.size();
-  }
-  if (!running_) start(now);
-  if (now > cur_ns_) advance(now);
-  if (!running_) return;
+void HscUnit::before_inputs(uint64_t) {
+  if (!running()) return;  // the scheduler's hook, before this one, has brought the clock to now
   // Levels that the simulation or a ROS topic set since the last scan change now.
   for (int x = 0; x < 16; ++x)
-    if (!pin_src_[x] && engine_.input(x) != raw_[x]) schedule_edge(x, cur_ns_, engine_.input(x));
-  if (!edges_.empty() && edges_.top().t <= cur_ns_) advance(cur_ns_);
-  if (!running_) return;
+    if (!pin_src_[x] && engine_.input(x) != raw_[x]) schedule_edge(x, now(), engine_.input(x));
+  if (!edges_.empty() && edges_.top().t <= now()) sched_.advance(now());
+  if (!running()) return;
   for (int x = 0; x < 16; ++x)
-    if (pin_src_[x]) engine_.set_input(x, term(x, cur_ns_));
+    if (pin_src_[x]) engine_.set_input(x, term(x, now()));
   for (auto& c : counters_) {
     if (!c.def.used || c.def.timer) continue;
-    c.hist.push_back({cur_ns_, c.total});
+    c.hist.push_back({now(), c.total});
     const uint64_t w = cfg_.frequency_window_us * 1000;
-    while (c.hist.size() > 2 && c.hist[1].first + w <= cur_ns_) c.hist.pop_front();
+    while (c.hist.size() > 2 && c.hist[1].first + w <= now()) c.hist.pop_front();
   }
 }
 
 // After the input image is taken: the filtered levels of X0-X15, the capture
 // latches (ON at some instant since the last image) and the scan filter of X16-X35.
 void HscUnit::before_program(uint64_t now_us) {
-  if (!running_) return;
+  if (!running()) return;
   for (int x = 0; x < 16; ++x) {
     bool on = false;
     if (pin_src_[x]) {
       if (cfg_.capture[x]) on = source_was_on(x);
-      cap_q_[x] = pin_src_[x]->quarter(cur_ns_);
+      cap_q_[x] = pin_src_[x]->quarter(now());
     } else {
       if (cfg_.filter_ns[x] > 0) mem_.set_bit(Area::X, x, term_[x]);  // the terminal shows the raw level
       on = latch_[x] && cfg_.capture[x];
@@ -567,7 +527,7 @@ void HscUnit::before_program(uint64_t now_us) {
 // of any 4 consecutive quarters, so 3 quarters always contain one).
 bool HscUnit::source_was_on(int x) const {
   if (blocked(x)) return false;
-  const int64_t q1 = pin_src_[x]->quarter(cur_ns_);
+  const int64_t q1 = pin_src_[x]->quarter(now());
   const int64_t lo = std::min(cap_q_[x], q1), hi = std::max(cap_q_[x], q1);
   if (hi - lo >= 3) return true;
   for (int64_t q = lo; q <= hi; ++q)
@@ -576,7 +536,7 @@ bool HscUnit::source_was_on(int x) const {
 }
 
 void HscUnit::after_program(uint64_t) {
-  if (!running_) return;
+  if (!running()) return;
   // The software MASK/CLEAR/direction relays reach the counters at the I/O refresh.
   for (auto& c : counters_) {
     if (!c.def.used || c.def.timer) continue;
@@ -588,21 +548,16 @@ void HscUnit::after_program(uint64_t) {
   refresh_outputs(0, 256);
 }
 
-void HscUnit::on_stop() {
-  if (running_) refresh_outputs(0, 256);
-  running_ = false;
-}
-
 void HscUnit::refresh_outputs(uint32_t first, uint32_t n) {
   for (uint32_t y = first; y < first + n && y < phys_y_.size(); ++y) {
     if (owned_y_[y]) continue;
     const bool v = mem_.bit(Area::Y, y);
     if (v == phys_y_[y]) continue;
     phys_y_[y] = v;
-    for (auto& f : output_obs_) f(cur_ns_, y, v);
+    for (auto& f : output_obs_) f(now(), y, v);
     for (size_t i = 0; i < cfg_.sources.size(); ++i) {
       const SourceDef& d = cfg_.sources[i];
-      if (d.has_follow && d.follow.area == Area::Y && d.follow.index == y) sources_[i]->set_rate(cur_ns_, v ? d.hz : 0);
+      if (d.has_follow && d.follow.area == Area::Y && d.follow.index == y) sources_[i]->set_rate(now(), v ? d.hz : 0);
     }
   }
 }
@@ -611,7 +566,7 @@ void HscUnit::refresh_outputs(uint32_t first, uint32_t n) {
 
 void HscUnit::read_chip(int cn) {
   if (cn == 4) {
-    const uint64_t ticks = (cur_ns_ - hsta_t0_) / kTick;
+    const uint64_t ticks = (now() - hsta_t0_) / kTick;
     const uint32_t v = hsta_pv_ == 0 ? hsta_cv0_ + static_cast<uint32_t>(ticks)
                                      : static_cast<uint32_t>(ticks % std::max<uint64_t>(hsta_pv_, 2));
     mem_.set_reg(Area::R, kHstaCv, static_cast<uint16_t>(v));
@@ -620,7 +575,7 @@ void HscUnit::read_chip(int cn) {
   }
   if (cn < 0 || cn > 3) return;
   const Counter& c = counters_[cn];
-  const uint32_t v = c.def.timer ? hst_cv(c, cur_ns_) : c.cv;
+  const uint32_t v = c.def.timer ? hst_cv(c, now()) : c.cv;
   mem_.set_reg(Area::R, cv_register(cn), static_cast<uint16_t>(v));
   mem_.set_reg(Area::R, cv_register(cn) + 1, static_cast<uint16_t>(v >> 16));
 }
@@ -630,7 +585,7 @@ void HscUnit::write_chip(int cn, bool pv) {
   if (cn == 4) {
     if (pv) hsta_pv_ = mem_.reg(Area::R, kHstaPv);
     else hsta_cv0_ = reg32(kHstaCv);
-    hsta_t0_ = cur_ns_;  // the timer starts over from the write
+    hsta_t0_ = now();  // the timer starts over from the write
     return;
   }
   if (cn < 0 || cn > 3) return;
@@ -639,7 +594,7 @@ void HscUnit::write_chip(int cn, bool pv) {
     c.pv = reg32(pv_register(cn));
   } else if (c.def.timer) {
     c.t_cv0 = reg32(cv_register(cn));
-    c.t_base = cur_ns_;
+    c.t_base = now();
   } else {
     c.cv = reg32(cv_register(cn));
   }
@@ -648,7 +603,7 @@ void HscUnit::write_chip(int cn, bool pv) {
 bool HscUnit::set_enabled(const std::string& label, bool on) {
   const int s = source_of_label(label);
   if (s < 0) return false;
-  irq_.set_enabled(s, on);
+  irq().set_enabled(s, on);
   return true;
 }
 
@@ -657,7 +612,7 @@ void HscUnit::immediate_io(const Address& first, uint32_t n) {
     refresh_outputs(first.index, n);
   } else if (first.area == Area::X) {
     for (uint32_t x = first.index; x < first.index + n && x < 256; ++x)
-      mem_.set_bit(Area::X, x, x < 16 ? term(static_cast<int>(x), cur_ns_) : engine_.input(x));
+      mem_.set_bit(Area::X, x, x < 16 ? term(static_cast<int>(x), now()) : engine_.input(x));
   }
 }
 
@@ -674,14 +629,14 @@ void HscUnit::set_source_rate(const std::string& name, double hz) {
   if (!s) throw Error("no pulse source named '" + name + "'");
   for (auto& c : counters_)
     if (c.src == s) take_quarter(c);
-  s->set_rate(cur_ns_, hz);
+  s->set_rate(now(), hz);
 }
 
 void HscUnit::preset(int n, int64_t value) {
   Counter& c = counters_[n];
   if (c.def.timer) {
     c.t_cv0 = static_cast<uint32_t>(value);
-    c.t_base = cur_ns_;
+    c.t_base = now();
   } else {
     set_cv(c, static_cast<uint32_t>(value));
   }
@@ -689,7 +644,7 @@ void HscUnit::preset(int n, int64_t value) {
 
 int64_t HscUnit::count(int n) const {
   const Counter& c = counters_[n];
-  if (c.def.timer) return hst_cv(c, cur_ns_);
+  if (c.def.timer) return hst_cv(c, now());
   return static_cast<int32_t>(get_cv(c));
 }
 

@@ -7,7 +7,6 @@
 #include "plc_cell/core/memory.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/hsc/hsc_unit.h"
-#include "plc_cell/hsc/interrupts.h"
 #include "plc_cell/motion/interpolation.h"
 #include "plc_cell/motion/mpg.h"
 #include "step_flow.h"
@@ -31,11 +30,15 @@ constexpr uint16_t kWrPaused = 1u << 8, kWrWaiting = 1u << 9, kWrEndless = 1u <<
                    kWrErr = 1u << 13, kWrDn = 1u << 14;
 }  // namespace
 
-MotionUnit::MotionUnit(Plc& plc) : plc_(plc), engine_(engine_of(plc)), mem_(memory_of(plc)) {
+MotionUnit::MotionUnit(Plc& plc)
+    : plc_(plc),
+      engine_(engine_of(plc)),
+      mem_(memory_of(plc)),
+      sched_(*plc.locked([](ScanEngine& e, Memory&) { return &timeline::Scheduler::of(e); })) {
   plc_.locked([this](ScanEngine& e, Memory&) {
     e.add_hook(this);
     hsc_ = hsc::HscUnit::of(&e);
-    if (hsc_) hsc_->add_event_source(this);
+    sched_.add_source(this);
   });
   interp_ = std::make_unique<Interpolation>(*this, mem_);
   mpg_ = std::make_unique<Mpg>(*this, mem_, hsc_);
@@ -43,10 +46,8 @@ MotionUnit::MotionUnit(Plc& plc) : plc_(plc), engine_(engine_of(plc)), mem_(memo
 
 MotionUnit::~MotionUnit() {
   plc_.locked([this](ScanEngine& e, Memory&) {
-    if (hsc_ && hsc::HscUnit::of(&e) == hsc_) {
-      detach_signals();
-      hsc_->remove_event_source(this);
-    }
+    if (hsc_ && hsc::HscUnit::of(&e) == hsc_) detach_signals();
+    sched_.remove_source(this);
     e.remove_hook(this);
   });
 }
@@ -61,17 +62,16 @@ uint64_t MotionUnit::next_event(const Program& p) const {
   return next;
 }
 
-uint64_t MotionUnit::next_event_ns() const {
+uint64_t MotionUnit::next_event_ns() {
   uint64_t next = kNever;
   for (const auto& kv : programs_) next = std::min(next, next_event(kv.second));
   return std::min({next, interp_->next_event_ns(), mpg_->next_event_ns()});
 }
 
-void MotionUnit::at(uint64_t t, std::vector<int>* requests) {
+void MotionUnit::at(uint64_t t) {
+  if (next_event_ns() > t) return;  // another subsystem's instant
   adopt_ladder_positions();
-  requests_ = requests;
   advance(t);
-  requests_ = nullptr;
   write_status(t);  // the routines of this instant read its position, frequency, ...
 }
 
@@ -198,8 +198,7 @@ void MotionUnit::step_done(Program& p, uint64_t t) {
   mem_.set_reg(Area::R, kStepReg + p.call.ps, static_cast<uint16_t>(p.step));
   write_wr(p);
   for (auto& f : step_obs_) f(p.call.ps, p.step, t);
-  if (requests_) requests_->push_back(hsc::kPso0I + p.call.ps);  // dispatched at this instant
-  else if (hsc_) hsc_->raise(hsc::kPso0I + p.call.ps);
+  sched_.raise(irq::kPso0I + p.call.ps);  // in the scheduler's loop: dispatched with the instant's others
 }
 
 void MotionUnit::transfer(Program& p, uint64_t t) {

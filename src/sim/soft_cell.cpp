@@ -30,7 +30,7 @@ FunctionTable SoftCell::functions(temp::Generation g) {
 }
 
 // The built-in subsystems come first, in the order they attach: the temperature modules,
-// the counters (whose event loop the axes run on), the axes.
+// the counters (whose edge sources the axes' pins and encoders are), the axes.
 CellExtensions SoftCell::with_builtins(CellExtensions more) {
   CellExtensions all;
   all.push_back(std::make_unique<temp::ModulesExtension>());
@@ -74,7 +74,6 @@ SoftCell::SoftCell(const std::string& config_path, const std::string& program_pa
 // Each extension reads its own sections; a section in error leaves its subsystem as an
 // empty one, so the sections after it are still read and reported.
 void SoftCell::build(const std::string& program_path) {
-  const std::string& file = config_.file;
   ErrorList& errors = errors_;
   program_path_ = program_path.empty() ? config_.program : program_path;
   sim_ = plc_.locked([&](ScanEngine& e, Memory& m) { return std::make_unique<SimulatedCell>(e, m); });

@@ -6,7 +6,7 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/hsc/hsc_unit.h"
-#include "plc_cell/hsc/interrupts.h"
+#include "plc_cell/timeline/scheduler.h"
 #include "plc_cell/motion/motion_unit.h"
 
 namespace plc_cell {
@@ -67,11 +67,13 @@ size_t VirtualRun::watch(const Address& a) {
 void VirtualRun::trace_events() {
   auto ev = events_;
   plc_.locked([&](ScanEngine& e, Memory&) {
-    if (hsc::HscUnit* h = hsc::HscUnit::of(&e)) {
-      h->on_isr([ev](uint64_t t, int s) {
-        const auto labels = hsc::source_labels(s);
+    if (timeline::Scheduler* sched = timeline::Scheduler::find(&e)) {
+      sched->on_isr([ev](uint64_t t, int s) {
+        const auto labels = irq::source_labels(s);
         ev->push_back({t, "interrupt", labels.empty() ? std::to_string(s) : labels[0]});
       });
+    }
+    if (hsc::HscUnit* h = hsc::HscUnit::of(&e)) {
       h->on_match([ev](uint64_t t, int n, bool timer) {
         ev->push_back({t, "cv=pv", (timer ? "HST" : "HSC") + std::to_string(n)});
       });

@@ -7,6 +7,7 @@
 
 #include "plc_cell/hsc/hsc_unit.h"
 #include "plc_cell/sim/soft_cell.h"
+#include "plc_cell/timeline/scheduler.h"
 
 namespace plc_cell {
 namespace hsc {
@@ -24,9 +25,9 @@ class Example {
  public:
   explicit Example(const std::string& name)
       : cell(std::string(PLC_CELL_SOURCE_DIR) + "/examples/hsc/" + name + ".yaml", "") {
-    cell.plc().locked([this](ScanEngine&, Memory&) {
+    cell.plc().locked([this](ScanEngine& e, Memory&) {
       cell.counters().on_output([this](uint64_t t, uint32_t y, bool v) { outputs.push_back({t, y, v}); });
-      cell.counters().on_isr([this](uint64_t t, int s) { isrs.push_back({t, s, cell.counters().count(0),
+      timeline::Scheduler::of(e).on_isr([this](uint64_t t, int s) { isrs.push_back({t, s, cell.counters().count(0),
                                                                         cell.counters().count(1)}); });
       return 0;
     });

@@ -11,6 +11,7 @@
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/timeline/scheduler.h"
 
 namespace plc_cell {
 namespace hsc {
@@ -35,8 +36,9 @@ class HscCell {
     const YAML::Node doc = YAML::Load(yaml);
     unit = std::make_unique<HscUnit>(plc, parse_hsc_config(doc["counters"], "cell.yaml"));
     unit->on_output([this](uint64_t t, uint32_t y, bool v) { outputs.push_back({t, y, v}); });
-    unit->on_isr([this](uint64_t t, int s) {
-      IsrRun r{t, s, {}, unit->interrupts().depth()};
+    sched = plc.locked([](ScanEngine& e, Memory&) { return &timeline::Scheduler::of(e); });
+    sched->on_isr([this](uint64_t t, int s) {
+      IsrRun r{t, s, {}, sched->interrupts().depth()};
       for (int n = 0; n < 8; ++n) r.cv[n] = unit->count(n);
       isrs.push_back(r);
     });
@@ -72,6 +74,7 @@ class HscCell {
 
   Plc plc;
   std::unique_ptr<HscUnit> unit;
+  timeline::Scheduler* sched = nullptr;  // the cell's clock and interrupt system
   std::vector<OutputChange> outputs;
   std::vector<IsrRun> isrs;
   uint64_t now_us = 0;

@@ -18,7 +18,7 @@ FunctionTable with_raise() {
   s.mnemonic = "RAISE";
   s.operands = {{"N", OperandRole::Const}};
   s.allow_32 = false;
-  s.handler = [](ExecContext& c, const BoundOperand* o) { HscUnit::of(c.engine)->raise(static_cast<int>(o[0].k)); };
+  s.handler = [](ExecContext& c, const BoundOperand* o) { timeline::Scheduler::find(c.engine)->raise(static_cast<int>(o[0].k)); };
   t.add(s);
   return t;
 }
@@ -69,8 +69,9 @@ TEST(Interrupts, EqualPriorityWaits) {
                    routine("X2+I", kHsc4I + 1, "R11") + routine("HSC5I", -1, "R12"),
                with_raise());
   // HSC5 on X3 has priority 24, X2+I 22: HSC5I is lower. Make them equal:
-  cell.with([](HscUnit& u) {
-    u.interrupts().set_priority(kHsc4I + 1, u.interrupts().priority(x_edge_source(2, false)));
+  cell.with([&](HscUnit&) {
+    auto& irq = cell.sched->interrupts();
+    irq.set_priority(kHsc4I + 1, irq.priority(x_edge_source(2, false)));
     return 0;
   });
   cell.put("M1", 1);

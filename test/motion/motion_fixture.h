@@ -94,14 +94,15 @@ END
 
 class MotionCell {
  public:
-  // with_counters: the HSC unit too (as SoftCell makes it): PSOnI in its event loop.
+  // with_counters: the HSC unit too (as SoftCell makes it). isrs records every routine entry.
   explicit MotionCell(const std::string& il = kAxis0Program, bool with_counters = false,
                       hsc::HscConfig counters_cfg = {}) {
-    if (with_counters) {
-      counters = std::make_unique<hsc::HscUnit>(plc, std::move(counters_cfg));
-      counters->on_isr([this](uint64_t t, int s) { isrs.push_back({t, s}); });
-    }
+    if (with_counters) counters = std::make_unique<hsc::HscUnit>(plc, std::move(counters_cfg));
     unit = std::make_unique<MotionUnit>(plc);
+    plc.locked([this](ScanEngine& e, Memory&) {
+      timeline::Scheduler::of(e).on_isr([this](uint64_t t, int s) { isrs.push_back({t, s}); });
+      return 0;
+    });
     unit->on_step_done([this](int ps, int step, uint64_t t) { done.push_back({ps, step, t}); });
     plc.load_program_text(il, "test.il");
     EXPECT_TRUE(plc.set_mode(RunMode::Run));

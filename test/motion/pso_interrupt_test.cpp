@@ -1,7 +1,7 @@
-// PSO0I-PSO3I at the exact instant of each step's end, inside the counters' event
-// loop (docs/counters-and-interrupts.md, "Plugging in the pulse-output axes").
+// PSO0I-PSO3I at the exact instant of each step's end, in the cell's scheduler
+// (docs/counters-and-interrupts.md, "Plugging in the pulse-output axes").
 #include "motion_fixture.h"
-#include "plc_cell/hsc/interrupts.h"
+#include "plc_cell/timeline/scheduler.h"
 
 namespace plc_cell {
 namespace motion {
@@ -21,8 +21,12 @@ MOV.D S=DR4088 D=DR302
 RTI
 )";
 
-TEST(PsoInterrupt, RunsAtEachStepsExactEndInstant) {
-  MotionCell c(kProgram, /*with_counters=*/true);
+class PsoInterrupt : public ::testing::TestWithParam<bool> {};
+
+// With or without a counter unit: the axes and the counters share one scheduler, which
+// whichever comes first makes.
+TEST_P(PsoInterrupt, RunsAtEachStepsExactEndInstant) {
+  MotionCell c(kProgram, /*with_counters=*/GetParam());
   c.params(fast_params());
   c.table("SPD 7000\nDRV ADR,+,1234,Ps\nWAIT Time,3\nGOTO NEXT\nSPD 3000\nDRV ADR,-,777,Ps\nGOTO NEXT\nMEND\n");
   c.put("M1", 1);
@@ -30,7 +34,7 @@ TEST(PsoInterrupt, RunsAtEachStepsExactEndInstant) {
   ASSERT_EQ(c.done.size(), 2u);
   ASSERT_EQ(c.isrs.size(), 2u);
   for (int i = 0; i < 2; ++i) {
-    EXPECT_EQ(c.isrs[i].second, hsc::kPso0I);
+    EXPECT_EQ(c.isrs[i].second, irq::kPso0I);
     EXPECT_EQ(c.isrs[i].first, c.done[i].t_ns);  // the same ns, not the next scan
     EXPECT_NE(c.isrs[i].first % 1000000, 0u) << "an end instant that falls on a scan would prove nothing";
   }
@@ -41,6 +45,8 @@ TEST(PsoInterrupt, RunsAtEachStepsExactEndInstant) {
   const double t2 = 2 * (3000 - 141) / 4.6e6 + (777 - 2 * d) / 3000;
   EXPECT_NEAR((c.done[1].t_ns - c.done[0].t_ns) * 1e-9, 0.03 + t2, 1e-8);
 }
+
+INSTANTIATE_TEST_SUITE_P(Counters, PsoInterrupt, ::testing::Bool());
 
 }  // namespace
 }  // namespace motion

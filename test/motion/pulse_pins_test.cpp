@@ -8,7 +8,7 @@
 
 #include "motion_fixture.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/hsc/interrupts.h"
+#include "plc_cell/timeline/scheduler.h"
 #include "plc_cell/motion/pulse_pins.h"
 
 namespace plc_cell {

@@ -16,23 +16,24 @@ BELOW = {
     "core": set(),
     "io": {"core"},
     "config": {"core", "io"},
-    "hsc": {"core", "io", "config"},
+    "timeline": {"core"},
+    "hsc": {"core", "io", "config", "timeline"},
     "temp": {"core", "io", "config"},
-    "motion": {"core", "io", "config", "hsc"},
-    "sim": {"core", "io", "config", "hsc", "temp", "motion"},
+    "motion": {"core", "io", "config", "timeline", "hsc"},
+    "sim": {"core", "io", "config", "timeline", "hsc", "temp", "motion"},
     "persist": {"core", "io", "config"},
     "fatek": {"core", "io", "config"},
     "modbus": {"core", "io", "config"},
     # FUN150/151: the cell's ports reach both protocol masters.
     "comm": {"core", "io", "config", "fatek", "modbus"},
     # The composition root: the Cell sits on every library layer.
-    "runtime": {"core", "io", "config", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus", "comm"},
+    "runtime": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus", "comm"},
     "cli": None,  # the tool and the nodes sit on top and may use any layer
     "ros": None,
 }
 # The shared libraries of the layers (the protocol libraries are static: the include
 # check covers them).
-LIBS = ["core", "io", "config", "hsc", "temp", "motion", "sim"]
+LIBS = ["core", "io", "config", "timeline", "hsc", "temp", "motion", "sim"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"plc_cell/(\w+)/')
 
 

@@ -1,15 +1,14 @@
 #pragma once
-// High-speed counters HSC0-HSC7, high-speed timers HSTA/HST0-HST3 and the
-// interrupt system of one soft PLC, as a scan hook.
+// High-speed counters HSC0-HSC7, high-speed timers HSTA/HST0-HST3 and the input-edge
+// and time-base interrupt sources of one soft PLC: a scan hook and a source of the
+// cell's scheduler (timeline/scheduler.h).
 //
-// Event model (docs/counters-and-interrupts.md): between two scans the unit
-// advances virtual time (ns) from event to event. Events are CV=PV matches,
+// Event model (docs/counters-and-interrupts.md): the unit's events are CV=PV matches,
 // timer expiries, time-base ticks, scheduled input edges and edges of the analytic
-// pulse sources on interrupt inputs; each is found in O(1) from the sources'
-// exact positions, so the cost per scan does not depend on the input frequency.
-// At each event the ISRs run at the event's instant, with arbitration, pre-emption
-// and nesting by priority. The next issue's pulse-output axes add their own event
-// times (PSOnI) the same way: next_event() + fire().
+// pulse sources on interrupt inputs; each is found in O(1) from the sources' exact
+// positions, so the cost per scan does not depend on the input frequency. The
+// scheduler runs them, with the other subsystems' events (the pulse axes' step ends),
+// in time order, and the interrupt routines at their instants.
 // The unit also applies the capture inputs and the digital input filter (§9.6-9.7):
 // on the exact edges of X0-X15 and on the scan's samples of X16-X35.
 #include <array>
@@ -25,9 +24,10 @@
 #include "plc_cell/core/scan_engine.h"
 #include "plc_cell/hsc/edge_source.h"
 #include "plc_cell/hsc/hsc_config.h"
-#include "plc_cell/hsc/interrupts.h"
 #include "plc_cell/hsc/pulse_source.h"
 #include "plc_cell/hsc/scan_debounce.h"
+#include "plc_cell/timeline/event_source.h"
+#include "plc_cell/timeline/scheduler.h"
 
 namespace plc_cell {
 
@@ -35,20 +35,11 @@ class Plc;
 
 namespace hsc {
 
-class HscUnit : public ScanHook {
- public:
-  // Another subsystem's events in the same virtual-time loop (the pulse-output
-  // axes): the loop takes its next instant with the others and, at that instant,
-  // lets it act and request interrupts (PSOnI) that are dispatched there.
-  class EventSource {
-   public:
-    virtual ~EventSource() = default;
-    virtual uint64_t next_event_ns() const = 0;  // UINT64_MAX: none
-    virtual void at(uint64_t t_ns, std::vector<int>* requests) = 0;
-  };
-  void add_event_source(EventSource* s) { ext_.push_back(s); }
-  void remove_event_source(EventSource* s);
+// The interrupt source ids and labels (core/interrupt_sources.h), as the counters name them.
+using namespace irq;
 
+class HscUnit : public ScanHook, public timeline::EventSource {
+ public:
   // Installs itself as a hook of plc's engine; throws Error if the config does not fit.
   HscUnit(Plc& plc, HscConfig cfg);
   ~HscUnit() override;
@@ -61,7 +52,6 @@ class HscUnit : public ScanHook {
   void before_inputs(uint64_t now_us) override;
   void after_program(uint64_t now_us) override;
   void before_program(uint64_t now_us) override;
-  void on_stop() override;
   void attached(ScanEngine& e) override;  // FUN handlers find the unit through of()
   void detached(ScanEngine& e) override;
 
@@ -70,7 +60,6 @@ class HscUnit : public ScanHook {
   void write_chip(int cn, bool pv);     // FUN93 HSCTW: D=0 CV, D=1 PV
   bool set_enabled(const std::string& label, bool on);  // FUN145 EN / FUN146 DIS
   void immediate_io(const Address& first, uint32_t n);   // FUN74 IMDIO
-  void raise(int source);               // an interrupt request from a subsystem (PSO axes)
 
   // ---- simulation and observation (hold the Plc lock) ----
   // An exact-time switch edge at the terminal; a filtered input sees it through its filter.
@@ -94,20 +83,23 @@ class HscUnit : public ScanHook {
   int64_t count(int n) const;       // CV now: chip (HHSC), register (SHSC), timer value (HST)
   double frequency(int n) const;    // counts/s over the configured window
   const HscConfig& config() const { return cfg_; }
-  uint64_t now_ns() const { return cur_ns_; }
-  InterruptController& interrupts() { return irq_; }
 
   using OutputObserver = std::function<void(uint64_t t_ns, uint32_t y, bool level)>;
-  using IsrObserver = std::function<void(uint64_t t_ns, int source)>;
   void on_output(OutputObserver f) { output_obs_.push_back(std::move(f)); }
-  void on_isr(IsrObserver f) { isr_obs_.push_back(std::move(f)); }
   // Every CV=PV match of counter n (HSC0-7; timer: HST0-3) at its instant, whether
   // or not an interrupt routine runs (`plc_cell sim --trace`).
   using MatchObserver = std::function<void(uint64_t t_ns, int n, bool timer)>;
   void on_match(MatchObserver f) { match_obs_.push_back(std::move(f)); }
 
+  // ---- in the scheduler's loop ----
+  void start(uint64_t t_ns) override;
+  void stop() override;
+  void settle() override;
+  uint64_t next_event_ns() override;
+  void advance_to(uint64_t t_ns) override;
+  void at(uint64_t t_ns) override;
+
  private:
-  static constexpr uint64_t kNever = UINT64_MAX;
   static constexpr uint64_t kTick = 100000;  // 0.1 ms in ns
 
   struct Counter {
@@ -135,12 +127,10 @@ class HscUnit : public ScanHook {
     bool operator>(const Edge& o) const { return t != o.t ? t > o.t : seq > o.seq; }
   };
 
-  void start(uint64_t t_ns);
-  void advance(uint64_t to_ns);
+  uint64_t now() const { return sched_.now_ns(); }
+  bool running() const { return sched_.running(); }
+  timeline::InterruptController& irq() const { return sched_.interrupts(); }
   void advance_counters(uint64_t t);
-  void apply_edge(int x, bool level);
-  void fire_pending();
-  bool run_isr(int source);
   void refresh_outputs(uint32_t first, uint32_t n);
 
   bool term(int x, uint64_t t) const;     // terminal level of X0-X15
@@ -170,6 +160,7 @@ class HscUnit : public ScanHook {
   ScanEngine& engine_;
   Memory& mem_;
   Plc& plc_;
+  timeline::Scheduler& sched_;
   HscConfig cfg_;
   std::vector<std::unique_ptr<PulseSource>> sources_;
   std::array<EdgeSource*, 16> pin_src_{};   // analytic driver of each X0-X15
@@ -189,11 +180,12 @@ class HscUnit : public ScanHook {
   std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> edges_;
   std::vector<Train> trains_;
   uint64_t edge_seq_ = 0;
-  InterruptController irq_;
-  const void* bound_code_ = nullptr;
-  size_t bound_size_ = 0;
-  bool running_ = false;
-  uint64_t cur_ns_ = 0;
+  // What next_event_ns() found, for at() of the chosen instant.
+  std::array<uint64_t, 8> match_{};
+  uint64_t hsta_next_ = kNever, tb_next_ = kNever;
+  int tb_ = -1;
+  std::array<uint64_t, 32> pin_edge_{};
+  uint64_t prev_ns_ = 0;     // the instant before the present one (pulse trains)
   uint64_t run_ns_ = 0;      // when RUN started: the time bases count from here
   uint16_t hsta_pv_ = 0;
   uint32_t hsta_cv0_ = 0;
@@ -201,10 +193,7 @@ class HscUnit : public ScanHook {
   // Plain arrays, not vector<bool>: every scan compares all 256 outputs.
   std::array<bool, 256> phys_y_{};
   std::array<bool, 256> owned_y_{};
-  std::vector<int> fired_;   // sources requested at the present instant
-  std::vector<EventSource*> ext_;
   std::vector<OutputObserver> output_obs_;
-  std::vector<IsrObserver> isr_obs_;
   std::vector<MatchObserver> match_obs_;
 };
 

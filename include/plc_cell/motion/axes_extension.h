@@ -1,7 +1,7 @@
 #pragma once
 // The positioning subsystem as a cell extension: the `axes:` section, FUN140-143 and the
-// MPG and interpolation FUNs, and the MotionUnit driving PSO0-PSO3 (on the counters'
-// event loop, so it attaches after the counters extension).
+// MPG and interpolation FUNs, and the MotionUnit driving PSO0-PSO3 (its pins and encoders
+// are the counters' edge sources, so it attaches after the counters extension).
 #include <memory>
 
 #include "plc_cell/config/cell_extension.h"

@@ -24,6 +24,8 @@
 #include "plc_cell/motion/params.h"
 #include "plc_cell/motion/pulse_pins.h"
 #include "plc_cell/motion/table.h"
+#include "plc_cell/timeline/event_source.h"
+#include "plc_cell/timeline/scheduler.h"
 
 namespace plc_cell {
 
@@ -49,7 +51,7 @@ struct Fun140Outputs {
   bool act = false, err = false, dn = false;
 };
 
-class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
+class MotionUnit : public ScanHook, public timeline::EventSource {
  public:
   explicit MotionUnit(Plc& plc);
   ~MotionUnit() override;
@@ -63,10 +65,10 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   void on_stop() override;
   void attached(ScanEngine& e) override;  // FUN handlers find the unit through of()
   void detached(ScanEngine& e) override;
-  // In the counters' event loop (if the engine has an HscUnit): step ends and
-  // WAIT/ACT times happen there, PSOnI is requested at the exact instant.
-  uint64_t next_event_ns() const override;
-  void at(uint64_t t_ns, std::vector<int>* requests) override;
+  // In the cell's scheduler (timeline/scheduler.h), with the counters: step ends and
+  // WAIT/ACT times happen at their instants, and PSOnI is requested there.
+  uint64_t next_event_ns() override;
+  void at(uint64_t t_ns) override;
 
   // ---- instructions (lock held) ----
   Fun140Outputs fun140(const Fun140Call& c, uint64_t now_us);
@@ -208,10 +210,10 @@ class MotionUnit : public ScanHook, public hsc::HscUnit::EventSource {
   void detach_signals();
   void write_pins(uint64_t t);            // the Y image of owned pins shows their level at t
 
-  hsc::HscUnit* hsc_ = nullptr;           // the counters' unit we are a source of
+  timeline::Scheduler& sched_;
+  hsc::HscUnit* hsc_ = nullptr;           // the counters' unit (pins, encoders, MPG counts), if any
   std::vector<std::unique_ptr<AxisSignal>> signals_;  // owned; the counters hold pointers
   std::array<const AxisSignal*, kAxes> pins_{};
-  std::vector<int>* requests_ = nullptr;  // inside at(): PSOnI requests go here
   std::unique_ptr<Interpolation> interp_;
   std::unique_ptr<Mpg> mpg_;
 };

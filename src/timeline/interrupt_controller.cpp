@@ -1,9 +1,9 @@
-#include "plc_cell/hsc/interrupts.h"
+#include "plc_cell/timeline/interrupt_controller.h"
 
 #include "plc_cell/core/program.h"
 
 namespace plc_cell {
-namespace hsc {
+namespace timeline {
 
 InterruptController::InterruptController() {
   for (int s = 0; s < kSourceCount; ++s) priority_[s] = s < kHsc4I ? s + 1 : kSourceCount;
@@ -63,5 +63,5 @@ void InterruptController::dispatch(const Runner& run) {
   }
 }
 
-}  // namespace hsc
+}  // namespace timeline
 }  // namespace plc_cell

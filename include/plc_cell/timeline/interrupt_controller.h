@@ -1,7 +1,8 @@
 #pragma once
 // The priorities of the interrupt sources (manual §9.3, plus the software counters'
 // HSC4I-HSC7I) and the controller that arbitrates, pre-empts and nests interrupt
-// service routines (up to 5 levels).
+// service routines (up to 5 levels). The cell's scheduler (scheduler.h) owns one: the
+// counters, the timers, the input edges and the pulse axes all request through it.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -14,7 +15,7 @@ namespace plc_cell {
 
 struct Program;
 
-namespace hsc {
+namespace timeline {
 
 // The source table and its labels are the core's (core/interrupt_sources.h).
 using namespace irq;
@@ -62,5 +63,5 @@ class InterruptController {
   bool failed_ = false;
 };
 
-}  // namespace hsc
+}  // namespace timeline
 }  // namespace plc_cell
