@@ -144,15 +144,6 @@ SimInputDef parse_sim_input(const YamlReader& r, const CellConfig& cfg, const YA
 
 }  // namespace
 
-const std::set<std::string>& builtin_extension_sections() {
-  static const std::set<std::string> s = {"counters", "axes", "modules", "fatek", "modbus", "servers"};
-  return s;
-}
-
-CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors) {
-  return parse_cell_config(yaml_text, file, errors, builtin_extension_sections());
-}
-
 CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors,
                              const std::set<std::string>& sections) {
   YamlReader r(file);
@@ -201,9 +192,10 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
   return cfg;
 }
 
-CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file) {
+CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file,
+                             const std::set<std::string>& sections) {
   ErrorList errors;
-  CellConfig cfg = parse_cell_config(yaml_text, file, &errors);
+  CellConfig cfg = parse_cell_config(yaml_text, file, &errors, sections);
   errors.throw_if_any();
   return cfg;
 }
@@ -216,13 +208,9 @@ CellConfig load_cell_config(const std::string& path, ErrorList* errors, const st
   return parse_cell_config(ss.str(), path, errors, sections);
 }
 
-CellConfig load_cell_config(const std::string& path, ErrorList* errors) {
-  return load_cell_config(path, errors, builtin_extension_sections());
-}
-
-CellConfig load_cell_config(const std::string& path) {
+CellConfig load_cell_config(const std::string& path, const std::set<std::string>& sections) {
   ErrorList errors;
-  CellConfig cfg = load_cell_config(path, &errors);
+  CellConfig cfg = load_cell_config(path, &errors, sections);
   errors.throw_if_any();
   return cfg;
 }

@@ -46,7 +46,18 @@ class ServerSettingsSection : public CellExtension {
   const std::vector<ServerKind>& kinds_;
 };
 
+// What a Cell adds to the built-in extensions: FUN150/151 with their ports (opened unless
+// the cell is only checked) and the servers' section.
+CellExtensions runtime_extensions(Cell::Purpose purpose) {
+  CellExtensions more;
+  more.push_back(std::make_unique<ProtocolFunctions>(purpose != Cell::Purpose::Check));
+  more.push_back(std::make_unique<ServerSettingsSection>(Cell::server_kinds()));
+  return more;
+}
+
 }  // namespace
+
+std::set<std::string> Cell::sections() { return SoftCell::sections(runtime_extensions(Purpose::Check)); }
 
 const std::vector<SettingSpec>& Cell::run_settings() {
   // The bounds are the YAML's (plc.scan_period, plc.persist.interval): a value refused in
@@ -63,10 +74,7 @@ const std::vector<SettingSpec>& Cell::run_settings() {
 Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpose,
            std::function<void(const std::string&)> log) {
   const auto& kinds = server_kinds();
-  CellExtensions more;
-  more.push_back(std::make_unique<ProtocolFunctions>(purpose != Purpose::Check));
-  more.push_back(std::make_unique<ServerSettingsSection>(kinds));
-  soft_ = std::make_unique<SoftCell>(config_path, o.program, std::move(more));
+  soft_ = std::make_unique<SoftCell>(config_path, o.program, runtime_extensions(purpose));
   const CellConfig& cfg = soft_->config();
   server_settings_ = merge_server_settings(kinds, cfg, o.servers);
 

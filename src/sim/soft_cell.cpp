@@ -2,12 +2,9 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/hsc/counters_extension.h"
-#include "plc_cell/hsc/hsc_functions.h"
 #include "plc_cell/motion/axes_extension.h"
-#include "plc_cell/motion/motion_functions.h"
 #include "plc_cell/sim/apply_config.h"
 #include "plc_cell/temp/modules_extension.h"
-#include "plc_cell/temp/temp_functions.h"
 
 namespace plc_cell {
 namespace {
@@ -21,12 +18,25 @@ YAML::Node first_section(const CellConfig& cfg, const CellExtension& x) {
 
 // The instruction set of a cell's program, in one place: the core's, then each built-in
 // subsystem's (the same lists their extensions install).
-FunctionTable SoftCell::functions(temp::Generation g) {
+FunctionTable SoftCell::functions() {
   FunctionTable t = FunctionTable::with_core_functions();
-  hsc::add_functions(t);                  // FUN92/93 HSC, FUN145/146 interrupts, FUN74 IMDIO
-  motion::add_functions(t);               // FUN140-143 pulse axes, MPG, interpolation
-  temp::add_temperature_functions(t, g);  // FUN86 TPCTL (FBs or FB), FUN30 PID, FB: FUN72/73/85
+  const CellConfig none;  // every extension's defaults (the FBs generation's FUN86)
+  for (auto& x : with_builtins({})) x->install(none, t);
   return t;
+}
+
+namespace {
+void add_claims(const CellExtensions& xs, std::set<std::string>* out) {
+  for (const auto& x : xs)
+    for (const auto& s : x->sections()) out->insert(s);
+}
+}  // namespace
+
+std::set<std::string> SoftCell::sections(const CellExtensions& more) {
+  std::set<std::string> out;
+  add_claims(with_builtins({}), &out);
+  add_claims(more, &out);
+  return out;
 }
 
 // The built-in subsystems come first, in the order they attach: the temperature modules,
@@ -44,8 +54,7 @@ CellExtensions SoftCell::with_builtins(CellExtensions more) {
 CellConfig SoftCell::load(const std::string& path) {
   if (path.empty()) return CellConfig();
   std::set<std::string> sections;
-  for (const auto& x : extensions_)
-    for (const auto& s : x->sections()) sections.insert(s);
+  add_claims(extensions_, &sections);
   return load_cell_config(path, &errors_, sections);
 }
 

@@ -18,7 +18,7 @@ using namespace plc_cell;
 namespace {
 std::string error_of(const std::string& yaml) {
   try {
-    parse_cell_config(yaml, "cell.yaml");
+    parse_cell_config(yaml, "cell.yaml", Cell::sections());
   } catch (const SourceError& e) {
     return e.what();
   }
@@ -42,7 +42,7 @@ TEST(CellConfig, ReadsEveryKey) {
       "    part_present: {pulse: {period: 2, width: 0.5, delay: 1}}\n"
       "    X5: {steps: [[0, 1], [1.5, 0]]}\n"
       "    X6: {follow: {source: conveyor_run, on_delay: 0.2}}\n",
-      "/cells/line3.yaml");
+      "/cells/line3.yaml", Cell::sections());
   EXPECT_EQ(c.name, "line3");
   EXPECT_EQ(c.program, "/cells/prog.il");  // relative to the config's folder
   EXPECT_EQ(c.scan_period_us, 2000u);
@@ -132,7 +132,7 @@ TEST(CellConfig, RegisterGroups) {
       "registers:\n"
       "  - {name: levels, rate: 5, points: ['R100:10', DR200, 'X0:16']}\n"
       "  - {name: axis0, points: [DR4088]}\n",
-      "cell.yaml");
+      "cell.yaml", Cell::sections());
   ASSERT_EQ(c.registers.size(), 2u);
   EXPECT_EQ(c.registers[0].name, "levels");
   EXPECT_EQ(c.registers[0].rate_hz, 5.0);
@@ -181,7 +181,7 @@ TEST(SimulatedCell, SignalsDriveInputsInVirtualTime) {
       "    X0: {pulse: {period: 0.1, width: 0.03, delay: 0.05}}\n"
       "    X1: {steps: [[0.2, 1], [0.25, 0]]}\n"
       "    X2: {follow: {source: Y0, on_delay: 0.01, off_delay: 0.02}}\n",
-      "");
+      "", Cell::sections());
   apply_cell_config(c, plc, sim);
   plc.locked([&](ScanEngine& e, Memory&) {
     e.add_hook(&sim);
@@ -234,7 +234,7 @@ TEST(SoftCell, ErrorsComeWithTheFileName) {
 }
 
 TEST(CellConfig, TheTemplateParses) {
-  const CellConfig c = load_cell_config(std::string(PLC_CELL_SOURCE_DIR) + "/config/cell_template.yaml");
+  const CellConfig c = load_cell_config(std::string(PLC_CELL_SOURCE_DIR) + "/config/cell_template.yaml", Cell::sections());
   EXPECT_EQ(c.name, "my_cell");
   EXPECT_EQ(c.signals.size(), 2u);
   EXPECT_EQ(c.sim_inputs.size(), 3u);
@@ -255,7 +255,7 @@ TEST(CellConfig, ListsEveryErrorOfTheFile) {
         "    X2: {steps: [[0, 1]]}\n"
         "    X2: {steps: [[0, 0]]}\n"
         "bogus: 1\n",
-        "cell.yaml");
+        "cell.yaml", Cell::sections());
     FAIL() << "accepted";
   } catch (const SourceError& e) {
     std::vector<std::string> got;

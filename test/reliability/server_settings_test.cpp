@@ -23,7 +23,7 @@ struct Parsed {
 };
 
 Parsed parse(const std::string& yaml) {
-  return {merge_server_settings(Cell::server_kinds(), parse_cell_config(yaml, "cell.yaml"))};
+  return {merge_server_settings(Cell::server_kinds(), parse_cell_config(yaml, "cell.yaml", Cell::sections()))};
 }
 
 std::string error_of(const std::string& yaml) {

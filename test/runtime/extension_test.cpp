@@ -103,7 +103,7 @@ TEST(Extensions, TheirSectionsAreTheCellFilesSections) {
     for (const auto& s : x->sections()) EXPECT_TRUE(claimed.insert(s).second) << s << " claimed twice";
   std::string listed;
   try {
-    parse_cell_config("bogus: 1\n", "cell.yaml");
+    parse_cell_config("bogus: 1\n", "cell.yaml", Cell::sections());
   } catch (const SourceError& e) {
     listed = e.diagnostics().at(0).message;
   }

@@ -58,19 +58,16 @@ struct CellConfig {
   Address resolve(const std::string& name_or_address) const;
 };
 
-// Throw SourceError naming file:line:column and the key, listing every error of the file.
-CellConfig load_cell_config(const std::string& path);
-CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file);
+// The top-level keys of a cell file besides the core's (cell, plc, signals, registers,
+// simulation) are `sections`: those the cell's extensions claim (config/cell_extension.h,
+// SoftCell::sections(), Cell::sections()); a key no one claims is an error.
+// These throw SourceError naming file:line:column and the key, listing every error of the file.
+CellConfig load_cell_config(const std::string& path, const std::set<std::string>& sections);
+CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file,
+                             const std::set<std::string>& sections);
 // The same, keeping the errors of each section in errors and returning what could be read
 // (SoftCell goes on with the subsystems' sections). Still throws when the file cannot be
 // read or is not YAML: then there is nothing to go on with.
-CellConfig load_cell_config(const std::string& path, ErrorList* errors);
-CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors);
-// The top-level keys of a cell file besides the core's (cell, plc, signals, registers,
-// simulation) are the sections its extensions claim (config/cell_extension.h); a key no
-// one claims is an error. SoftCell passes its extensions' claims; the overloads above
-// take the built-in extensions' (test/runtime/extension_test.cpp keeps the two equal).
-const std::set<std::string>& builtin_extension_sections();
 CellConfig load_cell_config(const std::string& path, ErrorList* errors, const std::set<std::string>& sections);
 CellConfig parse_cell_config(const std::string& yaml_text, const std::string& file, ErrorList* errors,
                              const std::set<std::string>& sections);

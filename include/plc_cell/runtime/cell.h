@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,8 @@ class Cell {
   static const std::vector<ServerKind>& server_kinds();
   // The run settings' schema: what `plc_cell run` and plc_node set besides the servers.
   static const std::vector<SettingSpec>& run_settings();
+  // The sections a cell's extensions claim (with the core's, the keys of a cell file).
+  static std::set<std::string> sections();
 
   SoftCell& soft() { return *soft_; }
   Plc& plc() { return soft_->plc(); }

@@ -6,6 +6,7 @@
 // the caller adds (FUN150/151 and their ports, the servers' settings). Building starts
 // nothing: no thread, no port, no server (the extensions decide about their own).
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -44,9 +45,12 @@ class SoftCell {
   // error found, each with file:line:column. A config or program that cannot be opened,
   // or "no program", throws at once. more: extensions after the built-in ones.
   SoftCell(const std::string& config_path, const std::string& program_path, CellExtensions more = {});
-  // The instruction set of a cell of generation g (modules.generation): the core's
-  // plus every built-in subsystem's FUNs (what a Plc needs to run a cell's program).
-  static FunctionTable functions(temp::Generation g = temp::Generation::FBs);
+  // The instruction set of a cell without a file: the core's plus every built-in
+  // extension's FUNs (what a bare Plc needs to run a cell's program).
+  static FunctionTable functions();
+  // The sections the built-in extensions and `more` claim: with the core's, the
+  // top-level keys of a cell file.
+  static std::set<std::string> sections(const CellExtensions& more = {});
   ~SoftCell();
 
   Plc& plc() { return plc_; }
