@@ -17,10 +17,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def expected_results():
-    """Result files catkin writes for the tests that CMakeLists.txt and cmake/*.cmake declare
+    """Result files catkin writes for the tests that CMakeLists.txt and cmake/**/*.cmake declare
     (gtest, rostest, pytest)."""
     text = open(os.path.join(ROOT, "CMakeLists.txt")).read()
-    for path in sorted(glob.glob(os.path.join(ROOT, "cmake", "*.cmake"))):
+    for path in sorted(glob.glob(os.path.join(ROOT, "cmake", "**", "*.cmake"), recursive=True)):
         text += "\n" + open(path).read()
     names = ["gtest-%s.xml" % n for n in re.findall(r"catkin_add_gtest\((\w+)", text)]
     names += ["pytest-%s.xml" % n for n in re.findall(r"plc_cell_add_pytest\((\w+)", text)]

@@ -131,7 +131,7 @@ def test_tools_are_declared():
     keys = package_keys()
     problems = []
     sources = files("test/**/*", "scripts/**/*", "launch/**/*", "docs/**/*.md", "README.md",
-                    "Makefile", "cmake/*.cmake", "CMakeLists.txt")
+                    "Makefile", "cmake/**/*.cmake", "CMakeLists.txt")
     for f in sources:
         if os.path.samefile(f, __file__):
             continue
@@ -154,7 +154,7 @@ CMAKE_PACKAGES = {"yaml-cpp": "yaml-cpp", "ZLIB": "zlib", "benchmark": "benchmar
 def test_cmake_packages_are_declared():
     keys = package_keys()
     problems = []
-    for f in files("CMakeLists.txt", "cmake/*.cmake", "test/**/CMakeLists.txt"):
+    for f in files("CMakeLists.txt", "cmake/**/*.cmake", "test/**/CMakeLists.txt"):
         text = open(f, encoding="utf-8").read()
         for pkg in re.findall(r"find_package\((\S+)", text):
             key = CMAKE_PACKAGES.get(pkg)

@@ -1,4 +1,4 @@
-// Randomized / mutated-frame test of the codec, built with ASan+UBSan (cmake/fatek.cmake).
+// Randomized / mutated-frame test of the codec, built with ASan+UBSan (cmake/subsystems/fatek.cmake).
 // 1,000,000+ frames: spec vectors mutated (bit flips, insertions, deletions, truncation,
 // stray STX/ETX, garbage), half of them with the LRC repaired so the command parsers are
 // reached too. The decoder must never crash, never hold more than one frame, and every
