@@ -240,3 +240,31 @@ TEST(FatekBridge, ReconnectsWhenTheServerComesBack) {
   EXPECT_EQ(b.status().reconnects, 3u);
   b.stop();
 }
+
+TEST(FatekBridge, PollsAStationOnASerialLine) {
+  fatek_test::TempDir dir;
+  fatek_test::PtyPair pty(dir.path);
+  Plc plc;
+  plc.write(parse_address("R7"), {42});
+  SerialServerOptions so;
+  so.line = parse_serial_settings(pty.a + ":115200:7E1");
+  so.station = 3;
+  SerialServer server(plc, so);
+  server.start();
+  BridgeConfig cfg = yaml("groups: [{name: g, rate: 50, points: [R7]}]");
+  cfg.serial = pty.b + ":115200:7E1";
+  cfg.station = 3;
+  cfg.timeout_s = 3;
+  cfg.io_rate_hz = 50;
+  Collector c;
+  Bridge b(cfg, c.sinks());
+  EXPECT_NE(b.describe().find("station 3"), std::string::npos) << b.describe();
+  b.start();
+  ASSERT_TRUE(c.wait([&] { return !c.groups.empty() && c.groups.back().ok; })) << b.status().last_error;
+  EXPECT_EQ(c.groups.back().values, (std::vector<uint32_t>{42}));
+  b.write(parse_address("R7"), {43});
+  ASSERT_TRUE(c.wait([&] { return c.groups.back().ok && c.groups.back().values[0] == 43; }));
+  EXPECT_TRUE(b.status().connected);
+  b.stop();
+  server.stop();
+}
