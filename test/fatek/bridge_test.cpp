@@ -235,9 +235,8 @@ TEST(FatekBridge, ReconnectsWhenTheServerComesBack) {
   // recover() drops a working link on request and connects again at once.
   b.recover();
   EXPECT_EQ(b.status().last_error, "");
-  c.clear();
-  ASSERT_TRUE(c.wait([&] { return !c.io.empty() && c.io.back().ok; }));
-  EXPECT_EQ(b.status().reconnects, 3u);
+  // (A poll that ended just before recover() may still report after it.)
+  ASSERT_TRUE(c.wait([&] { return !c.io.empty() && c.io.back().ok && b.status().reconnects == 3; }));
   b.stop();
 }
 
