@@ -1,12 +1,9 @@
 #pragma once
-// fatek_bridge: a real FATEK PLC (serial or TCP) on ROS with the topics of plc_node.
-// A worker thread owns the link: it polls groups at their rates (coalesced frames),
-// reconnects with back-off, and services run their transactions between polls.
-#include <condition_variable>
+// fatek_bridge: a thin ROS layer over fatek::Bridge (the bus side), with the topics and
+// services of plc_node: ~io, ~signals/<name>, ~signals_stamped/<name>, ~registers/<group>,
+// ~read, ~write, ~force, ~release, ~set_run_mode, ~recover, and the link on /diagnostics.
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -14,8 +11,7 @@
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 
-#include "plc_cell/fatek/client.h"
-#include "plc_cell/fatek/poll_plan.h"
+#include "plc_cell/fatek/bridge.h"
 #include "plc_cell/ros/memory_services.h"
 
 namespace plc_cell {
@@ -28,20 +24,9 @@ class FatekBridge : private MemoryAccess {
   ~FatekBridge();
 
  private:
-  struct Group {
-    std::string name, text;
-    double period = 1.0;
-    std::vector<fatek::PollItem> items;
-    fatek::PollPlan plan;
-    ros::Publisher pub;
-    ros::WallTime due;
-  };
-
-  void worker();
-  bool ensure_connected();
-  void poll_io();
-  void poll_group(Group& g);
-  void fail(const std::string& what);
+  void on_io(const fatek::IoResult& r);
+  void on_group(const fatek::GroupResult& r);
+  void publish_signal(size_t i, bool on, const ros::Time& stamp);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
   bool on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool on_recover(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
@@ -52,36 +37,17 @@ class FatekBridge : private MemoryAccess {
   void write(const Address& start, const std::vector<uint32_t>& raw) override;
   void force(const Address& bit, bool value) override;
   std::vector<Address> release(const Address* bit) override;
-  void publish_signal(size_t i, bool on, const ros::Time& stamp);
 
-  std::unique_ptr<fatek::Client> client_;
-  std::string link_name_;
-  std::vector<Group> groups_;
-  std::vector<std::pair<std::string, Address>> signals_;
-  std::vector<fatek::PollItem> io_items_;
-  fatek::PollPlan io_plan_;
-  double io_period_ = 0.1, max_backoff_ = 10.0;
-  ros::WallTime io_due_;
-
+  std::unique_ptr<fatek::Bridge> bridge_;
   ros::Publisher io_pub_;
-  std::vector<ros::Publisher> signal_pubs_;
+  std::vector<ros::Publisher> group_pubs_;    // ~registers/<group>
+  std::vector<ros::Publisher> signal_pubs_;   // ~signals/<name>
   std::vector<ros::Publisher> stamped_pubs_;  // ~signals_stamped/<name>
   std::string frame_id_;                      // ~frame_id of every header
-  std::vector<int> last_signals_;
+  std::vector<int> last_signals_;             // -1 before the first poll; the bridge's thread only
   std::vector<ros::ServiceServer> services_;
-  ros::Timer diag_timer_;
   diagnostic_updater::Updater updater_;
-
-  std::mutex link_mu_;  // one transaction at a time on the half-duplex link
-  std::mutex state_mu_;
-  std::condition_variable cv_;
-  bool stopping_ = false;
-  bool connected_ = false;
-  bool recover_ = false;
-  std::string last_error_;
-  uint64_t errors_ = 0, polls_ = 0, reconnects_ = 0;
-  double latency_ms_ = 0, latency_max_ms_ = 0;
-  std::thread worker_;
+  ros::Timer diag_timer_;
 };
 
 }  // namespace plc_cell
