@@ -145,7 +145,7 @@ SimInputDef parse_sim_input(const YamlReader& r, const CellConfig& cfg, const YA
 }  // namespace
 
 const std::set<std::string>& builtin_extension_sections() {
-  static const std::set<std::string> s = {"counters", "axes", "modules", "fatek", "modbus", "servers"};
+  static const std::set<std::string> s = {"counters", "axes", "modules", "ports", "fatek", "modbus", "servers"};
   return s;
 }
 
