@@ -79,7 +79,6 @@ struct ClinkPorts::Port {
   std::shared_ptr<ComPort> com;
   std::unique_ptr<Client> client;
   int timeout_ms = 500;
-  int owner = -1;  // instruction instance holding the port (the "port ready" relay is owner < 0)
   std::mutex mu;
   std::condition_variable cv;
   bool has_job = false, done = false, stop = false;
@@ -379,14 +378,14 @@ void add_clink_function(FunctionTable& table, std::shared_ptr<ClinkPorts> ports)
     }
     std::unique_lock<std::mutex> lk(port->mu);
     const int me = int(c.instance);
-    if (port->owner == me) m.set_bit(Area::M, kFinishedRelay[pt], false);
+    if (port->com->holder() == me) m.set_bit(Area::M, kFinishedRelay[pt], false);
     if (abt) {  // abort now; restart from the first packet next time
-      if (port->owner == me) {
+      if (port->com->holder() == me) {
         if (st.inflight) {
           st.discard = true;
           port->cancel = true;
         }
-        port->owner = -1;
+        port->com->release();
       }
       st.active = false;
       st.packet = 0;
@@ -426,13 +425,13 @@ void add_clink_function(FunctionTable& table, std::shared_ptr<ClinkPorts> ports)
         finish(port->result, 0, 0);
       }
       if (pau || !en) {  // PAU or EN off: release the port after this transaction
-        if (port->owner == me) port->owner = -1;
+        if (port->com->holder() == me) port->com->release();
         st.active = false;
         st.phase = 0;
       }
     }
-    if (st.active && port->owner < 0 && !st.inflight) port->owner = me;
-    const bool own = port->owner == me;
+    if (st.active && port->com->holder() < 0 && !st.inflight) port->com->hold(me);
+    const bool own = port->com->holder() == me;
     auto submit_raw = [&](ClinkPorts::Port::Raw r) {
       port->raw_job = true;
       port->raw = std::move(r);
@@ -540,15 +539,15 @@ void add_clink_function(FunctionTable& table, std::shared_ptr<ClinkPorts> ports)
           port->cancel = true;
         }
       } else {
-        port->owner = -1;
+        port->com->release();
         st.active = false;
         st.phase = 0;
       }
     }
-    const bool own_now = port->owner == me;
+    const bool own_now = port->com->holder() == me;
     set_reg(m, wr, 4, uint16_t((st.active && !own_now ? 1 : 0) | (own_now ? 1u << 12 : 0) |
                                (failed ? 1u << 13 : 0) | (finished_now ? 1u << 14 : 0)));
-    m.set_bit(Area::M, kReadyRelay[pt], port->owner < 0);
+    m.set_bit(Area::M, kReadyRelay[pt], port->com->holder() < 0);
     c.flag(o[4], own_now);
   };
   table.add(s);

@@ -75,6 +75,7 @@ class PortWorker {
     cv_.wait(lk, [&] { return !pending_; });
     if (ctx_) modbus_free(ctx_);
   }
+  ComPort& port() { return *port_; }
   bool idle() {
     std::lock_guard<std::mutex> lk(mu_);
     return !pending_ && !done_;
@@ -249,7 +250,6 @@ class MbusEngine {
  private:
   void finish(ExecContext& c, const BoundOperand* o, Instance& s, uint16_t* wr, bool error);
   std::map<int, std::unique_ptr<PortWorker>> workers_;
-  std::map<int, uint32_t> owner_;  // port -> instance holding it
   std::map<uint32_t, Instance> inst_;
 };
 
@@ -257,7 +257,8 @@ void MbusEngine::finish(ExecContext& c, const BoundOperand* o, Instance& s, uint
   s.running = s.in_flight = false;
   s.done = true;
   s.error = s.error || error;
-  if (owner_.count(s.port) && owner_[s.port] == c.instance) owner_.erase(s.port);
+  const auto w = workers_.find(s.port);
+  if (w != workers_.end() && w->second->port().holder() == int(c.instance)) w->second->port().release();
   if (s.port >= 1 && s.port <= 4) c.mem.set_bit(Area::M, kFinishedRelay[s.port], true);
   (void)wr;
   (void)o;
@@ -282,13 +283,13 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
   PortWorker* w = workers_.count(port) ? workers_[port].get() : nullptr;
   if (port >= 1 && port <= 4) {
     c.mem.set_bit(Area::M, kFinishedRelay[port], false);  // on for one scan after a pass
-    c.mem.set_bit(Area::M, kReadyRelay[port], !owner_.count(port));
+    c.mem.set_bit(Area::M, kReadyRelay[port], !w || w->port().holder() < 0);
   }
 
   if (abort && s.running) {  // release the port at once; a reply still to come is dropped
     if (w) w->discard();
     s.running = s.in_flight = false;
-    owner_.erase(s.port);
+    if (w && w->port().holder() == int(c.instance)) w->port().release();
   }
   if (rising && !abort && !s.running) {
     s.port = port;
@@ -296,7 +297,7 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
     if (!w || ascii) {  // no such port configured, or Modbus ASCII (no libmodbus backend)
       result(kPort, 0, 0, 0);
       s.error = s.done = true;
-    } else if (owner_.count(port)) {
+    } else if (w->port().holder() >= 0) {  // FUN151 or another FUN150 holds it
       wr[4] |= 0x0001;  // waiting for the port
       s.last_en = false;  // try again next scan, as if EN rose then
     } else if (table(0) != 0xA550 || (table(1) >> 8) != 0x07 || (table(1) & 0xFF) == 0 ||
@@ -304,7 +305,7 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
       result(kTable, 0, 0, 0);
       s.error = s.done = true;
     } else {
-      owner_[port] = c.instance;
+      w->port().hold(int(c.instance));
       s.running = true;
       s.tx = 0;
       s.n_tx = table(1) & 0xFF;

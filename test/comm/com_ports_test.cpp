@@ -9,10 +9,12 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <fstream>
 #include <functional>
+#include <future>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -22,6 +24,7 @@
 #include "plc_cell/fatek/frame.h"
 #include "plc_cell/fatek/serial_port.h"
 #include "plc_cell/fatek/slave.h"
+#include "plc_cell/io/com_port.h"
 #include "plc_cell/modbus/rtu_frame.h"
 #include "plc_cell/modbus/slave_handler.h"
 #include "plc_cell/sim/soft_cell.h"
@@ -137,6 +140,7 @@ const char* kBothOnPort1 =
 }  // namespace
 
 TEST(ComPorts, Fun150AndFun151ShareOnePortOneTransactionAtATime) {
+  // Both instructions on port 1, one pty: one line carries FATEK and Modbus RTU requests.
   fatek_test::TempDir dir;
   fatek_test::PtyPair pty(dir.path);
   Plc slave;
@@ -155,24 +159,65 @@ TEST(ComPorts, Fun150AndFun151ShareOnePortOneTransactionAtATime) {
   master.write(parse_address("R300"), {0xA550, 0x0701, 1, 1, 2, 12, 20, 4, 8});
   master.write(parse_address("M0"), {1});
   master.write(parse_address("M100"), {1});  // both start in the same scan
-  bool fatek_done = false, mbus_done = false;
+  // FUN151 comes first in the program and takes the port; FUN150 waits for it (WR+4 b0)
+  // until FUN151's EN goes off after its first packet, as on an FBs-PLC.
+  bool fatek_done = false, mbus_done = false, mbus_waited = false, ready_while_held = false;
   uint64_t now = 0;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   while (!(fatek_done && mbus_done) && std::chrono::steady_clock::now() < deadline) {
     master.scan(now += 1000);
-    fatek_done = fatek_done || get(master, "Y2") == 1;
+    if (!fatek_done) ready_while_held = ready_while_held || get(master, "M1960") == 1;
+    mbus_waited = mbus_waited || (get(master, "R404") & 1) != 0;
+    if (!fatek_done && get(master, "Y2") == 1) {
+      fatek_done = true;
+      master.write(parse_address("M0"), {0});
+    }
     mbus_done = mbus_done || get(master, "M112") == 1;
     std::this_thread::yield();
   }
   ASSERT_TRUE(fatek_done);
   ASSERT_TRUE(mbus_done);
+  EXPECT_TRUE(mbus_waited);
+  EXPECT_FALSE(ready_while_held);  // M1960: port 1 busy for both instructions
   EXPECT_EQ(get(master, "M111"), 0u) << "FUN150 WR+0 = " << get(master, "R400");
   EXPECT_EQ(master.read(parse_address("R10"), 3), (std::vector<uint32_t>{11, 22, 33}));
   EXPECT_EQ(master.read(parse_address("R20"), 2), (std::vector<uint32_t>{1234, 5678}));
   const std::string order = peer.order();
-  EXPECT_NE(order.find('F'), std::string::npos) << order;
-  EXPECT_NE(order.find('M'), std::string::npos) << order;
+  // On one line: FUN151's FATEK frames (the scan that turns EN off still sends the next
+  // packet: the port is released after the transaction in flight), then FUN150's request.
+  ASSERT_GE(order.size(), 2u) << order;
+  EXPECT_EQ(order.find_first_not_of('F'), order.size() - 1) << order;
+  EXPECT_EQ(order.back(), 'M') << order;
   EXPECT_EQ(peer.overlaps(), 0) << "a request went out while another was unanswered: " << order;
+}
+
+TEST(ComPorts, APortRunsItsTransactionsOneAtATimeInTheOrderTheyCame) {
+  ComPort port(1);
+  std::promise<void> release_first;
+  std::shared_future<void> first_may_end = release_first.get_future().share();
+  std::mutex mu;
+  std::string log;
+  std::atomic<int> running{0}, most{0};
+  std::promise<void> all_done;
+  auto job = [&](char name, bool wait, bool last) {
+    return [&, name, wait, last] {
+      most = std::max(most.load(), ++running);
+      {
+        std::lock_guard<std::mutex> lk(mu);
+        log += name;
+      }
+      if (wait) first_may_end.wait();  // still on the line while the others are submitted
+      --running;
+      if (last) all_done.set_value();
+    };
+  };
+  port.submit(job('a', true, false));
+  port.submit(job('b', false, false));
+  port.submit(job('c', false, true));
+  release_first.set_value();
+  ASSERT_EQ(all_done.get_future().wait_for(std::chrono::seconds(10)), std::future_status::ready);
+  EXPECT_EQ(log, "abc");
+  EXPECT_EQ(most.load(), 1);
 }
 
 namespace {

@@ -5,6 +5,7 @@
 // instructions on one port has one line whose transactions follow each other, never
 // interleaved on the wire, as on an FBs-PLC where a port is one physical port whichever
 // instruction drives it. The scan never waits: submit() queues and returns.
+#include <atomic>
 #include <cstdint>
 #include <condition_variable>
 #include <deque>
@@ -62,6 +63,13 @@ class ComPort {
   std::string last_error() const;
   uint64_t reopened() const;
 
+  // The instruction instance holding the port, FUN150 and FUN151 alike (-1: free, which
+  // is the port's "ready" relay M1960/M1962/M1936/M1938): one instruction uses a port at
+  // a time, the others wait. Scan side only.
+  int holder() const { return holder_; }
+  void hold(int instance) { holder_ = instance; }
+  void release() { holder_ = -1; }
+
  private:
   void run();
   int open_tcp();
@@ -79,6 +87,7 @@ class ComPort {
   bool stop_ = false;
   std::string error_;
   uint64_t reopened_ = 0;
+  std::atomic<int> holder_{-1};
   std::thread thread_;
 };
 
