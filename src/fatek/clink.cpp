@@ -47,10 +47,12 @@ class ComPortTransport : public Transport {
     for (int pass = 0; pass < 2; ++pass) {
       const ssize_t r = ::read(fd, buf, n);
       if (r > 0) return size_t(r);
-      // A socket reads 0 at EOF; a tty with VMIN=0 reads 0 when it has nothing yet.
-      const bool nothing = r == 0 ? !port_->line().is_tcp() : (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
+      // A socket reads 0 at EOF; a tty with VMIN=0 reads 0 when it has nothing yet, but
+      // not once poll() said it was readable: that is a hang-up (device gone).
+      const bool nothing =
+          r == 0 ? !port_->line().is_tcp() && pass == 0 : (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
       if (!nothing) {
-        port_->lost(r == 0 ? "connection closed" : std::strerror(errno));
+        port_->lost(r < 0 ? std::strerror(errno) : port_->line().is_tcp() ? "connection closed" : "hang-up");
         throw ConnectionClosed(describe() + ": connection closed");
       }
       if (pass == 0 && !wait_readable(fd, timeout_ms)) return 0;

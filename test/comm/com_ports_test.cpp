@@ -191,6 +191,69 @@ TEST(ComPorts, Fun150AndFun151ShareOnePortOneTransactionAtATime) {
   EXPECT_EQ(peer.overlaps(), 0) << "a request went out while another was unanswered: " << order;
 }
 
+// The device goes away under both instructions and comes back at the same path: the port
+// reopens it for whichever uses it next.
+TEST(ComPorts, APortReopensItsSerialDeviceWhenItIsBack) {
+  fatek_test::TempDir dir;
+  auto pty = std::make_unique<fatek_test::PtyPair>(dir.path);
+  const std::string device = pty->a;
+  Plc slave;
+  slave.write(parse_address("R0"), {11, 22, 33});
+  slave.write(parse_address("R7"), {4242});
+  auto peer = std::make_unique<TwoProtocolPeer>(slave, pty->b);
+  const std::string prog = write_file("reopen.il", kBothOnPort1);
+  const std::string cfg = write_file("reopen.yaml", "cell: {program: " + prog + "}\nports:\n  timeout: 300ms\n  1: {serial: " +
+                                                        device + ":115200:8N1}\n");
+  SoftCell cell(cfg, "", protocol(true));
+  Plc& master = cell.plc();
+  ASSERT_TRUE(master.set_mode(RunMode::Run));
+  master.write(parse_address("R100"), {1, 5, 1, 3, 12, 10, 12, 0});
+  master.write(parse_address("R300"), {0xA550, 0x0701, 1, 1, 1, 12, 20, 4, 8});
+  uint64_t now = 0;
+  const auto scan_until = [&](const std::function<bool()>& pred) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (std::chrono::steady_clock::now() < deadline) {
+      master.scan(now += 1000);
+      if (pred()) return true;
+      std::this_thread::yield();
+    }
+    return false;
+  };
+  // One FUN150 pass (EN 0 -> 1, scans until DN); true when it read R7 without error.
+  const auto fun150 = [&] {
+    master.write(parse_address("R20"), {0});
+    master.write(parse_address("M100"), {1});
+    const bool done = scan_until([&] { return get(master, "M112") == 1; });
+    const bool ok = done && get(master, "M111") == 0 && get(master, "R20") == 4242;
+    master.write(parse_address("M100"), {0});
+    master.scan(now += 1000);
+    return ok;
+  };
+  // One FUN151 packet (EN on until DN, then off until the port is free again).
+  const auto fun151 = [&] {
+    master.write(parse_address("R10"), {0});
+    master.write(parse_address("M0"), {1});
+    const bool done = scan_until([&] { return get(master, "Y2") == 1; });
+    const bool ok = done && get(master, "Y1") == 0 && get(master, "R10") == 11;
+    master.write(parse_address("M0"), {0});
+    EXPECT_TRUE(scan_until([&] { return get(master, "M1960") == 1; }));
+    return ok;
+  };
+  ASSERT_TRUE(fun150());
+  ASSERT_TRUE(fun151());
+  peer.reset();
+  pty.reset();  // the device goes away
+  EXPECT_FALSE(fun151());
+  EXPECT_FALSE(fun151());  // still gone: the port cannot open it
+  pty = std::make_unique<fatek_test::PtyPair>(dir.path);  // back at the same path
+  peer = std::make_unique<TwoProtocolPeer>(slave, pty->b);
+  bool back = false;
+  for (int i = 0; i < 20 && !back; ++i) back = fun151();
+  EXPECT_TRUE(back);
+  EXPECT_TRUE(fun150());  // the same line, reopened once for both
+  peer.reset();
+}
+
 TEST(ComPorts, APortRunsItsTransactionsOneAtATimeInTheOrderTheyCame) {
   ComPort port(1);
   std::promise<void> release_first;
