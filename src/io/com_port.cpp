@@ -1,9 +1,9 @@
 #include "plc_cell/io/com_port.h"
 
-#include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -11,16 +11,18 @@
 #include <cstring>
 
 namespace plc_cell {
+namespace {
+
+constexpr int kConnectMs = 1000;
+
+}  // namespace
 
 std::string ComLine::to_string() const { return is_tcp() ? "tcp:" + tcp : serial.to_string(); }
 
 ComPort::ComPort(int number, ComLine line)
     : number_(number), line_(std::move(line)), has_line_(true), serial_(line_.serial) {
-  // A serial device opens at once; a connection may take its time (a host that does not
-  // answer), so it is made on the port's thread, where it holds up nothing but the port.
-  if (!line_.is_tcp()) (void)fd();
+  (void)fd();
   thread_ = std::thread([this] { run(); });
-  if (line_.is_tcp()) submit([this] { (void)fd(); });
 }
 
 ComPort::ComPort(int number) : number_(number), has_line_(false), serial_(SerialSettings{}) {
@@ -79,10 +81,22 @@ int ComPort::open_tcp() {
     error_ = "tcp " + line_.tcp + ": cannot resolve";
     return -1;
   }
-  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  const int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);  // blocking connect, then non-blocking I/O
-  const int err = errno;
+  // Non-blocking from the start, and a connect bounded in time: a host that does not
+  // answer holds up the port (and the cell being built) for kConnectMs, not for the
+  // system's minutes.
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+  int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);
+  int err = errno;
   freeaddrinfo(res);
+  if (rc != 0 && err == EINPROGRESS) {
+    pollfd p{fd, POLLOUT, 0};
+    int r;
+    while ((r = ::poll(&p, 1, kConnectMs)) < 0 && errno == EINTR) {
+    }
+    socklen_t len = sizeof err;
+    if (r == 1 && ::getsockopt(fd, SOL_SOCKET, SO_ERROR, &err, &len) == 0 && err == 0) rc = 0;
+    else if (r == 0) err = ETIMEDOUT;
+  }
   if (rc != 0) {
     ::close(fd);
     std::lock_guard<std::mutex> lk(mu_);
@@ -91,7 +105,6 @@ int ComPort::open_tcp() {
   }
   int one = 1;
   setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
   return fd;
 }
 
