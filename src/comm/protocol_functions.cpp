@@ -1,55 +1,33 @@
 #include "plc_cell/comm/protocol_functions.h"
 
+#include "plc_cell/comm/port_config.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/fatek/clink.h"
+#include "plc_cell/io/com_ports.h"
 #include "plc_cell/modbus/fun150.h"
 
 namespace plc_cell {
 namespace {
 
-// Runs the reading of the `fatek:` then the `modbus:` section; an error names the file
-// and the section's line. *section says which one is being read.
-template <typename F>
-void in_sections(const CellConfig& cfg, const char** section, F&& read) {
-  try {
-    read();
-  } catch (const SourceError&) {
-    throw;
-  } catch (const std::exception& e) {
-    const YAML::Node n = cfg.document[*section];
-    const int line = n ? n.Mark().line + 1 : 0;
-    throw SourceError::at(cfg.file, line, 0, std::string("section '") + *section + "': " + e.what());
-  }
+// FUN151 and FUN150 on the same ports: a port both use is one ComPort, one line.
+std::vector<std::shared_ptr<void>> install(const CellConfig& cfg, FunctionTable& t, bool open_ports) {
+  const PortSettings s = read_port_settings(cfg.document, cfg.file);
+  // Checking opens nothing: the FUNs are there, with no port behind them.
+  auto ports = open_ports ? std::make_shared<ComPorts>(s.lines) : std::make_shared<ComPorts>();
+  auto clink = fatek::ClinkPorts::on(*ports, s.timeout_ms);
+  fatek::add_clink_function(t, clink);
+  auto engine = modbus::add_fun150_on(t, *ports);
+  return {clink, engine, ports};
 }
 
 }  // namespace
 
 std::vector<std::shared_ptr<void>> install_protocol_functions(const CellConfig& cfg, FunctionTable& t) {
-  std::vector<std::shared_ptr<void>> keep;
-  const char* section = "fatek";
-  in_sections(cfg, &section, [&] {
-    auto clink = fatek::ClinkPorts::from_yaml(cfg.document["fatek"], cfg.file);
-    fatek::add_clink_function(t, clink);
-    keep.push_back(clink);
-    section = "modbus";
-    keep.push_back(modbus::add_fun150(t, modbus::parse_mbus_ports(cfg.document["modbus"], cfg.file)));
-  });
-  return keep;
+  return install(cfg, t, true);
 }
 
 std::vector<std::shared_ptr<void>> check_protocol_functions(const CellConfig& cfg, FunctionTable& t) {
-  std::vector<std::shared_ptr<void>> keep;
-  const char* section = "fatek";
-  in_sections(cfg, &section, [&] {
-    (void)fatek::read_clink_settings(cfg.document["fatek"], cfg.file);  // what from_yaml reads, no line opened
-    auto clink = std::make_shared<fatek::ClinkPorts>();  // no port: no line, no thread
-    fatek::add_clink_function(t, clink);
-    keep.push_back(clink);
-    section = "modbus";
-    (void)modbus::parse_mbus_ports(cfg.document["modbus"], cfg.file);
-    keep.push_back(modbus::add_fun150(t, {}));
-  });
-  return keep;
+  return install(cfg, t, false);
 }
 
 void ProtocolFunctions::install(const CellConfig& cfg, FunctionTable& t) {

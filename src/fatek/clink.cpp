@@ -7,19 +7,69 @@
 #include <condition_variable>
 #include <map>
 #include <mutex>
-#include <thread>
+#include <cerrno>
+#include <cstring>
+
+#include <unistd.h>
 
 #include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/memory.h"
+#include "plc_cell/fatek/serial_port.h"
 #include "plc_cell/io/serial_settings.h"
 
 namespace plc_cell {
 namespace fatek {
 
-// One line with one transaction at a time, run by its own thread. A job is a FATEK
-// request (MD0) or raw bytes out and/or a raw message in (MD1/MD2).
+namespace {
+
+// FATEK frames over the COM port's own line (the port opens, reopens and closes it).
+class ComPortTransport : public Transport {
+ public:
+  explicit ComPortTransport(std::shared_ptr<ComPort> port) : port_(std::move(port)) {}
+  void open() override {
+    if (port_->fd() < 0) throw CommError(describe() + ": " + port_->last_error());
+  }
+  void close() override { port_->lost("closed"); }
+  bool is_open() const override { return port_->is_open(); }
+  void send(const std::string& b, int timeout_ms) override {
+    open();
+    if (!write_all(port_->fd(), b.data(), b.size(), timeout_ms)) {
+      port_->lost("write failed");
+      throw ConnectionClosed(describe() + ": write failed");
+    }
+  }
+  size_t recv(char* buf, size_t n, int timeout_ms) override {
+    open();
+    const int fd = port_->fd();
+    // The fd is non-blocking: try first, wait only when nothing is there yet.
+    for (int pass = 0; pass < 2; ++pass) {
+      const ssize_t r = ::read(fd, buf, n);
+      if (r > 0) return size_t(r);
+      // A socket reads 0 at EOF; a tty with VMIN=0 reads 0 when it has nothing yet, but
+      // not once poll() said it was readable: that is a hang-up (device gone).
+      const bool nothing =
+          r == 0 ? !port_->line().is_tcp() && pass == 0 : (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
+      if (!nothing) {
+        port_->lost(r < 0 ? std::strerror(errno) : port_->line().is_tcp() ? "connection closed" : "hang-up");
+        throw ConnectionClosed(describe() + ": connection closed");
+      }
+      if (pass == 0 && !wait_readable(fd, timeout_ms)) return 0;
+    }
+    return 0;
+  }
+  std::string describe() const override { return port_->line().to_string(); }
+
+ private:
+  std::shared_ptr<ComPort> port_;
+};
+
+}  // namespace
+
+// FUN151's use of one COM port: one transaction at a time, run on the port's thread
+// (shared with FUN150 on the same port). A job is a FATEK request (MD0) or raw bytes out
+// and/or a raw message in (MD1/MD2).
 struct ClinkPorts::Port {
   struct Raw {
     std::string tx;
@@ -28,9 +78,9 @@ struct ClinkPorts::Port {
     int gap_ms = 12;
     int timeout_ms = 500;        // <= 0: wait until a message arrives or the job is cancelled
   };
+  std::shared_ptr<ComPort> com;
   std::unique_ptr<Client> client;
   int timeout_ms = 500;
-  int owner = -1;  // instruction instance holding the port (the "port ready" relay is owner < 0)
   std::mutex mu;
   std::condition_variable cv;
   bool has_job = false, done = false, stop = false;
@@ -41,7 +91,6 @@ struct ClinkPorts::Port {
   Response rsp;
   std::string received;
   ClinkResult result = ClinkResult::Ok;
-  std::thread th;
 
   ClinkResult run_raw(const Raw& r, std::string* in) {
     Transport& t = client->transport();
@@ -73,72 +122,103 @@ struct ClinkPorts::Port {
     }
   }
 
-  void run() {
+  // The instruction set has_job under mu: hand the transaction to the port's thread.
+  void post() {
+    com->submit([this] { run_one(); });
+  }
+
+  void run_one() {
     std::unique_lock<std::mutex> lk(mu);
-    for (;;) {
-      cv.wait(lk, [&] { return stop || has_job; });
-      if (stop) return;
-      const bool is_raw = raw_job;
-      Request req = job;
-      Raw r = raw;
-      lk.unlock();
-      Response out;
-      std::string in;
-      ClinkResult res = ClinkResult::Ok;
-      try {
-        if (is_raw) res = run_raw(r, &in);
-        else out = client->transact(req);
-      } catch (const PlcError&) {
-        res = ClinkResult::BadData;  // the slave answered with an error code
-      } catch (const CommError& e) {
-        res = std::string(e.what()).find("no answer") != std::string::npos ? ClinkResult::Timeout : ClinkResult::BadData;
-      } catch (const std::exception&) {
-        res = ClinkResult::BadData;
-      }
-      lk.lock();
-      rsp = std::move(out);
-      received = std::move(in);
-      result = res;
+    if (stop) {
       has_job = false;
-      done = true;
+      cv.notify_all();
+      return;
     }
+    const bool is_raw = raw_job;
+    Request req = job;
+    Raw r = raw;
+    lk.unlock();
+    Response out;
+    std::string in;
+    ClinkResult res = ClinkResult::Ok;
+    try {
+      if (is_raw) res = run_raw(r, &in);
+      else out = client->transact(req);
+    } catch (const PlcError&) {
+      res = ClinkResult::BadData;  // the slave answered with an error code
+    } catch (const CommError& e) {
+      res = std::string(e.what()).find("no answer") != std::string::npos ? ClinkResult::Timeout : ClinkResult::BadData;
+    } catch (const std::exception&) {
+      res = ClinkResult::BadData;
+    }
+    lk.lock();
+    rsp = std::move(out);
+    received = std::move(in);
+    result = res;
+    has_job = false;
+    done = true;
+    cv.notify_all();
   }
 };
 
 ClinkPorts::ClinkPorts() = default;
 
+// The ports may be shared with FUN150 and outlive this: wait for our own transaction
+// (cancelled where it can be) so the port's thread never runs it on a Port that is gone.
 ClinkPorts::~ClinkPorts() {
   for (auto& p : ports_) {
     if (!p) continue;
-    {
-      std::lock_guard<std::mutex> lk(p->mu);
-      p->stop = true;
-      p->cancel = true;
-    }
-    p->cv.notify_all();
-    if (p->th.joinable()) p->th.join();
+    std::unique_lock<std::mutex> lk(p->mu);
+    p->stop = true;
+    p->cancel = true;
+    p->cv.wait(lk, [&] { return !p->has_job; });
   }
 }
 
 void ClinkPorts::set_port(int n, std::unique_ptr<Transport> t, int timeout_ms) {
   if (n < 1 || n > 4) throw Error("FUN151 port " + std::to_string(n) + " outside 1..4");
-  auto p = std::make_unique<Port>();
   try {
     t->open();  // now, so nothing that arrives before the first transaction is flushed away
   } catch (const std::exception&) {
     // not there yet: the first transaction opens it (and reports the failure)
   }
+  add(std::make_shared<ComPort>(n), std::move(t), timeout_ms);
+}
+
+void ClinkPorts::set_port(std::shared_ptr<ComPort> port, int timeout_ms) {
+  const int n = port->number();
+  if (n < 1 || n > 4) throw Error("FUN151 port " + std::to_string(n) + " outside 1..4");
+  auto t = std::make_unique<ComPortTransport>(port);
+  add(std::move(port), std::move(t), timeout_ms);
+}
+
+void ClinkPorts::add(std::shared_ptr<ComPort> port, std::unique_ptr<Transport> t, int timeout_ms) {
+  auto p = std::make_unique<Port>();
   ClientOptions o;
   o.timeout_ms = timeout_ms;
   o.retries = 0;  // the ladder program decides about repeating
   p->client = std::make_unique<Client>(std::move(t), o);
   p->timeout_ms = timeout_ms;
-  p->th = std::thread([q = p.get()] { q->run(); });
+  const int n = port->number();
+  p->com = std::move(port);
   ports_[size_t(n)] = std::move(p);
 }
 
 bool ClinkPorts::has(int n) const { return n >= 1 && n <= 4 && ports_[size_t(n)]; }
 ClinkPorts::Port* ClinkPorts::port(int n) { return has(n) ? ports_[size_t(n)].get() : nullptr; }
+
+ComLine clink_line(const std::string& where) {
+  ComLine l;
+  if (where.rfind("tcp:", 0) == 0) {
+    std::string host;
+    int port = 0;
+    parse_host_port(where.substr(4), &host, &port);
+    l.tcp = (host.empty() ? "127.0.0.1" : host) + ":" + std::to_string(port);
+  } else {
+    l.serial = parse_serial_settings(where, "7E1");
+  }
+  return l;
+}
 
 ClinkSettings read_clink_settings(const YAML::Node& f, const std::string& file) {
   ClinkSettings s;
@@ -170,11 +250,14 @@ ClinkSettings read_clink_settings(const YAML::Node& f, const std::string& file) 
 
 std::shared_ptr<ClinkPorts> ClinkPorts::from_settings(const ClinkSettings& s) {
   auto ports = std::make_shared<ClinkPorts>();
-  for (const auto& p : s.ports) {
-    const std::string& where = p.second;
-    if (where.rfind("tcp:", 0) == 0) ports->set_port(p.first, tcp_transport(where.substr(4)), s.timeout_ms);
-    else ports->set_port(p.first, serial_transport(parse_serial_settings(where, "7E1")), s.timeout_ms);
-  }
+  for (const auto& p : s.ports) ports->set_port(std::make_shared<ComPort>(p.first, clink_line(p.second)), s.timeout_ms);
+  return ports;
+}
+
+std::shared_ptr<ClinkPorts> ClinkPorts::on(const ComPorts& com, int timeout_ms) {
+  auto ports = std::make_shared<ClinkPorts>();
+  for (const int n : com.numbers())
+    if (n >= 1 && n <= 4) ports->set_port(com.get(n), timeout_ms);
   return ports;
 }
 
@@ -297,14 +380,14 @@ void add_clink_function(FunctionTable& table, std::shared_ptr<ClinkPorts> ports)
     }
     std::unique_lock<std::mutex> lk(port->mu);
     const int me = int(c.instance);
-    if (port->owner == me) m.set_bit(Area::M, kFinishedRelay[pt], false);
+    if (port->com->holder() == me) m.set_bit(Area::M, kFinishedRelay[pt], false);
     if (abt) {  // abort now; restart from the first packet next time
-      if (port->owner == me) {
+      if (port->com->holder() == me) {
         if (st.inflight) {
           st.discard = true;
           port->cancel = true;
         }
-        port->owner = -1;
+        port->com->release();
       }
       st.active = false;
       st.packet = 0;
@@ -344,13 +427,13 @@ void add_clink_function(FunctionTable& table, std::shared_ptr<ClinkPorts> ports)
         finish(port->result, 0, 0);
       }
       if (pau || !en) {  // PAU or EN off: release the port after this transaction
-        if (port->owner == me) port->owner = -1;
+        if (port->com->holder() == me) port->com->release();
         st.active = false;
         st.phase = 0;
       }
     }
-    if (st.active && port->owner < 0 && !st.inflight) port->owner = me;
-    const bool own = port->owner == me;
+    if (st.active && port->com->holder() < 0 && !st.inflight) port->com->hold(me);
+    const bool own = port->com->holder() == me;
     auto submit_raw = [&](ClinkPorts::Port::Raw r) {
       port->raw_job = true;
       port->raw = std::move(r);
@@ -358,7 +441,7 @@ void add_clink_function(FunctionTable& table, std::shared_ptr<ClinkPorts> ports)
       port->cancel = false;
       port->has_job = true;
       st.inflight = true;
-      port->cv.notify_all();
+      port->post();
     };
     if (own && st.active && !st.inflight && !pau && !abt && !finished_now) {
       const uint16_t codes = reg(m, sr, 1);
@@ -411,7 +494,7 @@ void add_clink_function(FunctionTable& table, std::shared_ptr<ClinkPorts> ports)
           port->has_job = true;
           st.inflight = true;
           set_reg(m, wr, 1, uint16_t((station << 8) | uint8_t(fcmd)));
-          port->cv.notify_all();
+          port->post();
         }
       } else if (md == 1) {  // send SR+3.., then maybe receive
         const uint32_t len = reg(m, sr, 2);
@@ -458,15 +541,15 @@ void add_clink_function(FunctionTable& table, std::shared_ptr<ClinkPorts> ports)
           port->cancel = true;
         }
       } else {
-        port->owner = -1;
+        port->com->release();
         st.active = false;
         st.phase = 0;
       }
     }
-    const bool own_now = port->owner == me;
+    const bool own_now = port->com->holder() == me;
     set_reg(m, wr, 4, uint16_t((st.active && !own_now ? 1 : 0) | (own_now ? 1u << 12 : 0) |
                                (failed ? 1u << 13 : 0) | (finished_now ? 1u << 14 : 0)));
-    m.set_bit(Area::M, kReadyRelay[pt], port->owner < 0);
+    m.set_bit(Area::M, kReadyRelay[pt], port->com->holder() < 0);
     c.flag(o[4], own_now);
   };
   table.add(s);

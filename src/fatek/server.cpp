@@ -122,7 +122,7 @@ void TcpServer::on_event(Event e, int) {
 // ---- serial ----------------------------------------------------------------------
 
 SerialServer::SerialServer(Plc& plc, SerialServerOptions opt)
-    : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station) {
+    : plc_(plc), opt_(std::move(opt)), slave_(plc, opt_.station), line_(opt_.line) {
   slave_.set_writable(opt_.writable);
 }
 
@@ -130,7 +130,7 @@ SerialServer::~SerialServer() { stop(); }
 
 void SerialServer::start() {
   if (running_) return;
-  fd_ = open_serial_port(opt_.line);
+  line_.open_or_throw();
   make_wake_pipe(wake_);
   running_ = true;
   thread_ = std::thread([this] { loop(); });
@@ -141,7 +141,7 @@ void SerialServer::stop() {
   running_ = false;
   (void)!::write(wake_[1], "x", 1);
   if (thread_.joinable()) thread_.join();
-  close_fd(fd_);
+  line_.close();
   close_fd(wake_[0]);
   close_fd(wake_[1]);
 }
@@ -166,17 +166,15 @@ ServerStatus SerialServer::status() const {
 // path until it is back; meanwhile the server runs, link_up is false and says why.
 bool SerialServer::wait_for_device() {
   while (running_) {
-    try {
-      fd_ = open_serial_port(opt_.line);
+    if (line_.open()) {
       link_up_ = true;
-      ++reopened_;
+      reopened_ = line_.reopened();
       std::lock_guard<std::mutex> lk(err_mu_);
-      last_error_ = "serial device back";
+      last_error_ = line_.last_error();
       return true;
-    } catch (const Error&) {
-      pollfd w{wake_[0], POLLIN, 0};
-      ::poll(&w, 1, 200);  // retry period; stop() wakes us at once
     }
+    pollfd w{wake_[0], POLLIN, 0};
+    ::poll(&w, 1, 200);  // retry period; stop() wakes us at once
   }
   return false;
 }
@@ -191,15 +189,15 @@ void SerialServer::loop() {
     last_error_ = e;
   };
   auto lost = [&](const std::string& why) {
-    close_fd(fd_);
-    fd_ = -1;
+    line_.lost(why);
     link_up_ = false;
     dec = Decoder();
-    note("serial device lost: " + why);
+    note(line_.last_error());
   };
   while (running_) {
-    if (fd_ < 0 && !wait_for_device()) break;
-    pollfd p[2] = {{wake_[0], POLLIN, 0}, {fd_, POLLIN, 0}};
+    if (!line_.is_open() && !wait_for_device()) break;
+    const int fd = line_.fd();
+    pollfd p[2] = {{wake_[0], POLLIN, 0}, {fd, POLLIN, 0}};
     const int r = ::poll(p, 2, dec.in_frame() ? opt_.frame_timeout_ms : 200);
     if (!running_) break;
     if (r == 0 && dec.in_frame() && ms_since(last_rx) >= opt_.frame_timeout_ms) {
@@ -214,7 +212,7 @@ void SerialServer::loop() {
       continue;
     }
     if (!(p[1].revents & POLLIN)) continue;
-    const ssize_t n = ::read(fd_, buf, sizeof buf);
+    const ssize_t n = ::read(fd, buf, sizeof buf);
     if (n < 0 && errno != EAGAIN && errno != EINTR) {
       lost(std::strerror(errno));
       continue;
@@ -231,7 +229,7 @@ void SerialServer::loop() {
                ++framing_errors_;
                note(std::string("framing: ") + fault_name(f));
              });
-    if (!out.empty() && !write_all(fd_, out.data(), out.size(), 2000)) note("serial write failed");
+    if (!out.empty() && !write_all(fd, out.data(), out.size(), 2000)) note("serial write failed");
   }
 }
 

@@ -5,7 +5,6 @@
 #include <climits>
 #include <condition_variable>
 #include <mutex>
-#include <thread>
 #include <vector>
 
 #include <modbus/modbus.h>
@@ -62,28 +61,32 @@ struct Job {
   int result = kOk;
 };
 
-// One port: a libmodbus context and a thread doing one transaction at a time.
+// FUN150's use of one COM port: a libmodbus context for the framing, on the port's own
+// line (the port opens and reopens it; libmodbus never connects or closes it), and one
+// transaction at a time on the port's thread, shared with FUN151.
 class PortWorker {
  public:
-  explicit PortWorker(MbusPort cfg) : cfg_(std::move(cfg)) { thread_ = std::thread([this] { run(); }); }
+  explicit PortWorker(std::shared_ptr<ComPort> port) : port_(std::move(port)) {}
+  // Waits for a transaction of ours still queued or on the line: the port's thread must
+  // not run it once we are gone (the port may outlive us, shared with FUN151).
   ~PortWorker() {
-    {
-      std::lock_guard<std::mutex> lk(mu_);
-      stop_ = true;
-    }
-    cv_.notify_all();
-    thread_.join();
+    std::unique_lock<std::mutex> lk(mu_);
+    stop_ = true;
+    cv_.wait(lk, [&] { return !pending_; });
     if (ctx_) modbus_free(ctx_);
   }
+  ComPort& port() { return *port_; }
   bool idle() {
     std::lock_guard<std::mutex> lk(mu_);
     return !pending_ && !done_;
   }
   void submit(Job j) {
-    std::lock_guard<std::mutex> lk(mu_);
-    job_ = std::move(j);
-    pending_ = true;
-    cv_.notify_all();
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      job_ = std::move(j);
+      pending_ = true;
+    }
+    port_->submit([this] { run_one(); });
   }
   bool take(Job* out) {  // the finished job, if any
     std::lock_guard<std::mutex> lk(mu_);
@@ -100,21 +103,23 @@ class PortWorker {
 
  private:
   bool connect() {
-    if (connected_) return true;
+    const ComLine& line = port_->line();
     if (!ctx_) {
-      if (!cfg_.tcp.empty()) {
+      if (line.is_tcp()) {
         std::string host;
         int port;
-        parse_host_port(cfg_.tcp, &host, &port);
-        ctx_ = modbus_new_tcp(host.c_str(), port);
+        parse_host_port(line.tcp, &host, &port);
+        ctx_ = modbus_new_tcp(host.empty() ? "127.0.0.1" : host.c_str(), port);
       } else {
-        const SerialSettings s = parse_serial_settings(cfg_.rtu, "8E1");
+        const SerialSettings& s = line.serial;
         ctx_ = modbus_new_rtu(s.device.c_str(), s.baud, s.parity, s.data_bits, s.stop_bits);
       }
       if (!ctx_) return false;
     }
-    connected_ = modbus_connect(ctx_) == 0;
-    return connected_;
+    const int fd = port_->fd();
+    if (fd < 0) return false;
+    modbus_set_socket(ctx_, fd);
+    return true;
   }
 
   void execute(Job& j) {
@@ -150,42 +155,39 @@ class PortWorker {
       modbus_flush(ctx_);
     } else {
       j.result = kCommError;  // bad data or an exception reply
-      if (errno < MODBUS_ENOBASE) {
-        modbus_close(ctx_);
-        connected_ = false;
-      }
+      if (errno < MODBUS_ENOBASE) port_->lost(modbus_strerror(errno));  // the line itself failed
     }
   }
 
-  void run() {
-    for (;;) {
-      Job j;
-      {
-        std::unique_lock<std::mutex> lk(mu_);
-        cv_.wait(lk, [&] { return stop_ || pending_; });
-        if (stop_) return;
-        j = job_;
+  void run_one() {
+    Job j;
+    {
+      std::unique_lock<std::mutex> lk(mu_);
+      if (stop_) {
+        pending_ = false;
+        cv_.notify_all();
+        return;
       }
-      execute(j);
-      std::lock_guard<std::mutex> lk(mu_);
-      pending_ = false;
-      if (discard_) {
-        discard_ = false;
-        continue;
-      }
-      job_ = std::move(j);
-      done_ = true;
+      j = job_;
     }
+    execute(j);
+    std::lock_guard<std::mutex> lk(mu_);
+    pending_ = false;
+    cv_.notify_all();
+    if (discard_) {
+      discard_ = false;
+      return;
+    }
+    job_ = std::move(j);
+    done_ = true;
   }
 
-  MbusPort cfg_;
+  std::shared_ptr<ComPort> port_;
   modbus_t* ctx_ = nullptr;
-  bool connected_ = false;
   std::mutex mu_;
   std::condition_variable cv_;
   Job job_;
   bool pending_ = false, done_ = false, discard_ = false, stop_ = false;
-  std::thread thread_;
 };
 
 struct Instance {
@@ -240,15 +242,14 @@ int check(const Tx& t, int* fc) {
 
 class MbusEngine {
  public:
-  explicit MbusEngine(std::map<int, MbusPort> ports) {
-    for (auto& p : ports) workers_[p.first] = std::make_unique<PortWorker>(p.second);
+  explicit MbusEngine(const ComPorts& ports) {
+    for (const int n : ports.numbers()) workers_[n] = std::make_unique<PortWorker>(ports.get(n));
   }
   void exec(ExecContext& c, const BoundOperand* o);
 
  private:
   void finish(ExecContext& c, const BoundOperand* o, Instance& s, uint16_t* wr, bool error);
   std::map<int, std::unique_ptr<PortWorker>> workers_;
-  std::map<int, uint32_t> owner_;  // port -> instance holding it
   std::map<uint32_t, Instance> inst_;
 };
 
@@ -256,7 +257,8 @@ void MbusEngine::finish(ExecContext& c, const BoundOperand* o, Instance& s, uint
   s.running = s.in_flight = false;
   s.done = true;
   s.error = s.error || error;
-  if (owner_.count(s.port) && owner_[s.port] == c.instance) owner_.erase(s.port);
+  const auto w = workers_.find(s.port);
+  if (w != workers_.end() && w->second->port().holder() == int(c.instance)) w->second->port().release();
   if (s.port >= 1 && s.port <= 4) c.mem.set_bit(Area::M, kFinishedRelay[s.port], true);
   (void)wr;
   (void)o;
@@ -281,13 +283,13 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
   PortWorker* w = workers_.count(port) ? workers_[port].get() : nullptr;
   if (port >= 1 && port <= 4) {
     c.mem.set_bit(Area::M, kFinishedRelay[port], false);  // on for one scan after a pass
-    c.mem.set_bit(Area::M, kReadyRelay[port], !owner_.count(port));
+    c.mem.set_bit(Area::M, kReadyRelay[port], !w || w->port().holder() < 0);
   }
 
   if (abort && s.running) {  // release the port at once; a reply still to come is dropped
     if (w) w->discard();
     s.running = s.in_flight = false;
-    owner_.erase(s.port);
+    if (w && w->port().holder() == int(c.instance)) w->port().release();
   }
   if (rising && !abort && !s.running) {
     s.port = port;
@@ -295,7 +297,7 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
     if (!w || ascii) {  // no such port configured, or Modbus ASCII (no libmodbus backend)
       result(kPort, 0, 0, 0);
       s.error = s.done = true;
-    } else if (owner_.count(port)) {
+    } else if (w->port().holder() >= 0) {  // FUN151 or another FUN150 holds it
       wr[4] |= 0x0001;  // waiting for the port
       s.last_en = false;  // try again next scan, as if EN rose then
     } else if (table(0) != 0xA550 || (table(1) >> 8) != 0x07 || (table(1) & 0xFF) == 0 ||
@@ -303,7 +305,7 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
       result(kTable, 0, 0, 0);
       s.error = s.done = true;
     } else {
-      owner_[port] = c.instance;
+      w->port().hold(int(c.instance));
       s.running = true;
       s.tx = 0;
       s.n_tx = table(1) & 0xFF;
@@ -370,8 +372,21 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
   c.flag(o[5], s.done);
 }
 
+ComLine mbus_line(const MbusPort& p) {
+  ComLine l;
+  if (!p.tcp.empty()) l.tcp = p.tcp;
+  else l.serial = parse_serial_settings(p.rtu, "8E1");
+  return l;
+}
+
 std::shared_ptr<MbusEngine> add_fun150(FunctionTable& t, std::map<int, MbusPort> ports) {
-  auto engine = std::make_shared<MbusEngine>(std::move(ports));
+  std::map<int, ComLine> lines;
+  for (const auto& p : ports) lines[p.first] = mbus_line(p.second);
+  return add_fun150_on(t, ComPorts(lines));
+}
+
+std::shared_ptr<MbusEngine> add_fun150_on(FunctionTable& t, const ComPorts& ports) {
+  auto engine = std::make_shared<MbusEngine>(ports);
   FunctionSpec s;
   s.number = 150;
   s.mnemonic = "MBUS";

@@ -1,7 +1,9 @@
 #pragma once
-// FUN150 (Modbus master) and FUN151 (FATEK CPU link, free protocol) with the ports of
-// the cell YAML's `modbus:` and `fatek:` sections. The Cell (runtime/cell.h) adds the
-// extension to every cell; the simulation layers stay free of the protocol libraries.
+// FUN150 (Modbus master) and FUN151 (FATEK CPU link, free protocol) on the COM ports of
+// the cell YAML's `ports:` section (and its older spellings in `fatek:` and `modbus:`,
+// comm/port_config.h). A port both instructions use is one line with one owner
+// (io/com_port.h). The Cell (runtime/cell.h) adds the extension to every cell; the
+// simulation layers stay free of the protocol libraries.
 #include <memory>
 #include <vector>
 
@@ -11,7 +13,7 @@
 
 namespace plc_cell {
 
-// Throws SourceError naming the config file and section on a bad port entry.
+// Throws SourceError listing every bad port entry (file:line:column and the key).
 std::vector<std::shared_ptr<void>> install_protocol_functions(const CellConfig& cfg, FunctionTable& t);
 // For `plc_cell check`: the same sections read with the same errors, and FUN150/151
 // installed, but no port is opened and no thread started.
@@ -23,14 +25,14 @@ class ProtocolFunctions : public CellExtension {
  public:
   explicit ProtocolFunctions(bool open_ports = true) : open_ports_(open_ports) {}
   std::string name() const override { return "protocol functions"; }
-  std::vector<std::string> sections() const override { return {"fatek", "modbus"}; }
+  std::vector<std::string> sections() const override { return {"ports", "fatek", "modbus"}; }
   void install(const CellConfig& cfg, FunctionTable& t) override;
   void attach(const CellConfig&, Plc&, ErrorList&) override {}
   void detach(Plc&) override { ports_.clear(); }  // the port threads stop before the PLC goes
 
  private:
   bool open_ports_;
-  std::vector<std::shared_ptr<void>> ports_;  // port owners and FUN150's engine
+  std::vector<std::shared_ptr<void>> ports_;  // FUN151's and FUN150's sides, then the ports
 };
 
 }  // namespace plc_cell

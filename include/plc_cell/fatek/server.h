@@ -13,6 +13,7 @@
 
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/slave.h"
+#include "plc_cell/io/serial_line.h"
 #include "plc_cell/io/serial_settings.h"
 #include "plc_cell/io/server.h"
 #include "plc_cell/io/tcp_listener.h"
@@ -81,7 +82,7 @@ class SerialServer : public Server {
   Plc& plc_;
   SerialServerOptions opt_;
   Slave slave_;
-  int fd_ = -1;
+  SerialLine line_;  // reopened by path when the device comes back
   std::atomic<bool> link_up_{true};
   std::atomic<uint64_t> reopened_{0};
   int wake_[2] = {-1, -1};

@@ -1,0 +1,156 @@
+#include "plc_cell/io/com_port.h"
+
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace plc_cell {
+namespace {
+
+constexpr int kConnectMs = 1000;
+
+}  // namespace
+
+std::string ComLine::to_string() const { return is_tcp() ? "tcp:" + tcp : serial.to_string(); }
+
+ComPort::ComPort(int number, ComLine line)
+    : number_(number), line_(std::move(line)), has_line_(true), serial_(line_.serial) {
+  (void)fd();
+  thread_ = std::thread([this] { run(); });
+}
+
+ComPort::ComPort(int number) : number_(number), has_line_(false), serial_(SerialSettings{}) {
+  thread_ = std::thread([this] { run(); });
+}
+
+ComPort::~ComPort() {
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    stop_ = true;
+    jobs_.clear();
+  }
+  cv_.notify_all();
+  thread_.join();
+  if (tcp_fd_ >= 0) ::close(tcp_fd_);
+}
+
+void ComPort::submit(std::function<void()> job) {
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    if (stop_) return;
+    jobs_.push_back(std::move(job));
+  }
+  cv_.notify_all();
+}
+
+void ComPort::run() {
+  std::unique_lock<std::mutex> lk(mu_);
+  for (;;) {
+    cv_.wait(lk, [&] { return stop_ || !jobs_.empty(); });
+    if (stop_) return;
+    std::function<void()> job = std::move(jobs_.front());
+    jobs_.pop_front();
+    lk.unlock();
+    job();
+    lk.lock();
+  }
+}
+
+int ComPort::open_tcp() {
+  std::string host;
+  int port = 0;
+  try {
+    parse_host_port(line_.tcp, &host, &port);
+  } catch (const std::exception& e) {
+    std::lock_guard<std::mutex> lk(mu_);
+    error_ = e.what();
+    return -1;
+  }
+  if (host.empty()) host = "127.0.0.1";
+  addrinfo hints{}, *res = nullptr;
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_STREAM;
+  if (getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &res) != 0 || !res) {
+    std::lock_guard<std::mutex> lk(mu_);
+    error_ = "tcp " + line_.tcp + ": cannot resolve";
+    return -1;
+  }
+  // Non-blocking from the start, and a connect bounded in time: a host that does not
+  // answer holds up the port (and the cell being built) for kConnectMs, not for the
+  // system's minutes.
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+  int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);
+  int err = errno;
+  freeaddrinfo(res);
+  if (rc != 0 && err == EINPROGRESS) {
+    pollfd p{fd, POLLOUT, 0};
+    int r;
+    while ((r = ::poll(&p, 1, kConnectMs)) < 0 && errno == EINTR) {
+    }
+    socklen_t len = sizeof err;
+    if (r == 1 && ::getsockopt(fd, SOL_SOCKET, SO_ERROR, &err, &len) == 0 && err == 0) rc = 0;
+    else if (r == 0) err = ETIMEDOUT;
+  }
+  if (rc != 0) {
+    ::close(fd);
+    std::lock_guard<std::mutex> lk(mu_);
+    error_ = "tcp " + line_.tcp + ": cannot connect: " + std::strerror(err);
+    return -1;
+  }
+  int one = 1;
+  setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  return fd;
+}
+
+int ComPort::fd() {
+  if (!has_line_) return -1;
+  if (line_.is_tcp()) {
+    if (tcp_fd_ < 0) {
+      tcp_fd_ = open_tcp();
+      if (tcp_fd_ >= 0 && tcp_lost_) {
+        tcp_lost_ = false;
+        std::lock_guard<std::mutex> lk(mu_);
+        ++reopened_;
+        error_ = "connection back";
+      }
+    }
+    return tcp_fd_;
+  }
+  const bool ok = serial_.open();
+  std::lock_guard<std::mutex> lk(mu_);
+  error_ = serial_.last_error();
+  reopened_ = serial_.reopened();
+  return ok ? serial_.fd() : -1;
+}
+
+void ComPort::lost(const std::string& why) {
+  if (line_.is_tcp()) {
+    if (tcp_fd_ >= 0) ::close(tcp_fd_);
+    tcp_fd_ = -1;
+    tcp_lost_ = true;
+    std::lock_guard<std::mutex> lk(mu_);
+    error_ = "connection lost: " + why;
+    return;
+  }
+  serial_.lost(why);
+  std::lock_guard<std::mutex> lk(mu_);
+  error_ = serial_.last_error();
+}
+
+std::string ComPort::last_error() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return error_;
+}
+
+uint64_t ComPort::reopened() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return reopened_;
+}
+
+}  // namespace plc_cell
