@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "plc_cell/fatek/serial_port.h"
+#include "plc_cell/io/serial_line.h"
 
 namespace plc_cell {
 namespace fatek {
@@ -91,24 +92,25 @@ class TcpTransport : public FdTransport {
   int port_ = 500;
 };
 
+// The device is held by its path (io/serial_line.h): after a failed transaction the next
+// one opens it again, so an adapter unplugged and plugged back is found.
 class SerialTransport : public FdTransport {
  public:
-  explicit SerialTransport(SerialSettings s) : s_(std::move(s)) { eof_on_zero_ = false; }
+  explicit SerialTransport(SerialSettings s) : line_(std::move(s)) { eof_on_zero_ = false; }
   ~SerialTransport() override { close(); }
   void open() override {
     close();
-    try {
-      fd_ = open_serial_port(s_);
-    } catch (const CommError&) {
-      throw;
-    } catch (const Error& e) {
-      throw CommError(e.what());
-    }
+    if (!line_.open()) throw CommError(line_.last_error());
+    fd_ = line_.fd();
   }
-  std::string describe() const override { return "serial " + s_.to_string(); }
+  void close() override {
+    fd_ = -1;
+    line_.close();
+  }
+  std::string describe() const override { return "serial " + line_.settings().to_string(); }
 
  private:
-  SerialSettings s_;
+  SerialLine line_;
 };
 
 std::string cmd_hex(Cmd c) {

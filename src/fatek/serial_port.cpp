@@ -6,15 +6,8 @@
 #include <cerrno>
 #include <chrono>
 
-#include "plc_cell/io/serial_line.h"
-
 namespace plc_cell {
 namespace fatek {
-
-// The line itself is opened by the io layer (io/serial_line.h), shared with every other
-// owner of a serial device.
-bool baud_supported(int baud) { return serial_baud_supported(baud); }
-int open_serial_port(const SerialSettings& s) { return open_serial_line(s); }
 
 bool write_all(int fd, const char* buf, size_t n, int timeout_ms) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);

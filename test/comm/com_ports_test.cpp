@@ -25,6 +25,7 @@
 #include "plc_cell/fatek/serial_port.h"
 #include "plc_cell/fatek/slave.h"
 #include "plc_cell/io/com_port.h"
+#include "plc_cell/io/serial_line.h"
 #include "plc_cell/modbus/rtu_frame.h"
 #include "plc_cell/modbus/slave_handler.h"
 #include "plc_cell/sim/soft_cell.h"
@@ -54,7 +55,7 @@ uint32_t get(Plc& plc, const char* a) { return plc.read(parse_address(a), 1)[0];
 class TwoProtocolPeer {
  public:
   TwoProtocolPeer(Plc& plc, const std::string& device) : plc_(plc), fatek_(plc, 5) {
-    fd_ = fatek::open_serial_port(parse_serial_settings(device + ":115200:8N1"));
+    fd_ = open_serial_line(parse_serial_settings(device + ":115200:8N1"));
     thread_ = std::thread([this] { run(); });
   }
   ~TwoProtocolPeer() {

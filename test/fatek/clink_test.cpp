@@ -8,6 +8,7 @@
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/clink.h"
+#include "plc_cell/io/serial_line.h"
 #include "fatek_link.h"
 #include "plc_cell/fatek/serial_port.h"
 #include "plc_cell/fatek/server.h"
@@ -166,7 +167,7 @@ class ClinkFree : public ::testing::Test {
         "ORG M20\nLD M21\nLD M22\nFUN 151 Pt=2 MD=2 SR=R500 WR=R600 ACT=Y20 ERR=Y21 DN=Y22\nEND\n",
         "free.il");
     ASSERT_TRUE(master->set_mode(RunMode::Run));
-    peer = open_serial_port(parse_serial_settings(pty->b + ":115200:8N1"));
+    peer = open_serial_line(parse_serial_settings(pty->b + ":115200:8N1"));
   }
   void TearDown() override {
     master.reset();  // stops the port threads before the pty goes

@@ -14,6 +14,7 @@
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/client.h"
 #include "plc_cell/fatek/server.h"
+#include "plc_cell/io/serial_line.h"
 
 using namespace plc_cell;
 using namespace plc_cell::fatek;
@@ -367,7 +368,7 @@ TEST(FatekSerial, ClientAndServerOverAPtyPair) {
     c.set_run(false);
     EXPECT_FALSE(c.status().run);
     // Garbage on the line, then a frame cut short: the next request is still answered.
-    const int fd = open_serial_port(parse_serial_settings(pty.b + ":921600:7E1"));
+    const int fd = open_serial_line(parse_serial_settings(pty.b + ":921600:7E1"));
     ASSERT_TRUE(write_all(fd, "\x7fnoise\x02" "0346", 11, 1000));
     ::close(fd);
     EXPECT_EQ(c.read(parse_address("R11"), 1)[0], 2u);
@@ -414,7 +415,7 @@ TEST(FatekSerial, EveryLineFormatOpensAndTalks) {
     EXPECT_EQ(c.loopback(fmt), fmt);
     server.stop();
   }
-  EXPECT_THROW(open_serial_port(parse_serial_settings(pty.a + ":1234:7E1")), Error);  // no such baud
+  EXPECT_THROW(open_serial_line(parse_serial_settings(pty.a + ":1234:7E1")), Error);  // no such baud
 }
 
 TEST(FatekTcpIdle, ClientReconnectsAfterTheServerClosedAnIdleConnection) {

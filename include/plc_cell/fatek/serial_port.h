@@ -1,18 +1,12 @@
 #pragma once
-// A termios serial line (or pty) in raw mode, and small fd helpers with timeouts.
+// Small fd helpers with timeouts for the FATEK lines (serial or TCP). The serial device
+// itself is opened by io/serial_line.h.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include "plc_cell/io/serial_settings.h"
-
 namespace plc_cell {
 namespace fatek {
-
-// Opens and configures the line (4800..921600 baud, 7/8 data bits, N/E/O parity, 1/2 stop).
-// Returns a non-blocking fd; throws plc_cell::Error naming the device on failure.
-int open_serial_port(const SerialSettings& s);
-bool baud_supported(int baud);
 
 // Writes all of buf, waiting at most timeout_ms overall. Returns false on error or timeout.
 bool write_all(int fd, const char* buf, size_t n, int timeout_ms);
