@@ -140,6 +140,25 @@ auto Bridge::transaction(F&& f) -> decltype(f()) {
   }
 }
 
+// One poll's transactions. A communication error drops the link (false); an error code
+// from the PLC (a group beyond this PLC's memory, say) fails this poll only.
+template <typename F>
+bool Bridge::polled(std::string* error, F&& body) {
+  try {
+    body();
+    return true;
+  } catch (const CommError& e) {
+    *error = e.what();
+    fail(*error);
+    drop_link();
+    return false;
+  } catch (const std::exception& e) {
+    *error = e.what();
+    fail(*error);
+    return true;
+  }
+}
+
 // Returns false when the link broke.
 bool Bridge::poll_io() {
   IoResult r;
@@ -148,7 +167,7 @@ bool Bridge::poll_io() {
     std::lock_guard<std::mutex> lk(link_mu_);
     // Dropped meanwhile (recover()): the transport would reopen by itself, unconfirmed.
     if (!client_->transport().is_open()) return false;
-    try {
+    up = polled(&r.error, [&] {
       const auto t0 = Clock::now();
       const PlcStatus st = client_->status();
       const std::vector<std::vector<uint32_t>> v = run_poll(*client_, io_items_, io_plan_);
@@ -168,15 +187,7 @@ bool Bridge::poll_io() {
         r.y[i] = (v[1][i / 16] >> (i % 16)) & 1;
       }
       for (size_t i = 0; i < cfg_.signals.size(); ++i) r.signals.push_back(v[2 + i][0] != 0);
-    } catch (const CommError& e) {
-      r.error = e.what();
-      fail(r.error);
-      drop_link();
-      up = false;
-    } catch (const std::exception& e) {
-      r.error = e.what();  // an error code from the PLC: the link is fine
-      fail(r.error);
-    }
+    });
   }
   if (sinks_.io) sinks_.io(r);
   return up;
@@ -189,19 +200,11 @@ bool Bridge::poll_group(size_t g) {
   {
     std::lock_guard<std::mutex> lk(link_mu_);
     if (!client_->transport().is_open()) return false;
-    try {
+    up = polled(&r.error, [&] {
       for (const auto& item : run_poll(*client_, groups_[g].items, groups_[g].plan))
         r.values.insert(r.values.end(), item.begin(), item.end());
       r.ok = true;
-    } catch (const CommError& e) {
-      r.error = e.what();
-      fail(r.error);
-      drop_link();
-      up = false;
-    } catch (const std::exception& e) {
-      r.error = e.what();  // e.g. a group beyond this PLC's memory: the others still poll
-      fail(r.error);
-    }
+    });
   }
   if (sinks_.group) sinks_.group(r);
   return up;

@@ -98,6 +98,8 @@ class Bridge {
   void drop_link();
   template <typename F>
   auto transaction(F&& f) -> decltype(f());
+  template <typename F>
+  bool polled(std::string* error, F&& body);
 
   BridgeConfig cfg_;
   Sinks sinks_;
