@@ -32,6 +32,27 @@ std::vector<std::shared_ptr<void>> check_protocol_functions(const CellConfig& cf
 
 void ProtocolFunctions::install(const CellConfig& cfg, FunctionTable& t) {
   ports_ = open_ports_ ? install_protocol_functions(cfg, t) : check_protocol_functions(cfg, t);
+  com_ports_ = std::static_pointer_cast<ComPorts>(ports_.back());
+}
+
+std::vector<ExtensionStatus> ProtocolFunctions::status(Plc&) const {
+  std::vector<ExtensionStatus> out;
+  if (!com_ports_) return out;
+  for (int n : com_ports_->numbers()) {
+    const std::shared_ptr<ComPort> p = com_ports_->get(n);
+    ExtensionStatus s;
+    s.name = "COM" + std::to_string(n);
+    const bool up = p->line_up();
+    const std::string error = p->last_error();
+    s.level = up ? ExtensionStatus::Level::Ok : ExtensionStatus::Level::Warn;
+    s.message = up ? "line open" : "line down: " + error;
+    s.values = {{"line", p->line().to_string()},
+                {"held by an instruction", p->holder() >= 0 ? "yes" : "no"},
+                {"reopened", std::to_string(p->reopened())},
+                {"last event", error}};
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 }  // namespace plc_cell

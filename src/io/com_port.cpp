@@ -120,9 +120,11 @@ int ComPort::fd() {
         error_ = "connection back";
       }
     }
+    up_ = tcp_fd_ >= 0;
     return tcp_fd_;
   }
   const bool ok = serial_.open();
+  up_ = ok;
   std::lock_guard<std::mutex> lk(mu_);
   error_ = serial_.last_error();
   reopened_ = serial_.reopened();
@@ -130,6 +132,7 @@ int ComPort::fd() {
 }
 
 void ComPort::lost(const std::string& why) {
+  up_ = false;
   if (line_.is_tcp()) {
     if (tcp_fd_ >= 0) ::close(tcp_fd_);
     tcp_fd_ = -1;

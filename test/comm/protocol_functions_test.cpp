@@ -1,6 +1,10 @@
 // FUN151 and FUN150 reach the running PLC: a SoftCell built as `plc_cell run` and plc_node
 // build it (with the ProtocolFunctions extension) takes its ports from the cell YAML.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -180,4 +184,53 @@ TEST(ProtocolFunctions, Fun150KeepsTheDestinationItSubmittedWith) {
   }
   EXPECT_EQ(get(master, "R20"), 4321u);
   EXPECT_EQ(get(master, "R8000"), 0u);
+}
+
+namespace {
+// A loopback port nothing listens on (bound once to find it, then closed).
+int closed_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t len = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  ::close(fd);
+  return ntohs(a.sin_port);
+}
+
+std::vector<ExtensionStatus> port_statuses(SoftCell& cell) {
+  for (const auto& x : cell.extensions())
+    if (x->name() == "protocol functions") return x->status(cell.plc());
+  ADD_FAILURE() << "no protocol functions extension";
+  return {};
+}
+}  // namespace
+
+// Each COM port reports on /diagnostics (plc_node's "protocol functions" entry): a port
+// whose line is up is OK, one whose peer refuses is a WARN that says why.
+TEST(ProtocolFunctions, EachPortReportsItsLine) {
+  Plc slave;
+  ModbusSlave server(slave);
+  const int refused = closed_port();
+  const std::string prog = write_file("status.il", "END\n");
+  const std::string cfg = write_file("status.yaml", "cell: {program: " + prog + "}\nports:\n  1: {tcp: 127.0.0.1:" +
+                                                        std::to_string(server.port) + "}\n  3: {tcp: 127.0.0.1:" +
+                                                        std::to_string(refused) + "}\n");
+  SoftCell cell(cfg, "", protocol());
+  const auto s = port_statuses(cell);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].name, "COM1");
+  EXPECT_EQ(s[0].level, ExtensionStatus::Level::Ok);
+  EXPECT_EQ(s[0].message, "line open");
+  EXPECT_EQ(s[0].values.at(0), std::make_pair(std::string("line"), "tcp:127.0.0.1:" + std::to_string(server.port)));
+  EXPECT_EQ(s[0].values.at(1), std::make_pair(std::string("held by an instruction"), std::string("no")));
+  EXPECT_EQ(s[1].name, "COM3");
+  EXPECT_EQ(s[1].level, ExtensionStatus::Level::Warn);
+  EXPECT_EQ(s[1].message.rfind("line down: tcp 127.0.0.1:" + std::to_string(refused) + ": cannot connect", 0), 0u)
+      << s[1].message;
+
+  SoftCell checked(cfg, "", protocol(false));  // plc_cell check: no port, nothing to report
+  EXPECT_TRUE(port_statuses(checked).empty());
 }

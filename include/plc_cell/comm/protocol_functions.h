@@ -10,6 +10,7 @@
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/cell_extension.h"
 #include "plc_cell/core/function_table.h"
+#include "plc_cell/io/com_ports.h"
 
 namespace plc_cell {
 
@@ -28,11 +29,18 @@ class ProtocolFunctions : public CellExtension {
   std::vector<std::string> sections() const override { return {"ports", "fatek", "modbus"}; }
   void install(const CellConfig& cfg, FunctionTable& t) override;
   void attach(const CellConfig&, Plc&, ErrorList&) override {}
-  void detach(Plc&) override { ports_.clear(); }  // the port threads stop before the PLC goes
+  // One status per open COM port: its line, whether it is up (WARN with the last error
+  // when not), the reopens and whether an instruction holds it.
+  std::vector<ExtensionStatus> status(Plc& plc) const override;
+  void detach(Plc&) override {  // the port threads stop before the PLC goes
+    ports_.clear();
+    com_ports_.reset();
+  }
 
  private:
   bool open_ports_;
   std::vector<std::shared_ptr<void>> ports_;  // FUN151's and FUN150's sides, then the ports
+  std::shared_ptr<ComPorts> com_ports_;
 };
 
 }  // namespace plc_cell

@@ -62,6 +62,8 @@ class ComPort {
 
   std::string last_error() const;
   uint64_t reopened() const;
+  // Whether the line was open after the last attempt to use it (any thread: diagnostics).
+  bool line_up() const { return up_.load(); }
 
   // The instruction instance holding the port, FUN150 and FUN151 alike (-1: free, which
   // is the port's "ready" relay M1960/M1962/M1936/M1938): one instruction uses a port at
@@ -88,6 +90,7 @@ class ComPort {
   std::string error_;
   uint64_t reopened_ = 0;
   std::atomic<int> holder_{-1};
+  std::atomic<bool> up_{false};
   std::thread thread_;
 };
 
