@@ -75,9 +75,11 @@ PortSettings read_port_settings(const YAML::Node& doc, const std::string& file, 
     errors->collect([&] { read_ports_section(ports, r, errors, &declared, &s.timeout_ms, &timeout_given); }, file, ports);
   // The older spellings, each read by its own instruction's reader.
   const YAML::Node fatek = doc["fatek"];
+  int fatek_timeout_ms = s.timeout_ms;
   errors->collect(
       [&] {
         const fatek::ClinkSettings c = fatek::read_clink_settings(fatek, file);
+        fatek_timeout_ms = c.timeout_ms;
         if (!fatek || !fatek["ports"]) return;
         for (const auto& kv : fatek["ports"]) {
           const int n = int(kv.first.as<int>());
@@ -91,7 +93,7 @@ PortSettings read_port_settings(const YAML::Node& doc, const std::string& file, 
                                         "key 'fatek.timeout_ms': the time-out is also given as ports.timeout "
                                         "(write it once, as ports.timeout)"));
     else
-      errors->collect([&] { s.timeout_ms = fatek::read_clink_settings(fatek, file).timeout_ms; }, file, fatek);
+      s.timeout_ms = fatek_timeout_ms;
   }
   const YAML::Node modbus = doc["modbus"];
   errors->collect(
