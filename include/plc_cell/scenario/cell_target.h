@@ -1,0 +1,36 @@
+#pragma once
+// The cell in process as a scenario target: a fresh Cell (Purpose::Simulate) from the cell
+// YAML and program, scanned in virtual time as `plc_cell sim` scans it.
+#include <memory>
+#include <string>
+
+#include "plc_cell/runtime/cell.h"
+#include "plc_cell/scenario/target.h"
+
+namespace plc_cell {
+namespace scenario {
+
+class CellTarget : public Target {
+ public:
+  // Throws SourceError (the cell's or the program's errors) or Error. The PLC is put in RUN.
+  CellTarget(const std::string& cell_yaml, const std::string& program);
+  ~CellTarget() override;
+
+  Cell& cell() { return *cell_; }
+
+  uint64_t period_us() const override;
+  void scan(uint64_t t_us) override;
+  std::string check(const Probe& p, bool writing) override;
+  Reading read(const Probe& p) override;
+  void set(const Probe& p, const Value& v) override;
+  void write(const Probe& p, const Value& v) override;
+  void force(const Probe& p, bool on) override;
+  void release(const Probe* p) override;
+  std::string fault() override;
+
+ private:
+  std::unique_ptr<Cell> cell_;
+};
+
+}  // namespace scenario
+}  // namespace plc_cell

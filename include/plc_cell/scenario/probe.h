@@ -1,0 +1,40 @@
+#pragma once
+// What a scenario reads or drives, named as a user writes it: an address or signal
+// ("R0", "DR10:u", "R20:f32", "conveyor_run"), a counter ("counter.belt"), an axis
+// ("axis.slide.position", ".state", ".frequency"), a temperature channel
+// ("temperature.oven_temp", in degC) or an analog input channel ("analog.level", V or mA).
+// The same names mean the same things to every target: the cell in process and plc_node
+// through its topics (docs/testing-your-cell.md, "What a condition reads").
+#include <string>
+
+#include "plc_cell/sim/virtual_run.h"
+
+namespace plc_cell {
+namespace scenario {
+
+struct Probe {
+  enum class Kind { Address, Counter, AxisPosition, AxisState, AxisFrequency, Temperature, Analog };
+  Kind kind = Kind::Address;
+  std::string text;  // as written, the key of every report ("R0:u", "axis.slide.state")
+  std::string name;  // Address: the address or signal without its format; else the counter,
+                     // axis or channel name
+  ValueFormat format = ValueFormat::Default;  // Address only (:s, :u, :hex, :f32)
+
+  bool operator<(const Probe& o) const { return text < o.text; }
+  bool operator==(const Probe& o) const { return text == o.text; }
+};
+
+// Throws plc_cell::Error saying why ("unknown kind 'axes.x': counter., axis., temperature.
+// or analog."). Whether the name exists in the cell is the target's to say.
+Probe parse_probe(const std::string& text);
+
+// What a target read: a number, and for the axis state also its word.
+struct Reading {
+  double number = 0;
+  std::string word;  // "idle", "moving", "error" for an axis state; else empty
+  bool valid = true; // false: NaN temperature (line broken), counter or axis unknown
+  std::string text;  // how a report prints it ("ON", "-3", "199.8 C", "moving")
+};
+
+}  // namespace scenario
+}  // namespace plc_cell

@@ -1,0 +1,90 @@
+#pragma once
+// A scenario file, parsed: the cell it runs, and test cases, each a list of steps on the
+// virtual timeline (docs/testing-your-cell.md). Parameterised cases are already expanded:
+// one Case per row, its name carrying the row ("count[n=3]").
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "plc_cell/scenario/condition.h"
+#include "plc_cell/temp/sensor_signal.h"
+
+namespace plc_cell {
+namespace scenario {
+
+// A value a step sets: a number (a bit's on/off is 1/0), or for an analog input or a
+// temperature channel a quantity with its unit (5 V, 12 mA, 200 C, 8.138 mV, 110 ohm).
+struct Value {
+  double number = 0;
+  bool has_unit = false;
+  temp::Quantity quantity;
+  std::string text;  // as written
+};
+
+struct Assignment {
+  Probe target;
+  Value value;             // set, write, force (1/0); ramp: the end value
+  Value from;              // ramp: the start value
+  uint64_t duration_us = 0;  // pulse: its width; ramp: its length
+  int line = 0;
+};
+
+// One entry of expect_sequence: its condition must become true (false at the scan before)
+// at or after the previous entry's match, within [min_us, max_us] of that match.
+struct SequenceEntry {
+  Condition cond;
+  uint64_t min_us = 0;
+  uint64_t max_us = UINT64_MAX;
+  int line = 0;
+};
+
+struct Step {
+  enum class Kind {
+    Wait,      // only at: / after:
+    Set,       // input terminals and stimuli held; other addresses written
+    Write,     // one memory write, as a client's
+    Force,
+    Release,   // assignments name the points; none: all
+    Pulse,     // on now, off after duration_us
+    Ramp,      // from -> value linearly over duration_us, applied before every scan
+    Expect,
+    WaitUntil,
+    Sequence,
+  };
+  Kind kind = Kind::Wait;
+  std::string key;  // the action's key as written ("expect", "wait_until", ...)
+  std::string file;
+  int line = 0;
+  // When: at an absolute time of the case, or after a span from now; both 0: now.
+  bool has_at = false;
+  uint64_t at_us = 0;
+  uint64_t after_us = 0;
+
+  std::vector<Assignment> assignments;
+
+  Condition cond;                 // Expect, WaitUntil
+  uint64_t stays_us = 0;          // Expect: holds at every scan for this long
+  bool has_window = false;        // Expect: first holds within [window_min_us, window_max_us]
+  uint64_t window_min_us = 0, window_max_us = 0;
+  uint64_t timeout_us = 0;        // WaitUntil, Sequence
+  std::vector<SequenceEntry> sequence;
+};
+
+struct Case {
+  std::string name;
+  std::string file;
+  int line = 0;
+  std::vector<Step> steps;  // the file's setup, the case's setup, then its steps
+};
+
+struct Scenario {
+  std::string file;
+  std::string cell;     // the cell YAML, resolved against the scenario's folder
+  std::string program;  // overrides the cell's program; empty: the cell's
+  std::vector<Case> cases;
+};
+
+constexpr uint64_t kDefaultTimeoutUs = 10000000;  // wait_until and expect_sequence: 10 s
+
+}  // namespace scenario
+}  // namespace plc_cell
