@@ -68,7 +68,8 @@ void ExecContext::flag(const BoundOperand& o, bool v) const {
 
 Interpreter::Interpreter(Memory& mem, const FunctionTable& functions)
     : mem_(mem), functions_(functions) {
-  execute(kInitDispatch, 0, 0, nullptr, false);
+  run<false>(kInitDispatch, 0, 0, nullptr, false);
+  run<true>(kInitDispatch, 0, 0, nullptr, false);
   for (uint32_t t = 0; t < 256; ++t) timer_base_us_[t] = t < 50 ? 10000 : t < 200 ? 100000 : 1000000;
 }
 
@@ -93,7 +94,9 @@ void Interpreter::load(const Program& program) {
   std::vector<Extra> extras;
   std::vector<BoundOperand> ops;
   std::vector<int> extra_of(program.code.size(), -1);
+  std::vector<Op> bound_op;
   code.reserve(program.code.size() + 1);
+  bound_op.reserve(program.code.size() + 1);
   for (size_t i = 0; i < program.code.size(); ++i) {
     const Instruction& in = program.code[i];
     Bound b{};
@@ -152,10 +155,12 @@ void Interpreter::load(const Program& program) {
     }
     b.handler = handler_of_[static_cast<size_t>(op)];
     code.push_back(b);
+    bound_op.push_back(op);
   }
   Bound end{};
   end.handler = handler_of_[static_cast<size_t>(Op::End)];
   code.push_back(end);  // a routine that runs off the end stops here with a fault
+  bound_op.push_back(Op::End);
   for (size_t i = 0; i < extra_of.size(); ++i)
     if (extra_of[i] >= 0) code[i].extra = &extras[static_cast<size_t>(extra_of[i])];
 
@@ -163,7 +168,20 @@ void Interpreter::load(const Program& program) {
   code_ = std::move(code);
   extras_ = std::move(extras);  // moving a vector keeps its elements where they are
   ops_ = std::move(ops);
+  bound_op_ = std::move(bound_op);
+  record_into(nullptr);  // a recording belongs to the program it was started on
   reset_state();
+}
+
+void Interpreter::record_into(uint8_t* seen) {
+  seen_ = seen;
+  if (!seen) {
+    recorded_code_.clear();
+    return;
+  }
+  recorded_code_ = code_;
+  for (size_t i = 0; i < recorded_code_.size(); ++i)
+    recorded_code_[i].handler = recording_handler_of_[static_cast<size_t>(bound_op_[i])];
 }
 
 void Interpreter::reset_state() {
@@ -173,8 +191,7 @@ void Interpreter::reset_state() {
   fault_.clear();
 }
 
-void Interpreter::set_fault(const Bound& b, const std::string& why) {
-  const size_t pc = static_cast<size_t>(&b - code_.data());
+void Interpreter::set_fault(size_t pc, const std::string& why) {
   const int line = pc < program_.code.size() ? program_.code[pc].line : 0;
   fault_ = program_.file + ":" + std::to_string(line) + ": " + why;
 }
@@ -195,10 +212,16 @@ bool Interpreter::run_routine(const std::string& label, uint64_t now_us, ScanEng
 
 // ---- execution --------------------------------------------------------------
 
+bool Interpreter::execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine) {
+  return seen_ ? run<true>(pc, now_us, dt_us, engine, routine) : run<false>(pc, now_us, dt_us, engine, routine);
+}
+
 // Threaded dispatch: every handler ends in its own indirect jump (GCC computed goto),
 // which the CPU predicts per instruction kind pair, and contacts are branch-free.
-bool Interpreter::execute(uint32_t start, uint64_t now_us, uint32_t dt_us, ScanEngine* engine,
-                          bool routine) {
+// kRecord adds the coverage writes; each instantiation has its own handlers, so the
+// instructions carry the offsets of one of them (code_ or recorded_code_).
+template <bool kRecord>
+bool Interpreter::run(uint32_t start, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine) {
   static void* const kDispatch[] = {
       &&op_org,      &&op_org_not, &&op_ld,      &&op_ld_not,   &&op_and,     &&op_and_not,
       &&op_or,       &&op_or_not,  &&op_org_up,  &&op_org_down, &&op_ld_up,   &&op_ld_down,
@@ -209,8 +232,9 @@ bool Interpreter::execute(uint32_t start, uint64_t now_us, uint32_t dt_us, ScanE
   static_assert(sizeof kDispatch / sizeof kDispatch[0] == static_cast<size_t>(Op::End) + 1,
                 "one handler per opcode");
   if (start == kInitDispatch) {  // load() stores each handler's offset in the instruction
-    for (size_t i = 0; i < handler_of_.size(); ++i)
-      handler_of_[i] = static_cast<int32_t>(static_cast<const char*>(kDispatch[i]) -
+    auto& handler_of = kRecord ? recording_handler_of_ : handler_of_;
+    for (size_t i = 0; i < handler_of.size(); ++i)
+      handler_of[i] = static_cast<int32_t>(static_cast<const char*>(kDispatch[i]) -
                                             static_cast<const char*>(&&op_org));
     return true;
   }
@@ -231,7 +255,8 @@ bool Interpreter::execute(uint32_t start, uint64_t now_us, uint32_t dt_us, ScanE
   uint16_t* const rt = mem_.words(Area::RT);
   uint16_t* const rc = mem_.words(Area::RC);
   uint8_t* const edges = edges_.data();
-  const Bound* const code = code_.data();
+  const Bound* const code = kRecord ? recorded_code_.data() : code_.data();
+  uint8_t* const seen = seen_;
   const Bound* ip = code + start;
   ExecContext ctx(mem_);
   ctx.engine = engine;
@@ -245,6 +270,12 @@ bool Interpreter::execute(uint32_t start, uint64_t now_us, uint32_t dt_us, ScanE
     goto* static_cast<const void*>(base + ip->handler); \
   } while (0)
 #define PLC_BIT(b) (*(b).bit & kBitState)
+  // Contacts record their device's value, outputs the rung result they receive.
+#define PLC_SEEN(v)                                                          \
+  do {                                                                       \
+    if constexpr (kRecord) seen[ip - code] |= static_cast<uint8_t>(1u << (v)); \
+  } while (0)
+#define PLC_SEEN_BIT() PLC_SEEN(PLC_BIT(*ip))
 
   auto coil = [](uint8_t& c, bool v) {
     if (!(c & kBitDisabled)) c = v ? kBitState : 0;
@@ -262,35 +293,36 @@ bool Interpreter::execute(uint32_t start, uint64_t now_us, uint32_t dt_us, ScanE
     return r;
   };
   auto fault_at = [&](const Bound* b, const std::string& why) {
-    set_fault(*b, why);
+    set_fault(static_cast<size_t>(b - code), why);
     return false;
   };
 
   goto* static_cast<const void*>(base + ip->handler);
 
-op_org: sp = 0; acc = PLC_BIT(*ip); PLC_NEXT();
-op_org_not: sp = 0; acc = PLC_BIT(*ip) ^ 1u; PLC_NEXT();
-op_ld: stack[sp++] = static_cast<uint8_t>(acc); acc = PLC_BIT(*ip); PLC_NEXT();
-op_ld_not: stack[sp++] = static_cast<uint8_t>(acc); acc = PLC_BIT(*ip) ^ 1u; PLC_NEXT();
-op_and: acc &= PLC_BIT(*ip); PLC_NEXT();
-op_and_not: acc &= PLC_BIT(*ip) ^ 1u; PLC_NEXT();
-op_or: acc |= PLC_BIT(*ip); PLC_NEXT();
-op_or_not: acc |= PLC_BIT(*ip) ^ 1u; PLC_NEXT();
-op_org_up: sp = 0; acc = edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
-op_org_down: sp = 0; acc = edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
-op_ld_up: stack[sp++] = static_cast<uint8_t>(acc); acc = edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
-op_ld_down: stack[sp++] = static_cast<uint8_t>(acc); acc = edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
-op_and_up: acc &= edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
-op_and_down: acc &= edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
-op_or_up: acc |= edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
-op_or_down: acc |= edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_org: PLC_SEEN_BIT(); sp = 0; acc = PLC_BIT(*ip); PLC_NEXT();
+op_org_not: PLC_SEEN_BIT(); sp = 0; acc = PLC_BIT(*ip) ^ 1u; PLC_NEXT();
+op_ld: PLC_SEEN_BIT(); stack[sp++] = static_cast<uint8_t>(acc); acc = PLC_BIT(*ip); PLC_NEXT();
+op_ld_not: PLC_SEEN_BIT(); stack[sp++] = static_cast<uint8_t>(acc); acc = PLC_BIT(*ip) ^ 1u; PLC_NEXT();
+op_and: PLC_SEEN_BIT(); acc &= PLC_BIT(*ip); PLC_NEXT();
+op_and_not: PLC_SEEN_BIT(); acc &= PLC_BIT(*ip) ^ 1u; PLC_NEXT();
+op_or: PLC_SEEN_BIT(); acc |= PLC_BIT(*ip); PLC_NEXT();
+op_or_not: PLC_SEEN_BIT(); acc |= PLC_BIT(*ip) ^ 1u; PLC_NEXT();
+op_org_up: PLC_SEEN_BIT(); sp = 0; acc = edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_org_down: PLC_SEEN_BIT(); sp = 0; acc = edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_ld_up: PLC_SEEN_BIT(); stack[sp++] = static_cast<uint8_t>(acc); acc = edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_ld_down: PLC_SEEN_BIT(); stack[sp++] = static_cast<uint8_t>(acc); acc = edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_and_up: PLC_SEEN_BIT(); acc &= edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_and_down: PLC_SEEN_BIT(); acc &= edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_or_up: PLC_SEEN_BIT(); acc |= edge_up(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
+op_or_down: PLC_SEEN_BIT(); acc |= edge_down(ip->arg, PLC_BIT(*ip)); PLC_NEXT();
 op_and_ld: acc &= stack[--sp]; PLC_NEXT();
 op_or_ld: acc |= stack[--sp]; PLC_NEXT();
-op_out: coil(*ip->bit, acc); PLC_NEXT();
-op_out_not: coil(*ip->bit, !acc); PLC_NEXT();
-op_set: if (acc) coil(*ip->bit, true); PLC_NEXT();
-op_rst: if (acc) coil(*ip->bit, false); PLC_NEXT();
+op_out: PLC_SEEN(acc); coil(*ip->bit, acc); PLC_NEXT();
+op_out_not: PLC_SEEN(acc); coil(*ip->bit, !acc); PLC_NEXT();
+op_set: PLC_SEEN(acc); if (acc) coil(*ip->bit, true); PLC_NEXT();
+op_rst: PLC_SEEN(acc); if (acc) coil(*ip->bit, false); PLC_NEXT();
 op_rst_reg: {
+  PLC_SEEN(acc);
   const Extra& x = *ip->extra;
   if (acc) {
     const BoundOperand& o = ops_[x.first_op];
@@ -311,6 +343,7 @@ op_rst_reg: {
   PLC_NEXT();
 }
 op_tmr: {
+  PLC_SEEN(acc);
   const Extra& x = *ip->extra;
   const uint32_t n = x.number;
   ctx.is32 = false;
@@ -338,6 +371,7 @@ op_tmr: {
   PLC_NEXT();
 }
 op_ctr: {
+  PLC_SEEN(acc);
   const Extra& x = *ip->extra;
   const uint32_t n = x.number;
   const bool wide = n >= kFirst32BitCounter;
@@ -359,6 +393,7 @@ op_fun: {
   ctx.inputs[n - 1] = acc;
   for (int k = n - 2; k >= 0; --k) ctx.inputs[k] = stack[--sp];
   bool en = ctx.inputs[0];
+  PLC_SEEN(en);
   acc = en;
   if (x.pulse) en = edge_up(x.edge, en);
   if (en || x.fn->always_runs) {
@@ -371,6 +406,7 @@ op_fun: {
 }
 op_lbl: PLC_NEXT();
 op_jmp:
+  PLC_SEEN(acc);
   if (acc) {
     const Bound* target = code + ip->arg;
     if (target <= ip && ++loops > loop_budget_)
@@ -379,6 +415,7 @@ op_jmp:
   }
   PLC_NEXT();
 op_call:
+  PLC_SEEN(acc);
   if (acc) {
     if (csp == kMaxCallDepth) return fault_at(ip, "CALL nested deeper than " + std::to_string(kMaxCallDepth));
     calls[csp++] = ip;
@@ -419,6 +456,8 @@ op_end:
   return fault_at(ip, "routine reached END without RTS/RTI");
 #undef PLC_NEXT
 #undef PLC_BIT
+#undef PLC_SEEN
+#undef PLC_SEEN_BIT
 }
 
 }  // namespace plc_cell
