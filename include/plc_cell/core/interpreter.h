@@ -98,8 +98,8 @@ class Interpreter {
 
   static constexpr uint32_t kInitDispatch = ~0u;
   bool execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
-  template <bool kRecord>
-  bool run(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
+  bool run_plain(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
+  bool run_recording(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   void set_fault(size_t pc, const std::string& why);
 
   Memory& mem_;
