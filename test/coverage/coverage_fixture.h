@@ -70,6 +70,20 @@ class CoverageTest : public ::testing::Test {
         if (it.line == line) return it;
     throw std::runtime_error("no item on line " + std::to_string(line));
   }
+  // The totals as the text summary words them, to compare in one line.
+  static std::string totals(const Report& r) {
+    const Totals& t = r.totals;
+    auto of = [](uint32_t n, uint32_t m) { return std::to_string(n) + "/" + std::to_string(m); };
+    return "networks evaluated " + of(t.networks_evaluated, t.networks) + ", energised " +
+           of(t.networks_energised, t.networks) + ", contacts changed " + of(t.contacts_changed, t.contacts) +
+           ", coils switched " + of(t.coils_switched, t.coils) + ", FUNs enabled " + of(t.funs_enabled, t.funs);
+  }
+  // "line: message", in report order.
+  static std::vector<std::string> findings(const Report& r) {
+    std::vector<std::string> out;
+    for (const Finding& f : r.findings) out.push_back(std::to_string(f.line) + ": " + f.message);
+    return out;
+  }
   static std::string read_all(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::ostringstream s;

@@ -33,23 +33,12 @@ TEST_F(Coverage, NetworksEnergisedContactsChangedCoilsSwitched) {
   EXPECT_EQ(item(r, 4).name, "OUT Y0");
   EXPECT_EQ(item(r, 4).kind, ItemKind::Coil);
 
-  const Totals& t = r.totals;
-  EXPECT_EQ(t.networks, 2u);
-  EXPECT_EQ(t.networks_evaluated, 2u);
-  EXPECT_EQ(t.networks_energised, 1u);
-  EXPECT_EQ(t.contacts, 3u);
-  EXPECT_EQ(t.contacts_changed, 1u);
-  EXPECT_EQ(t.coils, 2u);
-  EXPECT_EQ(t.coils_switched, 1u);
-  EXPECT_EQ(t.funs, 0u);
-  ASSERT_EQ(r.findings.size(), 4u);
-  EXPECT_EQ(r.findings[0].line, 3);
-  EXPECT_EQ(r.findings[0].message, "contact X1 never changed (always OFF)");
-  EXPECT_EQ(r.findings[1].line, 5);
-  EXPECT_EQ(r.findings[1].message, "network 2 never energised");
-  EXPECT_EQ(r.findings[2].message, "contact X2 never changed (always OFF)");
-  EXPECT_EQ(r.findings[3].line, 6);
-  EXPECT_EQ(r.findings[3].message, "coil OUT Y1 never switched (rung always OFF)");
+  EXPECT_EQ(totals(r), "networks evaluated 2/2, energised 1/2, contacts changed 1/3, coils switched 1/2, "
+                      "FUNs enabled 0/0");
+  EXPECT_EQ(findings(r), (std::vector<std::string>{"3: contact X1 never changed (always OFF)",
+                                                   "5: network 2 never energised",
+                                                   "5: contact X2 never changed (always OFF)",
+                                                   "6: coil OUT Y1 never switched (rung always OFF)"}));
   EXPECT_EQ(r.source.size(), 7u);
   EXPECT_EQ(r.source[4], "ORG X2      ; never pressed");
   EXPECT_EQ(r.source_error, "");
@@ -80,14 +69,11 @@ TEST_F(Coverage, CodeJumpedOverIsNotEvaluated) {
   EXPECT_EQ(seen(item(r, 2)), "on");
   EXPECT_EQ(seen(item(r, 3)), "none");
   EXPECT_EQ(seen(item(r, 4)), "none");
-  EXPECT_EQ(r.totals.networks_evaluated, 2u);
-  EXPECT_EQ(r.totals.networks_energised, 2u);
-  EXPECT_EQ(r.totals.funs, 1u);
-  EXPECT_EQ(r.totals.funs_enabled, 1u);
-  ASSERT_EQ(r.findings.size(), 2u);
-  EXPECT_EQ(r.findings[0].message, "contact M1925 never changed (always ON)");
-  EXPECT_EQ(r.findings[1].line, 3);
-  EXPECT_EQ(r.findings[1].message, "network 2 not evaluated");  // and nothing of what it holds
+  EXPECT_EQ(totals(r), "networks evaluated 2/3, energised 2/3, contacts changed 1/3, coils switched 1/2, "
+                      "FUNs enabled 1/1");
+  // Network 2 is one finding: nothing of what it holds is listed.
+  EXPECT_EQ(findings(r), (std::vector<std::string>{"1: contact M1925 never changed (always ON)",
+                                                   "3: network 2 not evaluated"}));
 }
 
 TEST_F(Coverage, SubroutinesAndInterruptRoutinesCount) {
@@ -132,14 +118,12 @@ TEST_F(Coverage, SubroutinesAndInterruptRoutinesCount) {
   EXPECT_TRUE(network(r, 3).evaluated);   // through run_routine only
   EXPECT_EQ(seen(item(r, 10)), "on");
   EXPECT_FALSE(network(r, 4).evaluated);
-  EXPECT_EQ(r.totals.networks_evaluated, 3u);
-  EXPECT_EQ(r.totals.networks_energised, 3u);
-  ASSERT_EQ(r.findings.size(), 4u);
-  EXPECT_EQ(r.findings[0].message, "contact X0 never changed (always ON)");
-  EXPECT_EQ(r.findings[1].message, "contact M1925 never changed (always ON)");
-  EXPECT_EQ(r.findings[2].message, "coil OUT Y1 never switched (rung always ON)");
-  EXPECT_EQ(r.findings[3].line, 13);
-  EXPECT_EQ(r.findings[3].message, "network 4 not evaluated");
+  EXPECT_EQ(totals(r), "networks evaluated 3/4, energised 3/4, contacts changed 1/4, coils switched 1/3, "
+                      "FUNs enabled 1/1");
+  EXPECT_EQ(findings(r), (std::vector<std::string>{"1: contact X0 never changed (always ON)",
+                                                   "9: contact M1925 never changed (always ON)",
+                                                   "10: coil OUT Y1 never switched (rung always ON)",
+                                                   "13: network 4 not evaluated"}));
 }
 
 TEST_F(Coverage, FunsTimersCountersSetAndReset) {
@@ -178,22 +162,16 @@ TEST_F(Coverage, FunsTimersCountersSetAndReset) {
   EXPECT_EQ(seen(item(r, 12)), "off");
   EXPECT_EQ(item(r, 14).name, "FUN 8P MOV");
   EXPECT_EQ(seen(item(r, 14)), "off+on");  // EN itself, not its rising edge
-  const Totals& t = r.totals;
-  EXPECT_EQ(t.networks, 7u);
-  EXPECT_EQ(t.networks_energised, 5u);
-  EXPECT_EQ(t.coils, 4u);
-  EXPECT_EQ(t.coils_switched, 3u);
-  EXPECT_EQ(t.funs, 3u);
-  EXPECT_EQ(t.funs_enabled, 2u);
-  ASSERT_EQ(r.findings.size(), 6u);
-  EXPECT_EQ(r.findings[0].message, "network 2 never energised");
-  EXPECT_EQ(r.findings[1].message, "contact X1 never changed (always OFF)");
-  EXPECT_EQ(r.findings[2].line, 4);
-  EXPECT_EQ(r.findings[2].message, "FUN 11 ADD never enabled");
-  EXPECT_EQ(r.findings[3].message, "network 6 never energised");
-  EXPECT_EQ(r.findings[4].message, "contact X1 never changed (always OFF)");
-  EXPECT_EQ(r.findings[5].line, 12);
-  EXPECT_EQ(r.findings[5].message, "coil RST M0 never switched (rung always OFF)");
+  // Networks 2 and 6 (ORG X1) never energised; X1 in both never changed; of the coils TMR,
+  // CTR, SET switched and RST did not; MOV and MOV.P enabled, ADD not.
+  EXPECT_EQ(totals(r), "networks evaluated 7/7, energised 5/7, contacts changed 5/7, coils switched 3/4, "
+                      "FUNs enabled 2/3");
+  EXPECT_EQ(findings(r), (std::vector<std::string>{"3: network 2 never energised",
+                                                   "3: contact X1 never changed (always OFF)",
+                                                   "4: FUN 11 ADD never enabled",
+                                                   "11: network 6 never energised",
+                                                   "11: contact X1 never changed (always OFF)",
+                                                   "12: coil RST M0 never switched (rung always OFF)"}));
 }
 
 const char* const kTwoOutputs =
