@@ -1,5 +1,6 @@
 // plc_cell test: scenario files run in virtual time, each case on a fresh cell; one line
-// per case, the failures in full, JUnit XML for CI (docs/testing-your-cell.md).
+// per case, the failures in full, JUnit XML for CI, rung coverage summed over the cases
+// (docs/testing-your-cell.md, docs/coverage.md).
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "commands.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/coverage/recorders.h"
 #include "plc_cell/scenario/cell_target.h"
 #include "plc_cell/scenario/junit.h"
 #include "plc_cell/scenario/runner.h"
@@ -32,7 +34,7 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   // -k NAME, as pytest spells it, is --case NAME.
   std::vector<std::string> argv;
   for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a);
-  Args args(argv, {"junit", "case"});
+  Args args(argv, {"junit", "case", "coverage-json", "coverage-html"}, {"coverage"});
   if (args.positional().empty()) throw UsageError("no scenario file given");
   const auto filters = args.all("case");
 
@@ -60,13 +62,18 @@ int cmd_test(const std::vector<std::string>& argv_in) {
     return 1;
   }
 
+  // Rung coverage, summed over every case of the run, per program.
+  const bool coverage = args.has("coverage") || args.has("coverage-json") || args.has("coverage-html");
+  coverage::Recorders recorders;
   std::vector<scenario::CaseResult> results;
   uint64_t virtual_us = 0;
   for (const auto& sc : files)
     for (const auto& c : sc.cases) {
       if (!selected(filters, c.name)) continue;
       scenario::CellTarget target(sc.cell, sc.program);  // a fresh cell for every case
+      if (coverage) recorders.attach(target.cell().plc());
       results.push_back(scenario::run_case(c, target));
+      if (coverage) recorders.detach(target.cell().plc());
       const auto& r = results.back();
       virtual_us += r.virtual_us;
       std::cout << (r.passed ? "PASS  " : "FAIL  ") << sc.file << ": " << r.name << "  ("
@@ -93,13 +100,25 @@ int cmd_test(const std::vector<std::string>& argv_in) {
     if (!out) throw Error("cannot write the JUnit file " + args.get("junit"));
     scenario::write_junit(results, out);
   }
+  if (coverage) {
+    const std::vector<coverage::Report> reports = recorders.reports();
+    if (args.has("coverage")) coverage::write_text(reports, std::cout);
+    if (args.has("coverage-json")) {
+      std::ofstream out(args.get("coverage-json"));
+      if (!out) throw Error("cannot write the coverage file " + args.get("coverage-json"));
+      coverage::write_json(reports, out);
+    }
+    if (args.has("coverage-html")) coverage::write_html(reports, args.get("coverage-html"));
+  }
   return failed ? 1 : 0;
 }
 
 Command test_command() {
   return {"test",
-          "FILE.scenario.yaml... [-k NAME] [--junit OUT.xml]\n"
-          "         run the scenarios' test cases in virtual time, each on a fresh cell\n",
+          "FILE.scenario.yaml... [-k NAME] [--junit OUT.xml] [--coverage]\n"
+          "         [--coverage-json OUT.json] [--coverage-html DIR]\n"
+          "         run the scenarios' test cases in virtual time, each on a fresh cell;\n"
+          "         rung coverage summed over the cases\n",
           cmd_test};
 }
 

@@ -128,3 +128,27 @@ TEST(ScenarioCli, UsageErrors) {
   EXPECT_EQ(missing.status, 1);
   EXPECT_TRUE(has(missing.out, "/nonexistent.scenario.yaml: error: cannot open the scenario file")) << missing.out;
 }
+
+// The run as CI does it: JUnit, and rung coverage summed over every case of every file.
+TEST(ScenarioCli, CoverageOfTheWholeRun) {
+  const std::string dir = ::testing::TempDir() + "/scenario_cov";
+  const ToolResult r = run_tool("test " + kExamples + " --junit " + dir + ".xml --coverage --coverage-json " + dir +
+                                ".json --coverage-html " + dir);
+  EXPECT_EQ(r.status, 0) << r.out;
+  // The conveyor's seven cases together leave one contact unchanged: M1925, always ON.
+  EXPECT_TRUE(has(r.out, "coverage of " + kSrc + "/examples/conveyor/conveyor.il (7 runs)\n"
+                         "  networks evaluated 8/8, energised 8/8\n"
+                         "  contacts changed 15/16, coils switched 8/8, FUNs enabled 1/1\n" +
+                         kSrc + "/examples/conveyor/conveyor.il:43 contact M1925 never changed (always ON)\n"))
+      << r.out;
+  // The count-up stop never runs the motor again after the stop: RST Y0's rung is always ON.
+  EXPECT_TRUE(has(r.out, kSrc + "/examples/hsc/count_up_stop.il:13 coil RST Y0 never switched (rung always ON)")) << r.out;
+  const std::string html = slurp(dir + "/index.html");
+  for (const char* p : {"conveyor/conveyor.il", "hsc/count_up_stop.il", "motion/positioning.il", "oven/oven.il"}) {
+    EXPECT_TRUE(has(html, p)) << p;
+    EXPECT_TRUE(has(slurp(dir + ".json"), p)) << p;
+  }
+  // Coverage without a flag is not recorded: the same run prints no coverage.
+  const ToolResult plain = run_tool("test " + kSrc + "/examples/conveyor/conveyor.scenario.yaml");
+  EXPECT_FALSE(has(plain.out, "coverage of")) << plain.out;
+}
