@@ -1,0 +1,19 @@
+# Scenario files as rostests (docs/testing-your-cell.md, "The same scenarios as rostests"):
+# the scenario_runner node runs a scenario's cases, one gtest test each, on plc_node in
+# virtual time through its topics; launch/scenario.test.xml starts both. The runner is
+# test tooling, built with the tests (catkin's default), as gtest is a test dependency.
+if(CATKIN_ENABLE_TESTING AND TARGET plc_cell_scenario)
+  add_executable(scenario_runner src/ros/scenario_runner_main.cpp src/ros/scenario_runner_target.cpp
+    src/ros/server_params.cpp)
+  target_include_directories(scenario_runner PRIVATE ${catkin_INCLUDE_DIRS} ${GTEST_INCLUDE_DIRS})
+  target_link_libraries(scenario_runner plc_cell_scenario plc_cell_runtime ${catkin_LIBRARIES} ${GTEST_LIBRARIES})
+  add_dependencies(scenario_runner ${PROJECT_NAME}_generate_messages_cpp)
+  install(TARGETS scenario_runner RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/scenario_conveyor.test DEPENDENCIES plc_node scenario_runner)
+endif()
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  # plc_node's ~virtual_time/scanned and ~reset, as the runner uses them.
+  add_rostest(test/ros/virtual_time_sync.test DEPENDENCIES plc_node)
+endif()
