@@ -17,7 +17,8 @@ struct Command {
 Command sim_command();
 Command run_command();
 Command check_command();
-Command fatek_command();  // a FATEK master for commissioning (src/cli/fatek_command.cpp)
+Command fatek_command();
+Command test_command();  // scenario files (src/cli/test_command.cpp)  // a FATEK master for commissioning (src/cli/fatek_command.cpp)
 
 // Every subcommand, in the order --help lists them.
 const std::vector<Command>& commands();

@@ -54,9 +54,15 @@ int cmd_sim(const std::vector<std::string>& argv) {
   std::vector<ValueFormat> formats;
   for (const auto& w : args.all("watch"))
     for (const auto& n : split_list(w)) {
-      const auto nf = split_format(n);
-      const Address a = cell.config().resolve(nf.first);
-      check_format(a, nf.second, n);
+      std::pair<std::string, ValueFormat> nf;
+      Address a;
+      try {
+        nf = split_format(n);
+        a = cell.config().resolve(nf.first);
+        check_format(a, nf.second, n);
+      } catch (const Error& e) {
+        throw Error("--watch " + std::string(e.what()));
+      }
       names.push_back(n);
       addrs.push_back(a);
       formats.push_back(nf.second);

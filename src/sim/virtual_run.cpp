@@ -24,14 +24,14 @@ std::pair<std::string, ValueFormat> split_format(const std::string& w) {
   if (f == "u") return {a, ValueFormat::Unsigned};
   if (f == "hex") return {a, ValueFormat::Hex};
   if (f == "f32") return {a, ValueFormat::F32};
-  throw Error("--watch " + w + ": unknown format '" + f + "' (s, u, hex, f32)");
+  throw Error(w + ": unknown format '" + f + "' (s, u, hex, f32)");
 }
 
 void check_format(const Address& a, ValueFormat f, const std::string& text) {
   if (f == ValueFormat::F32 && value_bits(a) != 32)
-    throw Error("--watch " + text + ": f32 needs a 32-bit address (DR, DD, DRC200...)");
+    throw Error(text + ": f32 needs a 32-bit address (DR, DD, DRC200...)");
   if (value_bits(a) == 1 && (f == ValueFormat::Signed || f == ValueFormat::F32))
-    throw Error("--watch " + text + ": a single bit has no sign");
+    throw Error(text + ": a single bit has no sign");
 }
 
 std::string format_value(const Address& a, uint32_t v, ValueFormat f) {

@@ -239,5 +239,20 @@ void AnalogModules::after_program(uint64_t now_us) {
   }
 }
 
+bool AnalogModules::drive_input(const std::string& name, double signal, bool current, std::string* why) {
+  for (auto& in : inputs_) {
+    if (in.def.name != name) continue;
+    if (in.def.current != current) {
+      *why = "analog input '" + name + "' is a " + (in.def.current ? "current (mA)" : "voltage (V)") + " input";
+      return false;
+    }
+    in.def.value = signal;
+    in.def.plant.clear();
+    return true;
+  }
+  *why = "no analog input named '" + name + "' in modules.analog";
+  return false;
+}
+
 }  // namespace temp
 }  // namespace plc_cell

@@ -90,6 +90,45 @@ ThermalPlant* TemperatureCell::plant(const std::string& name) {
   return nullptr;
 }
 
+int TemperatureCell::channel_index(const std::string& name) const {
+  for (size_t i = 0; i < channels_.size(); ++i)
+    if (!name.empty() && channels_[i].name == name) return int(i);
+  return -1;
+}
+
+bool TemperatureCell::drive_channel(size_t i, const Quantity& q, std::string* why) {
+  ModuleDef& m = cfg_.modules[size_t(channels_[i].module)];
+  const size_t local = i - modules_[size_t(channels_[i].module)].first;
+  if (local >= m.channels.size()) m.channels.resize(local + 1);
+  ChannelDef& d = m.channels[local];
+  if (q.unit == Unit::Celsius) {
+    d.has_signal = false;
+    d.fixed_c = q.value;
+  } else {
+    const bool tc = m.sensor == SensorKind::Thermocouple;
+    if ((q.unit == Unit::Millivolt) != tc || q.unit == Unit::Volt || q.unit == Unit::Milliamp) {
+      *why = "channel '" + channels_[i].name + "' has " + (tc ? "a thermocouple: give C or mV" : "a resistance sensor: give C or ohm");
+      return false;
+    }
+    d.has_signal = true;
+    d.signal = q;
+  }
+  plant_of_[i] = -1;
+  return true;
+}
+
+bool TemperatureCell::drive_analog_input(const std::string& name, const Quantity& q, std::string* why) {
+  if (!analog_) {
+    *why = "the cell has no analog modules (modules.analog)";
+    return false;
+  }
+  if (q.unit != Unit::Volt && q.unit != Unit::Milliamp) {
+    *why = "an analog input takes V or mA";
+    return false;
+  }
+  return analog_->drive_input(name, q.value, q.unit == Unit::Milliamp, why);
+}
+
 double TemperatureCell::true_temperature(size_t ch) const {
   const int p = plant_of_[ch];
   if (p >= 0) return plants_[size_t(p)].temperature_c();

@@ -28,6 +28,9 @@ BELOW = {
     "comm": {"core", "io", "config", "fatek", "modbus"},
     # The composition root: the Cell sits on every library layer.
     "runtime": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus", "comm"},
+    # Scenario tests run cases on fresh cells: they sit on the composition root.
+    "scenario": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus",
+                 "comm", "runtime"},
     "cli": None,  # the tool and the nodes sit on top and may use any layer
     "ros": None,
 }

@@ -29,6 +29,7 @@ class CellTarget : public Target {
   std::string fault() override;
 
  private:
+  Plc& plc() { return cell_->plc(); }
   std::unique_ptr<Cell> cell_;
 };
 

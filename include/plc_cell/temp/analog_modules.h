@@ -78,6 +78,10 @@ class AnalogModules {
     bool watchdog = true;  // forced to zero: not serviced for 0.5 s
   };
   const std::vector<Output>& outputs() const { return outputs_; }
+  // The input named so follows signal (V, or mA when current) from the next scan on,
+  // instead of its fixed value or transmitter. False with why: no such input, or a
+  // voltage given to a current input or the reverse.
+  bool drive_input(const std::string& name, double signal, bool current, std::string* why);
 
  private:
   struct Input {

@@ -83,6 +83,15 @@ class TemperatureCell : public ScanHook {
   std::vector<ChannelReading> readings(const Memory& m) const;
   // Breaks or mends a channel's sensor line (tests, fault injection).
   void set_open(size_t channel, bool open) { wired_open_.at(channel) = open; }
+  // The channel named so (a channel's `name:`), or -1.
+  int channel_index(const std::string& name) const;
+  // Drives channel ch from now on with a temperature (C) or its sensor's own signal (mV,
+  // ohm), instead of its plant or fixed value: how a test ramps what the sensor sees.
+  // False with why for a unit the channel's sensor cannot give.
+  bool drive_channel(size_t ch, const Quantity& q, std::string* why);
+  // Drives the analog input named so (modules.analog) with a signal in V or mA instead of
+  // its fixed value or transmitter. False with why (no such input, the wrong unit).
+  bool drive_analog_input(const std::string& name, const Quantity& q, std::string* why);
   // The engineering value a reading register holds for degC (unit, resolution, rounding).
   int16_t register_value(double c, double resolution_c) const;
 

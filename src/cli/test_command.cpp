@@ -1,0 +1,105 @@
+// plc_cell test: scenario files run in virtual time, each case on a fresh cell; one line
+// per case, the failures in full, JUnit XML for CI (docs/testing-your-cell.md).
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "args.h"
+#include "commands.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/scenario/cell_target.h"
+#include "plc_cell/scenario/junit.h"
+#include "plc_cell/scenario/runner.h"
+#include "plc_cell/scenario/scenario_file.h"
+
+namespace plc_cell {
+namespace cli {
+
+namespace {
+
+bool selected(const std::vector<std::string>& filters, const std::string& name) {
+  if (filters.empty()) return true;
+  for (const auto& f : filters)
+    if (name.find(f) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+int cmd_test(const std::vector<std::string>& argv_in) {
+  // -k NAME, as pytest spells it, is --case NAME.
+  std::vector<std::string> argv;
+  for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a);
+  Args args(argv, {"junit", "case"});
+  if (args.positional().empty()) throw UsageError("no scenario file given");
+  const auto filters = args.all("case");
+
+  // Every file read, and every probe checked against its cell, before any case runs: a
+  // user sees all the errors of all the files at once.
+  std::vector<scenario::Scenario> files;
+  std::vector<std::string> errors;
+  for (const auto& path : args.positional()) {
+    try {
+      files.push_back(scenario::load_scenario(path));
+      const scenario::Scenario& sc = files.back();
+      scenario::CellTarget target(sc.cell, sc.program);
+      for (const auto& c : sc.cases)
+        for (const auto& e : scenario::check_case(c, target)) errors.push_back(e);
+    } catch (const SourceError& e) {
+      for (const auto& d : e.diagnostics()) errors.push_back(d.to_string());
+    } catch (const Error& e) {
+      errors.push_back(path + ": error: " + e.what());
+    }
+  }
+  if (!errors.empty()) {
+    for (const auto& e : errors) std::cerr << e << "\n";
+    std::cerr << "plc_cell test: " << errors.size() << " error(s) in the scenario files; no case ran\n";
+    return 1;
+  }
+
+  std::vector<scenario::CaseResult> results;
+  uint64_t virtual_us = 0;
+  for (const auto& sc : files)
+    for (const auto& c : sc.cases) {
+      if (!selected(filters, c.name)) continue;
+      scenario::CellTarget target(sc.cell, sc.program);  // a fresh cell for every case
+      results.push_back(scenario::run_case(c, target));
+      const auto& r = results.back();
+      virtual_us += r.virtual_us;
+      std::cout << (r.passed ? "PASS  " : "FAIL  ") << sc.file << ": " << r.name << "  ("
+                << scenario::format_time(r.virtual_us) << ")\n";
+      if (!r.passed) {
+        std::cout << "    " << r.failure << "\n";
+        std::istringstream details(r.details);
+        for (std::string line; std::getline(details, line);) std::cout << "    " << line << "\n";
+      }
+    }
+  if (results.empty()) {
+    std::cerr << "plc_cell test: no case matches -k";
+    for (const auto& f : filters) std::cerr << " '" << f << "'";
+    std::cerr << "\n";
+    return 1;
+  }
+  size_t failed = 0;
+  for (const auto& r : results) failed += !r.passed;
+  std::cout << "== " << results.size() - failed << " passed, " << failed << " failed ("
+            << scenario::format_time(virtual_us) << " of virtual time)\n";
+
+  if (args.has("junit")) {
+    std::ofstream out(args.get("junit"));
+    if (!out) throw Error("cannot write the JUnit file " + args.get("junit"));
+    scenario::write_junit(results, out);
+  }
+  return failed ? 1 : 0;
+}
+
+Command test_command() {
+  return {"test",
+          "FILE.scenario.yaml... [-k NAME] [--junit OUT.xml]\n"
+          "         run the scenarios' test cases in virtual time, each on a fresh cell\n",
+          cmd_test};
+}
+
+}  // namespace cli
+}  // namespace plc_cell

@@ -1,0 +1,55 @@
+#include "plc_cell/scenario/probe.h"
+
+#include "plc_cell/core/error.h"
+
+namespace plc_cell {
+namespace scenario {
+
+namespace {
+
+bool is_name(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+}  // namespace
+
+Probe parse_probe(const std::string& text) {
+  Probe p;
+  p.text = text;
+  const auto dot = text.find('.');
+  if (dot == std::string::npos) {
+    // An address or a signal; which one is the cell's to say (target.check).
+    const auto nf = split_format(text);
+    if (!is_name(nf.first)) throw Error("'" + text + "' is not an address or a signal name");
+    p.name = nf.first;
+    p.format = nf.second;
+    return p;
+  }
+  const std::string kind = text.substr(0, dot), rest = text.substr(dot + 1);
+  if (kind == "counter" || kind == "temperature" || kind == "analog") {
+    if (!is_name(rest)) throw Error("'" + text + "': '" + rest + "' is not a " + kind + " name");
+    p.kind = kind == "counter" ? Probe::Kind::Counter
+             : kind == "temperature" ? Probe::Kind::Temperature
+                                     : Probe::Kind::Analog;
+    p.name = rest;
+    return p;
+  }
+  if (kind == "axis") {
+    const auto dot2 = rest.find('.');
+    const std::string axis = rest.substr(0, dot2), what = dot2 == std::string::npos ? "" : rest.substr(dot2 + 1);
+    if (!is_name(axis)) throw Error("'" + text + "': '" + axis + "' is not an axis name");
+    if (what == "position") p.kind = Probe::Kind::AxisPosition;
+    else if (what == "state") p.kind = Probe::Kind::AxisState;
+    else if (what == "frequency") p.kind = Probe::Kind::AxisFrequency;
+    else throw Error("'" + text + "': an axis is read as axis.NAME.position, .state or .frequency");
+    p.name = axis;
+    return p;
+  }
+  throw Error("'" + text + "': unknown kind '" + kind + ".' (counter., axis., temperature. or analog.)");
+}
+
+}  // namespace scenario
+}  // namespace plc_cell
