@@ -2,7 +2,7 @@
 # the scenario_runner node runs a scenario's cases, one gtest test each, on plc_node in
 # virtual time through its topics; launch/scenario.test.xml starts both. The runner is
 # test tooling, built with the tests (catkin's default), as gtest is a test dependency.
-if(CATKIN_ENABLE_TESTING AND TARGET plc_cell_scenario)
+if(CATKIN_ENABLE_TESTING)
   add_executable(scenario_runner src/ros/scenario_runner_main.cpp src/ros/scenario_runner_target.cpp
     src/ros/server_params.cpp)
   target_include_directories(scenario_runner PRIVATE ${catkin_INCLUDE_DIRS} ${GTEST_INCLUDE_DIRS})
@@ -16,4 +16,10 @@ if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   # plc_node's ~virtual_time/scanned and ~reset, as the runner uses them.
   add_rostest(test/ros/virtual_time_sync.test DEPENDENCIES plc_node)
+endif()
+if(CATKIN_ENABLE_TESTING)
+  # A user's package from the recipe, built and run in a scratch workspace over this one.
+  include(${PROJECT_SOURCE_DIR}/cmake/pytest.cmake)
+  plc_cell_add_pytest(user_package FILES test/user_package/test_user_package.py
+    DEPENDENCIES plc_node scenario_runner plc_cell_generate_messages)
 endif()

@@ -71,7 +71,11 @@ void PlcNode::on_clock(uint64_t now_us) {
   std::lock_guard<std::mutex> lk(virtual_mu_);  // one clock message at a time, in order
   if (now_us < lag_us_) return;
   const uint64_t until = now_us - lag_us_;
-  if (!next_scan_us_) next_scan_us_ = (until + period_us_ - 1) / period_us_ * period_us_;  // first multiple
+  if (!next_scan_us_) {
+    next_scan_us_ = (until + period_us_ - 1) / period_us_ * period_us_;  // first multiple
+    if (epoch_at_first_scan_) epoch_us_ = next_scan_us_;  // a fresh cell's time 0
+    epoch_at_first_scan_ = false;
+  }
   std::stable_sort(pending_.begin(), pending_.end(), [](const PendingInput& a, const PendingInput& b) {
     return a.stamp_us != b.stamp_us ? a.stamp_us < b.stamp_us : a.seq < b.seq;
   });
@@ -86,7 +90,7 @@ void PlcNode::on_clock(uint64_t now_us) {
       return 0;
     });
     pending_.erase(pending_.begin(), pending_.begin() + long(k));
-    cell_->plc().scan(t);
+    cell_->plc().scan(t - epoch_us_);
     Snapshot s = take_snapshot();
     s.scan_us = t;
     if (!virtual_published_ || !(s == virtual_last_)) {
@@ -207,6 +211,7 @@ bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
   next_scan_us_ = last_scan_us_ = 0;
   late_inputs_ = input_seq_ = inputs_received_ = scans_ = 0;
   virtual_published_ = false;  // the first scan publishes every topic, as on start
+  epoch_at_first_scan_ = true;
   std::fill(published_.begin(), published_.end(), 0);
   ++resets_;
   {

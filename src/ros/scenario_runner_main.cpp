@@ -5,7 +5,8 @@
 //
 // Parameters: ~scenario (file), ~node (plc_node's name, default plc_node, resolved in this
 // node's namespace), ~case (only the case of this name, or its rows "NAME[...]"), ~timeout
-// (s, default 10: the longest one scan may take to come back).
+// (s, default 10: the longest one scan may take to come back), ~read_fallback (default
+// true: an address on no topic is read with ~read; false: such a case fails its check).
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
@@ -35,7 +36,7 @@ std::string real(const std::string& path) {
 }
 
 // What the cases share: the scenario, and the connection to plc_node.
-struct Run {
+struct Shared {
   std::string error;  // why nothing can run (a bad file, the wrong cell on plc_node)
   sc::Scenario scenario;
   std::unique_ptr<sc::NodeLink> link;
@@ -43,7 +44,7 @@ struct Run {
 
 class CaseTest : public testing::Test {
  public:
-  CaseTest(Run* run, const sc::Case* c) : run_(run), case_(c) {}
+  CaseTest(Shared* run, const sc::Case* c) : run_(run), case_(c) {}
 
   void TestBody() override {
     if (!run_->error.empty()) FAIL() << run_->error;
@@ -66,7 +67,7 @@ class CaseTest : public testing::Test {
   }
 
  private:
-  Run* run_;
+  Shared* run_;
   const sc::Case* case_;
 };
 
@@ -85,7 +86,7 @@ std::string suite_name(const std::string& file) {
 }
 
 // Loads the scenario and checks that plc_node runs its cell, in virtual time.
-void prepare(Run* run, const std::string& file, const std::string& node, double timeout_s) {
+void prepare(Shared* run, const std::string& file, const std::string& node, double timeout_s, bool read_fallback) {
   if (file.empty()) throw Error("~scenario is not set: give the scenario file");
   run->scenario = sc::load_scenario(file);
   std::string node_cell;
@@ -108,7 +109,7 @@ void prepare(Run* run, const std::string& file, const std::string& node, double 
   double lag = 0.1;
   ros::param::get(node + "/virtual_time_lag", lag);
   run->link = std::make_unique<sc::NodeLink>(node, on_node.config(), on_node.scan_period_us(), uint64_t(lag * 1e6),
-                                             timeout_s);
+                                             timeout_s, read_fallback);
 }
 
 }  // namespace
@@ -119,15 +120,17 @@ int main(int argc, char** argv) {
   ros::NodeHandle pnh("~");
   std::string file, node = "plc_node", only;
   double timeout_s = 10;
+  bool read_fallback = true;
   pnh.param<std::string>("scenario", file, file);
   pnh.param<std::string>("node", node, node);
   pnh.param<std::string>("case", only, only);
   pnh.param("timeout", timeout_s, timeout_s);
+  pnh.param("read_fallback", read_fallback, read_fallback);
   node = ros::names::resolve(node);
 
-  static Run run;
+  static Shared run;
   try {
-    prepare(&run, file, node, timeout_s);
+    prepare(&run, file, node, timeout_s, read_fallback);
   } catch (const std::exception& e) {
     run.error = e.what();
   }

@@ -10,6 +10,7 @@
 #include "plc_cell/ros/scenario_ros_target.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <set>
 #include <sstream>
@@ -19,6 +20,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "plc_cell/ForceDiscrete.h"
+#include "plc_cell/ReadMemory.h"
 #include "plc_cell/ReleaseDiscrete.h"
 #include "plc_cell/WriteMemory.h"
 #include "plc_cell/core/address.h"
@@ -48,19 +50,32 @@ bool ends_with(const std::string& s, const std::string& p) {
 
 uint64_t round_up(uint64_t v, uint64_t m) { return (v + m - 1) / m * m; }
 
-// A value of an address as the cell in process reads it (sim/virtual_run.h formats).
-Reading reading_of(const Address& a, uint32_t raw, ValueFormat f) {
+std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+// A value of an address as the cell in process reads it (scenario/cell_target.cpp).
+Reading reading_of(const Address& a, uint32_t v, ValueFormat f) {
   Reading r;
   const int bits = value_bits(a);
-  ValueFormat g = f == ValueFormat::Default ? (is_discrete(a.area) ? ValueFormat::Unsigned : ValueFormat::Signed) : f;
-  if (bits == 1) r.number = raw ? 1 : 0;
-  else if (g == ValueFormat::F32) {
+  if (bits == 1) {
+    r.number = v ? 1 : 0;
+    r.text = v ? "ON" : "OFF";
+    return r;
+  }
+  r.text = format_value(a, v, f);
+  if (f == ValueFormat::F32) {
     float x;
-    std::memcpy(&x, &raw, sizeof x);
-    r.number = x;
-  } else if (g == ValueFormat::Signed) r.number = bits == 16 ? double(int16_t(uint16_t(raw))) : double(int32_t(raw));
-  else r.number = bits == 16 ? double(uint16_t(raw)) : double(raw);
-  r.text = bits == 1 ? (raw ? "ON" : "OFF") : format_value(a, raw, f);
+    std::memcpy(&x, &v, sizeof x);
+    r.number = double(x);
+    r.valid = std::isfinite(x);
+  } else if (f == ValueFormat::Unsigned || f == ValueFormat::Hex || (f == ValueFormat::Default && is_discrete(a.area))) {
+    r.number = double(v);
+  } else {
+    r.number = bits == 16 ? double(int16_t(uint16_t(v))) : double(int32_t(v));
+  }
   return r;
 }
 
@@ -88,9 +103,9 @@ std::string seconds(double s) {
 }  // namespace
 
 NodeLink::NodeLink(const std::string& node, const CellConfig& config, uint64_t period_us, uint64_t lag_us,
-                   double timeout_s)
+                   double timeout_s, bool read_fallback)
     : node_(node), config_(config), period_us_(period_us), lag_us_(lag_us), timeout_s_(timeout_s),
-      latest_(std::make_unique<Latest>()) {
+      read_fallback_(read_fallback), latest_(std::make_unique<Latest>()) {
   nh_.setCallbackQueue(&queue_);
   spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
   spinner_->start();
@@ -290,11 +305,30 @@ void NodeLink::begin_case() {
     last_t_us_ = 0;
     ++resets_;  // the progress of this reset on
   }
+  read_cache_.clear();
   call_reset();
+}
+
+// An address on no topic, with ~read: exact in virtual time, where plc_node serves it
+// between two clock messages. Once per scan and address.
+uint32_t NodeLink::read_memory(const std::string& name) {
+  const auto cached = read_cache_.find(name);
+  if (cached != read_cache_.end()) return cached->second;
+  if (!read_client_.isValid()) read_client_ = ros::NodeHandle().serviceClient<ReadMemory>(node_ + "/read", true);
+  ReadMemory srv;
+  srv.request.address = name;
+  srv.request.count = 1;
+  if (!read_client_.call(srv)) {
+    read_client_ = ros::NodeHandle().serviceClient<ReadMemory>(node_ + "/read", true);
+    if (!read_client_.call(srv)) throw Error("plc_node " + node_ + ": ~read " + name + " failed");
+  }
+  if (!srv.response.success || srv.response.values.empty()) throw Error("~read " + name + ": " + srv.response.message);
+  return read_cache_[name] = uint32_t(srv.response.values[0]);
 }
 
 void NodeLink::scan(uint64_t t_us) {
   uint64_t sent;
+  read_cache_.clear();
   {
     std::lock_guard<std::mutex> lk(mu_);
     sent = inputs_sent_;
@@ -346,8 +380,13 @@ std::string RosTarget::check(const Probe& p, bool writing) {
       } catch (const std::exception& e) {
         return e.what();
       }
+      try {
+        check_format(a, p.format, p.text);
+      } catch (const std::exception& e) {
+        return e.what();
+      }
       if (writing) return "";  // ~write, ~force take any address; set() on an X needs its name
-      if (topic_of(a).empty())
+      if (topic_of(a).empty() && !link_.read_fallback_)
         return p.name + " is on no topic of plc_node: add it to a group of the cell YAML's registers: (or, for a bit, "
                         "name it in signals:)";
       return "";
@@ -379,6 +418,10 @@ std::string RosTarget::check(const Probe& p, bool writing) {
 }
 
 Reading RosTarget::read(const Probe& p) {
+  if (p.kind == Probe::Kind::Address) {
+    const Address a = link_.config_.resolve(p.name);
+    if (topic_of(a).empty()) return reading_of(a, link_.read_memory(p.name), p.format);
+  }
   std::lock_guard<std::mutex> lk(link_.mu_);
   const NodeLink::Latest& l = *link_.latest_;
   Reading r;
@@ -407,7 +450,7 @@ Reading RosTarget::read(const Probe& p) {
     case Probe::Kind::Counter: {
       const auto it = l.counters.find(link_.node_ + "/counters/" + p.name);
       r.number = it == l.counters.end() ? 0 : double(it->second.count);
-      r.text = std::to_string(int64_t(r.number));
+      r.text = number_text(r.number);
       return r;
     }
     case Probe::Kind::AxisPosition:
@@ -416,33 +459,24 @@ Reading RosTarget::read(const Probe& p) {
       const auto it = l.axes.find(link_.node_ + "/motion/" + p.name + "/status");
       AxisStatus s;
       if (it != l.axes.end()) s = it->second;
-      if (p.kind == Probe::Kind::AxisPosition) {
-        r.number = s.position;
-        std::ostringstream o;
-        o << s.position;
-        r.text = o.str();
-      } else if (p.kind == Probe::Kind::AxisFrequency) {
-        r.number = s.frequency;
-        std::ostringstream o;
-        o << s.frequency << " Hz";
-        r.text = o.str();
-      } else {
-        const bool moving = s.busy || s.running || s.frequency != 0 || s.remaining != 0;
-        r.word = s.error ? "error" : moving ? "moving" : "idle";
-        r.number = s.error ? 2 : moving ? 1 : 0;
-        r.text = r.word;
+      // As the cell in process reads it: pulses, Hz signed by the direction, and the state
+      // an error code, else pulses going out, else idle.
+      if (p.kind == Probe::Kind::AxisState) {
+        r.word = s.error ? "error" : s.frequency != 0 ? "moving" : "idle";
+        r.number = s.error;
+        r.text = s.error ? "error " + std::to_string(s.error) : r.word;
+        return r;
       }
+      r.number = p.kind == Probe::Kind::AxisPosition ? double(s.pulses) : s.frequency;
+      r.text = number_text(r.number);
       return r;
     }
     case Probe::Kind::Temperature: {
       const auto it = l.temperatures.find(link_.node_ + "/temperature/" + p.name);
       const double c = it == l.temperatures.end() ? std::nan("") : it->second;
-      r.number = c;
-      r.valid = !std::isnan(c);
-      std::ostringstream o;
-      if (r.valid) o << std::round(c * 10) / 10 << " C";
-      else o << "broken";
-      r.text = o.str();
+      r.valid = std::isfinite(c);  // NaN: a broken line
+      r.number = r.valid ? c : 0;
+      r.text = r.valid ? number_text(std::round(c * 1000) / 1000) + " C" : "NaN (broken)";
       return r;
     }
     case Probe::Kind::Analog:

@@ -100,6 +100,10 @@ class PlcNode : private MemoryAccess {
   // ~virtual_time/scanned: since the start or the last ~reset.
   uint64_t scans_ = 0, last_scan_us_ = 0, inputs_received_ = 0;
   uint32_t resets_ = 0;
+  // After ~reset the cell's own time (what its simulation, timers and counters see) starts
+  // at 0 at its first scan: epoch_us_ is that scan's clock time. Stamps stay the clock's.
+  bool epoch_at_first_scan_ = false;
+  uint64_t epoch_us_ = 0;
   // Messages published on ~io, ~forced, ~signals/<name> and ~signals_stamped/<name>, in
   // that order (the signals in the config's order).
   std::vector<uint64_t> published_;

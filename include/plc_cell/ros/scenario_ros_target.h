@@ -33,8 +33,10 @@ class NodeLink {
  public:
   // node: plc_node's resolved name ("/plc_node", "/cell_a/plc_node"); config: the cell it
   // runs (read by the caller from the same files); period_us, lag_us: its scan period and
-  // ~virtual_time_lag. timeout_s bounds every wait.
-  NodeLink(const std::string& node, const CellConfig& config, uint64_t period_us, uint64_t lag_us, double timeout_s);
+  // ~virtual_time_lag. timeout_s bounds every wait. read_fallback: an address on no topic
+  // is read with ~read (else check() refuses it).
+  NodeLink(const std::string& node, const CellConfig& config, uint64_t period_us, uint64_t lag_us, double timeout_s,
+           bool read_fallback);
   ~NodeLink();
 
   // Once, before the first case: waits until plc_node hears the clock and the inputs and
@@ -56,11 +58,15 @@ class NodeLink {
   bool scan_complete(uint64_t t_us) const;  // mu_ held
   void call_reset();
   void connect_publisher(ros::Publisher* pub, const std::string& what);
+  uint32_t read_memory(const std::string& name);  // ~read, once per scan
 
   std::string node_;
   CellConfig config_;
   uint64_t period_us_, lag_us_;
   double timeout_s_;
+  bool read_fallback_;
+  ros::ServiceClient read_client_;
+  std::map<std::string, uint32_t> read_cache_;  // this scan's ~read values
   ros::NodeHandle nh_;
   ros::CallbackQueue queue_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;
