@@ -10,7 +10,12 @@ if(CATKIN_ENABLE_TESTING)
   add_dependencies(scenario_runner ${PROJECT_NAME}_generate_messages_cpp)
   install(TARGETS scenario_runner RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
   find_package(rostest REQUIRED)
+  # The examples' scenario files, as `plc_cell test` runs them (examples/*/*.scenario.yaml).
+  # Each written out: scripts/run_tests.py expects a result per add_rostest line.
   add_rostest(test/ros/scenario_conveyor.test DEPENDENCIES plc_node scenario_runner)
+  add_rostest(test/ros/scenario_count_up_stop.test DEPENDENCIES plc_node scenario_runner)
+  add_rostest(test/ros/scenario_positioning.test DEPENDENCIES plc_node scenario_runner)
+  add_rostest(test/ros/scenario_oven.test DEPENDENCIES plc_node scenario_runner)
 endif()
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)

@@ -4,6 +4,8 @@
 
 #include <unistd.h>
 
+#include <sensor_msgs/Temperature.h>
+
 #include "plc_cell/ForcedPoints.h"
 #include "plc_cell/IoState.h"
 #include "plc_cell/Signal.h"
@@ -15,6 +17,7 @@
 #include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
 #include "plc_cell/ros/temperature_ros.h"
+#include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
 
@@ -84,7 +87,16 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   });
 
   if (cell_->persister()) updater_.add("persistence", this, &PlcNode::diagnose_persist);
-  if (cell_->soft().temperature()) topic_groups_.add(std::make_unique<TemperatureRos>(pnh, cell_->soft(), updater_));
+  if (temp::TemperatureCell* tc = cell_->soft().temperature()) {
+    topic_groups_.add(std::make_unique<TemperatureRos>(pnh, cell_->soft(), updater_));
+    for (size_t ch = 0; ch < tc->channels().size(); ++ch) {
+      if (tc->channels()[ch].name.empty()) continue;
+      temperature_input_subs_.push_back(pnh.subscribe<sensor_msgs::Temperature>(
+          "temperature_inputs/" + tc->channels()[ch].name, 100, [this, ch](const sensor_msgs::Temperature::ConstPtr& m) {
+            on_temperature_input(ch, m->header.stamp.toNSec() / 1000, m->temperature);
+          }));
+    }
+  }
   cell_->start_servers([](const Server& s) { ROS_INFO("plc_node: serving %s", s.describe().c_str()); });
   if (!cell_->servers().empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
 

@@ -62,9 +62,37 @@ void PlcNode::on_stamped_input(uint32_t x, uint64_t stamp_us, bool v) {
   }
   std::lock_guard<std::mutex> lk(virtual_mu_);
   if (next_scan_us_ > period_us_ && stamp_us <= next_scan_us_ - period_us_) ++late_inputs_;  // its scan has run
-  pending_.push_back({stamp_us, input_seq_++, x, v});
+  pending_.push_back({stamp_us, input_seq_++, x, v, -1, 0});
   ++inputs_received_;
   publish_progress();  // a driver knows the input is in before it sends the clock
+}
+
+void PlcNode::on_temperature_input(size_t channel, uint64_t stamp_us, double celsius) {
+  PendingInput in{stamp_us, 0, 0, false, int(channel), celsius};
+  if (!virtual_time_) {
+    cell_->plc().locked([&](ScanEngine& e, Memory&) {
+      apply(e, in);
+      return 0;
+    });
+    return;
+  }
+  std::lock_guard<std::mutex> lk(virtual_mu_);
+  if (next_scan_us_ > period_us_ && stamp_us <= next_scan_us_ - period_us_) ++late_inputs_;  // its scan has run
+  in.seq = input_seq_++;
+  pending_.push_back(in);
+  ++inputs_received_;
+  publish_progress();
+}
+
+void PlcNode::apply(ScanEngine& e, const PendingInput& in) {
+  if (in.channel < 0) {
+    cell_->soft().simulation().release(in.x);  // the topic now plays this sensor
+    e.set_input(in.x, in.v);
+    return;
+  }
+  std::string why;  // a temperature in C suits every sensor
+  if (!cell_->soft().temperature()->drive_channel(size_t(in.channel), temp::Quantity{in.celsius, temp::Unit::Celsius}, &why))
+    ROS_WARN("plc_node: ~temperature_inputs: %s", why.c_str());
 }
 
 void PlcNode::on_clock(uint64_t now_us) {
@@ -83,10 +111,7 @@ void PlcNode::on_clock(uint64_t now_us) {
     const uint64_t t = next_scan_us_;
     size_t k = 0;
     cell_->plc().locked([&](ScanEngine& e, Memory&) {
-      for (; k < pending_.size() && pending_[k].stamp_us <= t; ++k) {
-        cell_->soft().simulation().release(pending_[k].x);  // the topic now plays this sensor
-        e.set_input(pending_[k].x, pending_[k].v);
-      }
+      for (; k < pending_.size() && pending_[k].stamp_us <= t; ++k) apply(e, pending_[k]);
       return 0;
     });
     pending_.erase(pending_.begin(), pending_.begin() + long(k));

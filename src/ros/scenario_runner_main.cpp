@@ -55,12 +55,13 @@ class CaseTest : public testing::Test {
       if (!errors.empty()) {
         std::string all;
         for (const auto& e : errors) all += e + "\n";
-        FAIL() << "this case cannot run on plc_node:\n" << all;
+        ADD_FAILURE_AT(case_->file.c_str(), case_->line) << "this case cannot run on plc_node:\n" << all;
+        return;
       }
       const sc::CaseResult r = sc::run_case(*case_, target);
       RecordProperty("virtual_time", sc::format_time(r.virtual_us));
       RecordProperty("scans", std::to_string(r.scans));
-      if (!r.passed) FAIL() << r.failure << "\n" << r.details;
+      if (!r.passed) ADD_FAILURE_AT(case_->file.c_str(), case_->line) << r.failure << "\n" << r.details;
     } catch (const std::exception& e) {
       FAIL() << e.what();
     }

@@ -175,6 +175,11 @@ void NodeLink::subscribe(const std::string& topic) {
       cv_.notify_all();
     });
   } else if (starts_with(rel, "temperature/")) {
+    ros::AdvertiseOptions ao = ros::AdvertiseOptions::create<sensor_msgs::Temperature>(
+        node_ + "/temperature_inputs/" + rel.substr(12), 1000,
+        [this](const ros::SingleSubscriberPublisher&) { cv_.notify_all(); }, ros::SubscriberStatusCallback(),
+        ros::VoidConstPtr(), &queue_);
+    temperature_pubs_[rel.substr(12)] = nh_.advertise(ao);
     s = nh_.subscribe<sensor_msgs::Temperature>(
         topic, 1000, [this, accept, topic](const sensor_msgs::Temperature::ConstPtr& m) {
           std::lock_guard<std::mutex> lk(mu_);
@@ -268,6 +273,7 @@ void NodeLink::connect() {
       }
       for (const auto& t : topics)
         if (starts_with(t, node_ + "/")) subscribe(t);
+      for (auto& p : temperature_pubs_) connect_publisher(&p.second, "a temperature channel's input");
       continue;
     }
     publish_clock(0);
@@ -404,9 +410,6 @@ std::string RosTarget::check(const Probe& p, bool writing) {
         return p.text + ": plc_node publishes no ~motion/" + p.name + "/status (no axis of that name in the cell)";
       return "";
     case Probe::Kind::Temperature:
-      if (writing)
-        return p.text + ": plc_node has no topic or service that sets a temperature channel (the cell's simulated "
-                        "plant drives it); run this case with `plc_cell test`";
       if (!has_topic("temperature/" + p.name))
         return p.text + ": plc_node publishes no ~temperature/" + p.name + " (no channel of that name in the cell)";
       return "";
@@ -488,6 +491,23 @@ Reading RosTarget::read(const Probe& p) {
 }
 
 void RosTarget::set(const Probe& p, const Value& v) {
+  if (p.kind == Probe::Kind::Temperature) {
+    const auto it = link_.temperature_pubs_.find(p.name);
+    if (it == link_.temperature_pubs_.end()) throw Error(check(p, true));
+    if (v.has_unit && v.quantity.unit != temp::Unit::Celsius)
+      throw Error(p.text + ": " + v.text + ": plc_node's ~temperature_inputs/" + p.name +
+                  " takes degrees C (a sensor's mV or ohm only with `plc_cell test`)");
+    sensor_msgs::Temperature m;
+    {
+      std::lock_guard<std::mutex> lk(link_.mu_);
+      const uint64_t next = link_.scanned_ ? link_.last_t_us_ + link_.period_us_ : 0;
+      m.header.stamp.fromNSec((link_.t0_us_ + next) * 1000);
+      ++link_.inputs_sent_;
+    }
+    m.temperature = v.has_unit ? v.quantity.value : v.number;
+    it->second.publish(m);
+    return;
+  }
   if (p.kind != Probe::Kind::Address) throw Error(check(p, true));
   const Address a = link_.config_.resolve(p.name);
   if (a.area != Area::X || a.width != Width::Bit) {

@@ -86,6 +86,7 @@ class PlcNode : private MemoryAccess {
   std::vector<ros::Publisher> signal_pubs_;
   std::vector<ros::Subscriber> input_subs_;
   std::vector<ros::Publisher> stamped_pubs_;  // plc_cell/Signal, beside signal_pubs_
+  std::vector<ros::Subscriber> temperature_input_subs_;
 
   // Virtual time: inputs wait in pending_ until the scan at or after their stamp.
   struct PendingInput {
@@ -93,7 +94,12 @@ class PlcNode : private MemoryAccess {
     uint64_t seq;  // arrival order breaks ties
     uint32_t x;
     bool v;
+    int channel = -1;  // >= 0: a temperature channel driven to celsius, not an X
+    double celsius = 0;
   };
+  // ~temperature_inputs/<channel>: what the channel's sensor measures from the stamp on.
+  void on_temperature_input(size_t channel, uint64_t stamp_us, double celsius);
+  void apply(ScanEngine& e, const PendingInput& in);  // PLC lock held
   bool virtual_time_ = false;
   bool every_scan_ = false;  // ~publish_every_scan: the rate topics at every scan
   uint64_t period_us_ = 1000, lag_us_ = 0, next_scan_us_ = 0, input_seq_ = 0, late_inputs_ = 0;

@@ -73,6 +73,7 @@ class NodeLink {
   ros::Publisher clock_pub_;
   std::map<uint32_t, ros::Publisher> input_pubs_;  // X index -> ~inputs_stamped/<name>
   std::map<uint32_t, std::string> input_names_;
+  std::map<std::string, ros::Publisher> temperature_pubs_;  // channel -> ~temperature_inputs/<channel>
   std::vector<ros::Subscriber> subs_;
   ros::Subscriber progress_sub_;
   std::vector<std::string> topics_;  // every topic subscribed (resolved)
