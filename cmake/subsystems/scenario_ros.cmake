@@ -17,12 +17,11 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/scenario_positioning.test DEPENDENCIES plc_node scenario_runner)
   add_rostest(test/ros/scenario_oven.test DEPENDENCIES plc_node scenario_runner)
 endif()
+
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   # plc_node's ~virtual_time/scanned and ~reset, as the runner uses them.
   add_rostest(test/ros/virtual_time_sync.test DEPENDENCIES plc_node)
-endif()
-if(CATKIN_ENABLE_TESTING)
   # A user's package from the recipe, built and run in a scratch workspace over this one.
   include(${PROJECT_SOURCE_DIR}/cmake/pytest.cmake)
   plc_cell_add_pytest(user_package FILES test/user_package/test_user_package.py
