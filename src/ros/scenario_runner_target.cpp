@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <set>
 #include <sstream>
 
 #include <rosgraph_msgs/Clock.h>
@@ -54,29 +53,6 @@ std::string number_text(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.10g", v);
   return buf;
-}
-
-// A value of an address as the cell in process reads it (scenario/cell_target.cpp).
-Reading reading_of(const Address& a, uint32_t v, ValueFormat f) {
-  Reading r;
-  const int bits = value_bits(a);
-  if (bits == 1) {
-    r.number = v ? 1 : 0;
-    r.text = v ? "ON" : "OFF";
-    return r;
-  }
-  r.text = format_value(a, v, f);
-  if (f == ValueFormat::F32) {
-    float x;
-    std::memcpy(&x, &v, sizeof x);
-    r.number = double(x);
-    r.valid = std::isfinite(x);
-  } else if (f == ValueFormat::Unsigned || f == ValueFormat::Hex || (f == ValueFormat::Default && is_discrete(a.area))) {
-    r.number = double(v);
-  } else {
-    r.number = bits == 16 ? double(int16_t(uint16_t(v))) : double(int32_t(v));
-  }
-  return r;
 }
 
 // The position of a in a group's RegisterBlock values.
@@ -130,63 +106,49 @@ void NodeLink::connect_publisher(ros::Publisher* pub, const std::string& what) {
                 " (" + what + "): is it running in virtual time (~virtual_time: true)?");
 }
 
+// Keeps the latest message of topic stamped at or after the case's time 0 (one of an
+// earlier case may still be on its way) with store(latest, msg), and counts it.
+template <class M, class Store>
+ros::Subscriber NodeLink::keep(const std::string& topic, Store store) {
+  return nh_.subscribe<M>(topic, 1000, [this, topic, store](const typename M::ConstPtr& m) {
+    std::lock_guard<std::mutex> lk(mu_);
+    if (m->header.stamp.toNSec() < t0_us_ * 1000) return;
+    ++received_[topic];
+    store(*latest_, *m);
+    cv_.notify_all();
+  });
+}
+
+// A publisher whose subscribers' arrival wakes connect_publisher().
+template <class M>
+ros::Publisher NodeLink::advertise(const std::string& topic) {
+  ros::AdvertiseOptions ao = ros::AdvertiseOptions::create<M>(
+      topic, 1000, [this](const ros::SingleSubscriberPublisher&) { cv_.notify_all(); }, ros::SubscriberStatusCallback(),
+      ros::VoidConstPtr(), &queue_);
+  return nh_.advertise(ao);
+}
+
 void NodeLink::subscribe(const std::string& topic) {
   const std::string rel = topic.substr(node_.size() + 1);
-  const auto accept = [this, topic](const ros::Time& stamp) {  // mu_ held
-    if (stamp.toNSec() < t0_us_ * 1000) return false;        // an earlier case's
-    ++received_[topic];
-    return true;
-  };
   ros::Subscriber s;
   if (rel == "io") {
-    s = nh_.subscribe<IoState>(topic, 1000, [this, accept](const IoState::ConstPtr& m) {
-      std::lock_guard<std::mutex> lk(mu_);
-      if (!accept(m->header.stamp)) return;
-      latest_->io = *m;
-      latest_->have_io = true;
-      cv_.notify_all();
+    s = keep<IoState>(topic, [](Latest& l, const IoState& m) {
+      l.io = m;
+      l.have_io = true;
     });
   } else if (starts_with(rel, "signals_stamped/")) {
-    s = nh_.subscribe<Signal>(topic, 1000, [this, accept, topic](const Signal::ConstPtr& m) {
-      std::lock_guard<std::mutex> lk(mu_);
-      if (!accept(m->header.stamp)) return;
-      latest_->signals[topic] = m->data;
-      cv_.notify_all();
-    });
+    s = keep<Signal>(topic, [topic](Latest& l, const Signal& m) { l.signals[topic] = m.data; });
   } else if (starts_with(rel, "registers/")) {
-    s = nh_.subscribe<RegisterBlock>(topic, 1000, [this, accept, topic](const RegisterBlock::ConstPtr& m) {
-      std::lock_guard<std::mutex> lk(mu_);
-      if (!accept(m->header.stamp)) return;
-      latest_->registers[topic] = *m;
-      cv_.notify_all();
-    });
+    s = keep<RegisterBlock>(topic, [topic](Latest& l, const RegisterBlock& m) { l.registers[topic] = m; });
   } else if (starts_with(rel, "counters/")) {
-    s = nh_.subscribe<Counter>(topic, 1000, [this, accept, topic](const Counter::ConstPtr& m) {
-      std::lock_guard<std::mutex> lk(mu_);
-      if (!accept(m->header.stamp)) return;
-      latest_->counters[topic] = *m;
-      cv_.notify_all();
-    });
+    s = keep<Counter>(topic, [topic](Latest& l, const Counter& m) { l.counters[topic] = m; });
   } else if (starts_with(rel, "motion/") && ends_with(rel, "/status")) {
-    s = nh_.subscribe<AxisStatus>(topic, 1000, [this, accept, topic](const AxisStatus::ConstPtr& m) {
-      std::lock_guard<std::mutex> lk(mu_);
-      if (!accept(m->header.stamp)) return;
-      latest_->axes[topic] = *m;
-      cv_.notify_all();
-    });
+    s = keep<AxisStatus>(topic, [topic](Latest& l, const AxisStatus& m) { l.axes[topic] = m; });
   } else if (starts_with(rel, "temperature/")) {
-    ros::AdvertiseOptions ao = ros::AdvertiseOptions::create<sensor_msgs::Temperature>(
-        node_ + "/temperature_inputs/" + rel.substr(12), 1000,
-        [this](const ros::SingleSubscriberPublisher&) { cv_.notify_all(); }, ros::SubscriberStatusCallback(),
-        ros::VoidConstPtr(), &queue_);
-    temperature_pubs_[rel.substr(12)] = nh_.advertise(ao);
-    s = nh_.subscribe<sensor_msgs::Temperature>(
-        topic, 1000, [this, accept, topic](const sensor_msgs::Temperature::ConstPtr& m) {
-          std::lock_guard<std::mutex> lk(mu_);
-          if (!accept(m->header.stamp)) return;
-          latest_->temperatures[topic] = m->temperature;
-          cv_.notify_all();
-        });
+    const std::string channel = rel.substr(std::string("temperature/").size());
+    temperature_pubs_[channel] = advertise<sensor_msgs::Temperature>(node_ + "/temperature_inputs/" + channel);
+    s = keep<sensor_msgs::Temperature>(
+        topic, [topic](Latest& l, const sensor_msgs::Temperature& m) { l.temperatures[topic] = m.temperature; });
   } else {
     return;  // not read by any probe: ~forced, ~signals/<name> (no stamp), ~counters, joint_states
   }
@@ -222,18 +184,9 @@ void NodeLink::connect() {
   std::string clock_topic = "/clock";
   ros::param::get(node_ + "/clock_topic", clock_topic);
   if (clock_topic.empty() || clock_topic[0] != '/') clock_topic = node_ + "/" + clock_topic;  // plc_node's private name
-  ros::AdvertiseOptions ao = ros::AdvertiseOptions::create<rosgraph_msgs::Clock>(
-      clock_topic, 1000, [this](const ros::SingleSubscriberPublisher&) { cv_.notify_all(); },
-      ros::SubscriberStatusCallback(), ros::VoidConstPtr(), &queue_);
-  clock_pub_ = nh_.advertise(ao);
-  for (const auto& s : config_.signals) {
-    if (s.second.area != Area::X) continue;
-    ros::AdvertiseOptions io = ros::AdvertiseOptions::create<Signal>(
-        node_ + "/inputs_stamped/" + s.first, 1000, [this](const ros::SingleSubscriberPublisher&) { cv_.notify_all(); },
-        ros::SubscriberStatusCallback(), ros::VoidConstPtr(), &queue_);
-    input_pubs_[s.second.index] = nh_.advertise(io);
-    input_names_[s.second.index] = s.first;
-  }
+  clock_pub_ = advertise<rosgraph_msgs::Clock>(clock_topic);
+  for (const auto& s : config_.signals)
+    if (s.second.area == Area::X) input_pubs_[s.second.index] = advertise<Signal>(node_ + "/inputs_stamped/" + s.first);
   progress_sub_ = nh_.subscribe<ScanProgress>(node_ + "/virtual_time/scanned", 1000,
                                               [this](const ScanProgress::ConstPtr& m) {
                                                 std::lock_guard<std::mutex> lk(mu_);
@@ -423,7 +376,7 @@ std::string RosTarget::check(const Probe& p, bool writing) {
 Reading RosTarget::read(const Probe& p) {
   if (p.kind == Probe::Kind::Address) {
     const Address a = link_.config_.resolve(p.name);
-    if (topic_of(a).empty()) return reading_of(a, link_.read_memory(p.name), p.format);
+    if (topic_of(a).empty()) return address_reading(a, link_.read_memory(p.name), p.format);
   }
   std::lock_guard<std::mutex> lk(link_.mu_);
   const NodeLink::Latest& l = *link_.latest_;
@@ -448,7 +401,7 @@ Reading RosTarget::read(const Probe& p) {
         const auto& vals = l.registers.at(topic).values;
         if (idx < vals.size()) raw = uint32_t(vals[idx]);
       }
-      return reading_of(a, raw, p.format);
+      return address_reading(a, raw, p.format);
     }
     case Probe::Kind::Counter: {
       const auto it = l.counters.find(link_.node_ + "/counters/" + p.name);

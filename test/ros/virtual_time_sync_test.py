@@ -193,8 +193,8 @@ class VirtualTimeSyncTest(unittest.TestCase):
         self.assertEqual(d.latest[NODE + "/registers/sums"].values[0], 5)
         resets = d.progress.resets
         t1 = self.fresh()
-        self.assertTrue(d.wait(lambda: d.progress is not None))
-        self.assertEqual(d.progress.resets, resets + 1)
+        self.assertTrue(d.wait(lambda: d.progress is not None and d.progress.resets == resets + 1),
+                        "no ~virtual_time/scanned after ~reset")
         self.assertEqual(d.progress.scans, 0)
         self.assertEqual(list(read("R11", 1).values), [0], "memory is fresh")
         self.assertTrue(d.scan(t1))  # the fresh cell's first scan is this clock's

@@ -54,6 +54,10 @@ class NodeLink {
   template <class Pred>
   bool wait(Pred pred, double timeout_s);
   void subscribe(const std::string& topic);
+  template <class M, class Store>
+  ros::Subscriber keep(const std::string& topic, Store store);
+  template <class M>
+  ros::Publisher advertise(const std::string& topic);
   void publish_clock(uint64_t t_us);
   bool scan_complete(uint64_t t_us) const;  // mu_ held
   void call_reset();
@@ -72,7 +76,6 @@ class NodeLink {
   std::unique_ptr<ros::AsyncSpinner> spinner_;
   ros::Publisher clock_pub_;
   std::map<uint32_t, ros::Publisher> input_pubs_;  // X index -> ~inputs_stamped/<name>
-  std::map<uint32_t, std::string> input_names_;
   std::map<std::string, ros::Publisher> temperature_pubs_;  // channel -> ~temperature_inputs/<channel>
   std::vector<ros::Subscriber> subs_;
   ros::Subscriber progress_sub_;
