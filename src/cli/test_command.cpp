@@ -7,6 +7,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/scenario/cell_target.h"
 #include "plc_cell/scenario/junit.h"
@@ -35,25 +36,26 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   if (args.positional().empty()) throw UsageError("no scenario file given");
   const auto filters = args.all("case");
 
-  // Every file read, and every probe checked against its cell, before any case runs: a
-  // user sees all the errors of all the files at once.
+  // Every file read, and the names of every step that reads well checked against its cell,
+  // before any case runs: a user sees all the errors of all the files at once.
   std::vector<scenario::Scenario> files;
-  std::vector<std::string> errors;
+  ErrorList errors;
   for (const auto& path : args.positional()) {
-    try {
-      files.push_back(scenario::load_scenario(path));
-      const scenario::Scenario& sc = files.back();
+    files.push_back(scenario::read_scenario(path, errors));
+    const scenario::Scenario& sc = files.back();
+    if (sc.cell.empty()) continue;
+    errors.collect([&] {
       scenario::CellTarget target(sc.cell, sc.program);
       for (const auto& c : sc.cases)
-        for (const auto& e : scenario::check_case(c, target)) errors.push_back(e);
-    } catch (const SourceError& e) {
-      for (const auto& d : e.diagnostics()) errors.push_back(d.to_string());
-    } catch (const Error& e) {
-      errors.push_back(path + ": error: " + e.what());
-    }
+        for (const auto& e : scenario::check_case(c, target)) errors.add(e);
+    }, path);
   }
   if (!errors.empty()) {
-    for (const auto& e : errors) std::cerr << e << "\n";
+    try {
+      errors.throw_if_any();  // sorted: file by file, by line
+    } catch (const SourceError& e) {
+      for (const auto& d : e.diagnostics()) std::cerr << d.to_string() << "\n";
+    }
     std::cerr << "plc_cell test: " << errors.size() << " error(s) in the scenario files; no case ran\n";
     return 1;
   }

@@ -62,6 +62,12 @@ CellTarget::CellTarget(const std::string& cell_yaml, const std::string& program)
 
 CellTarget::~CellTarget() = default;
 
+const Address& CellTarget::address(const std::string& name) {
+  auto it = addresses_.find(name);
+  if (it == addresses_.end()) it = addresses_.emplace(name, cell_->config().resolve(name)).first;
+  return it->second;
+}
+
 uint64_t CellTarget::period_us() const { return cell_->scan_period_us(); }
 
 void CellTarget::scan(uint64_t t_us) { cell_->plc().scan(t_us); }
@@ -105,7 +111,7 @@ Reading CellTarget::read(const Probe& p) {
   Reading r;
   switch (p.kind) {
     case Probe::Kind::Address: {
-      const Address a = cell_->config().resolve(p.name);
+      const Address a = address(p.name);
       const uint32_t v = plc().locked([&](ScanEngine&, Memory& m) { return m.read(a); });
       return address_reading(a, v, p.format);
     }
@@ -164,7 +170,7 @@ Reading CellTarget::read(const Probe& p) {
 void CellTarget::set(const Probe& p, const Value& v) {
   SoftCell& s = cell_->soft();
   if (p.kind == Probe::Kind::Address) {
-    const Address a = cell_->config().resolve(p.name);
+    const Address a = address(p.name);
     const uint32_t x = raw(a, p.format, v, p.text);
     if (a.area == Area::X && a.width == Width::Bit) {
       // An input terminal: the scenario plays this sensor from now on, not the simulation.
@@ -194,12 +200,12 @@ void CellTarget::set(const Probe& p, const Value& v) {
 
 void CellTarget::write(const Probe& p, const Value& v) {
   if (p.kind != Probe::Kind::Address) throw Error(p.text + ": only an address or signal is written");
-  const Address a = cell_->config().resolve(p.name);
+  const Address a = address(p.name);
   plc().write(a, {raw(a, p.format, v, p.text)});
 }
 
 void CellTarget::force(const Probe& p, bool on) {
-  const Address a = cell_->config().resolve(p.name);
+  const Address a = address(p.name);
   if (a.width != Width::Bit || !is_discrete(a.area)) throw Error(p.text + ": only a single discrete is forced");
   plc().force(a, ForceAction::Disable);
   plc().force(a, on ? ForceAction::Set : ForceAction::Reset);
@@ -207,7 +213,7 @@ void CellTarget::force(const Probe& p, bool on) {
 
 void CellTarget::release(const Probe* p) {
   std::vector<Address> points;
-  if (p) points.push_back(cell_->config().resolve(p->name));
+  if (p) points.push_back(address(p->name));
   else points = plc().locked([](ScanEngine&, Memory& m) { return m.disabled_points(); });
   for (const Address& a : points) plc().force(a, ForceAction::Enable);
 }

@@ -364,14 +364,18 @@ class CaseRun {
 
 CaseResult run_case(const Case& c, Target& target) { return CaseRun(c, target).run(); }
 
-std::vector<std::string> check_case(const Case& c, Target& target) {
-  std::vector<std::string> errors;
+std::vector<Diagnostic> check_case(const Case& c, Target& target) {
+  std::vector<Diagnostic> errors;
   auto check = [&](const Step& s, int line, const Probe& p, bool writing) {
     const std::string why = target.check(p, writing);
-    if (!why.empty()) {
-      const std::string e = s.file + ":" + std::to_string(line ? line : s.line) + ": error: key '" + s.key + "': " + why;
-      if (std::find(errors.begin(), errors.end(), e) == errors.end()) errors.push_back(e);
-    }
+    if (why.empty()) return;
+    Diagnostic d;
+    d.where.file = s.file;
+    d.where.line = line ? line : s.line;
+    d.message = "key '" + s.key + "': " + why;
+    for (const auto& o : errors)
+      if (o.where.line == d.where.line && o.message == d.message) return;
+    errors.push_back(d);
   };
   for (const auto& s : c.steps) {
     for (const auto& a : s.assignments) check(s, a.line, a.target, s.kind != Step::Kind::Release);

@@ -288,18 +288,16 @@ class Reader {
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& text, const std::string& file) {
+Scenario parse_scenario(const std::string& text, const std::string& file, ErrorList& errors) {
   const YamlReader r(file);
-  ErrorList errors;
   Scenario sc;
   sc.file = file;
   YAML::Node doc;
-  try {
-    doc = r.load(text);
-  } catch (const SourceError& e) {
-    throw;
+  if (!errors.collect([&] { doc = r.load(text); }, file)) return sc;
+  if (!doc.IsMap()) {
+    errors.add(SourceError::at(file, 1, 1, "a scenario file is a mapping with 'cell' and 'cases'"));
+    return sc;
   }
-  if (!doc.IsMap()) throw SourceError::at(file, 1, 1, "a scenario file is a mapping with 'cell' and 'cases'");
   r.only(doc, "", {"cell", "program", "setup", "cases"}, &errors);
   Reader rd(r, errors);
   errors.collect([&] {
@@ -318,7 +316,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
   const YAML::Node cases = doc["cases"];
   if (!cases || !cases.IsSequence() || cases.size() == 0) {
     errors.add(ErrorList::diagnostic(file, cases ? cases : doc, "key 'cases': expected a list of test cases"));
-    errors.throw_if_any();
+    return sc;
   }
   std::set<std::string> names;
   for (size_t i = 0; i < cases.size(); ++i) {
@@ -386,16 +384,32 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
       sc.cases.push_back(std::move(cs));
     }
   }
+  return sc;
+}
+
+Scenario parse_scenario(const std::string& text, const std::string& file) {
+  ErrorList errors;
+  Scenario sc = parse_scenario(text, file, errors);
   errors.throw_if_any();
   return sc;
 }
 
-Scenario load_scenario(const std::string& path) {
+Scenario read_scenario(const std::string& path, ErrorList& errors) {
   std::ifstream in(path);
-  if (!in) throw Error("cannot open the scenario file " + path);
+  if (!in) {
+    errors.add(SourceError::at(path, 0, 0, "cannot open the scenario file " + path));
+    return Scenario();
+  }
   std::ostringstream s;
   s << in.rdbuf();
-  return parse_scenario(s.str(), path);
+  return parse_scenario(s.str(), path, errors);
+}
+
+Scenario load_scenario(const std::string& path) {
+  ErrorList errors;
+  Scenario sc = read_scenario(path, errors);
+  errors.throw_if_any();
+  return sc;
 }
 
 }  // namespace scenario

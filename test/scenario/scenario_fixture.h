@@ -43,7 +43,7 @@ class ScenarioCell {
     const scenario::Scenario sc = parse(steps);
     scenario::CellTarget t(sc.cell, sc.program);
     const auto errors = scenario::check_case(sc.cases.at(0), t);
-    EXPECT_TRUE(errors.empty()) << errors.at(0);
+    EXPECT_TRUE(errors.empty()) << errors.at(0).to_string();
     return scenario::run_case(sc.cases.at(0), t);
   }
 

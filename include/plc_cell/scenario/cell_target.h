@@ -1,6 +1,7 @@
 #pragma once
 // The cell in process as a scenario target: a fresh Cell (Purpose::Simulate) from the cell
 // YAML and program, scanned in virtual time as `plc_cell sim` scans it.
+#include <map>
 #include <memory>
 #include <string>
 
@@ -30,7 +31,10 @@ class CellTarget : public Target {
 
  private:
   Plc& plc() { return cell_->plc(); }
+  // Names resolve once: a condition is read at every scan.
+  const Address& address(const std::string& name);
   std::unique_ptr<Cell> cell_;
+  std::map<std::string, Address> addresses_;
 };
 
 }  // namespace scenario

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/core/error.h"
 #include "plc_cell/scenario/scenario.h"
 #include "plc_cell/scenario/target.h"
 
@@ -28,9 +29,9 @@ constexpr size_t kHistoryDepth = 5;
 
 CaseResult run_case(const Case& c, Target& target);
 
-// Every probe the steps of c read or drive, each checked on the target; the errors as
-// "file:line: why" (empty: all known).
-std::vector<std::string> check_case(const Case& c, Target& target);
+// Every probe the steps of c read or drive, each checked on the target: an error per
+// unknown name at its step's line (none: all known).
+std::vector<Diagnostic> check_case(const Case& c, Target& target);
 
 // "2.500 s"
 std::string format_time(uint64_t us);
