@@ -54,7 +54,7 @@ class CaseTest : public testing::Test {
       const auto errors = sc::check_case(*case_, target);
       if (!errors.empty()) {
         std::string all;
-        for (const auto& e : errors) all += e + "\n";
+        for (const auto& e : errors) all += e.to_string() + "\n";
         ADD_FAILURE_AT(case_->file.c_str(), case_->line) << "this case cannot run on plc_node:\n" << all;
         return;
       }
