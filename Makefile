@@ -25,7 +25,8 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-p
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
   libyaml-cpp-dev libmodbus-dev zlib1g-dev \
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
-  socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest python3-matplotlib git
+  socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest python3-matplotlib git \
+  chromium-headless-shell
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
 export PATH := /usr/bin:$(PATH)

@@ -15,6 +15,7 @@
 #include <exception>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "plc_cell/core/il_parser.h"
 #include "plc_cell/core/interpreter.h"
@@ -474,8 +475,9 @@ void BM_PlcScan(benchmark::State& state) {
 }
 BENCHMARK(BM_PlcScan)->Unit(benchmark::kMicrosecond);
 
-// The interpreter alone: the per-instruction cost without the per-scan overhead.
-void BM_Interpreter(benchmark::State& state) {
+// The interpreter alone: the per-instruction cost without the per-scan overhead; with
+// record, rung coverage recorded as well (docs/coverage.md: what --coverage costs).
+void interpreter_scans(benchmark::State& state, bool record) {
   BareInterpreter b;
   plc_cell::Program prog;
   std::string why;
@@ -484,15 +486,21 @@ void BM_Interpreter(benchmark::State& state) {
     return;
   }
   b.load(prog);
+  std::vector<uint8_t> seen(prog.code.size());
+  if (record) b.interp.record_into(seen.data());
   for (auto _ : state) {
     if (!b.scan()) {
       state.SkipWithError(("interpreter fault: " + b.interp.fault()).c_str());
       return;
     }
   }
+  b.interp.record_into(nullptr);
   per_instruction_counter(state);
 }
+void BM_Interpreter(benchmark::State& state) { interpreter_scans(state, false); }
 BENCHMARK(BM_Interpreter)->Unit(benchmark::kMicrosecond);
+void BM_InterpreterRecording(benchmark::State& state) { interpreter_scans(state, true); }
+BENCHMARK(BM_InterpreterRecording)->Unit(benchmark::kMicrosecond);
 
 // The same networks compiled to C++: the cost floor an interpreter is measured against.
 void BM_CompiledLadder(benchmark::State& state) {

@@ -124,7 +124,8 @@ TOOLS = {"socat": "socat", "mbpoll": "mbpoll", "rosrun": "rosbash", "roscd": "ro
          "rostopic": "rostopic", "rosservice": "rosservice", "roslaunch": "roslaunch",
          "roscore": "roslaunch", "rosbag": "rosbag", "rosnode": "rosnode", "rosmsg": "rosmsg",
          "rostest": "rostest", "clang\\+\\+": "clang", "catkin_make": "catkin", "git": "git",
-         "readelf": "build-essential"}  # binutils (readelf, nm) comes with build-essential
+         "readelf": "build-essential",  # binutils (readelf, nm) comes with build-essential
+         "chromium-headless-shell": "chromium-headless-shell"}
 
 
 def test_tools_are_declared():

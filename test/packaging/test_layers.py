@@ -17,6 +17,7 @@ BELOW = {
     "io": {"core"},
     "config": {"core", "io"},
     "timeline": {"core"},
+    "coverage": {"core"},
     "hsc": {"core", "io", "config", "timeline"},
     "temp": {"core", "io", "config"},
     "motion": {"core", "io", "config", "timeline", "hsc"},
@@ -36,7 +37,7 @@ BELOW = {
 }
 # The shared libraries of the layers (the protocol libraries are static: the include
 # check covers them).
-LIBS = ["core", "io", "config", "timeline", "hsc", "temp", "motion", "sim"]
+LIBS = ["core", "io", "config", "timeline", "coverage", "hsc", "temp", "motion", "sim"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"plc_cell/(\w+)/')
 
 

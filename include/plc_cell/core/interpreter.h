@@ -62,6 +62,16 @@ class Interpreter {
   // Forget edge memories and timer remainders (on STOP -> RUN).
   void reset_state();
 
+  // Coverage (docs/coverage.md). While seen is set (one byte per instruction of the loaded
+  // program), each contact ORs into its byte the value of the device it reads, and each
+  // coil, TMR, CTR, JMP and CALL the rung result it receives, and each FUN its EN:
+  // kSeenOff for 0, kSeenOn for 1. nullptr stops recording, and so does load(). Recording
+  // runs its own instantiation of the run loop: the loop without it is unchanged.
+  static constexpr uint8_t kSeenOff = 1;
+  static constexpr uint8_t kSeenOn = 2;
+  void record_into(uint8_t* seen);
+  uint8_t* recording() const { return seen_; }
+
  private:
   // One bound instruction in 16 bytes, so a large ladder stays cache-friendly:
   // contacts and coils carry their bit pointer; the rest point to an Extra.
@@ -88,13 +98,19 @@ class Interpreter {
 
   static constexpr uint32_t kInitDispatch = ~0u;
   bool execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
-  void set_fault(const Bound& b, const std::string& why);
+  bool run_plain(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
+  bool run_recording(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
+  void set_fault(size_t pc, const std::string& why);
 
   Memory& mem_;
   const FunctionTable& functions_;
   Program program_;
   std::array<int32_t, static_cast<size_t>(Op::End) + 1> handler_of_{};
+  std::array<int32_t, static_cast<size_t>(Op::End) + 1> recording_handler_of_{};
   std::vector<Bound> code_;
+  std::vector<Op> bound_op_;          // the handler each instruction runs, for recorded_code_
+  std::vector<Bound> recorded_code_;  // code_ bound to the recording run loop's handlers
+  uint8_t* seen_ = nullptr;
   std::vector<Extra> extras_;
   std::vector<BoundOperand> ops_;
   std::vector<uint8_t> edges_;

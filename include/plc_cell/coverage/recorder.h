@@ -1,0 +1,62 @@
+#pragma once
+// Rung coverage of one IL program, summed over every Plc that ran it: a scenario-test run
+// gives each case a fresh cell, and the totals say what all the cases together exercised.
+// This is the one header a test runner includes; the report and its outputs come with it.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/plc.h"
+#include "plc_cell/core/program.h"
+#include "plc_cell/coverage/outputs.h"
+#include "plc_cell/coverage/report.h"
+
+namespace plc_cell {
+namespace coverage {
+
+class Recorder {
+ public:
+  Recorder() = default;
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+  Recorder(Recorder&&) = default;
+  Recorder& operator=(Recorder&&) = default;
+
+  // Starts recording plc's loaded program (takes plc.locked internally). Throws
+  // plc_cell::Error if plc has no program, is already recorded (by this recorder or
+  // another), or its program differs from the one this recorder holds (file or
+  // instructions). Loading another program into plc ends the recording (what was
+  // recorded until then still counts at detach).
+  void attach(Plc& plc);
+  // Stops recording and adds what was recorded to the totals. Safe to call twice, and for
+  // a Plc that was never attached. Call it before plc is destroyed.
+  void detach(Plc& plc);
+  // True until a Plc has been attached: the recorder holds no program yet.
+  bool empty() const { return !program_; }
+  const std::string& program_file() const;
+
+  // What report() reads: the program and, per instruction, the values it saw
+  // (Interpreter::kSeenOff | kSeenOn), ORed over every detached recording.
+  const Program& program() const;
+  const std::vector<uint8_t>& seen() const { return seen_; }
+  // Per instruction, the FUN's mnemonic (empty for other instructions), taken from the
+  // first attached Plc's instruction set.
+  const std::vector<std::string>& fun_names() const { return fun_names_; }
+  // Recordings detached so far (each Plc's run counts once).
+  uint32_t runs() const { return runs_; }
+
+ private:
+  struct Attachment {
+    Plc* plc;
+    std::unique_ptr<uint8_t[]> seen;  // the interpreter writes here while the Plc scans
+  };
+  std::unique_ptr<Program> program_;
+  std::vector<std::string> fun_names_;
+  std::vector<uint8_t> seen_;
+  std::vector<Attachment> attached_;
+  uint32_t runs_ = 0;
+};
+
+}  // namespace coverage
+}  // namespace plc_cell

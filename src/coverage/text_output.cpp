@@ -1,0 +1,31 @@
+#include <ostream>
+
+#include "plc_cell/coverage/outputs.h"
+
+namespace plc_cell {
+namespace coverage {
+
+namespace {
+
+std::string ratio(uint32_t n, uint32_t of) { return std::to_string(n) + "/" + std::to_string(of); }
+
+}  // namespace
+
+void write_text(const std::vector<Report>& reports, std::ostream& out) {
+  bool first = true;
+  for (const Report& r : reports) {
+    if (!first) out << '\n';
+    first = false;
+    const Totals& t = r.totals;
+    out << "coverage of " << r.file << " (" << r.runs << (r.runs == 1 ? " run" : " runs") << ")\n"
+        << "  networks evaluated " << ratio(t.networks_evaluated, t.networks) << ", energised "
+        << ratio(t.networks_energised, t.networks) << '\n'
+        << "  contacts changed " << ratio(t.contacts_changed, t.contacts) << ", coils switched "
+        << ratio(t.coils_switched, t.coils) << ", FUNs enabled " << ratio(t.funs_enabled, t.funs) << '\n';
+    if (r.findings.empty()) out << "  every network, contact, coil and FUN exercised\n";
+    for (const Finding& f : r.findings) out << r.file << ':' << f.line << ' ' << f.message << '\n';
+  }
+}
+
+}  // namespace coverage
+}  // namespace plc_cell
