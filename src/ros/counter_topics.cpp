@@ -13,8 +13,8 @@
 namespace plc_cell {
 
 CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
-    : cell_(cell), frame_id_(frame_id_param(pnh)) {
-  const hsc::HscConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.counters().config(); });
+    : cell_(&cell), frame_id_(frame_id_param(pnh)) {
+  const hsc::HscConfig cfg = cell_->plc().locked([&](ScanEngine&, Memory&) { return cell_->counters().config(); });
   for (int n = 0; n < 8; ++n) {
     if (!cfg.counters[n].used) continue;
     numbers_.push_back(n);
@@ -36,21 +36,21 @@ CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_h
                           " out of range -2147483648..4294967295 (a 32-bit counter)";
             return true;
           }
-          cell_.plc().locked([&](ScanEngine&, Memory&) {
-            cell_.counters().preset(n, req.value);
+          cell_->plc().locked([&](ScanEngine&, Memory&) {
+            cell_->counters().preset(n, req.value);
             return 0;
           });
-          cell_.plc().commit();  // a retentive counter is on disk before the reply
+          cell_->plc().commit();  // a retentive counter is on disk before the reply
           res.success = true;
           return true;
         }));
     services_.push_back(pnh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
         base + "/clear", [this, n](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-          cell_.plc().locked([&](ScanEngine&, Memory&) {
-            cell_.counters().preset(n, 0);
+          cell_->plc().locked([&](ScanEngine&, Memory&) {
+            cell_->counters().preset(n, 0);
             return 0;
           });
-          cell_.plc().commit();
+          cell_->plc().commit();
           res.success = true;
           return true;
         }));
@@ -61,12 +61,18 @@ CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_h
     const std::string name = s.name;
     subs_.push_back(pnh.subscribe<std_msgs::Float64>(
         "sources/" + name + "/rate", 10, [this, name](const std_msgs::Float64::ConstPtr& m) {
-          cell_.plc().locked([&](ScanEngine&, Memory&) {
-            cell_.counters().set_source_rate(name, m->data);
+          cell_->plc().locked([&](ScanEngine&, Memory&) {
+            cell_->counters().set_source_rate(name, m->data);
             return 0;
           });
         }));
   }
+}
+
+std::vector<std::string> CounterTopics::topics() const {
+  std::vector<std::string> out{all_pub_.getTopic()};
+  for (const auto& p : one_pubs_) out.push_back(p.getTopic());
+  return out;
 }
 
 void CounterTopics::publish(const ros::Time& stamp) {
@@ -75,9 +81,9 @@ void CounterTopics::publish(const ros::Time& stamp) {
     double frequency;
   };
   std::vector<Value> values(numbers_.size());
-  cell_.plc().locked([&](ScanEngine&, Memory&) {
+  cell_->plc().locked([&](ScanEngine&, Memory&) {
     for (size_t i = 0; i < numbers_.size(); ++i)
-      values[i] = {cell_.counters().count(numbers_[i]), cell_.counters().frequency(numbers_[i])};
+      values[i] = {cell_->counters().count(numbers_[i]), cell_->counters().frequency(numbers_[i])};
     return 0;
   });
   CounterArray all;

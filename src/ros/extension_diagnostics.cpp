@@ -28,13 +28,16 @@ void diagnose(const CellExtension& x, Plc& plc, diagnostic_updater::DiagnosticSt
 
 }  // namespace
 
-void add_extension_diagnostics(diagnostic_updater::Updater& updater, SoftCell& cell) {
+std::vector<std::string> add_extension_diagnostics(diagnostic_updater::Updater& updater, SoftCell& cell) {
+  std::vector<std::string> names;
   Plc& plc = cell.plc();
   for (const auto& x : cell.extensions()) {
     if (x->status(plc).empty()) continue;  // nothing configured that it would report on
     const CellExtension* ext = x.get();
     updater.add(ext->name(), [ext, &plc](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnose(*ext, plc, s); });
+    names.push_back(ext->name());
   }
+  return names;
 }
 
 }  // namespace plc_cell

@@ -44,11 +44,11 @@ bool parse(const std::string& text, motion::Table* t, std::string* msg, int* cod
 }  // namespace
 
 MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
-    : cell_(cell), frame_id_(frame_id_param(pnh)), rate_hz_(rate_hz) {
+    : cell_(&cell), frame_id_(frame_id_param(pnh)), rate_hz_(rate_hz) {
   if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~motion_rate must be in (0, 1000] Hz");
-  const motion::AxesConfig cfg = cell_.plc().locked([&](ScanEngine&, Memory&) { return cell_.motion().config(); });
+  const motion::AxesConfig cfg = cell_->plc().locked([&](ScanEngine&, Memory&) { return cell_->motion().config(); });
   const auto locked = [this](auto&& f) {
-    return cell_.plc().locked([&](ScanEngine&, Memory&) { return f(cell_.motion()); });
+    return cell_->plc().locked([&](ScanEngine&, Memory&) { return f(cell_->motion()); });
   };
   for (int n = 0; n < motion::kAxes; ++n) {
     if (!cfg.axes[n].used) continue;
@@ -215,6 +215,13 @@ MotionTopics::~MotionTopics() {
   for (auto& a : axes_) a->run->shutdown();
 }
 
+std::vector<std::string> MotionTopics::topics() const {
+  if (axes_.empty()) return {};  // publish() puts nothing anywhere
+  std::vector<std::string> out{joints_pub_.getTopic()};
+  for (const auto& a : axes_) out.push_back(a->status_pub.getTopic());
+  return out;
+}
+
 void MotionTopics::publish(const ros::Time& stamp) {
   if (axes_.empty()) return;
   struct Reading {
@@ -224,8 +231,8 @@ void MotionTopics::publish(const ros::Time& stamp) {
     bool busy, running, finished;
   };
   std::vector<Reading> r(axes_.size());
-  cell_.plc().locked([&](ScanEngine&, Memory&) {
-    MotionUnit& u = cell_.motion();
+  cell_->plc().locked([&](ScanEngine&, Memory&) {
+    MotionUnit& u = cell_->motion();
     for (size_t i = 0; i < axes_.size(); ++i) {
       const int n = axes_[i]->n;
       r[i] = {u.position(n),

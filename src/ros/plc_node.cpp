@@ -4,6 +4,8 @@
 
 #include <unistd.h>
 
+#include <sensor_msgs/Temperature.h>
+
 #include "plc_cell/ForcedPoints.h"
 #include "plc_cell/IoState.h"
 #include "plc_cell/Signal.h"
@@ -15,13 +17,14 @@
 #include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
 #include "plc_cell/ros/temperature_ros.h"
+#include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
 
 PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::WallTime::now()), updater_(nh, pnh) {
-  std::string cell;
-  pnh.param<std::string>("cell", cell, "");
-  cell_ = std::make_unique<Cell>(cell, cell_overrides(pnh), Cell::Purpose::Serve,
+  pnh.param<std::string>("cell", cell_path_, "");
+  overrides_ = cell_overrides(pnh);
+  cell_ = std::make_unique<Cell>(cell_path_, overrides_, Cell::Purpose::Serve,
                                  [](const std::string& l) { ROS_INFO("plc_node: %s", l.c_str()); });
   program_path_ = cell_->program_path();
   const CellConfig& cfg = cell_->config();
@@ -31,6 +34,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   bool autostart = true;
   pnh.param("io_rate", io_rate, io_rate);
   pnh.param("autostart", autostart, autostart);
+  autostart_ = autostart;
   if (!(io_rate > 0 && io_rate <= 1000)) throw Error("~io_rate must be in (0, 1000] Hz");
 
   frame_id_ = frame_id_param(pnh);
@@ -57,6 +61,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   services_ = advertise_memory_services(pnh, *this);
   services_.push_back(pnh.advertiseService("set_run_mode", &PlcNode::on_run, this));
   services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
+  services_.push_back(pnh.advertiseService("reset", &PlcNode::on_reset, this));
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
   pnh.param("counter_rate", counter_rate, counter_rate);
   topic_groups_.add(std::make_unique<CounterTopics>(pnh, cell_->soft(), counter_rate));
@@ -65,7 +70,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   updater_.setHardwareID("plc_cell/" + cfg.name);
   updater_.add("scan", this, &PlcNode::diagnose);
   updater_.add("forced points", this, &PlcNode::diagnose_forced);
-  add_extension_diagnostics(updater_, cell_->soft());
+  extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   pnh.param("virtual_time", virtual_time_, false);
   add_register_topics(pnh, cell_->soft(), &topic_groups_);
@@ -82,7 +87,16 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   });
 
   if (cell_->persister()) updater_.add("persistence", this, &PlcNode::diagnose_persist);
-  if (cell_->soft().temperature()) topic_groups_.add(std::make_unique<TemperatureRos>(pnh, cell_->soft(), updater_));
+  if (temp::TemperatureCell* tc = cell_->soft().temperature()) {
+    topic_groups_.add(std::make_unique<TemperatureRos>(pnh, cell_->soft(), updater_));
+    for (size_t ch = 0; ch < tc->channels().size(); ++ch) {
+      if (tc->channels()[ch].name.empty()) continue;
+      temperature_input_subs_.push_back(pnh.subscribe<sensor_msgs::Temperature>(
+          "temperature_inputs/" + tc->channels()[ch].name, 100, [this, ch](const sensor_msgs::Temperature::ConstPtr& m) {
+            on_temperature_input(ch, m->header.stamp.toNSec() / 1000, m->temperature);
+          }));
+    }
+  }
   cell_->start_servers([](const Server& s) { ROS_INFO("plc_node: serving %s", s.describe().c_str()); });
   if (!cell_->servers().empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
 
@@ -168,12 +182,16 @@ void PlcNode::publish(const Snapshot& s, bool all_signals) {
   msg.x.assign(s.x.begin(), s.x.end());
   msg.y.assign(s.y.begin(), s.y.end());
   io_pub_.publish(msg);
+  if (virtual_time_) ++published_[0];
   Snapshot prev;
   {
     std::lock_guard<std::mutex> lk(snap_mu_);
     prev = last_published_;
   }
-  if (all_signals || prev.forced_gen != s.forced_gen) publish_forced(stamp);
+  if (all_signals || prev.forced_gen != s.forced_gen) {
+    publish_forced(stamp);
+    if (virtual_time_) ++published_[1];
+  }
   for (size_t i = 0; i < signal_pubs_.size() && i < s.signals.size(); ++i) {
     if (!all_signals && i < prev.signals.size() && prev.signals[i] == s.signals[i]) continue;
     std_msgs::Bool b;
@@ -184,6 +202,10 @@ void PlcNode::publish(const Snapshot& s, bool all_signals) {
     st.header.frame_id = frame_id_;
     st.data = s.signals[i];
     stamped_pubs_[i].publish(st);
+    if (virtual_time_) {
+      ++published_[2 + i];
+      ++published_[2 + signal_pubs_.size() + i];
+    }
   }
 }
 

@@ -23,7 +23,9 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh, pnh("~");
   try {
     plc_cell::PlcNode node(nh, pnh);
-    ros::AsyncSpinner spinner(2);
+    // In virtual time every callback (clock, inputs, services, ~reset) runs on one thread,
+    // one after the other: ~reset replaces the cell with nothing else using it.
+    ros::AsyncSpinner spinner(pnh.param("virtual_time", false) ? 1 : 2);
     spinner.start();
     // ros::ok() turns false on a shutdown request over XML-RPC (rosnode kill).
     while (ros::ok())

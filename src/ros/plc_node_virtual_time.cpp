@@ -8,12 +8,22 @@
 // The lag lets inputs that travel on other connections than the clock arrive first; an
 // input that still comes after its scan is applied at the next one and counted as late
 // (on /diagnostics), since from then on a replay may differ.
+//
+// ~virtual_time/scanned (ScanProgress) says how far the node got and how many messages it
+// published on each topic, so a test driver knows when every message of a scan has
+// arrived; ~reset rebuilds the cell from its files for the next test case.
 #include <algorithm>
+#include <sstream>
 
 #include <rosgraph_msgs/Clock.h>
 
+#include "plc_cell/ScanProgress.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/motion/motion_unit.h"
+#include "plc_cell/ros/extension_diagnostics.h"
 #include "plc_cell/ros/plc_node.h"
+#include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
 
@@ -25,6 +35,9 @@ void PlcNode::start_virtual_time(ros::NodeHandle& pnh, uint64_t period_us) {
   if (!(lag >= 0 && lag <= 60)) throw Error("~virtual_time_lag must be in [0, 60] s");
   period_us_ = std::max<uint64_t>(period_us, 1);
   lag_us_ = uint64_t(lag * 1e6);
+  pnh.param("publish_every_scan", every_scan_, every_scan_);
+  published_.assign(2 + 2 * signal_pubs_.size(), 0);
+  scanned_pub_ = pnh.advertise<ScanProgress>("virtual_time/scanned", 100);
   updater_.add("virtual time", [this](diagnostic_updater::DiagnosticStatusWrapper& stat) {
     std::lock_guard<std::mutex> lk(virtual_mu_);
     if (late_inputs_) stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "inputs arrived after their scan");
@@ -49,14 +62,48 @@ void PlcNode::on_stamped_input(uint32_t x, uint64_t stamp_us, bool v) {
   }
   std::lock_guard<std::mutex> lk(virtual_mu_);
   if (next_scan_us_ > period_us_ && stamp_us <= next_scan_us_ - period_us_) ++late_inputs_;  // its scan has run
-  pending_.push_back({stamp_us, input_seq_++, x, v});
+  pending_.push_back({stamp_us, input_seq_++, x, v, -1, 0});
+  ++inputs_received_;
+  publish_progress();  // a driver knows the input is in before it sends the clock
+}
+
+void PlcNode::on_temperature_input(size_t channel, uint64_t stamp_us, double celsius) {
+  PendingInput in{stamp_us, 0, 0, false, int(channel), celsius};
+  if (!virtual_time_) {
+    cell_->plc().locked([&](ScanEngine& e, Memory&) {
+      apply(e, in);
+      return 0;
+    });
+    return;
+  }
+  std::lock_guard<std::mutex> lk(virtual_mu_);
+  if (next_scan_us_ > period_us_ && stamp_us <= next_scan_us_ - period_us_) ++late_inputs_;  // its scan has run
+  in.seq = input_seq_++;
+  pending_.push_back(in);
+  ++inputs_received_;
+  publish_progress();
+}
+
+void PlcNode::apply(ScanEngine& e, const PendingInput& in) {
+  if (in.channel < 0) {
+    cell_->soft().simulation().release(in.x);  // the topic now plays this sensor
+    e.set_input(in.x, in.v);
+    return;
+  }
+  std::string why;  // a temperature in C suits every sensor
+  if (!cell_->soft().temperature()->drive_channel(size_t(in.channel), temp::Quantity{in.celsius, temp::Unit::Celsius}, &why))
+    ROS_WARN("plc_node: ~temperature_inputs: %s", why.c_str());
 }
 
 void PlcNode::on_clock(uint64_t now_us) {
   std::lock_guard<std::mutex> lk(virtual_mu_);  // one clock message at a time, in order
   if (now_us < lag_us_) return;
   const uint64_t until = now_us - lag_us_;
-  if (!next_scan_us_) next_scan_us_ = (until + period_us_ - 1) / period_us_ * period_us_;  // first multiple
+  if (!next_scan_us_) {
+    next_scan_us_ = (until + period_us_ - 1) / period_us_ * period_us_;  // first multiple
+    if (epoch_at_first_scan_) epoch_us_ = next_scan_us_;  // a fresh cell's time 0
+    epoch_at_first_scan_ = false;
+  }
   std::stable_sort(pending_.begin(), pending_.end(), [](const PendingInput& a, const PendingInput& b) {
     return a.stamp_us != b.stamp_us ? a.stamp_us < b.stamp_us : a.seq < b.seq;
   });
@@ -64,14 +111,11 @@ void PlcNode::on_clock(uint64_t now_us) {
     const uint64_t t = next_scan_us_;
     size_t k = 0;
     cell_->plc().locked([&](ScanEngine& e, Memory&) {
-      for (; k < pending_.size() && pending_[k].stamp_us <= t; ++k) {
-        cell_->soft().simulation().release(pending_[k].x);  // the topic now plays this sensor
-        e.set_input(pending_[k].x, pending_[k].v);
-      }
+      for (; k < pending_.size() && pending_[k].stamp_us <= t; ++k) apply(e, pending_[k]);
       return 0;
     });
     pending_.erase(pending_.begin(), pending_.begin() + long(k));
-    cell_->plc().scan(t);
+    cell_->plc().scan(t - epoch_us_);
     Snapshot s = take_snapshot();
     s.scan_us = t;
     if (!virtual_published_ || !(s == virtual_last_)) {
@@ -81,9 +125,132 @@ void PlcNode::on_clock(uint64_t now_us) {
       std::lock_guard<std::mutex> slk(snap_mu_);
       last_published_ = s;
     }
-    topic_groups_.after_virtual_scan(t);
+    topic_groups_.after_virtual_scan(t, every_scan_);
+    ++scans_;
+    last_scan_us_ = t;
     next_scan_us_ += period_us_;
   }
+  publish_progress();  // after every message of these scans
+}
+
+void PlcNode::publish_progress() {
+  ScanProgress m;
+  m.header.stamp.fromNSec(last_scan_us_ * 1000);
+  m.header.frame_id = frame_id_;
+  m.resets = resets_;
+  m.scans = scans_;
+  m.inputs = inputs_received_;
+  m.scan_period.fromNSec(int64_t(period_us_) * 1000);
+  m.lag.fromNSec(int64_t(lag_us_) * 1000);
+  m.fault = cell_->plc().locked([](ScanEngine& e, Memory&) { return e.fault(); });
+  m.topics.push_back(io_pub_.getTopic());
+  m.topics.push_back(forced_pub_.getTopic());
+  for (const auto& p : signal_pubs_) m.topics.push_back(p.getTopic());
+  for (const auto& p : stamped_pubs_) m.topics.push_back(p.getTopic());
+  m.published.assign(published_.begin(), published_.end());
+  topic_groups_.count_published(&m.topics, &m.published);
+  scanned_pub_.publish(m);
+}
+
+namespace {
+
+// What a cell's topics are made from: its signals, register groups, counters, axes and
+// temperature channels. ~reset keeps the node's topics, so the fresh cell must give the same.
+std::string topic_layout(Cell& cell) {
+  std::ostringstream out;
+  const CellConfig& cfg = cell.config();
+  for (const auto& s : cfg.signals) out << "signal " << s.first << '=' << format_address(s.second) << '\n';
+  for (const auto& g : cfg.registers) out << "registers " << g.name << ' ' << g.text << ' ' << g.rate_hz << '\n';
+  cell.plc().locked([&](ScanEngine&, Memory&) {
+    const hsc::HscConfig& hc = cell.soft().counters().config();
+    for (int n = 0; n < 8; ++n)
+      if (hc.counters[n].used) out << "counter " << n << ' ' << hc.counters[n].name << '\n';
+    out << "counter rate " << hc.publish_rate_hz << '\n';
+    const motion::AxesConfig& ac = cell.soft().motion().config();
+    for (int n = 0; n < motion::kAxes; ++n)
+      if (ac.axes[n].used)
+        out << "axis " << n << ' ' << ac.axes[n].name << ' ' << ac.axes[n].units_per_pulse << ' '
+            << ac.axes[n].joint_scale() << '\n';
+    return 0;
+  });
+  if (const temp::TemperatureCell* tc = cell.soft().temperature()) {
+    for (const auto& ch : tc->channels()) out << "channel " << ch.name << '\n';
+    out << "modules " << tc->config().modules.size() << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace
+
+// A fresh cell for the next test case: built from the same files and parameters, memory as
+// on start, its first scan at the next clock message, every topic published again at that
+// scan as on start. The ROS side stays: publishers, subscribers and services keep their
+// connections, so a driver's subscriptions see the fresh cell at once. plc_node spins one
+// thread in virtual time, so no other callback runs meanwhile.
+bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  res.success = false;
+  if (!virtual_time_) {
+    res.message = "~reset works in virtual time only (~virtual_time: true); restart plc_node for a fresh cell";
+    return true;
+  }
+  if (cell_->persister()) {
+    res.message = "~reset: the cell keeps its retentive memory in " + cell_->persister()->status().file +
+                  ", so a fresh cell would not start fresh; run the tests without a persist file";
+    return true;
+  }
+  std::unique_ptr<Cell> fresh;
+  try {
+    fresh = std::make_unique<Cell>(cell_path_, overrides_, Cell::Purpose::Serve,
+                                   [](const std::string& l) { ROS_INFO("plc_node: %s", l.c_str()); });
+  } catch (const std::exception& e) {
+    res.message = std::string("~reset: ") + e.what() + " (the running cell is kept)";
+    return true;
+  }
+  if (topic_layout(*fresh) != topic_layout(*cell_)) {
+    res.message = "~reset: the cell's files now give other topics (signals, register groups, counters, axes or "
+                  "temperature channels); restart plc_node (the running cell is kept)";
+    return true;
+  }
+  if (autostart_ && !fresh->plc().set_mode(RunMode::Run)) {
+    res.message = "~reset: cannot RUN: no program (the running cell is kept)";
+    return true;
+  }
+  std::lock_guard<std::mutex> lk(virtual_mu_);
+  for (const auto& name : extension_diagnostics_) updater_.removeByName(name);
+  cell_->stop();
+  cell_ = std::move(fresh);  // the old cell goes here; nothing holds it any more
+  topic_groups_.restart(cell_->soft());
+  extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());
+  {
+    std::lock_guard<std::mutex> plk(path_mu_);
+    program_path_ = cell_->program_path();
+  }
+  std::string served;
+  try {
+    cell_->start_servers([&](const Server& s) { served += " " + s.describe(); });
+  } catch (const std::exception& e) {
+    res.message = std::string("~reset: ") + e.what();
+    return true;
+  }
+  pending_.clear();
+  next_scan_us_ = last_scan_us_ = 0;
+  late_inputs_ = input_seq_ = inputs_received_ = scans_ = 0;
+  virtual_published_ = false;  // the first scan publishes every topic, as on start
+  epoch_at_first_scan_ = true;
+  std::fill(published_.begin(), published_.end(), 0);
+  ++resets_;
+  {
+    std::lock_guard<std::mutex> flk(forced_mu_);
+    forced_.clear();
+  }
+  {
+    std::lock_guard<std::mutex> slk(snap_mu_);
+    last_published_ = Snapshot();
+  }
+  publish_progress();
+  res.success = true;
+  res.message = "a fresh cell from " + cell_path_ + "; its first scan at the next clock message";
+  return true;
 }
 
 }  // namespace plc_cell

@@ -7,7 +7,7 @@
 namespace plc_cell {
 
 RegisterTopic::RegisterTopic(ros::NodeHandle& pnh, SoftCell& cell, const RegisterGroup& group)
-    : cell_(cell), group_(group), frame_id_(frame_id_param(pnh)) {
+    : cell_(&cell), group_(group), frame_id_(frame_id_param(pnh)) {
   pub_ = pnh.advertise<RegisterBlock>("registers/" + group_.name, 10);
 }
 
@@ -17,7 +17,7 @@ void RegisterTopic::publish(const ros::Time& stamp) {
   msg.header.frame_id = frame_id_;
   msg.name = group_.name;
   msg.address = group_.text;
-  cell_.plc().locked([&](ScanEngine&, Memory& m) {
+  cell_->plc().locked([&](ScanEngine&, Memory& m) {
     for (const auto& s : group_.spans) {
       Address a = s.start;
       const uint32_t stride = element_stride(a);

@@ -24,24 +24,30 @@ Readings readings(SoftCell& cell) {
 }  // namespace
 
 TemperatureRos::TemperatureRos(ros::NodeHandle& pnh, SoftCell& cell, diagnostic_updater::Updater& updater)
-    : cell_(cell), frame_id_(frame_id_param(pnh)) {
+    : cell_(&cell), frame_id_(frame_id_param(pnh)) {
   pnh.param("temperature_rate", rate_hz_, rate_hz_);
   if (!(rate_hz_ > 0 && rate_hz_ <= 100)) throw Error("~temperature_rate must be in (0, 100] Hz");
-  const auto& chans = cell_.temperature()->channels();
+  const auto& chans = cell_->temperature()->channels();
   for (size_t i = 0; i < chans.size(); ++i) {
     if (chans[i].name.empty()) continue;
     channel_.push_back(i);
     pubs_.push_back(pnh.advertise<sensor_msgs::Temperature>("temperature/" + chans[i].name, 10));
   }
-  const auto& mods = cell_.temperature()->config().modules;
+  const auto& mods = cell_->temperature()->config().modules;
   for (size_t k = 0; k < mods.size(); ++k)
     updater.add("temperature module " + std::to_string(k + 1) + " (FBs-" + temp::module_info(mods[k].kind).name + ")",
                 [this, k](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnose_module(k, s); });
   set_loop_ = pnh.advertiseService("set_pid_loop", &TemperatureRos::on_set_loop, this);
 }
 
+std::vector<std::string> TemperatureRos::topics() const {
+  std::vector<std::string> out;
+  for (const auto& p : pubs_) out.push_back(p.getTopic());
+  return out;
+}
+
 void TemperatureRos::publish(const ros::Time& stamp) {
-  const auto r = readings(cell_);
+  const auto r = readings(*cell_);
   for (size_t p = 0; p < pubs_.size(); ++p) {
     const temp::ChannelReading& c = r.channels[channel_[p]];
     sensor_msgs::Temperature m;  // degC whatever the modules' unit; NaN while broken
@@ -54,8 +60,8 @@ void TemperatureRos::publish(const ros::Time& stamp) {
 }
 
 void TemperatureRos::diagnose_module(size_t k, diagnostic_updater::DiagnosticStatusWrapper& stat) {
-  const auto r = readings(cell_);
-  const temp::TemperatureCell& tc = *cell_.temperature();
+  const auto r = readings(*cell_);
+  const temp::TemperatureCell& tc = *cell_->temperature();
   std::string bad;
   int n = 0;
   for (size_t i = 0; i < tc.channels().size(); ++i) {
@@ -73,7 +79,7 @@ void TemperatureRos::diagnose_module(size_t k, diagnostic_updater::DiagnosticSta
 
 bool TemperatureRos::on_set_loop(SetPidLoop::Request& req, SetPidLoop::Response& res) {
   const temp::LoopDef* loop = nullptr;
-  for (const auto& l : cell_.temperature()->config().loops)
+  for (const auto& l : cell_->temperature()->config().loops)
     if (l.name == req.loop) loop = &l;
   res.success = false;
   if (!loop) {
@@ -83,9 +89,9 @@ bool TemperatureRos::on_set_loop(SetPidLoop::Request& req, SetPidLoop::Response&
   temp::LoopChange change;
   change.setpoint = req.setpoint;
   change.kc = req.kc, change.ki = req.ki, change.td = req.td;
-  res.message = temp::check_loop_change(*loop, change, cell_.temperature()->config().fahrenheit);
+  res.message = temp::check_loop_change(*loop, change, cell_->temperature()->config().fahrenheit);
   if (!res.message.empty()) return true;  // refused: nothing written
-  cell_.plc().locked([&](ScanEngine&, Memory& m) {
+  cell_->plc().locked([&](ScanEngine&, Memory& m) {
     temp::apply_loop_change(*loop, change, m);
     return 0;
   });

@@ -15,7 +15,7 @@ bool VirtualRate::due(uint64_t now_us) {
 
 void TopicGroups::add(std::unique_ptr<TopicGroup> group) {
   const double hz = group->rate_hz();
-  entries_.push_back(Entry{std::move(group), VirtualRate(hz), ros::Timer()});
+  entries_.push_back(Entry{std::move(group), VirtualRate(hz), ros::Timer(), 0});
 }
 
 void TopicGroups::start_timers(ros::NodeHandle& nh) {
@@ -26,12 +26,29 @@ void TopicGroups::start_timers(ros::NodeHandle& nh) {
   }
 }
 
-void TopicGroups::after_virtual_scan(uint64_t now_us) {
+void TopicGroups::after_virtual_scan(uint64_t now_us, bool every_scan) {
   for (auto& e : entries_) {
-    if (!e.rate.due(now_us)) continue;
+    if (!e.rate.due(now_us) && !every_scan) continue;
     ros::Time stamp;
     stamp.fromNSec(now_us * 1000);
     e.group->publish(stamp);
+    ++e.published;
+  }
+}
+
+void TopicGroups::count_published(std::vector<std::string>* topics, std::vector<uint64_t>* counts) const {
+  for (const auto& e : entries_)
+    for (const auto& t : e.group->topics()) {
+      topics->push_back(t);
+      counts->push_back(e.published);
+    }
+}
+
+void TopicGroups::restart(SoftCell& cell) {
+  for (auto& e : entries_) {
+    e.group->rebind(cell);
+    e.rate = VirtualRate(e.group->rate_hz());
+    e.published = 0;
   }
 }
 

@@ -113,25 +113,7 @@ Reading CellTarget::read(const Probe& p) {
     case Probe::Kind::Address: {
       const Address a = address(p.name);
       const uint32_t v = plc().locked([&](ScanEngine&, Memory& m) { return m.read(a); });
-      const int bits = value_bits(a);
-      if (bits == 1) {
-        r.number = v;
-        r.text = v ? "ON" : "OFF";
-        return r;
-      }
-      r.text = format_value(a, v, p.format);
-      if (p.format == ValueFormat::F32) {
-        float x;
-        std::memcpy(&x, &v, sizeof x);
-        r.number = double(x);
-        r.valid = std::isfinite(x);
-      } else if (p.format == ValueFormat::Unsigned || p.format == ValueFormat::Hex ||
-                 (p.format == ValueFormat::Default && is_discrete(a.area))) {
-        r.number = double(v);
-      } else {
-        r.number = bits == 16 ? double(int16_t(uint16_t(v))) : double(int32_t(v));
-      }
-      return r;
+      return address_reading(a, v, p.format);
     }
     case Probe::Kind::Counter:
       r.number = double(plc().locked([&](ScanEngine&, Memory&) {

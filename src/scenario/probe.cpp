@@ -1,5 +1,8 @@
 #include "plc_cell/scenario/probe.h"
 
+#include <cmath>
+#include <cstring>
+
 #include "plc_cell/core/error.h"
 
 namespace plc_cell {
@@ -15,6 +18,28 @@ bool is_name(const std::string& s) {
 }
 
 }  // namespace
+
+Reading address_reading(const Address& a, uint32_t v, ValueFormat f) {
+  Reading r;
+  const int bits = value_bits(a);
+  if (bits == 1) {
+    r.number = v;
+    r.text = v ? "ON" : "OFF";
+    return r;
+  }
+  r.text = format_value(a, v, f);
+  if (f == ValueFormat::F32) {
+    float x;
+    std::memcpy(&x, &v, sizeof x);
+    r.number = double(x);
+    r.valid = std::isfinite(x);
+  } else if (f == ValueFormat::Unsigned || f == ValueFormat::Hex || (f == ValueFormat::Default && is_discrete(a.area))) {
+    r.number = double(v);
+  } else {
+    r.number = bits == 16 ? double(int16_t(uint16_t(v))) : double(int32_t(v));
+  }
+  return r;
+}
 
 Probe parse_probe(const std::string& text) {
   Probe p;

@@ -20,9 +20,11 @@ class CounterTopics : public TopicGroup {
   double rate_hz() const override { return rate_hz_; }
   // CounterArray and every Counter carry the same header.
   void publish(const ros::Time& stamp) override;
+  std::vector<std::string> topics() const override;
+  void rebind(SoftCell& cell) override { cell_ = &cell; }
 
  private:
-  SoftCell& cell_;
+  SoftCell* cell_;
   std::string frame_id_;
   double rate_hz_;
   std::vector<int> numbers_;  // configured counters, in order

@@ -21,11 +21,13 @@ class MotionTopics : public TopicGroup {
   double rate_hz() const override { return rate_hz_; }
   // JointState and every AxisStatus carry the same header; nothing without axes.
   void publish(const ros::Time& stamp) override;
+  std::vector<std::string> topics() const override;
+  void rebind(SoftCell& cell) override { cell_ = &cell; }
 
  private:
   struct AxisRos;
 
-  SoftCell& cell_;
+  SoftCell* cell_;
   std::string frame_id_;
   double rate_hz_;
   std::vector<std::unique_ptr<AxisRos>> axes_;

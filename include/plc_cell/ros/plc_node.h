@@ -12,6 +12,7 @@
 #include <ros/ros.h>
 #include <std_msgs/Bool.h>
 #include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
 
 #include "plc_cell/LoadProgram.h"
 #include "plc_cell/ros/memory_services.h"
@@ -46,6 +47,10 @@ class PlcNode : private MemoryAccess {
   void start_virtual_time(ros::NodeHandle& pnh, uint64_t period_us);
   void on_clock(uint64_t now_us);
   void on_stamped_input(uint32_t x, uint64_t stamp_us, bool v);
+  // ~virtual_time/scanned (virtual_mu_ held): how far the scans got, and what was published.
+  void publish_progress();
+  // ~reset: a fresh cell from the same files, in virtual time.
+  bool on_reset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat);
@@ -62,6 +67,10 @@ class PlcNode : private MemoryAccess {
   bool on_load(LoadProgram::Request& req, LoadProgram::Response& res);
 
   std::unique_ptr<Cell> cell_;  // the PLC, its servers, store and scan loop
+  std::string cell_path_;       // ~cell and the overrides it was built with: ~reset builds
+  CellOverrides overrides_;     // the same cell again
+  bool autostart_ = true;
+  std::vector<std::string> extension_diagnostics_;  // their entries hold references into cell_
   // Counters (with their services), axes (services, action), ~registers/<group> and
   // temperatures (~set_pid_loop): the topics read from the cell at a rate. Before the
   // timers, subscriptions and updater_ that call into the groups: destroyed after them.
@@ -77,6 +86,7 @@ class PlcNode : private MemoryAccess {
   std::vector<ros::Publisher> signal_pubs_;
   std::vector<ros::Subscriber> input_subs_;
   std::vector<ros::Publisher> stamped_pubs_;  // plc_cell/Signal, beside signal_pubs_
+  std::vector<ros::Subscriber> temperature_input_subs_;
 
   // Virtual time: inputs wait in pending_ until the scan at or after their stamp.
   struct PendingInput {
@@ -84,9 +94,26 @@ class PlcNode : private MemoryAccess {
     uint64_t seq;  // arrival order breaks ties
     uint32_t x;
     bool v;
+    int channel = -1;  // >= 0: a temperature channel driven to celsius, not an X
+    double celsius = 0;
   };
+  // ~temperature_inputs/<channel>: what the channel's sensor measures from the stamp on.
+  void on_temperature_input(size_t channel, uint64_t stamp_us, double celsius);
+  void apply(ScanEngine& e, const PendingInput& in);  // PLC lock held
   bool virtual_time_ = false;
+  bool every_scan_ = false;  // ~publish_every_scan: the rate topics at every scan
   uint64_t period_us_ = 1000, lag_us_ = 0, next_scan_us_ = 0, input_seq_ = 0, late_inputs_ = 0;
+  // ~virtual_time/scanned: since the start or the last ~reset.
+  uint64_t scans_ = 0, last_scan_us_ = 0, inputs_received_ = 0;
+  uint32_t resets_ = 0;
+  // After ~reset the cell's own time (what its simulation, timers and counters see) starts
+  // at 0 at its first scan: epoch_us_ is that scan's clock time. Stamps stay the clock's.
+  bool epoch_at_first_scan_ = false;
+  uint64_t epoch_us_ = 0;
+  // Messages published on ~io, ~forced, ~signals/<name> and ~signals_stamped/<name>, in
+  // that order (the signals in the config's order).
+  std::vector<uint64_t> published_;
+  ros::Publisher scanned_pub_;
   std::mutex virtual_mu_;
   std::vector<PendingInput> pending_;
   ros::Subscriber clock_sub_;

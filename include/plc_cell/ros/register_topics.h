@@ -18,9 +18,11 @@ class RegisterTopic : public TopicGroup {
   RegisterTopic(ros::NodeHandle& pnh, SoftCell& cell, const RegisterGroup& group);
   double rate_hz() const override { return group_.rate_hz; }
   void publish(const ros::Time& stamp) override;
+  std::vector<std::string> topics() const override { return {pub_.getTopic()}; }
+  void rebind(SoftCell& cell) override { cell_ = &cell; }
 
  private:
-  SoftCell& cell_;
+  SoftCell* cell_;
   RegisterGroup group_;
   ros::Publisher pub_;
   std::string frame_id_;

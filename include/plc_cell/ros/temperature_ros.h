@@ -20,12 +20,14 @@ class TemperatureRos : public TopicGroup {
   TemperatureRos(ros::NodeHandle& pnh, SoftCell& cell, diagnostic_updater::Updater& updater);
   double rate_hz() const override { return rate_hz_; }
   void publish(const ros::Time& stamp) override;
+  std::vector<std::string> topics() const override;
+  void rebind(SoftCell& cell) override { cell_ = &cell; }
 
  private:
   void diagnose_module(size_t module, diagnostic_updater::DiagnosticStatusWrapper& stat);
   bool on_set_loop(SetPidLoop::Request& req, SetPidLoop::Response& res);
 
-  SoftCell& cell_;
+  SoftCell* cell_;
   std::string frame_id_;
   double rate_hz_ = 1.0;
   std::vector<size_t> channel_;  // channel index of each publisher

@@ -6,11 +6,14 @@
 // bit (docs/plc-node.md "Stamps and virtual time").
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <ros/ros.h>
 
 namespace plc_cell {
+
+class SoftCell;
 
 class TopicGroup {
  public:
@@ -20,6 +23,12 @@ class TopicGroup {
   // Copies the state under the PLC lock, publishes after releasing it: a slow subscriber
   // never holds up a scan.
   virtual void publish(const ros::Time& stamp) = 0;
+  // The topics publish() puts one message on each (resolved names): what
+  // ~virtual_time/scanned counts.
+  virtual std::vector<std::string> topics() const = 0;
+  // From now on, the group reads this cell (plc_node's ~reset): one built from the same
+  // files, so with the same counters, axes, channels and groups.
+  virtual void rebind(SoftCell& cell) = 0;
 };
 
 // When a group publishes in virtual time: at the first scan, then at the first scan at or
@@ -40,14 +49,22 @@ class TopicGroups {
   void add(std::unique_ptr<TopicGroup> group);
   // Real time: one wall-clock timer per group from now on.
   void start_timers(ros::NodeHandle& nh);
-  // Virtual time: called after the scan at now_us, PLC lock not held.
-  void after_virtual_scan(uint64_t now_us);
+  // Virtual time: called after the scan at now_us, PLC lock not held. every_scan: each
+  // group at every scan, not at its rate.
+  void after_virtual_scan(uint64_t now_us, bool every_scan = false);
+  // Virtual time: every group's topics, each with the messages published on it since the
+  // start or the last restart().
+  void count_published(std::vector<std::string>* topics, std::vector<uint64_t>* counts) const;
+  // Virtual time, for a fresh cell (plc_node's ~reset): the groups read cell, publish at
+  // its first scan as on start, and their counts start again from 0.
+  void restart(SoftCell& cell);
 
  private:
   struct Entry {
     std::unique_ptr<TopicGroup> group;
     VirtualRate rate;
     ros::Timer timer;
+    uint64_t published = 0;  // publish() calls in virtual time
   };
   std::vector<Entry> entries_;
 };

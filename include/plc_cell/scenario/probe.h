@@ -36,5 +36,9 @@ struct Reading {
   std::string text;  // how a report prints it ("ON", "-3", "199.8 C", "moving")
 };
 
+// An address's value v (one read of it: a bit, 16 or 32 bits) as every target reads it in
+// format f: a bit ON/OFF, a register signed unless f says otherwise, a float for :f32.
+Reading address_reading(const Address& a, uint32_t v, ValueFormat f);
+
 }  // namespace scenario
 }  // namespace plc_cell
