@@ -24,13 +24,14 @@ BELOW = {
     "persist": {"core", "io", "config"},
     "fatek": {"core", "io", "config"},
     "modbus": {"core", "io", "config"},
+    "tri": {"core", "io", "config"},
     # FUN150/151: the cell's ports reach both protocol masters.
     "comm": {"core", "io", "config", "fatek", "modbus"},
     # The composition root: the Cell sits on every library layer.
-    "runtime": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus", "comm"},
+    "runtime": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus", "tri", "comm"},
     # Scenario tests run cases on fresh cells: they sit on the composition root.
     "scenario": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus",
-                 "comm", "runtime"},
+                 "tri", "comm", "runtime"},
     "cli": None,  # the tool and the nodes sit on top and may use any layer
     "ros": None,
 }
