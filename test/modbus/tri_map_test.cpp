@@ -86,8 +86,8 @@ TEST(TriMap, WordsTheSameOnFc03AndFc04) {
   plc.write(parse_address("R4130"), {14});     // TIME[1] at 4-0513
   plc.write(parse_address("R4133"), {26});     // DATE[1] at 4-0517: 2026
   plc.write(parse_address("R4134"), {0});      // DATE[4]: Sunday = 7
-  plc.write(parse_address("DR3700"), {0x00012345});  // A at 4-0715 & 4-0716, high word first
-  plc.write(parse_address("DR3750"), {0xABCD0001});  // Z at 4-0765 & 4-0766
+  plc.write(parse_address("DR3760"), {0x00012345});  // A at 4-0715 & 4-0716, high word first
+  plc.write(parse_address("DR3810"), {0xABCD0001});  // Z at 4-0765 & 4-0766
   plc.write(parse_address("D0"), {4242});      // DM[1] at 4-1001
   plc.write(parse_address("D3999"), {7});      // DM[4000] at 4-5000
   for (uint8_t fc : {3, 4}) {
@@ -113,7 +113,7 @@ TEST(TriMap, WordsTheSameOnFc03AndFc04) {
   EXPECT_EQ(mem(plc, "R4131"), 24u);
   write_word(plc, 716, 0x0002);  // B high word
   write_word(plc, 717, 0x0003);
-  EXPECT_EQ(plc.read(parse_address("DR3702"), 1)[0], 0x00020003u);
+  EXPECT_EQ(plc.read(parse_address("DR3762"), 1)[0], 0x00020003u);
   for (uint16_t addr : {36, 52, 97, 127, 192, 255, 320, 511, 515, 520, 713, 766, 999, 5000}) {
     const Reply r = call(plc, {3, uint8_t(addr >> 8), uint8_t(addr), 0, 1});
     EXPECT_FALSE(r.a.accepted) << addr;

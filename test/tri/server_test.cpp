@@ -97,7 +97,7 @@ TEST(TriSerial, ManualVectorsOverAPtyPair) {
   fatek_test::TempDir dir;
   fatek_test::PtyPair pty(dir.path);
   Plc plc;
-  plc.write(parse_address("DR3720"), {123456});
+  plc.write(parse_address("DR3780"), {123456});
   SerialSettings line;
   line.device = pty.a;
   line.baud = 38400;

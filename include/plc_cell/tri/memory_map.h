@@ -25,7 +25,7 @@ constexpr uint32_t kStringChars = 70;    // A$..Z$
 // The FBs registers behind the elements with no FBs counterpart of their own.
 constexpr uint32_t kTimerSvR = 3600;     // timer n's SV: R(3599+n), R3600..R3663
 constexpr uint32_t kCounterSvR = 3664;   // counter n's SV: R(3663+n), R3664..R3727
-constexpr uint32_t kIntegersR = 3700;    // A..Z: DR3700, DR3702, ... DR3750 (low word first)
+constexpr uint32_t kIntegersR = 3760;    // A..Z: DR3760, DR3762, ... DR3810 (low word first)
 constexpr uint32_t kFirstTimer = 50;     // timer n: T(49+n), RT(49+n) (T50..T199 are 0.1 s)
 constexpr uint32_t kAdcR = 3840;         // ADC n: R(3839+n), the FBs analog inputs
 constexpr uint32_t kDacR = 3904;         // DAC n: R(3903+n), the FBs analog outputs
@@ -45,7 +45,7 @@ Address timer_pv(uint32_t n);    // RT(49+n)
 Address timer_sv(uint32_t n);    // R(3599+n)
 Address counter_pv(uint32_t n);  // RC(n-1)
 Address counter_sv(uint32_t n);  // R(3663+n)
-bool integer_var(uint32_t k, Address* out);   // k 0..25 (A..Z) -> DR(3700+2k)
+bool integer_var(uint32_t k, Address* out);   // k 0..25 (A..Z) -> DR(3760+2k)
 bool dm(uint32_t n, Address* out);            // DM[n], 1..4000 -> D(n-1)
 bool hsc_pv(uint32_t n, Address* out);        // 1..2 -> DR4096, DR4100
 bool adc(uint32_t n, Address* out);           // 1..8 -> R3840..R3847
