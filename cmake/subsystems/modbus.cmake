@@ -6,6 +6,7 @@ pkg_check_modules(LIBMODBUS REQUIRED IMPORTED_TARGET libmodbus)
 add_library(plc_cell_modbus STATIC
   src/modbus/slave_map.cpp
   src/modbus/slave_handler.cpp
+  src/modbus/tri_map.cpp
   src/modbus/rtu_frame.cpp
   src/modbus/tcp_server.cpp
   src/modbus/rtu_server.cpp
@@ -16,7 +17,7 @@ add_library(plc_cell_modbus STATIC
   src/modbus/bridge.cpp
   src/modbus/gateway.cpp
   src/modbus/fun150.cpp)
-target_link_libraries(plc_cell_modbus PUBLIC plc_cell_config PkgConfig::LIBMODBUS ${YAML_CPP_LIBRARIES})
+target_link_libraries(plc_cell_modbus PUBLIC plc_cell_config plc_cell_tri PkgConfig::LIBMODBUS ${YAML_CPP_LIBRARIES})
 set_target_properties(plc_cell_modbus PROPERTIES POSITION_INDEPENDENT_CODE ON)
 list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_modbus)
 

@@ -18,8 +18,8 @@
 namespace plc_cell {
 namespace modbus {
 
-RtuServer::RtuServer(Plc& plc, SerialSettings port, int slave_id, WritableRanges writable)
-    : plc_(plc), port_(std::move(port)), id_(slave_id), writable_(std::move(writable)) {
+RtuServer::RtuServer(Plc& plc, SerialSettings port, int slave_id, WritableRanges writable, MapProfile map)
+    : plc_(plc), port_(std::move(port)), id_(slave_id), writable_(std::move(writable)), map_(map) {
   if (id_ < 1 || id_ > 247) throw Error("Modbus RTU slave id " + std::to_string(id_) + " outside 1..247");
 }
 
@@ -141,7 +141,7 @@ void RtuServer::run() {
       const std::vector<uint8_t>& f = framer.frame();
       const uint8_t slave = f[0];
       if (slave != id_ && slave != 0) continue;  // another slave's frame, or its reply
-      const PduAnswer a = answer_pdu(plc_, f.data() + 1, int(f.size()) - 3, rsp, &writable_);
+      const PduAnswer a = answer_pdu(plc_, f.data() + 1, int(f.size()) - 3, rsp, &writable_, map_);
       bool sent = true;
       if (slave != 0 && a.length > 0) {  // a broadcast is executed, never answered
         const int n = rtu_adu(slave, rsp, a.length, out);

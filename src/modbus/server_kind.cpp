@@ -20,8 +20,11 @@ ServerKind server_kind() {
   k.settings.back().retired_ros = "modbus_gateway_wait_ms";
   k.settings.push_back(
       integer_setting("gateway_retries", 2, 0, 10, "attempts after the first before the gateway answers exception 0x0B"));
+  k.settings.push_back(setting("map", SettingType::Text,
+                               "the map served: fbs (the FBs manual's) or tri (the TRi FMD's Table 14.1, docs/tri.md)", "fbs"));
   k.make = [](Plc& plc, const Settings& v) {
     SlaveOptions o;
+    o.map = parse_map_profile(v.text("map"));
     o.tcp = v.text("tcp");
     o.rtu = v.text("rtu");
     o.id = int(v.integer("id"));

@@ -125,7 +125,8 @@ bool supported_function(uint8_t fc) {
   }
 }
 
-PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const WritableRanges* writable) {
+PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const WritableRanges* writable,
+                     MapProfile map) {
   if (len < 1) return PduAnswer{};
   Decoded d;
   if (const uint8_t code = decode(pdu, len, &d)) return exception(pdu, code, rsp);
@@ -150,7 +151,10 @@ PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const 
   // The lock: the user map (R3968..) is read, the write stored, the read copied. One
   // scan's state; a refused request stores nothing. Nothing here waits on a client.
   const bool bits = is_bits(d.table);
-  const bool mapped = plc.locked([&](ScanEngine&, Memory& m) {
+  const bool mapped = plc.locked([&](ScanEngine& e, Memory& m) {
+    if (map == MapProfile::Tri)
+      return tri_transfer(e, m, bits, d.rd_addr, d.read ? d.rd_count : 0, d.wr_addr, d.write ? d.wr_count : 0, wbits,
+                          wwords, rbits, rwords, writable);
     Run rr, wr;
     if (d.read && !resolve(m, d.table, d.rd_addr, d.rd_count, &rr)) return false;
     if (d.write && !(resolve(m, d.table, d.wr_addr, d.wr_count, &wr) && may_write(writable, wr, d.wr_count)))
@@ -202,13 +206,14 @@ PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const 
   return a;
 }
 
-int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable) {
+int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable,
+                   MapProfile map) {
   const int h = modbus_get_header_length(ctx);
   const bool rtu = h == 1;
   const int tail = rtu ? 2 : 0;
   if (len < h + 1 + tail) return -1;
   uint8_t out[MODBUS_TCP_MAX_ADU_LENGTH];
-  const PduAnswer a = answer_pdu(plc, req + h, len - h - tail, out + (rtu ? 1 : 7), writable);
+  const PduAnswer a = answer_pdu(plc, req + h, len - h - tail, out + (rtu ? 1 : 7), writable, map);
   if (a.length == 0) return -1;
   int n;
   if (rtu) {

@@ -17,6 +17,7 @@ std::vector<std::unique_ptr<Server>> make_slave_servers(Plc& plc, const SlaveOpt
     t.max_connections = o.max_connections;
     t.idle_timeout_ms = o.idle_timeout_ms;
     t.writable = o.writable;
+    t.map = o.map;
     if (o.max_connections < 1) throw Error("Modbus TCP: max connections must be at least 1");
     if (o.idle_timeout_ms < 1) throw Error("Modbus TCP: idle timeout must be positive");
     if (o.gateway.empty()) {
@@ -34,7 +35,7 @@ std::vector<std::unique_ptr<Server>> make_slave_servers(Plc& plc, const SlaveOpt
     throw Error("Modbus gateway " + o.gateway + ": needs a Modbus/TCP endpoint too");
   }
   if (!o.rtu.empty())
-    out.push_back(std::make_unique<RtuServer>(plc, parse_serial_settings(o.rtu, "8E1"), o.id, o.writable));
+    out.push_back(std::make_unique<RtuServer>(plc, parse_serial_settings(o.rtu, "8E1"), o.id, o.writable, o.map));
   return out;
 }
 

@@ -4,11 +4,12 @@
 #include "plc_cell/fatek/server_kind.h"
 #include "plc_cell/modbus/server_kind.h"
 #include "plc_cell/runtime/cell.h"
+#include "plc_cell/tri/server_kind.h"
 
 namespace plc_cell {
 
 const std::vector<ServerKind>& Cell::server_kinds() {
-  static const std::vector<ServerKind> kinds = {fatek::server_kind(), modbus::server_kind()};
+  static const std::vector<ServerKind> kinds = {fatek::server_kind(), modbus::server_kind(), tri::server_kind()};
   return kinds;
 }
 

@@ -24,14 +24,16 @@ BELOW = {
     "sim": {"core", "io", "config", "timeline", "hsc", "temp", "motion"},
     "persist": {"core", "io", "config"},
     "fatek": {"core", "io", "config"},
-    "modbus": {"core", "io", "config"},
+    "tri": {"core", "io", "config"},
+    # The TRi map profile of the Modbus slave reads the TRi memory map.
+    "modbus": {"core", "io", "config", "tri"},
     # FUN150/151: the cell's ports reach both protocol masters.
-    "comm": {"core", "io", "config", "fatek", "modbus"},
+    "comm": {"core", "io", "config", "fatek", "modbus", "tri"},
     # The composition root: the Cell sits on every library layer.
-    "runtime": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus", "comm"},
+    "runtime": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus", "tri", "comm"},
     # Scenario tests run cases on fresh cells: they sit on the composition root.
     "scenario": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus",
-                 "comm", "runtime"},
+                 "tri", "comm", "runtime"},
     "cli": None,  # the tool and the nodes sit on top and may use any layer
     "ros": None,
 }

@@ -11,6 +11,7 @@
 #include "plc_cell/io/serial_settings.h"
 #include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/io/server.h"
+#include "plc_cell/modbus/tri_map.h"
 
 typedef struct _modbus modbus_t;
 
@@ -22,7 +23,8 @@ namespace modbus {
 
 class RtuServer : public Server {
  public:
-  RtuServer(Plc& plc, SerialSettings port, int slave_id, WritableRanges writable = {});
+  RtuServer(Plc& plc, SerialSettings port, int slave_id, WritableRanges writable = {},
+            MapProfile map = MapProfile::Fbs);
   // Bytes that make no frame with a good CRC are dropped this long after the last one.
   void set_frame_timeout_ms(int ms) { frame_timeout_ms_ = ms; }
   ~RtuServer() override;
@@ -41,6 +43,7 @@ class RtuServer : public Server {
   int id_;
   int frame_timeout_ms_ = 50;
   WritableRanges writable_;
+  MapProfile map_;
   modbus_t* ctx_ = nullptr;
   std::atomic<bool> stop_{false};
   std::thread thread_;

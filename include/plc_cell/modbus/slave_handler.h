@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "plc_cell/core/writable_ranges.h"
+#include "plc_cell/modbus/tri_map.h"
 
 #include <modbus/modbus.h>
 
@@ -42,7 +43,9 @@ struct PduAnswer {
 // Answers one request PDU (function code + data, no MBAP header, no CRC) into
 // rsp[kMaxPdu]. A rejected request changes nothing. A write is committed (see
 // Plc::commit) before this returns, so the reply may go out at once.
-PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const WritableRanges* writable = nullptr);
+// map: the FBs map (slave_map.h) or the TRi profile (tri_map.h).
+PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const WritableRanges* writable = nullptr,
+                     MapProfile map = MapProfile::Fbs);
 
 // req/len: a whole ADU as the context's transport frames it (MBAP + PDU for TCP,
 // slave id + PDU + CRC for RTU; the CRC is not checked here). Answers on the
@@ -50,7 +53,8 @@ PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const 
 // Returns the bytes sent, 0 for no reply, -1 when the reply could not be sent.
 // A write outside `writable` (null: everything writable) is answered with exception 02,
 // as an unmapped address, and changes nothing.
-int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable = nullptr);
+int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable = nullptr,
+                   MapProfile map = MapProfile::Fbs);
 
 }  // namespace modbus
 }  // namespace plc_cell
