@@ -51,4 +51,17 @@ class Collector {
   std::condition_variable cv_;
 };
 
+// A bridge's config (fatek::BridgeConfig, tri::BridgeConfig) on a loopback TCP port, polling
+// fast, failing fast and reconnecting at once.
+template <class Cfg>
+Cfg loopback_link(int port, Cfg cfg) {
+  cfg.tcp = "127.0.0.1:" + std::to_string(port);
+  cfg.timeout_s = 1.0;
+  cfg.retries = 0;
+  cfg.io_rate_hz = 100;
+  cfg.backoff_min_s = 0.01;
+  cfg.backoff_max_s = 0.05;
+  return cfg;
+}
+
 }  // namespace bridge_test

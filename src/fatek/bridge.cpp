@@ -43,46 +43,29 @@ Bridge::~Bridge() { stop(); }
 // Returns false when the link broke.
 bool Bridge::poll_io() {
   IoResult r;
-  bool up = true;
-  {
-    std::lock_guard<std::mutex> lk(link_mu_);
-    // Dropped meanwhile (recover()): the transport would reopen by itself, unconfirmed.
-    if (!client_->transport().is_open()) return false;
-    up = polled(&r.error, [&] {
-      const auto t0 = std::chrono::steady_clock::now();
-      const PlcStatus st = client_->status();
-      const std::vector<std::vector<uint32_t>> v = run_poll(*client_, io_items_, io_plan_);
-      count_poll(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      r.ok = true;
-      r.run = st.run;
-      r.x.resize(256);
-      r.y.resize(256);
-      for (uint32_t i = 0; i < 256; ++i) {
-        r.x[i] = (v[0][i / 16] >> (i % 16)) & 1;
-        r.y[i] = (v[1][i / 16] >> (i % 16)) & 1;
-      }
-      for (size_t i = 0; i < cfg_.signals.size(); ++i) r.signals.push_back(v[2 + i][0] != 0);
-    });
-  }
-  if (sinks_.io) sinks_.io(r);
-  return up;
+  return poll_into(r, sinks_.io, [&] {
+    const auto t0 = std::chrono::steady_clock::now();
+    const PlcStatus st = client_->status();
+    const std::vector<std::vector<uint32_t>> v = run_poll(*client_, io_items_, io_plan_);
+    count_poll(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    r.run = st.run;
+    r.x.resize(256);
+    r.y.resize(256);
+    for (uint32_t i = 0; i < 256; ++i) {
+      r.x[i] = (v[0][i / 16] >> (i % 16)) & 1;
+      r.y[i] = (v[1][i / 16] >> (i % 16)) & 1;
+    }
+    for (size_t i = 0; i < cfg_.signals.size(); ++i) r.signals.push_back(v[2 + i][0] != 0);
+  });
 }
 
 bool Bridge::poll_group(size_t g) {
   GroupResult r;
   r.group = g;
-  bool up = true;
-  {
-    std::lock_guard<std::mutex> lk(link_mu_);
-    if (!client_->transport().is_open()) return false;
-    up = polled(&r.error, [&] {
-      for (const auto& item : run_poll(*client_, groups_[g].items, groups_[g].plan))
-        r.values.insert(r.values.end(), item.begin(), item.end());
-      r.ok = true;
-    });
-  }
-  if (sinks_.group) sinks_.group(r);
-  return up;
+  return poll_into(r, sinks_.group, [&] {
+    for (const auto& item : run_poll(*client_, groups_[g].items, groups_[g].plan))
+      r.values.insert(r.values.end(), item.begin(), item.end());
+  });
 }
 
 Address Bridge::resolve(const std::string& text) const {

@@ -27,15 +27,8 @@ Client::Client(std::unique_ptr<Transport> t, ClientOptions opt) : t_(std::move(t
 
 Response Client::once(const Request& req, const std::string& bytes) {
   // Drop anything stale (a late answer to a timed-out request) before asking again.
+  drop_late_answer(*t_, &stale_);
   char buf[512];
-  try {
-    if (stale_ && t_->is_open())
-      while (t_->recv(buf, sizeof buf, 0) > 0) {
-      }
-  } catch (const CommError&) {
-    // The peer closed an idle connection: send() below reconnects.
-  }
-  stale_ = false;
   dec_.reset();
   const auto t0 = Clock::now();
   t_->send(bytes, opt_.timeout_ms);
@@ -65,32 +58,13 @@ Response Client::transact(Request req) {
       req.cmd != Cmd::WriteRegisters && req.cmd != Cmd::MixedWrite)
     throw Error("station 0 is broadcast: nobody answers command " + cmd_hex(req.cmd) + "; only writes can be broadcast");
   const std::string bytes = encode_request(req);
-  bool reconnected = false;
-  for (int attempt = 0;; ++attempt) {
-    const bool reused = t_->is_open();
-    try {
-      Response rsp = once(req, bytes);
-      if (rsp.error != ErrorCode::Ok)
-        throw PlcError(rsp.error, "PLC error " + std::string(1, char(rsp.error)) + " (" + error_text(rsp.error) +
-                                      ") to command " + cmd_hex(req.cmd));
-      return rsp;
-    } catch (const ConnectionClosed&) {
-      // A connection the peer had already closed (e.g. its idle time-out): the request never
-      // reached it, so one fresh connection does not count as a retry.
-      if (reused && !reconnected) {
-        reconnected = true;
-        --attempt;
-        continue;
-      }
-      stale_ = true;
-      if (attempt >= opt_.retries) throw;
-      ++retries_used_;
-    } catch (const CommError&) {
-      stale_ = true;  // a late answer may still arrive: drop it before the next request
-      if (attempt >= opt_.retries) throw;
-      ++retries_used_;
-    }
-  }
+  return with_retries(*t_, opt_.retries, &stale_, &retries_used_, [&] {
+    Response rsp = once(req, bytes);
+    if (rsp.error != ErrorCode::Ok)
+      throw PlcError(rsp.error, "PLC error " + std::string(1, char(rsp.error)) + " (" + error_text(rsp.error) +
+                                    ") to command " + cmd_hex(req.cmd));
+    return rsp;
+  });
 }
 
 static PlcStatus to_status(const Response& r) {

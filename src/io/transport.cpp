@@ -117,6 +117,18 @@ std::unique_ptr<Transport> serial_transport(const SerialSettings& line) {
   return std::make_unique<SerialTransport>(line);
 }
 
+void drop_late_answer(Transport& t, bool* stale) {
+  char buf[512];
+  try {
+    if (*stale && t.is_open())
+      while (t.recv(buf, sizeof buf, 0) > 0) {
+      }
+  } catch (const CommError&) {
+    // The peer closed an idle connection: send() reconnects.
+  }
+  *stale = false;
+}
+
 bool write_all(int fd, const char* buf, size_t n, int timeout_ms) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
   while (n > 0) {

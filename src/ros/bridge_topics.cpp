@@ -12,14 +12,14 @@
 
 namespace plc_cell {
 
-BridgeTopics::BridgeTopics(ros::NodeHandle& pnh, const std::vector<std::string>& signals,
+BridgeTopics::BridgeTopics(ros::NodeHandle& pnh, const std::vector<std::pair<std::string, Address>>& signals,
                            const std::vector<RegisterGroup>& groups)
     : groups_(groups) {
   frame_id_ = frame_id_param(pnh);
   io_pub_ = pnh.advertise<IoState>("io", 10);
   for (const auto& g : groups) group_pubs_.push_back(pnh.advertise<RegisterBlock>("registers/" + g.name, 10));
-  for (const auto& s : signals) signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s, 1, true));
-  for (const auto& s : signals) stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s, 100, true));
+  for (const auto& s : signals) signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s.first, 1, true));
+  for (const auto& s : signals) stamped_pubs_.push_back(pnh.advertise<Signal>("signals_stamped/" + s.first, 100, true));
   last_signals_.assign(signals.size(), -1);
 }
 

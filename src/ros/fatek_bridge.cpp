@@ -10,23 +10,10 @@ FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(n
   pnh.param("station", station, station);
   if (station < 1 || station > 254) throw Error("~station must be 1..254");
 
-  fatek::BridgeConfig cfg = lp.config.empty() ? fatek::BridgeConfig{} : fatek::load_bridge_config(lp.config);
-  cfg.tcp = lp.tcp;
-  cfg.serial = lp.serial;
+  fatek::BridgeConfig cfg = bridge_config(lp, &fatek::load_bridge_config);
   cfg.station = station;
-  cfg.timeout_s = lp.timeout_s;
-  cfg.retries = lp.retries;
-  cfg.io_rate_hz = lp.io_rate_hz;
-  cfg.backoff_max_s = lp.max_backoff_s;
-
-  std::vector<std::string> names;
-  for (const auto& s : cfg.signals) names.push_back(s.first);
-  topics_ = std::make_unique<BridgeTopics>(pnh, names, cfg.groups);
-  fatek::Bridge::Sinks sinks;
-  sinks.io = [this](const IoResult& r) { topics_->on_io(r); };
-  sinks.group = [this](const GroupResult& r) { topics_->on_group(r); };
-  sinks.error = [](const std::string& what) { ROS_WARN_THROTTLE(5, "fatek_bridge: %s", what.c_str()); };
-  bridge_ = std::make_unique<fatek::Bridge>(std::move(cfg), std::move(sinks));
+  topics_ = std::make_unique<BridgeTopics>(pnh, cfg.signals, cfg.groups);
+  bridge_ = std::make_unique<fatek::Bridge>(std::move(cfg), topics_->sinks<fatek::Bridge::Sinks>("fatek_bridge"));
 
   services_ = advertise_memory_services(pnh, *this);
   for (auto& s : advertise_link_services(pnh, *bridge_, [this](bool run) { bridge_->set_run(run); }))

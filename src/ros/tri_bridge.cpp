@@ -10,23 +10,10 @@ TriBridge::TriBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, p
   pnh.param("id", id, id);
   if (id < 0 || id > 255) throw Error("~id must be 0..255");
 
-  tri::BridgeConfig cfg = lp.config.empty() ? tri::BridgeConfig{} : tri::load_bridge_config(lp.config);
-  cfg.tcp = lp.tcp;
-  cfg.serial = lp.serial;
+  tri::BridgeConfig cfg = bridge_config(lp, &tri::load_bridge_config);
   cfg.id = id;
-  cfg.timeout_s = lp.timeout_s;
-  cfg.retries = lp.retries;
-  cfg.io_rate_hz = lp.io_rate_hz;
-  cfg.backoff_max_s = lp.max_backoff_s;
-
-  std::vector<std::string> names;
-  for (const auto& s : cfg.signals) names.push_back(s.first);
-  topics_ = std::make_unique<BridgeTopics>(pnh, names, cfg.groups);
-  tri::Bridge::Sinks sinks;
-  sinks.io = [this](const IoResult& r) { topics_->on_io(r); };
-  sinks.group = [this](const GroupResult& r) { topics_->on_group(r); };
-  sinks.error = [](const std::string& what) { ROS_WARN_THROTTLE(5, "tri_bridge: %s", what.c_str()); };
-  bridge_ = std::make_unique<tri::Bridge>(std::move(cfg), std::move(sinks));
+  topics_ = std::make_unique<BridgeTopics>(pnh, cfg.signals, cfg.groups);
+  bridge_ = std::make_unique<tri::Bridge>(std::move(cfg), topics_->sinks<tri::Bridge::Sinks>("tri_bridge"));
 
   services_ = advertise_memory_services(pnh, *this);
   for (auto& s : advertise_link_services(pnh, *bridge_, [this](bool run) { bridge_->set_run(run); }))

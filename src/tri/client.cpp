@@ -1,6 +1,7 @@
 #include "plc_cell/tri/client.h"
 
 #include <chrono>
+#include <cstdio>
 
 #include "plc_cell/tri/frame.h"
 
@@ -15,15 +16,8 @@ Client::Client(std::unique_ptr<Transport> t, ClientOptions opt) : t_(std::move(t
 }
 
 Response Client::once(const Request& req, const std::string& body, const std::string& bytes) {
+  drop_late_answer(*t_, &stale_);
   char buf[512];
-  try {  // drop a late answer to a request that timed out before asking again
-    if (stale_ && t_->is_open())
-      while (t_->recv(buf, sizeof buf, 0) > 0) {
-      }
-  } catch (const CommError&) {
-    // The peer closed an idle connection: send() below reconnects.
-  }
-  stale_ = false;
   // The reply's FCS is checked as sent: "00" is only the wildcard in a request.
   Decoder dec(false);
   const auto t0 = Clock::now();
@@ -59,32 +53,15 @@ Response Client::transact(const Request& req) {
   f.id = opt_.id;
   f.body = encode_request(req);
   const std::string bytes = encode_frame(f);
-  bool reconnected = false;
-  for (int attempt = 0;; ++attempt) {
-    const bool reused = t_->is_open();
-    try {
-      Response rsp = once(req, f.body, bytes);
-      if (rsp.error != ErrorCode::Ok) {
-        char code[8];
-        std::snprintf(code, sizeof code, "ER%02X", unsigned(rsp.error));
-        throw PlcError(rsp.error, "TRi error " + std::string(code) + " (" + error_name(rsp.error) + ") to " + f.body);
-      }
-      return rsp;
-    } catch (const ConnectionClosed&) {
-      // A connection the peer had already closed: the request never reached it, so one
-      // fresh connection does not count as a retry.
-      if (reused && !reconnected) {
-        reconnected = true;
-        --attempt;
-        continue;
-      }
-      stale_ = true;
-      if (attempt >= opt_.retries) throw;
-    } catch (const CommError&) {
-      stale_ = true;
-      if (attempt >= opt_.retries) throw;
+  return with_retries(*t_, opt_.retries, &stale_, &retries_used_, [&] {
+    Response rsp = once(req, f.body, bytes);
+    if (rsp.error != ErrorCode::Ok) {
+      char code[8];
+      std::snprintf(code, sizeof code, "ER%02X", unsigned(rsp.error));
+      throw PlcError(rsp.error, "TRi error " + std::string(code) + " (" + error_name(rsp.error) + ") to " + f.body);
     }
-  }
+    return rsp;
+  });
 }
 
 }  // namespace tri

@@ -35,15 +35,7 @@ std::unique_ptr<TcpServer> serve(Plc& plc, int port) {
 
 BridgeConfig yaml(const std::string& text) { return parse_bridge_config(YAML::Load(text), "bridge.yaml"); }
 
-BridgeConfig link_to(int port, BridgeConfig cfg) {
-  cfg.tcp = "127.0.0.1:" + std::to_string(port);
-  cfg.timeout_s = 1.0;
-  cfg.retries = 0;
-  cfg.io_rate_hz = 100;
-  cfg.backoff_min_s = 0.01;
-  cfg.backoff_max_s = 0.05;
-  return cfg;
-}
+BridgeConfig link_to(int port, BridgeConfig cfg) { return bridge_test::loopback_link(port, std::move(cfg)); }
 
 // The error loading text from a file, or "no error".
 std::string config_error(const fatek_test::TempDir& dir, const std::string& text, std::string* path) {

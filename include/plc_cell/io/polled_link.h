@@ -107,6 +107,25 @@ class PolledLink {
     }
   }
 
+  // One poll into r (an IoResult, a GroupResult): body runs under the link lock unless the
+  // link was dropped meanwhile (recover(): the transport would reopen by itself,
+  // unconfirmed; false, nothing reported); then r goes to sink, failed or not (r.ok).
+  // Returns false when the link broke.
+  template <typename R, typename F>
+  bool poll_into(R& r, const std::function<void(const R&)>& sink, F&& body) {
+    bool up;
+    {
+      std::lock_guard<std::mutex> lk(link_mu_);
+      if (!transport().is_open()) return false;
+      up = polled(&r.error, [&] {
+        body();
+        r.ok = true;
+      });
+    }
+    if (sink) sink(r);
+    return up;
+  }
+
   // A poll that counts in status(): polls and latency.
   void count_poll(double ms);
   void fail(const std::string& what);

@@ -18,10 +18,21 @@ namespace plc_cell {
 
 class BridgeTopics {
  public:
-  BridgeTopics(ros::NodeHandle& pnh, const std::vector<std::string>& signals, const std::vector<RegisterGroup>& groups);
+  BridgeTopics(ros::NodeHandle& pnh, const std::vector<std::pair<std::string, Address>>& signals,
+               const std::vector<RegisterGroup>& groups);
   // On the bus side's thread. Failed polls publish nothing (they count on /diagnostics).
   void on_io(const IoResult& r);
   void on_group(const GroupResult& r);
+  // A bridge's sinks (its Sinks struct: io, group, error) that publish here and log each
+  // failure as node (throttled).
+  template <class Sinks>
+  Sinks sinks(const std::string& node) {
+    Sinks s;
+    s.io = [this](const IoResult& r) { on_io(r); };
+    s.group = [this](const GroupResult& r) { on_group(r); };
+    s.error = [node](const std::string& what) { ROS_WARN_THROTTLE(5, "%s: %s", node.c_str(), what.c_str()); };
+    return s;
+  }
 
  private:
   void publish_signal(size_t i, bool on, const ros::Time& stamp);
@@ -44,6 +55,20 @@ struct LinkParams {
   double timeout_s = 0.5, io_rate_hz = 10.0, max_backoff_s = 10.0;
 };
 LinkParams read_link_params(ros::NodeHandle& pnh, int default_baud, const std::string& default_format);
+
+// A bridge's config (fatek::BridgeConfig, tri::BridgeConfig) from ~config, with the link
+// parameters.
+template <class Cfg>
+Cfg bridge_config(const LinkParams& lp, Cfg (*load)(const std::string&)) {
+  Cfg cfg = lp.config.empty() ? Cfg{} : load(lp.config);
+  cfg.tcp = lp.tcp;
+  cfg.serial = lp.serial;
+  cfg.timeout_s = lp.timeout_s;
+  cfg.retries = lp.retries;
+  cfg.io_rate_hz = lp.io_rate_hz;
+  cfg.backoff_max_s = lp.max_backoff_s;
+  return cfg;
+}
 
 // ~set_run_mode (std_srvs/SetBool: RUN true, STOP false, through set_run) and ~recover
 // (std_srvs/Trigger: drop the link and reconnect now). link must outlive the servers.

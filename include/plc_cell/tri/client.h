@@ -49,6 +49,7 @@ class Client {
   ClientOptions opt_;
   uint64_t requests_ = 0;
   uint64_t last_latency_us_ = 0;
+  uint64_t retries_used_ = 0;
   bool stale_ = false;  // the last transaction failed: input may hold a late answer
 };
 
