@@ -219,7 +219,7 @@ TEST(TriBridge, PollsTheCellInTheFramesPlanned) {
   Collector c;
   Bridge b(link_to(server->port(), yaml("signals: {x3: X3, y1: Y1, m7: M7, m8: M8}\n"
                                         "groups:\n  - {name: g, rate: 100, points: "
-                                        "[\"DM[1]:2\", A, \"ADC[1]:2\", \"EEPROM[1]:3\", TIMERPV[1]]}\n")),
+                                        "[\"DM[1]:2\", A, \"ADC[1]:2\", \"EEPROM[1]:3\", \"TIMERPV[1]\"]}\n")),
            c.sinks());
   // INPUT[1], OUTPUT[1] (the signals X3 and Y1 are in them) and RELAY[1] for M7 and M8.
   EXPECT_EQ(b.io_frames(), 3u);
@@ -255,14 +255,13 @@ TEST(TriBridge, PollsTheCellInTheFramesPlanned) {
 TEST(TriBridge, WritesForcingAndRunModeReachTheCell) {
   Plc plc;
   plc.load_program_text("ORG X0\nOUT Y0\nEND\n", "t.il");
+  ASSERT_TRUE(plc.set_mode(RunMode::Run));  // a TRi runs unless halted
   auto server = serve(plc, 0);
   Collector c;
   Bridge b(link_to(server->port(), yaml("signals: {lamp: Y5}\n")), c.sinks());
   b.start();
   ASSERT_TRUE(c.wait([&] { return !c.io.empty() && c.io.back().ok; }));
 
-  b.set_run(true);
-  EXPECT_EQ(plc.mode(), RunMode::Run);
   b.write(A("D99"), {4321});                 // DM[100]
   b.write(b.resolve("DM[101]"), {7});
   b.write(A("DR3762"), {123456});            // B
@@ -297,10 +296,14 @@ TEST(TriBridge, WritesForcingAndRunModeReachTheCell) {
   EXPECT_TRUE(b.release(&y5).empty());
   EXPECT_THROW(b.force(A("D0"), true), Error);
 
-  b.set_run(false);
+  b.set_run(false);  // C2: halted
   EXPECT_NE(plc.mode(), RunMode::Run);
   c.clear();
   ASSERT_TRUE(c.wait([&] { return !c.io.empty() && c.io.back().ok && !c.io.back().run; }));
+  b.set_run(true);  // C3: resumed
+  EXPECT_EQ(plc.mode(), RunMode::Run);
+  c.clear();
+  ASSERT_TRUE(c.wait([&] { return !c.io.empty() && c.io.back().ok && c.io.back().run; }));
   EXPECT_EQ(b.status().errors, 0u) << b.status().last_error;
   b.stop();
 }
