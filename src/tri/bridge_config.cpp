@@ -15,8 +15,9 @@ void check_link_settings(const BridgeConfig& cfg) {
   if (!(cfg.io_rate_hz > 0 && cfg.io_rate_hz <= 100)) throw Error("I/O rate must be in (0, 100] Hz");
   if (!(cfg.backoff_min_s > 0 && cfg.backoff_min_s <= cfg.backoff_max_s))
     throw Error("back-off must be 0 < min <= max");
-  if (cfg.inputs % 16 || cfg.inputs > 256 || cfg.outputs % 16 || cfg.outputs > 256)
-    throw Error("io inputs and outputs must be multiples of 16 up to 256");
+  if (cfg.inputs % 16 || cfg.inputs < 16 || cfg.inputs > 256 || cfg.outputs % 16 || cfg.outputs < 16 ||
+      cfg.outputs > 256)
+    throw Error("io inputs and outputs must be multiples of 16 from 16 to 256");
 }
 
 BridgeConfig parse_bridge_config(const YAML::Node& root, const std::string& file) {
@@ -34,7 +35,7 @@ BridgeConfig parse_bridge_config(const YAML::Node& root, const std::string& file
     r.only(io, prefix + "io", {"inputs", "outputs"});
     for (const char* k : {"inputs", "outputs"}) {
       if (!io[k]) continue;
-      const uint32_t n = uint32_t(r.integer(io[k], prefix + "io." + k, 0, 256));
+      const uint32_t n = uint32_t(r.integer(io[k], prefix + "io." + k, 16, 256));
       if (n % 16) r.fail(io[k], prefix + "io." + k, "a multiple of 16 (the TRi reads them 16 a frame)");
       (std::string(k) == "inputs" ? cfg.inputs : cfg.outputs) = n;
     }

@@ -118,6 +118,7 @@ TEST(TriPoints, ConfigSchema) {
   EXPECT_THROW(yaml("signals: {s: M600}\n"), SourceError);  // relays end at M511
   EXPECT_THROW(yaml("groups: [{name: g, points: [\"R0\"]}]\n"), SourceError);
   EXPECT_THROW(yaml("io: {inputs: 10}\n"), SourceError);
+  EXPECT_THROW(yaml("io: {outputs: 0}\n"), SourceError);
   EXPECT_THROW(yaml("polls: []\n"), SourceError);
 }
 

@@ -23,7 +23,7 @@ struct BridgeConfig {
   int retries = 1;     // after a timeout or a garbled answer
   double io_rate_hz = 10;
   double backoff_min_s = 0.1, backoff_max_s = 10.0;
-  uint32_t inputs = 16, outputs = 16;  // points of ~io polled (multiples of 16, up to 256): the FMD1616's 16 and 16
+  uint32_t inputs = 16, outputs = 16;  // points of ~io polled (multiples of 16, 16 to 256): the FMD1616's 16 and 16
   std::vector<std::pair<std::string, Address>> signals;  // polled with the I/O image
   std::vector<RegisterGroup> groups;                      // each at its own rate
 };
