@@ -21,6 +21,13 @@ int hex2(std::string_view s) {
   return a < 0 || b < 0 ? -1 : a * 16 + b;
 }
 
+void report(const Decoder::Sink& sink, Decoder::Event::Kind kind, Fault fault = Fault::Garbage) {
+  Decoder::Event ev;
+  ev.kind = kind;
+  ev.fault = fault;
+  sink(ev);
+}
+
 }  // namespace
 
 const char* fault_name(Fault f) {
@@ -110,18 +117,13 @@ void Decoder::feed(const uint8_t* data, size_t n, const Sink& sink) {
     if (line_.empty()) {
       if (c == kEnq) {
         garbage_ = false;
-        Event ev;
-        ev.kind = Event::Enquiry;
-        sink(ev);
+        report(sink, Event::Enquiry);
         continue;
       }
       if (uint8_t(c) < 0x20 || uint8_t(c) >= 0x7F) {
         if (c != '\n' && !garbage_) {
           garbage_ = true;
-          Event ev;
-          ev.kind = Event::Error;
-          ev.fault = Fault::Garbage;
-          sink(ev);
+          report(sink, Event::Error, Fault::Garbage);
         }
         continue;
       }
@@ -130,10 +132,7 @@ void Decoder::feed(const uint8_t* data, size_t n, const Sink& sink) {
     if (line_.size() >= kMaxFrame) {
       line_.clear();
       skipping_ = true;
-      Event ev;
-      ev.kind = Event::Error;
-      ev.fault = Fault::TooLong;
-      sink(ev);
+      report(sink, Event::Error, Fault::TooLong);
       continue;
     }
     line_ += c;

@@ -31,6 +31,21 @@ TcpListenerOptions listener_options(const std::string& host, int port, const Ser
   return l;
 }
 
+std::string id_text(int id) {
+  char s[8];
+  std::snprintf(s, sizeof s, "%02X", unsigned(id & 0xFF));
+  return s;
+}
+
+ServerStatus slave_status(const Slave& slave, std::mutex& mu, const std::string& last_error) {
+  ServerStatus s;
+  s.requests = slave.requests();
+  s.rejected = slave.rejected();
+  std::lock_guard<std::mutex> lk(mu);
+  s.last_error = last_error;
+  return s;
+}
+
 // Writes all of buf to a serial line within timeout_ms.
 bool send_all(int fd, const std::string& buf, int timeout_ms) {
   size_t done = 0;
@@ -64,20 +79,14 @@ void TcpServer::start() { listener_.start(); }
 void TcpServer::stop() { listener_.stop(); }
 
 std::string TcpServer::describe() const {
-  char id[8];
-  std::snprintf(id, sizeof id, "%02X", unsigned(slave_.id()));
   return "TRi TCP " + listener_.options().host + ":" + std::to_string(port() ? port() : listener_.options().port) +
-         " ID " + id;
+         " ID " + id_text(slave_.id());
 }
 
 ServerStatus TcpServer::status() const {
-  ServerStatus s;
+  ServerStatus s = slave_status(slave_, err_mu_, last_error_);
   s.running = listener_.running();
-  s.requests = slave_.requests();
-  s.rejected = slave_.rejected();
   s.connections = connections_;
-  std::lock_guard<std::mutex> lk(err_mu_);
-  s.last_error = last_error_;
   return s;
 }
 
@@ -142,19 +151,13 @@ void SerialServer::stop() {
 }
 
 std::string SerialServer::describe() const {
-  char id[8];
-  std::snprintf(id, sizeof id, "%02X", unsigned(slave_.id()));
-  return "TRi serial " + line_.settings().to_string() + " ID " + id;
+  return "TRi serial " + line_.settings().to_string() + " ID " + id_text(slave_.id());
 }
 
 ServerStatus SerialServer::status() const {
-  ServerStatus s;
+  ServerStatus s = slave_status(slave_, err_mu_, last_error_);
   s.running = running_;
-  s.requests = slave_.requests();
-  s.rejected = slave_.rejected();
   s.link_up = link_up_;
-  std::lock_guard<std::mutex> lk(err_mu_);
-  s.last_error = last_error_;
   return s;
 }
 

@@ -140,3 +140,27 @@ TEST(TriServerKind, DefaultsAndServers) {
   EXPECT_EQ(servers[1]->describe(), "TRi serial /dev/null-tri:38400:8N1 ID 0A");  // the TRi's default line
   EXPECT_THROW(merge_server_settings({k}, cfg, {{"tri", "id", {"256"}, "--tri-id"}}), std::exception);
 }
+
+TEST(TriServerKind, CellYaml) {
+  const ServerKind k = server_kind();
+  const CellConfig cfg = parse_cell_config(
+      "cell: {program: p.il}\nservers:\n  tri: {tcp: '127.0.0.1:0', id: 4, wildcard_fcs: 0, writable: [D0-D9]}\n",
+      "cell.yaml", {"servers"});
+  auto settings = merge_server_settings({k}, cfg);
+  Plc plc;
+  auto servers = k.make(plc, settings.at("tri"));
+  ASSERT_EQ(servers.size(), 1u);
+  auto* tcp = dynamic_cast<TcpServer*>(servers[0].get());
+  ASSERT_NE(tcp, nullptr);
+  tcp->start();
+  const int fd = connect_local(tcp->port());
+  EXPECT_EQ(talk(fd, "@04RVD000100*\r"), mp(4, "FE"));  // the wildcard refused
+  EXPECT_EQ(talk(fd, mp(4, "WVD000B0001")), mp(4, "ER04"));  // DM[11] = D10: not writable
+  EXPECT_EQ(talk(fd, mp(4, "WVD000A0001")), mp(4, "WVD"));
+  ::close(fd);
+  tcp->stop();
+  // An unknown key is refused with the list of known ones.
+  const CellConfig bad = parse_cell_config("cell: {program: p.il}\nservers:\n  tri: {port: 9080}\n", "cell.yaml",
+                                           {"servers"});
+  EXPECT_THROW(merge_server_settings({k}, bad), std::exception);
+}

@@ -2,6 +2,7 @@
 // behind each command (docs/tri.md, "Memory map").
 #include <gtest/gtest.h>
 
+#include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/tri/fcs.h"
 #include "plc_cell/tri/memory_map.h"
@@ -284,4 +285,25 @@ TEST(TriMemoryMap, TheDocumentedTable) {
   EXPECT_LT(kIntegersR + 52, 3840u);
   EXPECT_LE(kTimerSvR + kTimers, kCounterSvR);
   EXPECT_LE(kCounterSvR + kCounters, kIntegersR);
+}
+
+// What survives STOP -> RUN is the cell's plc.retentive: with the FBs default, DM[], A-Z,
+// the SVs and the EEPROM stay (the TRi with FRAM and DIPSW1 on); relays and outputs go.
+TEST_F(TriSlave, VolatileFollowsTheRetentiveRanges) {
+  EXPECT_EQ(p2p("WVD00010007"), "WVD*");
+  EXPECT_EQ(p2p("WVIZ00000009"), "WVI*");
+  EXPECT_EQ(p2p("Wm000100"), "Wm*");
+  EXPECT_EQ(p2p("WXI0001010005"), "WXI*");
+  EXPECT_EQ(p2p("WR0001"), "WR*");
+  EXPECT_EQ(p2p("WO0001"), "WO*");
+  plc.locked([](ScanEngine&, Memory& m) {
+    m.clear_non_retentive(CellConfig::default_retentive());
+    return 0;
+  });
+  EXPECT_EQ(p2p("RVD0001"), "RVD0007*");
+  EXPECT_EQ(p2p("RVIZ"), "RVI00000009*");
+  EXPECT_EQ(p2p("Rm00"), "Rm0100*");
+  EXPECT_EQ(p2p("RXI000101"), "RXI0005*");
+  EXPECT_EQ(p2p("RR00"), "RR00*");
+  EXPECT_EQ(p2p("RO00"), "RO00*");
 }
