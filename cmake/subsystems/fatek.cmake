@@ -3,7 +3,6 @@ add_library(plc_cell_fatek STATIC
   src/fatek/frame.cpp
   src/fatek/protocol.cpp
   src/fatek/slave.cpp
-  src/fatek/serial_port.cpp
   src/fatek/server.cpp
   src/fatek/server_kind.cpp
   src/fatek/client.cpp
@@ -36,7 +35,7 @@ endif()
 
 # ---- fatek_bridge: a real FATEK PLC on ROS ----------------------------------------
 add_executable(fatek_bridge src/ros/fatek_bridge_main.cpp src/ros/fatek_bridge.cpp src/ros/fatek_bridge_services.cpp
-  src/ros/memory_services.cpp)
+  src/ros/memory_services.cpp src/ros/bridge_topics.cpp)
 target_include_directories(fatek_bridge PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(fatek_bridge plc_cell_fatek ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES})
 add_dependencies(fatek_bridge ${PROJECT_NAME}_generate_messages_cpp)

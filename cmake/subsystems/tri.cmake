@@ -6,7 +6,14 @@ add_library(plc_cell_tri STATIC
   src/tri/memory_map.cpp
   src/tri/slave.cpp
   src/tri/server.cpp
-  src/tri/server_kind.cpp)
+  src/tri/server_kind.cpp
+  # ---- tri_bridge's bus side: the host-link master (docs/tri.md, "tri_bridge") ----
+  src/tri/client.cpp
+  src/tri/poll_plan.cpp
+  src/tri/bridge_config.cpp
+  src/tri/bridge.cpp
+  # ---- end of tri_bridge's bus side ----
+  )
 target_link_libraries(plc_cell_tri PUBLIC plc_cell_config)
 set_target_properties(plc_cell_tri PROPERTIES POSITION_INDEPENDENT_CODE ON)
 

@@ -7,10 +7,10 @@
 
 namespace plc_cell {
 
-RegisterSpan parse_register_span(const std::string& text) {
+RegisterSpan parse_register_span(const std::string& text, const AddressParser& parse) {
   RegisterSpan s;
   const auto colon = text.find(':');
-  s.start = parse_address(text.substr(0, colon));
+  s.start = parse ? parse(text.substr(0, colon)) : parse_address(text.substr(0, colon));
   if (colon != std::string::npos) {
     const std::string n = text.substr(colon + 1);
     char* end = nullptr;
@@ -23,7 +23,7 @@ RegisterSpan parse_register_span(const std::string& text) {
 }
 
 std::vector<RegisterGroup> parse_register_groups(const YAML::Node& seq, const std::string& key,
-                                                 const YamlReader& r) {
+                                                 const YamlReader& r, const AddressParser& parse) {
   if (!seq.IsSequence()) r.fail(seq, key, "expected a list of {name, rate, points}");
   std::vector<RegisterGroup> groups;
   std::set<std::string> seen;
@@ -43,7 +43,7 @@ std::vector<RegisterGroup> parse_register_groups(const YAML::Node& seq, const st
       const std::string pk = at + ".points[" + std::to_string(k) + "]";
       const std::string text = r.str(pts[k], pk);
       try {
-        grp.spans.push_back(parse_register_span(text));
+        grp.spans.push_back(parse_register_span(text, parse));
       } catch (const SourceError&) {
         throw;
       } catch (const Error& e) {

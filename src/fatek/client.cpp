@@ -1,117 +1,14 @@
 #include "plc_cell/fatek/client.h"
 
-#include <fcntl.h>
-#include <netdb.h>
-#include <netinet/in.h>
-#include <netinet/tcp.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
-#include <cstring>
-
-#include "plc_cell/fatek/serial_port.h"
-#include "plc_cell/io/serial_line.h"
+#include <cstdio>
 
 namespace plc_cell {
 namespace fatek {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-class FdTransport : public Transport {
- public:
-  void close() override {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = -1;
-  }
-  bool is_open() const override { return fd_ >= 0; }
-  void send(const std::string& b, int timeout_ms) override {
-    if (fd_ < 0) open();
-    if (!write_all(fd_, b.data(), b.size(), timeout_ms)) {
-      close();
-      throw ConnectionClosed(describe() + ": write failed");
-    }
-  }
-  size_t recv(char* buf, size_t n, int timeout_ms) override {
-    if (fd_ < 0) open();
-    // The fd is non-blocking: try first, wait only when nothing is there yet.
-    for (int pass = 0; pass < 2; ++pass) {
-      const ssize_t r = ::read(fd_, buf, n);
-      if (r > 0) return size_t(r);
-      // A socket reads 0 at EOF; a tty with VMIN=0 reads 0 when it has nothing yet.
-      const bool nothing = r == 0 ? !eof_on_zero_ : (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR);
-      if (!nothing) {
-        close();
-        throw ConnectionClosed(describe() + ": connection closed");
-      }
-      if (pass == 0 && !wait_readable(fd_, timeout_ms)) return 0;
-    }
-    return 0;
-  }
-
- protected:
-  int fd_ = -1;
-  bool eof_on_zero_ = true;
-};
-
-class TcpTransport : public FdTransport {
- public:
-  explicit TcpTransport(const std::string& hp) {
-    parse_host_port(hp, &host_, &port_);
-    if (host_.empty()) host_ = "127.0.0.1";
-  }
-  ~TcpTransport() override { close(); }
-  void open() override {
-    close();
-    addrinfo hints{}, *res = nullptr;
-    hints.ai_family = AF_INET;
-    hints.ai_socktype = SOCK_STREAM;
-    if (getaddrinfo(host_.c_str(), std::to_string(port_).c_str(), &hints, &res) != 0 || !res)
-      throw CommError(describe() + ": cannot resolve");
-    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    const int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);  // blocking connect, then non-blocking I/O
-    const int err = errno;
-    freeaddrinfo(res);
-    if (rc != 0) {
-      ::close(fd);
-      throw CommError(describe() + ": cannot connect: " + std::strerror(err));
-    }
-    int one = 1;
-    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
-    fd_ = fd;
-  }
-  std::string describe() const override { return "tcp " + host_ + ":" + std::to_string(port_); }
-
- private:
-  std::string host_;
-  int port_ = 500;
-};
-
-// The device is held by its path (io/serial_line.h): after a failed transaction the next
-// one opens it again, so an adapter unplugged and plugged back is found.
-class SerialTransport : public FdTransport {
- public:
-  explicit SerialTransport(SerialSettings s) : line_(std::move(s)) { eof_on_zero_ = false; }
-  ~SerialTransport() override { close(); }
-  void open() override {
-    close();
-    if (!line_.open()) throw CommError(line_.last_error());
-    fd_ = line_.fd();
-  }
-  void close() override {
-    fd_ = -1;
-    line_.close();
-  }
-  std::string describe() const override { return "serial " + line_.settings().to_string(); }
-
- private:
-  SerialLine line_;
-};
 
 std::string cmd_hex(Cmd c) {
   char b[4];
@@ -120,13 +17,6 @@ std::string cmd_hex(Cmd c) {
 }
 
 }  // namespace
-
-std::unique_ptr<Transport> tcp_transport(const std::string& host_port) {
-  return std::make_unique<TcpTransport>(host_port);
-}
-std::unique_ptr<Transport> serial_transport(const SerialSettings& line) {
-  return std::make_unique<SerialTransport>(line);
-}
 
 uint32_t max_block(const Address& start) {
   if (start.width == Width::Bit) return kMaxDiscretes;
@@ -137,15 +27,8 @@ Client::Client(std::unique_ptr<Transport> t, ClientOptions opt) : t_(std::move(t
 
 Response Client::once(const Request& req, const std::string& bytes) {
   // Drop anything stale (a late answer to a timed-out request) before asking again.
+  drop_late_answer(*t_, &stale_);
   char buf[512];
-  try {
-    if (stale_ && t_->is_open())
-      while (t_->recv(buf, sizeof buf, 0) > 0) {
-      }
-  } catch (const CommError&) {
-    // The peer closed an idle connection: send() below reconnects.
-  }
-  stale_ = false;
   dec_.reset();
   const auto t0 = Clock::now();
   t_->send(bytes, opt_.timeout_ms);
@@ -175,32 +58,13 @@ Response Client::transact(Request req) {
       req.cmd != Cmd::WriteRegisters && req.cmd != Cmd::MixedWrite)
     throw Error("station 0 is broadcast: nobody answers command " + cmd_hex(req.cmd) + "; only writes can be broadcast");
   const std::string bytes = encode_request(req);
-  bool reconnected = false;
-  for (int attempt = 0;; ++attempt) {
-    const bool reused = t_->is_open();
-    try {
-      Response rsp = once(req, bytes);
-      if (rsp.error != ErrorCode::Ok)
-        throw PlcError(rsp.error, "PLC error " + std::string(1, char(rsp.error)) + " (" + error_text(rsp.error) +
-                                      ") to command " + cmd_hex(req.cmd));
-      return rsp;
-    } catch (const ConnectionClosed&) {
-      // A connection the peer had already closed (e.g. its idle time-out): the request never
-      // reached it, so one fresh connection does not count as a retry.
-      if (reused && !reconnected) {
-        reconnected = true;
-        --attempt;
-        continue;
-      }
-      stale_ = true;
-      if (attempt >= opt_.retries) throw;
-      ++retries_used_;
-    } catch (const CommError&) {
-      stale_ = true;  // a late answer may still arrive: drop it before the next request
-      if (attempt >= opt_.retries) throw;
-      ++retries_used_;
-    }
-  }
+  return with_retries(*t_, opt_.retries, &stale_, &retries_used_, [&] {
+    Response rsp = once(req, bytes);
+    if (rsp.error != ErrorCode::Ok)
+      throw PlcError(rsp.error, "PLC error " + std::string(1, char(rsp.error)) + " (" + error_text(rsp.error) +
+                                    ") to command " + cmd_hex(req.cmd));
+    return rsp;
+  });
 }
 
 static PlcStatus to_status(const Response& r) {

@@ -8,6 +8,7 @@
 #include <functional>
 #include <mutex>
 
+#include "../bridge_collector.h"
 #include "fatek_link.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/bridge.h"
@@ -19,41 +20,9 @@ using namespace plc_cell::fatek;
 namespace {
 
 // Everything the bridge reports, and bounded waits on it.
-class Collector {
+class Collector : public bridge_test::Collector {
  public:
-  Bridge::Sinks sinks() {
-    Bridge::Sinks s;
-    s.io = [this](const IoResult& r) { add([&] { io.push_back(r); }); };
-    s.group = [this](const GroupResult& r) { add([&] { groups.push_back(r); }); };
-    s.error = [this](const std::string& e) { add([&] { errors.push_back(e); }); };
-    return s;
-  }
-  // Until pred (called with the lock held) holds after a report, at most timeout_s.
-  bool wait(const std::function<bool()>& pred, int timeout_s = 10) {
-    std::unique_lock<std::mutex> lk(mu_);
-    return cv_.wait_for(lk, std::chrono::seconds(timeout_s), pred);
-  }
-  // Reports from now on only.
-  void clear() {
-    std::lock_guard<std::mutex> lk(mu_);
-    io.clear();
-    groups.clear();
-    errors.clear();
-  }
-  std::vector<IoResult> io;
-  std::vector<GroupResult> groups;
-  std::vector<std::string> errors;
-
- private:
-  void add(const std::function<void()>& f) {
-    {
-      std::lock_guard<std::mutex> lk(mu_);
-      f();
-    }
-    cv_.notify_all();
-  }
-  std::mutex mu_;
-  std::condition_variable cv_;
+  Bridge::Sinks sinks() { return bridge_test::Collector::sinks<Bridge::Sinks>(); }
 };
 
 std::unique_ptr<TcpServer> serve(Plc& plc, int port) {
@@ -66,15 +35,7 @@ std::unique_ptr<TcpServer> serve(Plc& plc, int port) {
 
 BridgeConfig yaml(const std::string& text) { return parse_bridge_config(YAML::Load(text), "bridge.yaml"); }
 
-BridgeConfig link_to(int port, BridgeConfig cfg) {
-  cfg.tcp = "127.0.0.1:" + std::to_string(port);
-  cfg.timeout_s = 1.0;
-  cfg.retries = 0;
-  cfg.io_rate_hz = 100;
-  cfg.backoff_min_s = 0.01;
-  cfg.backoff_max_s = 0.05;
-  return cfg;
-}
+BridgeConfig link_to(int port, BridgeConfig cfg) { return bridge_test::loopback_link(port, std::move(cfg)); }
 
 // The error loading text from a file, or "no error".
 std::string config_error(const fatek_test::TempDir& dir, const std::string& text, std::string* path) {

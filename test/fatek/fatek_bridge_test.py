@@ -2,20 +2,18 @@
 """rostest: fatek_bridge publishes what the soft PLC holds, and its services change it."""
 import os
 import sys
-import time
 import unittest
 
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from std_msgs.msg import Bool
-from std_srvs.srv import SetBool, Trigger
 
 from plc_cell.msg import IoState, RegisterBlock, Signal
-from plc_cell.srv import ForceDiscrete, ReadMemory, ReleaseDiscrete, WriteMemory
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from latest_message import Latest  # noqa: E402
+from bridge_services import connect_services, write_ok  # noqa: E402
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reliability"))
 from bridge_faults import misbehaving_device_keeps_reporting  # noqa: E402
 
@@ -29,27 +27,14 @@ class FatekBridgeTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("fatek_bridge_test", anonymous=True)
-        for s in ["write", "set_run_mode", "recover", "read", "force", "release"]:
-            rospy.wait_for_service(NS + s, timeout=30)
-        cls.write = rospy.ServiceProxy(NS + "write", WriteMemory)
-        cls.set_run = rospy.ServiceProxy(NS + "set_run_mode", SetBool)
-        cls.recover = rospy.ServiceProxy(NS + "recover", Trigger)
-        cls.read = rospy.ServiceProxy(NS + "read", ReadMemory)
-        cls.force = rospy.ServiceProxy(NS + "force", ForceDiscrete)
-        cls.release = rospy.ServiceProxy(NS + "release", ReleaseDiscrete)
+        connect_services(cls, NS)
         cls.io = Latest(NS + "io", IoState, timeout=TIMEOUT)
         cls.regs = Latest(NS + "registers/regs", RegisterBlock, timeout=TIMEOUT)
         cls.motor = Latest(NS + "signals/motor", Bool, timeout=TIMEOUT)
         cls.diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
 
     def write_ok(self, address, values):
-        # The bridge may still be connecting: retry until the write goes through.
-        deadline = time.monotonic() + TIMEOUT
-        while True:
-            r = self.write(address, values)
-            if r.success or time.monotonic() > deadline:
-                return r
-            self.io.wait_for(lambda m: True, timeout=1.0)
+        return write_ok(self.write, self.io, address, values, TIMEOUT)
 
     def test_1_registers_follow_the_plc(self):
         m = self.regs.wait_for(lambda m: len(m.values) == 5)

@@ -53,6 +53,16 @@ def test_fatek_bridge_default_is_the_local_soft_plc():
     assert "/fatek_bridge/tcp" not in serial.params
 
 
+def test_tri_bridge_default_is_the_local_soft_plc():
+    cfg = load("tri_bridge.launch")
+    assert cfg.params["/tri_bridge/tcp"].value == "127.0.0.1:9080"
+    assert "/tri_bridge/port" not in cfg.params
+    assert cfg.params["/tri_bridge/baud"].value == 38400
+    serial = load("tri_bridge.launch", "port:=/dev/ttyUSB0")
+    assert serial.params["/tri_bridge/port"].value == "/dev/ttyUSB0"
+    assert "/tri_bridge/tcp" not in serial.params
+
+
 def test_cell_sim_keeps_the_cells_scan_period():
     cfg = load("cell_sim.launch", "cell:=%s/examples/oven/oven.yaml" % ROOT)
     assert "/plc_node/scan_period" not in cfg.params, "the launch file overrides oven.yaml's 0.01 s"

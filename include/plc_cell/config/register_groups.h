@@ -3,6 +3,7 @@
 // (plc_cell/RegisterBlock) by plc_node and fatek_bridge: one YAML form and one topic
 // whether the cell is simulated or real (docs/plc-node.md "Register groups").
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,8 +19,12 @@ struct RegisterSpan {
   uint32_t count = 1;
 };
 
+// How a front end names an element: parse_address unless told (tri_bridge also takes the
+// TRi's names, DM[100]). Throws Error.
+using AddressParser = std::function<Address(const std::string&)>;
+
 // "R100", "R100:10" (ten elements from R100), "DR0:4", "X0:16". Throws Error.
-RegisterSpan parse_register_span(const std::string& text);
+RegisterSpan parse_register_span(const std::string& text, const AddressParser& parse = nullptr);
 
 struct RegisterGroup {
   std::string name;   // the topic's last part: letters, digits, _
@@ -30,6 +35,6 @@ struct RegisterGroup {
 
 // A sequence of {name, rate, points}; throws SourceError naming file:line and the key.
 std::vector<RegisterGroup> parse_register_groups(const YAML::Node& seq, const std::string& key,
-                                                 const YamlReader& r);
+                                                 const YamlReader& r, const AddressParser& parse = nullptr);
 
 }  // namespace plc_cell

@@ -1,52 +1,30 @@
 #pragma once
-// The FATEK bridge's bus side (no ROS): one thread owns the link to one PLC station. It
-// polls the I/O image (with the named signals) and each register group at its rate, in
-// the coalesced frames of poll_plan.h, reconnects with back-off (io/backoff.h), and runs
-// the front end's reads, writes and forcing between two polls: a FATEK line is
+// The FATEK bridge's bus side (no ROS): one thread owns the link to one PLC station
+// (io/polled_link.h). It polls the I/O image (with the named signals) and each register
+// group at its rate, in the coalesced frames of poll_plan.h, reconnects with back-off, and
+// runs the front end's reads, writes and forcing between two polls: a FATEK line is
 // half-duplex, so there is one transaction at a time.
-#include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/fatek/bridge_config.h"
 #include "plc_cell/fatek/client.h"
 #include "plc_cell/fatek/poll_plan.h"
+#include "plc_cell/io/polled_link.h"
 
 namespace plc_cell {
 namespace fatek {
 
-struct LinkStatus {
-  bool connected = false;
-  std::string last_error;  // "" until something fails, and after recover()
-  uint64_t errors = 0, polls = 0, reconnects = 0;
-  double latency_last_ms = 0, latency_max_ms = 0;  // of an I/O poll (status + image)
-};
+using plc_cell::LinkStatus;
 
-// One poll of the I/O image: the RUN bit (cmd 40), X0..X255, Y0..Y255 and each signal.
-struct IoResult {
-  bool ok = false;
-  std::string error;
-  bool run = false;
-  std::vector<bool> x, y;    // 256 each
-  std::vector<bool> signals;  // per BridgeConfig::signals
-};
+using plc_cell::GroupResult;
+using plc_cell::IoResult;  // run: the RUN bit (cmd 40)
 
-// One poll of one register group: every element of its spans, in their order.
-struct GroupResult {
-  size_t group = 0;
-  bool ok = false;
-  std::string error;
-  std::vector<uint32_t> values;
-};
-
-class Bridge {
+class Bridge : public PolledLink {
  public:
   // Called on the bridge's thread; any may be empty.
   struct Sinks {
@@ -58,14 +36,8 @@ class Bridge {
   Bridge(BridgeConfig cfg, Sinks sinks);
   ~Bridge();
 
-  void start();
-  void stop();
-  // Drops the link and reconnects now, back-off reset.
-  void recover();
-  LinkStatus status() const;
+  // start(), stop(), recover(), status(), describe(): PolledLink's.
   const BridgeConfig& config() const { return cfg_; }
-  // "TCP 127.0.0.1:500 station 1"
-  const std::string& describe() const { return link_name_; }
   // Frames of one I/O poll (the status frame included).
   size_t io_frames() const { return io_plan_.requests.size() + 1; }
 
@@ -83,40 +55,21 @@ class Bridge {
   void set_run(bool run);  // 41
 
  private:
-  using Clock = std::chrono::steady_clock;
-  struct Group {
-    std::vector<PollItem> items;
-    PollPlan plan;
-    Clock::duration period;
-    Clock::time_point due;
-  };
-  void run();
-  bool connect_locked();
+  Transport& transport() override { return client_->transport(); }
+  void confirm() override { client_->loopback("PLC"); }
   bool poll_io();
   bool poll_group(size_t g);
-  void fail(const std::string& what);
-  void drop_link();
-  template <typename F>
-  auto transaction(F&& f) -> decltype(f());
-  template <typename F>
-  bool polled(std::string* error, F&& body);
 
   BridgeConfig cfg_;
   Sinks sinks_;
   std::unique_ptr<Client> client_;
-  std::string link_name_;
   std::vector<PollItem> io_items_;
   PollPlan io_plan_;
-  Clock::duration io_period_;
-  Clock::time_point io_due_;
+  struct Group {
+    std::vector<PollItem> items;
+    PollPlan plan;
+  };
   std::vector<Group> groups_;
-
-  std::mutex link_mu_;  // one transaction at a time on the half-duplex link
-  mutable std::mutex state_mu_;
-  std::condition_variable cv_;
-  bool stopping_ = false, recover_ = false;
-  LinkStatus status_;
-  std::thread thread_;
 };
 
 }  // namespace fatek

@@ -9,40 +9,24 @@
 #include "plc_cell/core/error.h"
 #include "plc_cell/fatek/protocol.h"
 #include "plc_cell/io/serial_settings.h"
+#include "plc_cell/io/transport.h"
 
 namespace plc_cell {
 namespace fatek {
 
-// No (valid) answer: timeout, lost connection, garbled response.
-class CommError : public Error {
- public:
-  using Error::Error;
-};
-// The peer closed the connection (or the line went away).
-class ConnectionClosed : public CommError {
- public:
-  using CommError::CommError;
-};
+// The link (io/transport.h): the errors of a dead or silent link and the byte streams.
+using plc_cell::CommError;
+using plc_cell::ConnectionClosed;
+using plc_cell::serial_transport;
+using plc_cell::tcp_transport;  // "HOST:PORT"; a FATEK PLC listens on 500
+using plc_cell::Transport;
+
 // The PLC answered with an error code.
 class PlcError : public Error {
  public:
   PlcError(ErrorCode c, const std::string& what) : Error(what), code(c) {}
   ErrorCode code;
 };
-
-// A byte stream to the PLC. recv returns 0 on timeout; both throw CommError on a dead link.
-class Transport {
- public:
-  virtual ~Transport() = default;
-  virtual void open() = 0;
-  virtual void close() = 0;
-  virtual bool is_open() const = 0;
-  virtual void send(const std::string& bytes, int timeout_ms) = 0;
-  virtual size_t recv(char* buf, size_t n, int timeout_ms) = 0;
-  virtual std::string describe() const = 0;
-};
-std::unique_ptr<Transport> tcp_transport(const std::string& host_port);  // "HOST:PORT", default port 500
-std::unique_ptr<Transport> serial_transport(const SerialSettings& line);
 
 struct ClientOptions {
   int station = 1;      // 0 = broadcast: writes only, no answer awaited

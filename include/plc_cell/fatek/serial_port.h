@@ -1,17 +1,13 @@
 #pragma once
-// Small fd helpers with timeouts for the FATEK lines (serial or TCP). The serial device
-// itself is opened by io/serial_line.h.
-#include <cstddef>
-#include <cstdint>
-#include <string>
+// Small fd helpers with timeouts for the FATEK lines (serial or TCP): the io layer's
+// (io/transport.h). The serial device itself is opened by io/serial_line.h.
+#include "plc_cell/io/transport.h"
 
 namespace plc_cell {
 namespace fatek {
 
-// Writes all of buf, waiting at most timeout_ms overall. Returns false on error or timeout.
-bool write_all(int fd, const char* buf, size_t n, int timeout_ms);
-// Waits up to timeout_ms for fd to become readable (true) or for wake_fd (-1: none).
-bool wait_readable(int fd, int timeout_ms);
+using plc_cell::wait_readable;
+using plc_cell::write_all;
 
 }  // namespace fatek
 }  // namespace plc_cell

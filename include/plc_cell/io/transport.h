@@ -1,0 +1,83 @@
+#pragma once
+// The byte streams a protocol master talks over (the FATEK and TRi masters, the CLINK
+// ports): TCP or a serial line held by its path (io/serial_line.h), with timeouts, and the
+// errors a dead or silent link raises. Written once, whatever the protocol on top.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/io/serial_settings.h"
+
+namespace plc_cell {
+
+// No (valid) answer: timeout, lost connection, garbled response.
+class CommError : public Error {
+ public:
+  using Error::Error;
+};
+// The peer closed the connection (or the line went away).
+class ConnectionClosed : public CommError {
+ public:
+  using CommError::CommError;
+};
+
+// A byte stream to a device. recv returns 0 on timeout; both throw CommError on a dead link.
+class Transport {
+ public:
+  virtual ~Transport() = default;
+  virtual void open() = 0;
+  virtual void close() = 0;
+  virtual bool is_open() const = 0;
+  virtual void send(const std::string& bytes, int timeout_ms) = 0;
+  virtual size_t recv(char* buf, size_t n, int timeout_ms) = 0;
+  virtual std::string describe() const = 0;
+};
+// "HOST:PORT" (HOST may be empty for 127.0.0.1).
+std::unique_ptr<Transport> tcp_transport(const std::string& host_port);
+// The device is reopened by the next transaction after a failure (an adapter unplugged
+// and plugged back is found).
+std::unique_ptr<Transport> serial_transport(const SerialSettings& line);
+
+// One request of a master, retried: attempt() sends it and waits for its answer. After a
+// CommError (a timeout, a garbled answer) it is tried up to `retries` more times; a
+// connection that was open but turns out closed by the peer (its idle time-out) is opened
+// again once without counting, since the request never reached it. *stale is set after a
+// failure (a late answer may still come: the next attempt drops it first); every retry
+// counts in *retries_used.
+template <class F>
+auto with_retries(Transport& t, int retries, bool* stale, uint64_t* retries_used, F&& attempt) -> decltype(attempt()) {
+  bool reconnected = false;
+  for (int n = 0;; ++n) {
+    const bool reused = t.is_open();
+    try {
+      return attempt();
+    } catch (const ConnectionClosed&) {
+      if (reused && !reconnected) {
+        reconnected = true;
+        --n;
+        continue;
+      }
+      *stale = true;
+      if (n >= retries) throw;
+      ++*retries_used;
+    } catch (const CommError&) {
+      *stale = true;
+      if (n >= retries) throw;
+      ++*retries_used;
+    }
+  }
+}
+
+// Before a request after a failed one (*stale): drops what is waiting on the link (a late
+// answer to a request that timed out); a peer that closed meanwhile is left to send(),
+// which reconnects. Clears *stale.
+void drop_late_answer(Transport& t, bool* stale);
+
+// Writes all of buf, waiting at most timeout_ms overall. Returns false on error or timeout.
+bool write_all(int fd, const char* buf, size_t n, int timeout_ms);
+// Waits up to timeout_ms for fd to become readable.
+bool wait_readable(int fd, int timeout_ms);
+
+}  // namespace plc_cell
