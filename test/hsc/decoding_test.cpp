@@ -172,6 +172,8 @@ TEST(TriDecodingCounters, JiggleOnScheduledEdges) {
       {"enhanced", 2, {5 * kMs}},                   // the jiggle is locked out
       {"simple", 4, {5 * kMs}},                     // passes PV, then counts each jiggle
       {"x1", 2, {5 * kMs, 7 * kMs, 9 * kMs}},       // back and forth: PV again on each jiggle
+      {"x2", 3, {3 * kMs, 6 * kMs, 8 * kMs}},       // both A edges: 2 after the cycle's A falling
+      {"x4", 5, {2 * kMs}},                         // every edge: 2 at the second, never back to 2
   };
   for (const Want& w : wants) {
     HscCell cell(std::string("counters:\n  hsc0: {mode: MD4, decoding: ") + w.decoding + "}\n", with_pv(2));
@@ -260,6 +262,29 @@ TEST(TriDecodingCounters, SimpleCountsAPulseGeneratorOnAWithBOff) {
               kIdle);
   enh.run(100000, 1000);
   EXPECT_EQ(enh.with([](HscUnit& u) { return u.count(0); }), 0);
+}
+
+TEST(TriDecodingCounters, EnhancedFollowsThePhasesWhileMasked) {
+  // MASK (X2) stops the count, not the decoder: a pulse on A while masked leaves it
+  // knowing A changed last, so the next A rising edge is a jiggle (0); a clean cycle
+  // after it counts 1.
+  HscCell cell("counters:\n  hsc0: {mode: MD4, mask: true, decoding: enhanced}\n", kIdle);
+  cell.with([](HscUnit& u) {
+    u.schedule_edge(2, 1 * kMs, true);  // masked from 1 to 4 ms
+    u.schedule_edge(0, 2 * kMs, true);
+    u.schedule_edge(0, 3 * kMs, false);
+    u.schedule_edge(2, 4 * kMs, false);
+    u.schedule_edge(0, 5 * kMs, true);   // A rises with B OFF, as it did at 2 ms: no count
+    u.schedule_edge(1, 6 * kMs, true);   // then the encoder turns forward one cycle
+    u.schedule_edge(0, 7 * kMs, false);
+    u.schedule_edge(1, 8 * kMs, false);
+    u.schedule_edge(0, 9 * kMs, true);   // through "both OFF": +1
+    return 0;
+  });
+  cell.run(6000, 1000);
+  EXPECT_EQ(cell.with([](HscUnit& u) { return u.count(0); }), 0);
+  cell.run(5000, 1000);
+  EXPECT_EQ(cell.with([](HscUnit& u) { return u.count(0); }), 1);
 }
 
 // ---- on the counters: an analytic encoder, CV=PV at the exact ns --------------
