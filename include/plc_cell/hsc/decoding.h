@@ -25,7 +25,6 @@ const char* decoding_name(Decoding d);  // "" for Fatek
 // it cannot tell (RUN, or after a step that changed both phases).
 struct DecodeState {
   int8_t last = -1;
-  bool operator==(const DecodeState& o) const { return last == o.last; }
 };
 
 // CV change for before -> after under decoding d of a counter in mode m, and the
