@@ -3,6 +3,7 @@
 # creates the unit for every program (time-base interrupts need no configuration).
 plc_cell_layer(plc_cell_hsc LINKS plc_cell_config plc_cell_timeline SOURCES
   src/hsc/count_rule.cpp
+  src/hsc/decoding.cpp
   src/hsc/pulse_source.cpp
   src/hsc/hsc_config.cpp
   src/hsc/hsc_unit.cpp

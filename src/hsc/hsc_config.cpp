@@ -82,11 +82,26 @@ Mode parse_mode(const Parse& p, const YAML::Node& n, const std::string& key) {
   return static_cast<Mode>(s[0] - '0');
 }
 
+// The TRi decodings (docs/counters-and-interrupts.md "TRi encoder decoding") decode
+// a quadrature pair and fix the counts per cycle themselves: they go with MD4, the
+// A/B mode without a multiplier of its own.
+Decoding parse_decoding(const Parse& p, const YAML::Node& n, const std::string& key, Mode mode) {
+  const std::string s = p.str(n, key);
+  Decoding d;
+  if (!decoding_from_name(s, &d)) p.fail(n, key, "'" + s + "': expected simple, enhanced, x1, x2 or x4");
+  if (!is_ab(mode))
+    p.fail(n, key, "decoding is for an A/B counter (mode: MD4); MD" + std::to_string(int(mode)) +
+                       " counts " + (mode <= Mode::UDx2 ? "U/D" : "P/R") + " pulses");
+  if (mode != Mode::AB)
+    p.fail(n, key, "MD" + std::to_string(int(mode)) + " has its own multiplier; use mode: MD4 with decoding: " + s);
+  return d;
+}
+
 void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
   const std::string key = "counters.hsc" + std::to_string(n);
   const std::string who = "HSC" + std::to_string(n);
   const bool hard = n < 4;
-  p.only(c, key, {"type", "mode", "a", "b", "mask", "clear", "invert", "name"});
+  p.only(c, key, {"type", "mode", "a", "b", "mask", "clear", "invert", "name", "decoding"});
   d.line = Parse::line(c);
   d.name = c["name"] ? p.topic_name(c["name"], key + ".name", "counter") : "hsc" + std::to_string(n);
   if (c["type"]) {
@@ -95,7 +110,7 @@ void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
       if (!hard) p.fail(c["type"], key + ".type", "only HSC0-HSC3 can be high-speed timers (HST0-HST3)");
       d.used = d.timer = true;
       if (!c["name"]) d.name = "hst" + std::to_string(n);
-      for (const char* k : {"mode", "a", "b", "mask", "clear", "invert"})
+      for (const char* k : {"mode", "a", "b", "mask", "clear", "invert", "decoding"})
         if (c[k]) p.fail(c[k], key + "." + k, "a high-speed timer takes no further items");
       return;
     }
@@ -106,6 +121,7 @@ void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
   d.mode = parse_mode(p, c["mode"], key + ".mode");
   if (!hard && d.mode != Mode::UD && d.mode != Mode::PR && d.mode != Mode::AB)
     p.fail(c["mode"], key + ".mode", "software counters (HSC4-HSC7) count in MD0, MD2 or MD4 only");
+  if (c["decoding"]) d.decoding = parse_decoding(p, c["decoding"], key + ".decoding", d.mode);
   const char* a_name = is_ab(d.mode) ? "A" : (d.mode <= Mode::UDx2 ? "U" : "P");
   const char* b_name = is_ab(d.mode) ? "B" : (d.mode <= Mode::UDx2 ? "D" : "R");
 

@@ -163,12 +163,37 @@ Pins HscUnit::pins_at(const Counter& c, int64_t q) const {
   return p;
 }
 
-void HscUnit::weights(const Counter& c, std::array<int, 4>* seq) const {
+// Only the enhanced decoder has a memory; it can lock out the first boundary alone
+// (the source starts inside "both OFF", entered through the phase it now leaves by),
+// so its weights are taken over two periods. Every other rule repeats from the first.
+void HscUnit::weights(const Counter& c, std::array<int, 4>* first, std::array<int, 4>* seq) const {
   const int dir = c.src->direction();
-  for (int i = 1; i <= 4; ++i) {
+  const int span = c.def.decoding == Decoding::Enhanced ? 8 : 4;
+  DecodeState s = c.dec;
+  for (int i = 1; i <= span; ++i) {
     const int64_t from = c.q + (i - 1) * dir, to = c.q + i * dir;
-    (*seq)[i - 1] = count_delta(c.def.mode, pins_at(c, from), pins_at(c, to));
+    (i <= 4 ? (*first)[i - 1] : (*seq)[i - 5]) =
+        decode_delta(c.def.mode, c.def.decoding, &s, pins_at(c, from), pins_at(c, to));
   }
+  if (span == 4) *seq = *first;
+}
+
+// The enhanced decoder's memory is the phase that changed last: after the first
+// four boundaries it repeats every four, so k boundaries cost at most eight steps.
+DecodeState HscUnit::decoder_after(const Counter& c, int64_t k) const {
+  DecodeState s = c.dec;
+  if (c.def.decoding != Decoding::Enhanced || k <= 0) return s;
+  const int dir = c.src->direction();
+  const int64_t steps = k <= 8 ? k : 4 + (k - 4) % 4;
+  for (int64_t i = 1; i <= steps; ++i)
+    decode_delta(c.def.mode, c.def.decoding, &s, pins_at(c, c.q + (i - 1) * dir), pins_at(c, c.q + i * dir));
+  return s;
+}
+
+// The decoder sees every change of its inputs, counting or not (MASK and CLEAR stop
+// the count, not the decoder).
+int HscUnit::delta(Counter& c, Pins before, Pins after) {
+  return decode_delta(c.def.mode, c.def.decoding, &c.dec, before, after);
 }
 
 uint32_t HscUnit::get_cv(const Counter& c) const {
@@ -216,7 +241,8 @@ void HscUnit::take_quarter(Counter& c) {
 void HscUnit::resync(Counter& c) {
   const int64_t q = c.src->quarter(now());
   const Pins now = pins_at(c, q);
-  if (counting(c) && !blocked(c)) add_count(c, count_delta(c.def.mode, c.last, now), true);
+  const int d = delta(c, c.last, now);
+  if (counting(c) && !blocked(c)) add_count(c, d, true);
   c.q = q;
   c.last = now;
   c.epoch = c.src->epoch();
@@ -227,15 +253,20 @@ void HscUnit::advance_counters(uint64_t t) {
     if (!c.src) continue;
     const int64_t q1 = c.src->quarter(t);
     if (q1 == c.q) continue;
+    const int64_t k = q1 > c.q ? q1 - c.q : c.q - q1;
     if (counting(c) && !blocked(c)) {
-      std::array<int, 4> seq;
-      weights(c, &seq);
-      const int64_t k = q1 > c.q ? q1 - c.q : c.q - q1;
+      std::array<int, 4> first, seq;
+      weights(c, &first, &seq);
       int64_t d = 0, n = 0;
-      for (int i = 0; i < 4; ++i) n += seq[i];
-      for (int i = 0; i < k % 4; ++i) d += seq[i];
-      add_count(c, (k / 4) * n + d, false);  // matches inside the span are events of their own
+      for (int i = 0; i < k && i < 4; ++i) d += first[i];
+      if (k > 4) {
+        for (int i = 0; i < 4; ++i) n += seq[i];
+        d += ((k - 4) / 4) * n;
+        for (int i = 0; i < (k - 4) % 4; ++i) d += seq[i];
+      }
+      add_count(c, d, false);  // matches inside the span are events of their own
     }
+    c.dec = decoder_after(c, k);
     c.q = q1;
     c.last = pins_at(c, q1);
   }
@@ -247,10 +278,18 @@ uint64_t HscUnit::next_match(const Counter& c) const {
   const int s = counter_source(c.n);
   if (!c.src || c.src->direction() == 0 || !irq().present(s) || !irq().enabled(s) || !counting(c) || blocked(c))
     return kNever;
-  std::array<int, 4> seq;
-  weights(c, &seq);
-  const int64_t target = static_cast<int32_t>(get_pv(c) - get_cv(c));
-  int64_t prefix = 0, n = 0;
+  std::array<int, 4> first, seq;
+  weights(c, &first, &seq);
+  const int64_t to_pv = static_cast<int32_t>(get_pv(c) - get_cv(c));
+  int64_t prefix = 0;
+  for (int j = 1; j <= 4; ++j) {
+    prefix += first[j - 1];
+    if (first[j - 1] != 0 && prefix == to_pv) return c.src->time_of_quarter(c.q + j * c.src->direction(), now());
+  }
+  // Past the first four boundaries: the k-th of the repeating ones, k counted from the fifth.
+  const int64_t target = to_pv - prefix;
+  prefix = 0;
+  int64_t n = 0;
   for (int i = 0; i < 4; ++i) n += seq[i];
   int64_t best = -1;
   for (int j = 1; j <= 4; ++j) {
@@ -266,7 +305,7 @@ uint64_t HscUnit::next_match(const Counter& c) const {
     if (k > 0 && (best < 0 || k < best)) best = k;
   }
   if (best < 0) return kNever;
-  return c.src->time_of_quarter(c.q + best * c.src->direction(), now());
+  return c.src->time_of_quarter(c.q + (4 + best) * c.src->direction(), now());
 }
 
 // ---- timers ------------------------------------------------------------------
@@ -321,6 +360,7 @@ void HscUnit::start(uint64_t t) {
     c.hist.clear();
     c.t_cv0 = 0;
     c.t_base = t;
+    c.dec = DecodeState{};
     if (c.src) take_quarter(c);
   }
   hsta_pv_ = 0;
@@ -411,7 +451,8 @@ void HscUnit::at(uint64_t t) {
     term_ = old;
     const bool was_counting = counting(c);
     term_ = level;
-    if (was_counting && counting(c)) add_count(c, count_delta(c.def.mode, before[c.n], pins_at(c, c.q)), true);
+    const int d = delta(c, before[c.n], pins_at(c, c.q));
+    if (was_counting && counting(c)) add_count(c, d, true);
     if (cleared(c)) set_cv(c, 0);
   }
   for (int x = 0; x < 16; ++x) {

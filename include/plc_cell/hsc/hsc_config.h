@@ -12,6 +12,7 @@
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/hsc/count_rule.h"
+#include "plc_cell/hsc/decoding.h"
 #include "plc_cell/hsc/input_filter.h"
 
 namespace plc_cell {
@@ -23,6 +24,7 @@ struct CounterDef {
   bool used = false;
   bool timer = false;        // HSC0-3 configured as HST0-3
   Mode mode = Mode::UD;
+  Decoding decoding = Decoding::Fatek;  // TRi decoding of an A/B counter (MD4 only); Fatek: by mode
   int pin_a = kNoPin;        // U, P or A
   int pin_b = kNoPin;        // D, R or B (MD2/MD3 without it: the direction relay)
   int pin_mask = kNoPin;

@@ -111,6 +111,7 @@ class HscUnit : public ScanHook, public timeline::EventSource {
     int phase[2] = {-1, -1};     // which phase of src drives a, b (0 = A, 1 = B)
     int64_t q = 0;               // src quarter at cur_ns_
     Pins last;                   // counting-input levels at q (a source change is one transition)
+    DecodeState dec;             // the TRi enhanced decoder's memory, at q
     uint64_t epoch = 0;          // src->epoch() when q was taken
     int64_t total = 0;           // net counts, for the frequency
     std::deque<std::pair<uint64_t, int64_t>> hist;
@@ -137,7 +138,11 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   bool counting(const Counter& c) const;  // not masked, not cleared, enabled
   bool cleared(const Counter& c) const;
   Pins pins_at(const Counter& c, int64_t q) const;
-  void weights(const Counter& c, std::array<int, 4>* seq) const;  // of the next 4 boundaries
+  // CV changes at the next boundaries the source crosses: first[i] at boundary i+1,
+  // seq[i] at boundaries 4k+i+1 for every k >= 1 (they repeat from the fifth on).
+  void weights(const Counter& c, std::array<int, 4>* first, std::array<int, 4>* seq) const;
+  DecodeState decoder_after(const Counter& c, int64_t k) const;  // after k boundaries from c.q
+  int delta(Counter& c, Pins before, Pins after);  // by the counter's rule; steps c.dec
   uint64_t next_match(const Counter& c) const;
   uint32_t get_cv(const Counter& c) const;
   uint32_t get_pv(const Counter& c) const;
