@@ -200,7 +200,7 @@ TEST(PulseMeasurement, ExactEdgesWhileCounting) {
   EXPECT_EQ(r.period_ns, 400 * kUs);
   EXPECT_EQ(r.frequency_hz, 2500.0);
   EXPECT_EQ(cell.with([](HscUnit& u) { return u.count(4); }), 11);  // rises at 1.0 .. 5.0 ms
-  EXPECT_EQ(cell.with([](HscUnit& u) { return u.config().pulse.in_unit(r.width_ns); }), 100.0);
+  EXPECT_EQ(cell.unit->config().pulse.in_unit(r.width_ns), 100.0);
   // The last rise is at 8.6 ms; 0 once more than 2 x 400 us have passed.
   cell.run(4000, 1000);  // scans 6 .. 9 ms
   EXPECT_EQ(pulse_of(cell, 4).period_ns, 400 * kUs);
