@@ -5,6 +5,8 @@ plc_cell_layer(plc_cell_hsc LINKS plc_cell_config plc_cell_timeline SOURCES
   src/hsc/count_rule.cpp
   src/hsc/decoding.cpp
   src/hsc/pulse_source.cpp
+  src/hsc/pulse_meter.cpp
+  src/hsc/pulse_measurement.cpp
   src/hsc/hsc_config.cpp
   src/hsc/hsc_unit.cpp
   src/hsc/hsc_functions.cpp
@@ -29,9 +31,10 @@ if(benchmark_FOUND AND EXISTS ${PROJECT_SOURCE_DIR}/bench/hsc_bench.cpp)
 endif()
 
 # The counters on ROS topics and services (plc_node).
-list(APPEND PLC_CELL_NODE_SOURCES src/ros/counter_topics.cpp)
+list(APPEND PLC_CELL_NODE_SOURCES src/ros/counter_topics.cpp src/ros/pulse_topics.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   add_rostest(test/ros/counters.test DEPENDENCIES plc_node)
+  add_rostest(test/ros/pulses.test DEPENDENCIES plc_node)
 endif()

@@ -212,7 +212,8 @@ HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
   if (!node || node.IsNull()) return cfg;
   Parse p(file);
   p.only(node, "counters", {"hsc0", "hsc1", "hsc2", "hsc3", "hsc4", "hsc5", "hsc6", "hsc7", "interrupts",
-                            "sources", "edges", "frequency_window", "publish_rate", "capture", "filters"});
+                            "sources", "edges", "frequency_window", "publish_rate", "capture", "filters",
+                            "pulse_measurement"});
   for (int n = 0; n < 8; ++n) {
     const YAML::Node c = node["hsc" + std::to_string(n)];
     if (c && !c.IsNull()) parse_counter(p, n, c, cfg.counters[n]);
@@ -309,6 +310,7 @@ HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
     std::stable_sort(cfg.edges.begin(), cfg.edges.end(),
                      [](const ScheduledEdge& a, const ScheduledEdge& b) { return a.t_ns < b.t_ns; });
   }
+  cfg.pulse = parse_pulse_measurement(node["pulse_measurement"], file, cfg.counters);
   return cfg;
 }
 

@@ -33,6 +33,10 @@ HscUnit::HscUnit(Plc& plc, HscConfig cfg)
     if (counters_[n].def.used && !counters_[n].def.timer && n >= 4)
       irq().set_priority(counter_source(n), x_edge_source(counters_[n].def.pin_a, false) + 1);
   for (int x = 16; x < kFilteredInputs; ++x) scan_filter_[x - 16] = ScanDebounce(cfg_.filter_ns[x]);
+  for (int x : cfg_.pulse.inputs) {
+    meters_[x].on = true;
+    meters_[x].m = PulseMeter(cfg_.pulse.timeout_ns);
+  }
   for (const auto& e : cfg_.edges) schedule_edge(e.x, e.t_ns, e.level);
   plc_.locked([this](ScanEngine& e, Memory&) {
     e.add_hook(this);  // after the scheduler's: each scan finds the clock at the scan's instant
@@ -272,6 +276,37 @@ void HscUnit::advance_counters(uint64_t t) {
   }
 }
 
+// The edges of each measured analytic pin in (now, t]: the source is in one state
+// over the span, so each boundary's instant is exact. Two cycles (8 quarters) hold the
+// last full cycle, which is all a meter keeps; earlier boundaries are skipped.
+void HscUnit::advance_meters(uint64_t t) {
+  for (int x = 0; x < 16; ++x) {
+    Meter& m = meters_[x];
+    if (!m.on) continue;
+    EdgeSource* s = pin_src_[x];
+    if (s != m.src) {  // attached, detached, or the first step of a run
+      m.src = s;
+      if (s) {
+        m.q = s->quarter(now());
+        m.level = s->level(pin_phase_[x], m.q);
+        m.epoch = s->epoch();
+      }
+    }
+    if (!s) continue;
+    const int64_t q1 = s->quarter(t);
+    if (q1 == m.q) continue;
+    const int64_t dir = q1 > m.q ? 1 : -1;
+    const int64_t from = (q1 - m.q) * dir > 8 ? q1 - 8 * dir : m.q;
+    const bool lost = blocked(x);  // a source faster than the filter leaves the input OFF
+    for (int64_t q = from; q != q1; q += dir) {
+      const bool a = s->level(pin_phase_[x], q), b = s->level(pin_phase_[x], q + dir);
+      if (a != b && !lost) m.m.edge(s->time_of_quarter(q + dir, now()), b);
+    }
+    m.q = q1;
+    m.level = s->level(pin_phase_[x], q1);
+  }
+}
+
 // First instant after now at which counting makes CV equal PV: the k-th boundary
 // the source crosses, solved in O(1) from the 4-periodic weights.
 uint64_t HscUnit::next_match(const Counter& c) const {
@@ -371,6 +406,9 @@ void HscUnit::start(uint64_t t) {
     else cap_q_[x] = pin_src_[x]->quarter(t);
     ++gen_[x];  // filter outputs pending from the last run are void
     latch_[x] = false;
+    Meter& m = meters_[x];
+    m.m.reset();
+    m.src = nullptr;  // taken again at the first step
   }
   for (auto& f : scan_filter_) f.reset();
 }
@@ -380,6 +418,16 @@ void HscUnit::stop() { refresh_outputs(0, 256); }
 void HscUnit::settle() {
   for (auto& c : counters_)
     if (c.src && c.src->epoch() != c.epoch) resync(c);
+  // A source's jump is one edge of a measured pin if its level changed.
+  for (int x = 0; x < 16; ++x) {
+    Meter& m = meters_[x];
+    if (!m.on || !m.src || m.src != pin_src_[x] || m.src->epoch() == m.epoch) continue;
+    m.q = m.src->quarter(now());
+    const bool level = m.src->level(pin_phase_[x], m.q);
+    if (level != m.level && !blocked(x)) m.m.edge(now(), level);
+    m.level = level;
+    m.epoch = m.src->epoch();
+  }
 }
 
 uint64_t HscUnit::next_event_ns() {
@@ -414,6 +462,7 @@ uint64_t HscUnit::next_event_ns() {
 
 void HscUnit::advance_to(uint64_t t) {
   advance_counters(t);
+  advance_meters(t);
   prev_ns_ = now();
 }
 
@@ -459,6 +508,7 @@ void HscUnit::at(uint64_t t) {
     if (old[x] == level[x]) continue;
     engine_.set_input(x, level[x]);
     if (level[x]) latch_[x] = true;
+    if (meters_[x].on) meters_[x].m.edge(t, level[x]);
     // An input edge interrupts only if configured with a routine (manual §9.5).
     const int e = 2 * x + (level[x] ? 0 : 1);
     if (std::find(cfg_.edge_interrupts.begin(), cfg_.edge_interrupts.end(), e) != cfg_.edge_interrupts.end())
@@ -687,6 +737,11 @@ int64_t HscUnit::count(int n) const {
   const Counter& c = counters_[n];
   if (c.def.timer) return hst_cv(c, now());
   return static_cast<int32_t>(get_cv(c));
+}
+
+PulseReading HscUnit::pulse(int x) const {
+  if (x < 0 || x > 15 || !meters_[x].on) return {};
+  return meters_[x].m.read(now());
 }
 
 double HscUnit::frequency(int n) const {

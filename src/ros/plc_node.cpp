@@ -14,6 +14,7 @@
 #include "plc_cell/ros/extension_diagnostics.h"
 #include "plc_cell/ros/frame_id.h"
 #include "plc_cell/ros/motion_topics.h"
+#include "plc_cell/ros/pulse_topics.h"
 #include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
 #include "plc_cell/ros/temperature_ros.h"
@@ -65,6 +66,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
   pnh.param("counter_rate", counter_rate, counter_rate);
   topic_groups_.add(std::make_unique<CounterTopics>(pnh, cell_->soft(), counter_rate));
+  topic_groups_.add(std::make_unique<PulseTopics>(pnh, cell_->soft(), counter_rate));
   topic_groups_.add(std::make_unique<MotionTopics>(nh, pnh, cell_->soft(), pnh.param("motion_rate", 50.0)));
 
   updater_.setHardwareID("plc_cell/" + cfg.name);

@@ -166,6 +166,7 @@ std::string topic_layout(Cell& cell) {
     for (int n = 0; n < 8; ++n)
       if (hc.counters[n].used) out << "counter " << n << ' ' << hc.counters[n].name << '\n';
     out << "counter rate " << hc.publish_rate_hz << '\n';
+    for (int x : hc.pulse.inputs) out << "pulse X" << x << ' ' << hc.pulse.unit() << '\n';
     const motion::AxesConfig& ac = cell.soft().motion().config();
     for (int n = 0; n < motion::kAxes; ++n)
       if (ac.axes[n].used)

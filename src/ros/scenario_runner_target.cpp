@@ -36,6 +36,7 @@ struct NodeLink::Latest {
   std::map<std::string, bool> signals;  // by topic
   std::map<std::string, RegisterBlock> registers;
   std::map<std::string, Counter> counters;
+  std::map<std::string, PulseMeasurement> pulses;
   std::map<std::string, AxisStatus> axes;
   std::map<std::string, double> temperatures;
 };
@@ -140,6 +141,8 @@ void NodeLink::subscribe(const std::string& topic) {
     s = keep<Signal>(topic, [topic](Latest& l, const Signal& m) { l.signals[topic] = m.data; });
   } else if (starts_with(rel, "registers/")) {
     s = keep<RegisterBlock>(topic, [topic](Latest& l, const RegisterBlock& m) { l.registers[topic] = m; });
+  } else if (starts_with(rel, "pulses/")) {
+    s = keep<PulseMeasurement>(topic, [topic](Latest& l, const PulseMeasurement& m) { l.pulses[topic] = m; });
   } else if (starts_with(rel, "counters/")) {
     s = keep<Counter>(topic, [topic](Latest& l, const Counter& m) { l.counters[topic] = m; });
   } else if (starts_with(rel, "motion/") && ends_with(rel, "/status")) {
@@ -366,6 +369,13 @@ std::string RosTarget::check(const Probe& p, bool writing) {
       if (!has_topic("temperature/" + p.name))
         return p.text + ": plc_node publishes no ~temperature/" + p.name + " (no channel of that name in the cell)";
       return "";
+    case Probe::Kind::PulseWidth:
+    case Probe::Kind::PulsePeriod:
+    case Probe::Kind::PulseFrequency:
+      if (writing) return p.text + ": a pulse measurement is read, not driven";
+      if (!has_topic("pulses/" + p.name))
+        return p.text + ": plc_node publishes no ~pulses/" + p.name + " (the input is not measured in the cell)";
+      return "";
     case Probe::Kind::Analog:
       return p.text + ": plc_node has no topic for analog input channels" +
              std::string(writing ? " and no way to set one" : "") + "; run this case with `plc_cell test`";
@@ -433,6 +443,16 @@ Reading RosTarget::read(const Probe& p) {
       r.valid = std::isfinite(c);  // NaN: a broken line
       r.number = r.valid ? c : 0;
       r.text = r.valid ? number_text(std::round(c * 1000) / 1000) + " C" : "NaN (broken)";
+      return r;
+    }
+    case Probe::Kind::PulseWidth:
+    case Probe::Kind::PulsePeriod:
+    case Probe::Kind::PulseFrequency: {
+      const auto it = l.pulses.find(link_.node_ + "/pulses/" + p.name);
+      PulseMeasurement m;
+      if (it != l.pulses.end()) m = it->second;
+      r.number = p.kind == Probe::Kind::PulseWidth ? m.width : p.kind == Probe::Kind::PulsePeriod ? m.period : m.frequency;
+      r.text = number_text(r.number);
       return r;
     }
     case Probe::Kind::Analog:

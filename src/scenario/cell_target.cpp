@@ -45,6 +45,13 @@ int counter_number(const hsc::HscUnit& u, const std::string& name) {
   return -1;
 }
 
+// "X4" -> 4 if X4 is a measured input, else -1.
+int pulse_input(const hsc::HscUnit& u, const std::string& name) {
+  for (int x : u.config().pulse.inputs)
+    if (name == "X" + std::to_string(x)) return x;
+  return -1;
+}
+
 int axis_number(const motion::MotionUnit& u, const std::string& name) {
   for (int n = 0; n < motion::kAxes; ++n)
     if (u.config().axes[size_t(n)].used && u.config().axes[size_t(n)].name == name) return n;
@@ -95,6 +102,13 @@ std::string CellTarget::check(const Probe& p, bool writing) {
         if (!s.temperature() || s.temperature()->channel_index(p.name) < 0)
           return "no temperature channel named '" + p.name + "' in the cell's modules";
         return "";
+      case Probe::Kind::PulseWidth:
+      case Probe::Kind::PulsePeriod:
+      case Probe::Kind::PulseFrequency:
+        if (writing) return p.text + ": a pulse measurement is read, not driven";
+        return plc().locked([&](ScanEngine&, Memory&) { return pulse_input(s.counters(), p.name); }) >= 0
+                   ? ""
+                   : p.name + " is not measured (counters.pulse_measurement.inputs)";
       case Probe::Kind::Analog:
         if (!writing) return p.text + ": an analog input is driven, not read (read its register, R3840...)";
         if (!s.temperature() || !s.temperature()->analog()) return "the cell has no analog modules (modules.analog)";
@@ -157,6 +171,21 @@ Reading CellTarget::read(const Probe& p) {
       r.valid = ch >= 0 && !c.broken && std::isfinite(c.celsius);
       r.number = r.valid ? c.celsius : 0;
       r.text = r.valid ? number_text(std::round(c.celsius * 1000) / 1000) + " C" : "NaN (" + c.state() + ")";
+      return r;
+    }
+    case Probe::Kind::PulseWidth:
+    case Probe::Kind::PulsePeriod:
+    case Probe::Kind::PulseFrequency: {
+      // As ~pulses/Xn shows it: width and period in the configured unit, frequency in Hz.
+      r.number = plc().locked([&](ScanEngine&, Memory&) {
+        const hsc::HscUnit& u = s.counters();
+        const int x = pulse_input(u, p.name);
+        if (x < 0) return 0.0;
+        const hsc::PulseReading m = u.pulse(x);
+        return p.kind == Probe::Kind::PulseFrequency ? m.frequency_hz
+               : u.config().pulse.in_unit(p.kind == Probe::Kind::PulseWidth ? m.width_ns : m.period_ns);
+      });
+      r.text = number_text(r.number);
       return r;
     }
     case Probe::Kind::Analog:

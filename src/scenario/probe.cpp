@@ -1,5 +1,7 @@
 #include "plc_cell/scenario/probe.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 
@@ -73,7 +75,21 @@ Probe parse_probe(const std::string& text) {
     p.name = axis;
     return p;
   }
-  throw Error("'" + text + "': unknown kind '" + kind + ".' (counter., axis., temperature. or analog.)");
+  if (kind == "pulse") {
+    const auto dot2 = rest.find('.');
+    std::string input = rest.substr(0, dot2);
+    const std::string what = dot2 == std::string::npos ? "" : rest.substr(dot2 + 1);
+    for (auto& c : input) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (input.size() < 2 || input[0] != 'X' || !std::all_of(input.begin() + 1, input.end(), ::isdigit))
+      throw Error("'" + text + "': '" + input + "' is not an input such as X0");
+    if (what == "width") p.kind = Probe::Kind::PulseWidth;
+    else if (what == "period") p.kind = Probe::Kind::PulsePeriod;
+    else if (what == "frequency") p.kind = Probe::Kind::PulseFrequency;
+    else throw Error("'" + text + "': a pulse measurement is read as pulse.Xn.width, .period or .frequency");
+    p.name = input;
+    return p;
+  }
+  throw Error("'" + text + "': unknown kind '" + kind + ".' (counter., axis., temperature., analog. or pulse.)");
 }
 
 }  // namespace scenario

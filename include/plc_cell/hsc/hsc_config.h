@@ -14,6 +14,7 @@
 #include "plc_cell/hsc/count_rule.h"
 #include "plc_cell/hsc/decoding.h"
 #include "plc_cell/hsc/input_filter.h"
+#include "plc_cell/hsc/pulse_measurement.h"
 
 namespace plc_cell {
 namespace hsc {
@@ -59,6 +60,7 @@ struct HscConfig {
   std::array<bool, kFilteredInputs> capture{};
   uint64_t frequency_window_us = 100000;
   double publish_rate_hz = 10;
+  PulseMeasurementConfig pulse;  // counters.pulse_measurement
 };
 
 // Resource table of the manual (§10.2): fixed HHSC pins and the relays.

@@ -24,6 +24,7 @@
 #include "plc_cell/core/scan_engine.h"
 #include "plc_cell/hsc/edge_source.h"
 #include "plc_cell/hsc/hsc_config.h"
+#include "plc_cell/hsc/pulse_meter.h"
 #include "plc_cell/hsc/pulse_source.h"
 #include "plc_cell/hsc/scan_debounce.h"
 #include "plc_cell/timeline/event_source.h"
@@ -82,6 +83,9 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   void preset(int n, int64_t value);  // sets the CV now (chip, register or timer); 0 clears
   int64_t count(int n) const;       // CV now: chip (HHSC), register (SHSC), timer value (HST)
   double frequency(int n) const;    // counts/s over the configured window
+  // Pulse measurement of input x now (counters.pulse_measurement; all 0 if x is not
+  // measured): width and period of the last full cycle, exact to the ns.
+  PulseReading pulse(int x) const;
   const HscConfig& config() const { return cfg_; }
 
   using OutputObserver = std::function<void(uint64_t t_ns, uint32_t y, bool level)>;
@@ -161,6 +165,7 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   void bind_counters();
   void take_quarter(Counter& c);             // c.q, c.last, c.epoch from the source at cur_ns_
   void resync(Counter& c);                   // the source changed: count the jump as one transition
+  void advance_meters(uint64_t t);           // analytic edges of measured pins up to t
 
   ScanEngine& engine_;
   Memory& mem_;
@@ -177,6 +182,18 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   std::array<int64_t, 16> cap_q_{};          // capture of an analytic pin: quarter at the last image
   std::array<ScanDebounce, kFilteredInputs - 16> scan_filter_;  // X16-X35
   std::array<Counter, 8> counters_;
+  // Pulse measurement of X0-X15. Explicit edges reach a meter as they act; an analytic
+  // pin's edges are found from the quarters crossed (at most the last two cycles of a
+  // span matter, so the cost does not depend on the frequency).
+  struct Meter {
+    bool on = false;
+    PulseMeter m;
+    EdgeSource* src = nullptr;  // the analytic driver the quarter q belongs to
+    int64_t q = 0;
+    bool level = false;         // at q
+    uint64_t epoch = 0;
+  };
+  std::array<Meter, 16> meters_;
   struct Train {
     int x;
     uint64_t period, width, delay;

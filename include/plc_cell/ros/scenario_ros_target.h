@@ -21,6 +21,7 @@
 #include "plc_cell/ScanProgress.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/Counter.h"
+#include "plc_cell/PulseMeasurement.h"
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/scenario/target.h"
 

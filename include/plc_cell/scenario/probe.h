@@ -2,7 +2,9 @@
 // What a scenario reads or drives, named as a user writes it: an address or signal
 // ("R0", "DR10:u", "R20:f32", "conveyor_run"), a counter ("counter.belt"), an axis
 // ("axis.slide.position", ".state", ".frequency"), a temperature channel
-// ("temperature.oven_temp", in degC) or an analog input channel ("analog.level", V or mA).
+// ("temperature.oven_temp", in degC), an analog input channel ("analog.level", V or mA)
+// or the pulse measurement of a counter input ("pulse.X0.period", .width in the configured
+// unit, .frequency in Hz).
 // The same names mean the same things to every target: the cell in process and plc_node
 // through its topics (docs/testing-your-cell.md, "What a condition reads").
 #include <string>
@@ -13,11 +15,12 @@ namespace plc_cell {
 namespace scenario {
 
 struct Probe {
-  enum class Kind { Address, Counter, AxisPosition, AxisState, AxisFrequency, Temperature, Analog };
+  enum class Kind { Address, Counter, AxisPosition, AxisState, AxisFrequency, Temperature, Analog,
+                    PulseWidth, PulsePeriod, PulseFrequency };
   Kind kind = Kind::Address;
   std::string text;  // as written, the key of every report ("R0:u", "axis.slide.state")
   std::string name;  // Address: the address or signal without its format; else the counter,
-                     // axis or channel name
+                     // axis or channel name, or the measured input (X0)
   ValueFormat format = ValueFormat::Default;  // Address only (:s, :u, :hex, :f32)
 
   bool operator<(const Probe& o) const { return text < o.text; }
