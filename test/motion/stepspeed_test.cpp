@@ -313,6 +313,38 @@ TEST(StepSpeed, DeceleratedStopUsesTheStepRamp) {
   EXPECT_EQ(c.get("M100"), 0u);  // stopped short of the count
 }
 
+// The tables the ROS services and the run action start (load_table/command) take the
+// step ramp too; a start while the axis runs is refused; the abort ramps down at A.
+TEST(StepSpeed, TablesRunOverRosUseTheStepRampAndTheLock) {
+  StepCell c(kYaml, "END\n");
+  c.run(1000);
+  Table t;
+  TableError e;
+  ASSERT_TRUE(parse_table("SPD 5000\nDRV ADR,-,500,Ps\nGOTO NEXT\nMEND\n", &t, &e)) << e.message;
+  std::string why;
+  ASSERT_TRUE(c.with([&](MotionUnit& u) {
+    return u.load_table(0, t, &why) && u.command(0, MotionUnit::Command::Start, &why);
+  })) << why;
+  const uint64_t t0 = c.ax().start_ns();
+  EXPECT_DOUBLE_EQ(c.ax().frequency(t0), 12.5);
+  EXPECT_EQ(c.ax().end_ns() - t0, 5765625000u);
+  EXPECT_EQ(c.get("Y1"), 1u);  // backward
+  c.run(2000000);
+  EXPECT_FALSE(c.with([&](MotionUnit& u) { return u.command(0, MotionUnit::Command::Start, &why); }));
+  EXPECT_EQ(c.ax().start_ns(), t0);
+  ASSERT_TRUE(c.with([&](MotionUnit& u) { return u.command(0, MotionUnit::Command::Abort, &why); })) << why;
+  const uint64_t ts = c.ax().start_ns();
+  ASSERT_GT(ts, t0);
+  EXPECT_NEAR(c.ax().frequency(ts), 100, 1e-6);
+  EXPECT_NEAR((c.ax().frequency(ts + kSec / 4) - c.ax().frequency(ts)) / 0.25, -kA, 1e-6);
+  ASSERT_TRUE(c.run_until([&] { return !c.ax().moving(); }, 2000000));
+  EXPECT_EQ(c.get("M100"), 0u);
+  // Accepted again once stopped.
+  ASSERT_TRUE(c.with([&](MotionUnit& u) { return u.command(0, MotionUnit::Command::Start, &why); })) << why;
+  EXPECT_TRUE(c.ax().moving());
+  EXPECT_DOUBLE_EQ(c.ax().frequency(c.ax().start_ns()), 12.5);
+}
+
 // ---- configuration -------------------------------------------------------------------
 
 std::string error_of(const std::string& yaml) {
