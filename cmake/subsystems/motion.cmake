@@ -11,6 +11,7 @@ plc_cell_layer(plc_cell_motion LINKS plc_cell_hsc SOURCES
   src/motion/interpolation.cpp
   src/motion/mpg.cpp
   src/motion/profile.cpp
+  src/motion/step_speed.cpp
   src/motion/axis.cpp
   src/motion/pulse_pins.cpp
   src/motion/axis_config.cpp

@@ -3,6 +3,7 @@
 
 #include <cctype>
 #include <climits>
+#include <map>
 
 #include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/address.h"
@@ -102,6 +103,7 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
     a.used = true;
     a.name = key;
     const std::string pre = "axes." + key + ".";
+    std::map<std::string, YAML::Node> given;  // output: and params: p-keys, for the clashes with stepspeed:
     for (const auto& f : kv.second) {
       const std::string k = f.first.as<std::string>();
       const YAML::Node& v = f.second;
@@ -114,6 +116,7 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
         else if (m == "AB") a.mode = OutputMode::AB;
         else r.fail(v, pre + k, "expected UD, PR or AB");
         a.has_output = true;
+        given.emplace("output", v);
       } else if (k == "polarity") {
         const std::string m = r.str(v, pre + k);
         if (m == "normal_off") a.polarity = Polarity::NormalOff;
@@ -203,16 +206,30 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
                 (pk.size() == 2 || std::isdigit(static_cast<unsigned char>(pk[2]))) && !(pk.size() == 3 && pk[1] == '0'))
               n = std::stoi(pk.substr(1));
             if (!a.params.set(n, val)) r.fail(pf.first, pre + "params." + pk, "expected at, p0 ... p17");
+            given.emplace(pk, pf.first);
           }
           ParamError pe;
           const int code = a.params.validate(&pe);
           if (code) r.fail(v, pre + "params", "parameter error " + std::to_string(code) + ": " + pe.message);
         }
+      } else if (k == "stepspeed") {
+        a.stepspeed = parse_step_speed(r, v, pre + k);
       } else {
         r.fail(f.first, pre + k,
                "unknown (name, output, polarity, wiring, encoder, type, units_per_pulse, si_per_pulse, switches, "
-               "table, params)");
+               "table, params, stepspeed)");
       }
+    }
+    if (a.stepspeed.used) {
+      // One ramp per axis: the step form replaces these FUN141 values, so giving both
+      // would leave one silently unused.
+      for (const char* pk : {"p4", "p5", "p8", "p12"})
+        if (given.count(pk))
+          r.fail(given.at(pk), pre + "params." + pk,
+                 "conflicts with stepspeed (its pps and accel_steps set the speeds and the ramp)");
+      // The direction pin of the step form needs a pulse/direction output.
+      if (a.has_output && a.mode != OutputMode::PR)
+        r.fail(given.at("output"), pre + "output", "stepspeed needs output PR (pulse and direction)");
     }
   }
   return cfg;

@@ -178,6 +178,7 @@ void MotionUnit::advance(Program& p, uint64_t t) {
       ax.settle(next);
       p.paused_left = 0;
       axes_[p.call.ps].rest = 0;
+      set_done(p.call.ps, true);  // before the step's observers and PSOnI look
       step_done(p, next);
       transfer(p, next);
     } else if (p.phase == Phase::Stopping) {
@@ -254,15 +255,23 @@ void MotionUnit::start_step(Program& p, int k, uint64_t t) {
 void MotionUnit::start_move(Program& p, const Step& s, uint64_t t) {
   AxisState& a = axes_[p.call.ps];
   const AxisParams& par = a.params;
-  const int64_t v = s.speed.kind == Operand::Const ? s.speed.value : read32(s.speed.kind, s.speed.value);
-  if (v == 0) {  // SPD 0: wait until the speed register becomes non-zero
-    p.phase = Phase::SpeedWait;
-    return;
+  const Ramp rp = ramp(p.call.ps);
+  if (cfg_.axes[p.call.ps].stepspeed.used) {
+    p.speed_hz = rp.max;  // the step form has one speed (STEPMOVE takes none): SPD is not read
+  } else {
+    const int64_t v = s.speed.kind == Operand::Const ? s.speed.value : read32(s.speed.kind, s.speed.value);
+    if (v == 0) {  // SPD 0: wait until the speed register becomes non-zero
+      p.phase = Phase::SpeedWait;
+      return;
+    }
+    const double hz = par.speed_hz(v);
+    if (v < 0 || hz > kMaxHz || hz < 1) return fail(p, 31, t);
+    p.speed_hz = std::min(hz, rp.max);
   }
-  const double hz = par.speed_hz(v);
-  if (v < 0 || hz > kMaxHz || hz < 1) return fail(p, 31, t);
-  p.speed_hz = std::min(hz, par.max_hz());
-  if (s.motion == Motion::Drvz) return start_homing(p, s, t);
+  if (s.motion == Motion::Drvz) {
+    set_done(p.call.ps, false);
+    return start_homing(p, s, t);
+  }
 
   const int64_t stroke = s.stroke.kind == Operand::Const ? s.stroke.value : read32(s.stroke.kind, s.stroke.value);
   if (stroke < -99999999 || stroke > 99999999) return fail(p, 33, t);
@@ -292,13 +301,15 @@ void MotionUnit::start_move(Program& p, const Step& s, uint64_t t) {
     p.chain = false;
     p.paused_left = 0;
     a.rest = 0;
+    set_done(p.call.ps, true);  // cleared and set at once: all of its no pulses are sent
     step_done(p, t);
     return transfer(p, t);
   }
-  const double f0 = par.start_hz();
+  const double f0 = rp.start;
   const double v_in = p.chain ? std::min(p.chain_speed, std::max(p.speed_hz, p.chain_speed)) : std::min(f0, p.speed_hz);
   const double v_out = s.motion == Motion::Drvc ? p.speed_hz : f0;
-  const Profile prof = Profile::plan(n, v_in, p.speed_hz, v_out, par.acc_hz_per_s(), par.dec_hz_per_s());
+  const Profile prof = Profile::plan(n, v_in, p.speed_hz, v_out, rp.acc, rp.dec);
+  set_done(p.call.ps, false);
   a.axis.start(t, delta, endless ? 0 : comp, forward, prof);
   p.phase = Phase::Moving;
   p.move_forward = forward;
@@ -313,7 +324,8 @@ void MotionUnit::stop(Program& p, uint64_t t, Phase then, bool force_decel) {
   p.chain = false;
   if (ax.moving() && (p.phase == Phase::Moving || p.phase == Phase::Homing)) {
     if (force_decel || mem_.bit(Area::M, kDecelRelay)) {
-      ax.decelerate(t, axes_[p.call.ps].params.start_hz(), axes_[p.call.ps].params.dec_hz_per_s());
+      const Ramp rp = ramp(p.call.ps);
+      ax.decelerate(t, rp.start, rp.dec);
       if (ax.moving()) {
         p.phase = Phase::Stopping;
         p.after_stop = then;
@@ -393,14 +405,15 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
     stop(p, t, Phase::Paused);
   } else if (!c.pau && p.phase == Phase::Paused) {
     // Resume the unfinished output from standstill.
-    const AxisParams& par = a.params;
+    const Ramp rp = ramp(c.ps);
     const int64_t n = p.endless ? -1 : p.paused_left;
     if (n == 0) {
+      set_done(c.ps, true);
       step_done(p, t);
       transfer(p, t);
     } else {
-      const Profile prof = Profile::plan(n, std::min(par.start_hz(), p.speed_hz), p.speed_hz, par.start_hz(),
-                                         par.acc_hz_per_s(), par.dec_hz_per_s());
+      const Profile prof = Profile::plan(n, std::min(rp.start, p.speed_hz), p.speed_hz, rp.start, rp.acc, rp.dec);
+      set_done(c.ps, false);
       a.axis.start(t, p.endless ? p.move_delta_sign : p.move_delta_sign * n, 0, p.move_forward, prof);
       p.phase = Phase::Moving;
     }
@@ -412,7 +425,7 @@ Fun140Outputs MotionUnit::fun140(const Fun140Call& c, uint64_t now_us) {
   } else if (p.phase == Phase::Moving && !c.pau) {
     const Step& s = p.table.steps[p.step - 1];
     if ((mem_.reg(Area::R, kDynamicReg) & 0xFF) == 0x5A && s.speed.kind != Operand::Const &&
-        s.motion != Motion::Drvz) {
+        s.motion != Motion::Drvz && !cfg_.axes[c.ps].stepspeed.used) {
       // R4056 low byte 5AH: the speed register is followed during the output.
       const int64_t v = read32(s.speed.kind, s.speed.value);
       const double hz = std::min(a.params.speed_hz(v), a.params.max_hz());
@@ -575,13 +588,15 @@ void MotionUnit::write_switches(uint64_t t) {
 void MotionUnit::run_endless(Program& p, uint64_t t, int sign, double hz) {
   AxisState& a = axes_[p.call.ps];
   const AxisParams& par = a.params;
-  double v_in = std::min(par.start_hz(), hz);
+  const Ramp rp = ramp(p.call.ps);
+  if (cfg_.axes[p.call.ps].stepspeed.used) hz = std::min(hz, rp.max);  // P6 creep too: pps is the limit
+  double v_in = std::min(rp.start, hz);
   if (a.axis.moving()) {
     if (a.axis.direction() == sign) v_in = a.axis.frequency(t);  // change speed on the fly
     a.axis.cut(t);
   }
   const bool forward = (sign > 0) != (par.p9_rot != 0);
-  const Profile prof = Profile::plan(-1, v_in, hz, par.start_hz(), par.acc_hz_per_s(), par.dec_hz_per_s());
+  const Profile prof = Profile::plan(-1, v_in, hz, rp.start, rp.acc, rp.dec);
   a.axis.start(t, sign, 0, forward, prof);
 }
 
@@ -656,7 +671,7 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
     case Home::Seek:
       if (dog) {
         if (s.zero_mode == 1) {  // MD1: slow down and stop on the DOG
-          a.axis.decelerate(t, par.start_hz(), par.dec_hz_per_s());
+          a.axis.decelerate(t, ramp(p.call.ps).start, ramp(p.call.ps).dec);
           set_home(p, Home::Md1Stop, t);
           if (!a.axis.moving()) {
             set_home(p, Home::Md1Delay, t);
@@ -735,6 +750,7 @@ void MotionUnit::home_check(Program& p, uint64_t t) {
         p.phase = Phase::Moving;  // for the step bookkeeping
         p.paused_left = 0;
         a.rest = 0;
+        set_done(p.call.ps, true);  // the home step is complete
         step_done(p, t);
         transfer(p, t);
       }
@@ -781,6 +797,18 @@ void MotionUnit::fun142(int ps, uint64_t now_us) {
   interp_->psoff(ps, t);  // FUN147 and FUN148 outputs on the axis stop too
   mpg_->psoff(ps, t);
   write_status(t);
+}
+
+MotionUnit::Ramp MotionUnit::ramp(int ps) const {
+  const StepSpeed& ss = cfg_.axes[ps].stepspeed;
+  if (ss.used) return {ss.start_hz(), ss.max_hz(), ss.accel(), ss.accel()};
+  const AxisParams& par = axes_[ps].params;
+  return {par.start_hz(), par.max_hz(), par.acc_hz_per_s(), par.dec_hz_per_s()};
+}
+
+void MotionUnit::set_done(int ps, bool on) {
+  const int m = cfg_.axes[ps].stepspeed.done;
+  if (cfg_.axes[ps].stepspeed.used && m >= 0) mem_.set_bit(Area::M, static_cast<uint32_t>(m), on);
 }
 
 int64_t MotionUnit::fun143(int ps) const { return axes_[ps].params.pulses_to_ut(axes_[ps].axis.position(now_ns_)); }

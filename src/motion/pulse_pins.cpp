@@ -10,8 +10,11 @@ bool phase_a(int64_t q) { return mod4(q) <= 1; }
 bool phase_b(int64_t q) { return mod4(q) == 1 || mod4(q) == 2; }
 }  // namespace
 
-AxisSignal AxisSignal::pins(std::string name, const Axis* ax, OutputMode mode, Polarity polarity) {
-  return AxisSignal(std::move(name), ax, mode == OutputMode::AB ? Kind::Quadrature : Kind::Pulses, mode, polarity, 1);
+AxisSignal AxisSignal::pins(std::string name, const Axis* ax, OutputMode mode, Polarity polarity,
+                            bool dir_on_negative) {
+  AxisSignal s(std::move(name), ax, mode == OutputMode::AB ? Kind::Quadrature : Kind::Pulses, mode, polarity, 1);
+  s.dir_on_negative_ = dir_on_negative;
+  return s;
 }
 
 AxisSignal AxisSignal::encoder(std::string name, const Axis* ax, int64_t periods) {
@@ -54,7 +57,7 @@ bool AxisSignal::level(int phase, int64_t q) const {
   if (kind_ == Kind::Quadrature) return (phase == 0 ? phase_a(q) : phase_b(q)) != invert_;
   const bool pulse = phase_a(q);
   const bool up = ax_->forward();
-  if (mode_ == OutputMode::PR) return phase == 0 ? pulse != invert_ : up;  // direction: ON = up
+  if (mode_ == OutputMode::PR) return phase == 0 ? pulse != invert_ : up != dir_on_negative_;  // ON = up, or down
   return (phase == 0 ? up && pulse : !up && pulse) != invert_;           // U/D
 }
 
@@ -111,7 +114,8 @@ void MotionUnit::attach_signals() {
       }
     };
     if (d.has_output) {
-      attach(AxisSignal::pins(d.name + ".pins", ax, d.mode, d.polarity), d.wired[0], d.wired[1], d.wiring_line);
+      attach(AxisSignal::pins(d.name + ".pins", ax, d.mode, d.polarity, d.stepspeed.used), d.wired[0], d.wired[1],
+             d.wiring_line);
       pins_[n] = signals_.back().get();
       if (hsc_) {  // the pulse generator drives these pins, not the Y relays
         hsc_->own_output(static_cast<uint32_t>(2 * n));

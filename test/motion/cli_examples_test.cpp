@@ -34,6 +34,10 @@ TEST(MotionCli, ManualExamplesRunWithSim) {
       // both MPGs sampled the counter last at 240; WR+1 = EN << 8 | Ps.
       {"mpg", "--duration 3.5s --watch DR4088,DR4090,DD802,DD812,D801,D811",
        "DR4088 = 14000\nDR4090 = 10000\nDD802 = 240\nDD812 = 240\nD801 = 256\nD811 = 1\n"},
+      // TRi Ch. 10: STEPSPEED 1,100,50, STEPMOVE +500 then -500: 2 x 5.765625 s; at 6 s the
+      // first move is done (M101 on) and the second just started (M101 off, Y1 on: backward).
+      {"stepper", "--duration 6s --watch R4064,M101,Y1", "R4064 = 1\nM101 = 0\nY1 = 1\n"},
+      {"stepper", "--duration 12s --watch DR4088,R4064,M101,Y1,M11", "DR4088 = 0\nR4064 = 2\nM101 = 1\nY1 = 1\nM11 = 0\n"},
   };
   for (const auto& c : cases) {
     const Result r = tool("sim --config " + std::string(PLC_CELL_SOURCE_DIR) + "/examples/motion/" + c.name +

@@ -13,6 +13,7 @@
 #include "plc_cell/core/address.h"
 #include "plc_cell/motion/lin_table.h"
 #include "plc_cell/motion/params.h"
+#include "plc_cell/motion/step_speed.h"
 #include "plc_cell/motion/table.h"
 
 namespace plc_cell {
@@ -70,6 +71,8 @@ struct AxisDef {
   bool has_params = false;
   Address params_at{};         // params: {at: R2000, p8: 100, ...} (defaults + these)
   AxisParams params;
+  // `stepspeed:` the ramp in steps instead of FUN141's P4/P5/P8/P12 (step_speed.h).
+  StepSpeed stepspeed;
 };
 
 // axes: gp0 / gp1: a FUN147 table written at each STOP -> RUN (table: {at:, text:}).

@@ -195,6 +195,14 @@ class MotionUnit : public ScanHook, public timeline::EventSource {
   bool input(int ps, int x, uint64_t t) const;  // positional switch level, else the X image
   void write_switches(uint64_t t);
   void write_wr(Program& p);
+  // The speeds (Hz) and rates (Hz/s) of axis ps's FUN140 moves: FUN141's P4/P5/P8/P12,
+  // or its `stepspeed:` form (step_speed.h), which replaces them.
+  struct Ramp {
+    double start, max, acc, dec;
+  };
+  Ramp ramp(int ps) const;
+  // The `stepspeed:` completion relay of axis ps, if it has one.
+  void set_done(int ps, bool on);
 
   Plc& plc_;
   ScanEngine& engine_;

@@ -28,8 +28,10 @@ struct PinLevels {
 
 class AxisSignal : public hsc::EdgeSource {
  public:
-  // The output pins of an axis in `mode` with `polarity`.
-  static AxisSignal pins(std::string name, const Axis* ax, OutputMode mode, Polarity polarity);
+  // The output pins of an axis in `mode` with `polarity`. dir_on_negative: the P/R
+  // direction pin is ON for backward pulses (the stepper form, `stepspeed:`), not up.
+  static AxisSignal pins(std::string name, const Axis* ax, OutputMode mode, Polarity polarity,
+                         bool dir_on_negative = false);
   // An encoder on the load with `periods` A/B periods per output pulse.
   static AxisSignal encoder(std::string name, const Axis* ax, int64_t periods);
 
@@ -54,6 +56,7 @@ class AxisSignal : public hsc::EdgeSource {
   enum class Kind { Pulses, Quadrature };
   AxisSignal(std::string name, const Axis* ax, Kind k, OutputMode m, Polarity p, int64_t per)
       : name_(std::move(name)), ax_(ax), kind_(k), mode_(m), invert_(p == Polarity::NormalOn), per_(per) {}
+  bool dir_on_negative_ = false;
   int64_t base() const;        // Q at the start of the present move
   int64_t quarters() const { return 4 * per_; }  // quarter steps per pulse
 
