@@ -25,7 +25,8 @@ plc_cell_layer(plc_cell_temp LINKS plc_cell_config SOURCES
   src/temp/fb_functions.cpp
   src/temp/sensor_signal.cpp
   src/temp/loop_settings.cpp
-  src/temp/modules_extension.cpp)
+  src/temp/modules_extension.cpp
+  src/temp/analog_conditioning.cpp)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TEMP_TESTS CONFIGURE_DEPENDS test/temp/*_test.cpp)

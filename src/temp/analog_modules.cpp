@@ -33,7 +33,7 @@ void parse_channels(const std::string& file, const YAML::Node& m, const std::str
       r.fail(in, mk + ".inputs", "a list of at most " + std::to_string(ai) + " inputs for a " + type);
     for (size_t j = 0; j < in.size(); ++j) {
       const std::string ik = mk + ".inputs[" + std::to_string(j) + "]";
-      r.only(in[j], ik, {"name", "current", "value", "plant", "plant_range", "offset"});
+      r.only(in[j], ik, {"name", "current", "value", "plant", "plant_range", "offset", "conditioning"});
       AnalogInputDef a;
       if (in[j]["name"]) a.name = r.str(in[j]["name"], ik + ".name");
       if (in[j]["current"]) a.current = r.boolean(in[j]["current"], ik + ".current");
@@ -70,6 +70,7 @@ void parse_channels(const std::string& file, const YAML::Node& m, const std::str
         a.plant_hi = r.number(pr[1], ik + ".plant_range", -273, 3000);
         if (a.plant_hi <= a.plant_lo) r.fail(pr, ik + ".plant_range", "high must exceed low");
       }
+      if (const YAML::Node c = in[j]["conditioning"]) a.conditioning = parse_conditioning(r, c, ik + ".conditioning", false);
       ins->push_back(a);
     }
   }
@@ -78,10 +79,11 @@ void parse_channels(const std::string& file, const YAML::Node& m, const std::str
       r.fail(out, mk + ".outputs", "a list of at most " + std::to_string(ao) + " outputs for a " + type);
     for (size_t j = 0; j < out.size(); ++j) {
       const std::string ok = mk + ".outputs[" + std::to_string(j) + "]";
-      r.only(out[j], ok, {"name", "current"});
+      r.only(out[j], ok, {"name", "current", "conditioning"});
       AnalogOutputDef o;
       if (out[j]["name"]) o.name = r.str(out[j]["name"], ok + ".name");
       if (out[j]["current"]) o.current = r.boolean(out[j]["current"], ok + ".current");
+      if (const YAML::Node c = out[j]["conditioning"]) o.conditioning = parse_conditioning(r, c, ok + ".conditioning", true);
       outs->push_back(o);
     }
   }
@@ -153,6 +155,7 @@ AnalogModules::AnalogModules(AnalogConfig cfg, Memory& mem, std::function<double
     for (int j = 0; j < ai; ++j) {
       Input in;
       if (j < int(m.inputs.size())) in.def = m.inputs[size_t(j)];
+      in.conditioning = ConditionedChannel(in.def.conditioning);
       in.ir_index = ir++;
       in.range = AnalogRange{m.bipolar_signal, m.span10, in.def.current};
       in.bipolar_code = m.bipolar_code;
@@ -165,6 +168,7 @@ AnalogModules::AnalogModules(AnalogConfig cfg, Memory& mem, std::function<double
       o.range = AnalogRange{m.bipolar_signal, m.span10, j < int(m.outputs.size()) && m.outputs[size_t(j)].current};
       o.bipolar_code = m.bipolar_code;
       outputs_.push_back(o);
+      output_conditioning_.emplace_back(j < int(m.outputs.size()) ? m.outputs[size_t(j)].conditioning : ConditioningDef());
     }
   }
   for (const auto& kd : kBoards) {
@@ -173,6 +177,7 @@ AnalogModules::AnalogModules(AnalogConfig cfg, Memory& mem, std::function<double
     for (int j = 0; j < kd.ai; ++j) {
       Input in;
       if (j < int(b.inputs.size())) in.def = b.inputs[size_t(j)];
+      in.conditioning = ConditionedChannel(in.def.conditioning);
       in.ir_index = uint32_t(j);
       in.board = true;
       in.range = AnalogRange{false, true, in.def.current};  // 0-10 V / 0-20 mA
@@ -187,6 +192,7 @@ AnalogModules::AnalogModules(AnalogConfig cfg, Memory& mem, std::function<double
       o.range = AnalogRange{false, true, j < int(b.outputs.size()) && b.outputs[size_t(j)].current};
       o.bipolar_code = false;
       outputs_.push_back(o);
+      output_conditioning_.emplace_back(j < int(b.outputs.size()) ? b.outputs[size_t(j)].conditioning : ConditioningDef());
     }
   }
 }
@@ -206,7 +212,10 @@ void AnalogModules::before_program(uint64_t) {
       x = in.def.offset ? 4.0 + 16.0 * frac : in.range.lo() + frac * (in.range.hi() - in.range.lo());
     }
     if (in.board) {  // no formats, no averaging: the board's 12 bits every scan
-      mem_.set_reg(Area::D, kBoardFirstIn + in.ir_index, uint16_t(board_input_code(x, in.def.current)));
+      int32_t code = board_input_code(x, in.def.current);
+      // Conditioning counts are the board's 12-bit steps (0..4095), shown x 4.
+      if (in.conditioning.enabled()) code = 4 * in.conditioning.sample(code / 4, 0, kBoardFullCode / 4);
+      mem_.set_reg(Area::D, kBoardFirstIn + in.ir_index, uint16_t(code));
       continue;
     }
     const int32_t code = ai_code14(in.range, x, in.bipolar_code);
@@ -223,7 +232,11 @@ void AnalogModules::before_program(uint64_t) {
     const uint32_t k = std::min(avg, in.count);
     int64_t sum = 0;
     for (uint32_t s = 0; s < k; ++s) sum += in.window[(in.next + 16 - 1 - s) % 16];
-    const int32_t mean = int32_t(std::floor(double(sum) / k + 0.5));
+    int32_t mean = int32_t(std::floor(double(sum) / k + 0.5));
+    // The conditioning takes what the module delivers this scan, in 14-bit counts,
+    // before the register format.
+    if (in.conditioning.enabled())
+      mean = in.bipolar_code ? in.conditioning.sample(mean, -8192, 8191) : in.conditioning.sample(mean, 0, 16383);
     const AiFormat f = twelve ? AiFormat::Bits12 : valid14 ? AiFormat::Valid14 : AiFormat::Valid12In14;
     mem_.set_reg(Area::R, 3840 + n, uint16_t(int16_t(ai_register(mean, f))));
   }
@@ -232,9 +245,21 @@ void AnalogModules::before_program(uint64_t) {
 void AnalogModules::after_program(uint64_t now_us) {
   serviced_ = true;
   last_service_us_ = now_us;
-  for (auto& o : outputs_) {
-    o.signal = o.board ? board_output_signal(int16_t(mem_.reg(Area::D, kBoardFirstOut + o.or_index)), o.range.current)
-                       : ao_signal(o.range, int16_t(mem_.reg(Area::R, 3904 + o.or_index)), o.bipolar_code);
+  for (size_t i = 0; i < outputs_.size(); ++i) {
+    Output& o = outputs_[i];
+    const ConditionedChannel& c = output_conditioning_[i];
+    if (o.board) {
+      int32_t code = int16_t(mem_.reg(Area::D, kBoardFirstOut + o.or_index));
+      // Conditioning counts are the board's 12-bit steps: the code as the DAC takes it.
+      if (c.enabled()) code = 4 * c.output(std::clamp(code, 0, kBoardFullCode) / 4, 0, kBoardFullCode / 4);
+      o.signal = board_output_signal(code, o.range.current);
+    } else {
+      int32_t code = int16_t(mem_.reg(Area::R, 3904 + o.or_index));
+      // In 14-bit counts, on the code clamped to its range as the module takes it.
+      const int32_t lo = o.bipolar_code ? -8192 : 0, hi = o.bipolar_code ? 8191 : 16383;
+      if (c.enabled()) code = c.output(std::clamp(code, lo, hi), lo, hi);
+      o.signal = ao_signal(o.range, code, o.bipolar_code);
+    }
     o.watchdog = false;
   }
 }

@@ -229,8 +229,8 @@ TEST(TemperatureConfig, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(config_error("modules:\n  temperature:\n    loops:\n      - {name: oven, sv: M100}\n"),
             "c.yaml:4:26: error: key 'modules.temperature.loops[0].sv': expected an R or D register");
   EXPECT_EQ(config_error("modules:\n  analog:\n    board: {type: B4AD, inputs: [{nam: a}]}\n"),
-            "c.yaml:3:35: error: key 'modules.analog.board.inputs[0].nam': unknown key (expected one of: current, "
-            "name, offset, plant, plant_range, value)");
+            "c.yaml:3:35: error: key 'modules.analog.board.inputs[0].nam': unknown key (expected one of: conditioning, "
+            "current, name, offset, plant, plant_range, value)");
 }
 
 TEST(TemperatureConfig, AGoodModulesSectionReadsAsBefore) {

@@ -3,7 +3,8 @@
 // board of the `modules.analog` section: input
 // signals become IR codes (R3840 + n) each scan with the D4006-D4042 format and
 // averaging settings; OR codes (R3904 + n) become output signals, forced to zero when
-// the CPU has not serviced them for 0.5 s. Owned by the TemperatureCell (the hook of
+// the CPU has not serviced them for 0.5 s. Any channel may carry the TRi FMD1616's
+// conditioning (analog_conditioning.h). Owned by the TemperatureCell (the hook of
 // the whole `modules:` section).
 #include <cstdint>
 #include <functional>
@@ -14,6 +15,7 @@
 
 #include "plc_cell/core/memory.h"
 #include "plc_cell/temp/analog_codes.h"
+#include "plc_cell/temp/analog_conditioning.h"
 
 namespace plc_cell {
 namespace temp {
@@ -25,10 +27,12 @@ struct AnalogInputDef {
   std::string plant;       // or a transmitter on a thermal plant ...
   double plant_lo = 0, plant_hi = 100;  // ... spanning these degC over the range
   bool offset = false;     // ... as 4-20 mA (live zero) instead of 0-20 mA
+  ConditioningDef conditioning;  // TRi moving average, gain, zero offset
 };
 struct AnalogOutputDef {
   std::string name;
   bool current = false;
+  ConditioningDef conditioning;  // TRi gain and zero offset (no average)
 };
 struct AnalogModuleDef {
   std::string type;  // 6AD, 4A2D, 4DA, 2DA
@@ -92,12 +96,14 @@ class AnalogModules {
     bool bipolar_code;
     int32_t window[16] = {};
     uint32_t count = 0, next = 0;
+    ConditionedChannel conditioning;
   };
   AnalogConfig cfg_;
   Memory& mem_;
   std::function<double(const std::string&)> plant_temperature_;
   std::vector<Input> inputs_;
   std::vector<Output> outputs_;
+  std::vector<ConditionedChannel> output_conditioning_;  // parallel to outputs_
   bool serviced_ = false;
   uint64_t last_service_us_ = 0;
 };
