@@ -50,6 +50,7 @@ struct Builder {
   std::ostringstream counters, axes, modules, sim, init, body, isr;
   std::vector<std::string> labels;  // interrupt routines to write after END
   bool hhsc_taken[4] = {};
+  std::vector<int> counting_inputs;  // what pulse measurement may measure
   GeneratedCell out;
 
   explicit Builder(Fdp& fdp) : f(fdp) {}
@@ -233,13 +234,23 @@ struct Builder {
     auto in = [&](int lo, int hi, int wide_hi) { return f.ConsumeIntegralInRange<int>(lo, out_of_range ? wide_hi : hi); };
     auto field = [&](int lo, int hi) { return chance(f, 3) ? 0xFFu : static_cast<uint32_t>(f.ConsumeIntegralInRange<int>(lo, hi)); };
     const uint32_t p15 = field(0, 47) | field(0, 0xFF) << 8 | field(0, 0xFF) << 16 | field(0, 31) << 24;
+    // The TRi step-count ramp replaces P4, P5, P8 and P12 on a P/R axis; one in
+    // sixteen keeps a conflicting parameter (refused).
+    const bool stepspeed = (output == "PR" || output.empty()) && chance(f, 3);
+    const bool conflict = stepspeed && chance(f, 16);
+    if (stepspeed)
+      axes << "    stepspeed: {pps: " << in(1, 10000, 20000) << ", accel_steps: " << in(1, 5000, 3000000)
+           << ", done: M" << 800 + ps << "}\n";
     const int p0 = in(0, 2, 3);  // machine/compound units: P4 is cm/min, kept small enough to stay <= 921.6 kHz
     axes << "    params: {at: R" << 2000 + 30 * ps << ", p0: " << p0 << ", p1: " << in(1, 2000, 65535)
-         << ", p2: " << in(1000, 999999, 1000000) << ", p3: " << in(0, 3, 4) << ", p4: " << in(1, p0 == 1 ? 153000 : 100, 1000000)
-         << ", p5: " << in(0, 15300, 20000) << ", p6: " << in(1, 15300, 65535) << ", p7: " << in(0, 32767, 40000)
-         << ", p8: " << in(0, 30000, 31000) << ", p9: " << hex((f.ConsumeBool() ? 0x0100u : 0u) | (f.ConsumeBool() ? 1u : 0u)) << ", p10: "
-         << f.ConsumeIntegralInRange<int>(-32768, 32767) << ", p11: " << f.ConsumeIntegralInRange<int>(-32768, 32767)
-         << ", p12: " << in(0, 30000, 31000) << ", p13: " << in(0, 30000, 31000) << ", p14: " << in(0, 1999999, 2000000)
+         << ", p2: " << in(1000, 999999, 1000000) << ", p3: " << in(0, 3, 4);
+    if (!stepspeed || conflict) axes << ", p4: " << in(1, p0 == 1 ? 153000 : 100, 1000000) << ", p5: " << in(0, 15300, 20000);
+    axes << ", p6: " << in(1, 15300, 65535) << ", p7: " << in(0, 32767, 40000);
+    if (!stepspeed) axes << ", p8: " << in(0, 30000, 31000);
+    axes << ", p9: " << hex((f.ConsumeBool() ? 0x0100u : 0u) | (f.ConsumeBool() ? 1u : 0u)) << ", p10: "
+         << f.ConsumeIntegralInRange<int>(-32768, 32767) << ", p11: " << f.ConsumeIntegralInRange<int>(-32768, 32767);
+    if (!stepspeed) axes << ", p12: " << in(0, 30000, 31000);
+    axes << ", p13: " << in(0, 30000, 31000) << ", p14: " << in(0, 1999999, 2000000)
          << ", p15: " << hex(p15) << ", p16: " << f.ConsumeIntegralInRange<int>(-100000, 100000)
          << ", p17: " << in(0, 255, 300) << "}\n";
     const int steps = f.ConsumeIntegralInRange<int>(1, 8);
@@ -282,7 +293,14 @@ struct Builder {
       const int mode = f.ConsumeIntegralInRange<int>(0, 7);
       if (!pins.claim(4 * n)) return;
       counters << "  hsc" << n << ": {mode: MD" << mode;
-      if ((mode >= 4 || f.ConsumeBool()) && pins.claim(4 * n + 1)) counters << ", b: true";
+      counting_inputs.push_back(4 * n);
+      bool has_b = false;
+      if ((mode >= 4 || f.ConsumeBool()) && pins.claim(4 * n + 1)) {
+        counters << ", b: true";
+        counting_inputs.push_back(4 * n + 1);
+        has_b = true;
+      }
+      decoding(mode == 4 && has_b);
       if (chance(f, 3) && pins.claim(4 * n + 2)) counters << ", mask: true";
       if (chance(f, 3) && pins.claim(4 * n + 3)) counters << ", clear: true";
       if (chance(f, 3)) {
@@ -302,7 +320,11 @@ struct Builder {
     if (mode == 4) {  // A/B: A even, B the next input
       const int a = 2 * f.ConsumeIntegralInRange<int>(0, 7);
       if (!pins.claim(a) || !pins.claim(a + 1)) return;
-      counters << "  hsc" << n << ": {mode: MD4, a: X" << a << ", b: X" << a + 1 << "}\n";
+      counters << "  hsc" << n << ": {mode: MD4, a: X" << a << ", b: X" << a + 1;
+      counting_inputs.push_back(a);
+      counting_inputs.push_back(a + 1);
+      decoding(true);
+      counters << "}\n";
       source_on(a, true);
       labels.push_back("HSC" + std::to_string(n) + "I");
       return;
@@ -310,13 +332,39 @@ struct Builder {
     const int a = pins.take(f, 0, 15);
     if (a < 0) return;
     counters << "  hsc" << n << ": {mode: MD" << mode << ", a: X" << a;
+    counting_inputs.push_back(a);
     if (mode != 0 || f.ConsumeBool()) {
       const int b = pins.take(f, 0, 15);
-      if (b >= 0) counters << ", b: X" << b;
+      if (b >= 0) {
+        counters << ", b: X" << b;
+        counting_inputs.push_back(b);
+      }
     }
+    decoding(false);
     counters << "}\n";
     source_on(a, false);
     labels.push_back("HSC" + std::to_string(n) + "I");
+  }
+
+  // The TRi decodings belong on an A/B counter in MD4; now and then elsewhere, which
+  // the cell must refuse with a message (rare: not what an exhausted input yields).
+  void decoding(bool ab) {
+    if (!(ab ? chance(f, 2) : f.ConsumeIntegralInRange<int>(0, 63) == 63)) return;
+    static const char* const kinds[] = {"simple", "enhanced", "x1", "x2", "x4"};
+    counters << ", decoding: " << pick(f, kinds);
+  }
+
+  // Pulse measurement on some counting inputs (now and then any input: refused unless
+  // it is one).
+  void pulse_measurement() {
+    if (counting_inputs.empty() || !chance(f, 2)) return;
+    std::string list;
+    for (int x : counting_inputs)
+      if (f.ConsumeBool()) list += (list.empty() ? "X" : ", X") + std::to_string(x);
+    if (list.empty() || f.ConsumeIntegralInRange<int>(0, 31) == 31) list += (list.empty() ? "X" : ", X") + std::to_string(f.ConsumeIntegralInRange<int>(0, 15));
+    static const char* const units[] = {"us", "0.1us"};
+    static const char* const timeouts[] = {"auto", "3ms", "50ms", "1s"};
+    counters << "  pulse_measurement: {inputs: [" << list << "], unit: " << pick(f, units) << ", timeout: " << pick(f, timeouts) << "}\n";
   }
 
   std::ostringstream sources, edges;
@@ -417,11 +465,17 @@ struct Builder {
       const std::string type = pick(f, types);
       modules << "      - type: " << type << "\n        code: " << pick(f, pol) << "\n        signal: " << pick(f, pol)
               << "\n        span: " << (f.ConsumeBool() ? 10 : 5) << "\n";
+      if (type.find("DA") != std::string::npos && chance(f, 2)) {
+        modules << "        outputs:\n";
+        for (int c = f.ConsumeIntegralInRange<int>(1, 2); c > 0; --c)
+          modules << "          - {current: " << (f.ConsumeBool() ? "true" : "false") << conditioning(false) << "}\n";
+      }
       if (type.find("AD") == std::string::npos) continue;  // 4DA, 2DA: outputs only
       modules << "        inputs:\n";
       for (int c = f.ConsumeIntegralInRange<int>(1, 3); c > 0; --c) {
         static const char* const units[] = {" V", " mA", ""};
-        modules << "          - {value: " << f.ConsumeIntegralInRange<int>(-300, 300) / 10.0 << pick(f, units) << "}\n";
+        modules << "          - {value: " << f.ConsumeIntegralInRange<int>(-300, 300) / 10.0 << pick(f, units)
+                << conditioning(true) << "}\n";
       }
     }
     // FUN30 PID on the first input (manual A:7376): SR, PR and WR as the manual's tables.
@@ -429,6 +483,18 @@ struct Builder {
       init << "MOV S=" << f.ConsumeIntegralInRange<int>(-100, 20000) << " D=R" << 400 + i << "\n";
     body << "ORG M1925\nLD M" << (f.ConsumeBool() ? 704 : 1925) << "\nLD M705\n"
          << "FUN 30 Ts=R399 SR=R400 OR=R420 PR=R408 WR=R430 ERR=M110 HAL=M111 LAL=M112\n";
+  }
+
+  // The TRi's ADC/DAC conditioning, mostly within its ranges (N 1-9, offset -100..100).
+  std::string conditioning(bool input) {
+    if (!chance(f, 2)) return "";
+    const bool wide = chance(f, 8);
+    std::ostringstream o;
+    o << ", conditioning: {";
+    if (input) o << "average: " << f.ConsumeIntegralInRange<int>(wide ? 0 : 1, wide ? 12 : 9) << ", ";
+    o << "gain: " << f.ConsumeIntegralInRange<int>(wide ? -20000 : -9999, wide ? 20000 : 9999)
+      << ", offset: " << f.ConsumeIntegralInRange<int>(wide ? -300 : -100, wide ? 300 : 100) << "}";
+    return o.str();
   }
 
   // ---- FUN150/151 on ports nobody answers --------------------------------------------
@@ -461,6 +527,7 @@ struct Builder {
     }
     for (int n = 0; n < 8; ++n)
       if (chance(f, 3)) counter(n);
+    pulse_measurement();
     interrupts_and_edges();
     if (chance(f, 3)) temperature();
     if (chance(f, 3)) analog();
