@@ -13,7 +13,7 @@
 
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/slave.h"
-#include "plc_cell/io/serial_line.h"
+#include "plc_cell/io/serial_listener.h"
 #include "plc_cell/io/serial_settings.h"
 #include "plc_cell/io/server.h"
 #include "plc_cell/io/tcp_listener.h"
@@ -67,7 +67,7 @@ struct SerialServerOptions {
   WritableRanges writable;
 };
 
-class SerialServer : public Server {
+class SerialServer : public Server, private SerialProtocol {
  public:
   SerialServer(Plc& plc, SerialServerOptions opt);
   ~SerialServer() override;
@@ -77,20 +77,14 @@ class SerialServer : public Server {
   ServerStatus status() const override;
 
  private:
-  void loop();
-  bool wait_for_device();  // false once stopping
-  Plc& plc_;
+  void feed(const uint8_t* data, size_t n, std::string& out, std::string& fault) override;
+  bool in_frame() const override { return decoder_.in_frame(); }
+  void drop_frame() override { decoder_.timeout(); }
   SerialServerOptions opt_;
   Slave slave_;
-  SerialLine line_;  // reopened by path when the device comes back
-  std::atomic<bool> link_up_{true};
-  std::atomic<uint64_t> reopened_{0};
-  int wake_[2] = {-1, -1};
-  std::thread thread_;
-  std::atomic<bool> running_{false};
+  Decoder decoder_;  // the listener's thread only
   std::atomic<uint64_t> framing_errors_{0};
-  mutable std::mutex err_mu_;
-  std::string last_error_;
+  SerialListener listener_;  // last: its thread stops before the members it reaches go
 };
 
 // Builders for `plc_cell run` and plc_node: "HOST:PORT" and "DEVICE[:BAUD[:FORMAT]]".

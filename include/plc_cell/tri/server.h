@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "plc_cell/core/plc.h"
-#include "plc_cell/io/serial_line.h"
+#include "plc_cell/io/serial_listener.h"
 #include "plc_cell/io/serial_settings.h"
 #include "plc_cell/io/server.h"
 #include "plc_cell/io/tcp_listener.h"
@@ -54,7 +54,7 @@ class TcpServer : public Server, private TcpProtocol {
   TcpListener listener_;  // last: its thread stops before the members it reaches go
 };
 
-class SerialServer : public Server {
+class SerialServer : public Server, private SerialProtocol {
  public:
   SerialServer(Plc& plc, SerialSettings line, ServerOptions opt);
   ~SerialServer() override;
@@ -64,17 +64,13 @@ class SerialServer : public Server {
   ServerStatus status() const override;
 
  private:
-  void loop();
-  void note(const std::string& e);
+  void feed(const uint8_t* data, size_t n, std::string& out, std::string& fault) override;
+  bool in_frame() const override { return decoder_.in_frame(); }
+  void drop_frame() override { decoder_.reset(); }
   ServerOptions opt_;
   Slave slave_;
-  SerialLine line_;
-  std::atomic<bool> link_up_{true};
-  int wake_[2] = {-1, -1};
-  std::thread thread_;
-  std::atomic<bool> running_{false};
-  mutable std::mutex err_mu_;
-  std::string last_error_;
+  Decoder decoder_;          // the listener's thread only
+  SerialListener listener_;  // last: its thread stops before the members it reaches go
 };
 
 }  // namespace tri
