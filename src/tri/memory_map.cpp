@@ -69,6 +69,12 @@ bool dac(uint32_t n, Address* out) {
   return true;
 }
 
+bool pwm(uint32_t n, Address* out) {
+  if (!in(n, kPwmChannels)) return false;
+  *out = reg(Area::R, kPwmR + n - 1);
+  return true;
+}
+
 bool eeprom_int(uint32_t a, Address* out) {
   if (!in(a, kEepromInts)) return false;
   *out = reg(Area::F, kEepromF + a - 1);

@@ -59,7 +59,8 @@ struct Spec {
 [[noreturn]] void not_on_tri(const Address& a) {
   throw Error(format_address(a) +
               " is not on a TRi: it has X0-X255, Y0-Y255, M0-M511, T50-T113, C0-C63 (and their W/DW words), "
-              "RT50-RT113, RC0-RC63, R3600-R3727 (SVs), DR3760-DR3810 (A-Z), R3840-R3847 (ADC), R3904-R3907 (DAC), "
+              "RT50-RT113, RC0-RC63, R3600-R3727 (SVs), DR3760-DR3810 (A-Z), R3812-R3815 (PWM), R3840-R3847 (ADC), "
+              "R3904-R3907 (DAC), "
               "DR4096, DR4100 (HSCPV), D0-D3999 (DM), F0-F3999 (EEPROM) (docs/tri.md, tri_bridge)");
 }
 
@@ -127,6 +128,7 @@ Spec classify(const Address& a) {
       else if (in(i, kCounterSvR, kCounters)) s.needs.push_back({Need::Single, req(Cmd::ReadCounterSv, i - kCounterSvR)});
       else if (in(i, kAdcR, kAdcChannels)) s.needs.push_back({Need::Adc, {}, i - kAdcR + 1});
       else if (in(i, kDacR, kDacChannels)) s.needs.push_back({Need::Single, req(Cmd::ReadSystem, 0x0C, i - kDacR + 1)});
+      else if (in(i, kPwmR, kPwmChannels)) s.needs.push_back({Need::Single, req(Cmd::ReadSystem, 0x0D, i - kPwmR + 1)});
       else not_on_tri(a);
       return s;
     default:
@@ -197,12 +199,14 @@ Address parse_point(const std::string& text) {
         {"HSCPV", kHsc, [](uint32_t n) { return at(Area::R, kHscCvR + 4 * (n - 1), Width::DWord); }},
         {"ADC", kAdcChannels, [](uint32_t n) { return at(Area::R, kAdcR + n - 1); }},
         {"DAC", kDacChannels, [](uint32_t n) { return at(Area::R, kDacR + n - 1); }},
+        {"PWM", kPwmChannels, [](uint32_t n) { return at(Area::R, kPwmR + n - 1); }},
         {"EEPROM", kEepromInts, [](uint32_t n) { return at(Area::F, n - 1); }},
     };
     for (const auto& k : kNamed)
       if (name == k.name) return k.make(parse_index(up, open, k.hi));
     throw Error("'" + text + "': no TRi element " + name +
-                "[] (INPUT, OUTPUT, RELAY, TIMERBIT, CTRBIT, TIMERPV, TIMERSV, CTRPV, CTRSV, DM, HSCPV, ADC, DAC, EEPROM)");
+                "[] (INPUT, OUTPUT, RELAY, TIMERBIT, CTRBIT, TIMERPV, TIMERSV, CTRPV, CTRSV, DM, HSCPV, ADC, DAC, PWM, "
+                "EEPROM)");
   }
   const Address a = parse_address(text);
   check_on_tri(a, 1);
@@ -345,6 +349,8 @@ std::vector<Request> plan_write(const Address& start, const std::vector<uint32_t
       else add(Cmd::WriteCounterSv, i - kCounterSvR, 0, {v});
     } else if (in(i, kDacR, kDacChannels)) {
       add(Cmd::WriteSystem, 0x0C, i - kDacR + 1, {v & 0xFFFF});
+    } else if (in(i, kPwmR, kPwmChannels)) {
+      add(Cmd::WriteSystem, 0x0D, i - kPwmR + 1, {v & 0xFFFF});
     } else {
       throw Error(format_address(a) + " (ADC) is an analog input: it cannot be written");
     }

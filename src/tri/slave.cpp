@@ -92,7 +92,8 @@ ErrorCode system_variable(uint32_t type, uint32_t index, std::vector<Address>* e
     case 9: if (!date_register(index, &a)) return ErrorCode::OutOfRange; elems->push_back(a); break;
     case 0x0B: if (!adc(index, &a)) return ErrorCode::OutOfRange; elems->push_back(a); break;
     case 0x0C: if (!dac(index, &a)) return ErrorCode::OutOfRange; elems->push_back(a); break;
-    default: return ErrorCode::OutOfRange;  // 0A (none) and 0D (PWM: no FBs register)
+    case 0x0D: if (!pwm(index, &a)) return ErrorCode::OutOfRange; elems->push_back(a); break;
+    default: return ErrorCode::OutOfRange;  // 0A: no variable of that type
   }
   return ErrorCode::Ok;
 }

@@ -69,6 +69,12 @@ TEST_F(TriSlave, ManualExamples) {
   EXPECT_EQ(mem("R4130"), 14u);  // hour
   set("R4132", 5);
   EXPECT_EQ(p2p("RVS0902"), "RVS0005*");  // May
+  // PWM (RVS/WVS type 0D, §16.15/16.29): the duty of the last SETPWM in 0.01 %, kept in
+  // R3812.. (SETPWM 2, 9500, 50 is 95 %).
+  EXPECT_EQ(p2p("WVS0D02251C"), "WVS*");
+  EXPECT_EQ(mem("R3813"), 9500u);
+  set("R3812", 5000);
+  EXPECT_EQ(p2p("RVS0D01"), "RVS1388*");
   EXPECT_EQ(p2p("IR"), "IR01*");
   EXPECT_EQ(p2p("IW0A"), "IW*");
   EXPECT_EQ(slave.id(), 10);
@@ -183,7 +189,7 @@ TEST_F(TriSlave, RangesAreCheckedAndRefusedRequestsChangeNothing) {
   EXPECT_EQ(p2p("RM40"), "ER03*");
   EXPECT_EQ(p2p("RVH3"), "ER03*");
   EXPECT_EQ(p2p("RVS0A01"), "ER03*");
-  EXPECT_EQ(p2p("RVS0D01"), "ER03*");  // PWM: no FBs register
+  EXPECT_EQ(p2p("RVS0D05"), "ER03*");  // PWM 1-4
   EXPECT_EQ(p2p("RVS0111"), "ER03*");  // input[17]
   EXPECT_EQ(p2p("RA0802"), "ER03*");
   EXPECT_EQ(p2p("WA0501FFFF"), "ER03*");
@@ -271,6 +277,12 @@ TEST(TriMemoryMap, TheDocumentedTable) {
   EXPECT_EQ(format_address(a), "R3847");
   ASSERT_TRUE(dac(1, &a));
   EXPECT_EQ(format_address(a), "R3904");
+  ASSERT_TRUE(pwm(1, &a));
+  EXPECT_EQ(format_address(a), "R3812");
+  ASSERT_TRUE(pwm(4, &a));
+  EXPECT_EQ(format_address(a), "R3815");
+  EXPECT_FALSE(pwm(0, &a));
+  EXPECT_FALSE(pwm(5, &a));
   ASSERT_TRUE(eeprom_int(4000, &a));
   EXPECT_EQ(format_address(a), "F3999");
   ASSERT_TRUE(eeprom_string(150, &a));
@@ -285,6 +297,8 @@ TEST(TriMemoryMap, TheDocumentedTable) {
   EXPECT_LT(kIntegersR + 52, 3840u);
   EXPECT_LE(kTimerSvR + kTimers, kCounterSvR);
   EXPECT_LE(kCounterSvR + kCounters, kIntegersR);
+  EXPECT_LE(kIntegersR + 52, kPwmR);
+  EXPECT_LE(kPwmR + kPwmChannels, 3840u);
 }
 
 // What survives STOP -> RUN is the cell's plc.retentive: with the FBs default, DM[], A-Z,

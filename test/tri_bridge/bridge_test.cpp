@@ -89,6 +89,8 @@ TEST(TriPoints, TriNamesAndPlcNodeAddresses) {
   EXPECT_EQ(parse_point("CTRSV[64]"), A("R3727"));
   EXPECT_EQ(parse_point("ADC[8]"), A("R3847"));
   EXPECT_EQ(parse_point("DAC[1]"), A("R3904"));
+  EXPECT_EQ(parse_point("PWM[4]"), A("R3815"));
+  EXPECT_THROW(parse_point("PWM[5]"), Error);
   EXPECT_EQ(parse_point("EEPROM[1]"), A("F0"));
   EXPECT_EQ(parse_point("X2"), A("X2"));  // input 3, as plc_node names it
   EXPECT_EQ(parse_point("T50"), A("T50"));  // timer 1's contact
@@ -214,18 +216,19 @@ TEST(TriBridge, PollsTheCellInTheFramesPlanned) {
     m.set_reg(Area::R, 3840, 11);  // ADC 1, 2
     m.set_reg(Area::R, 3841, 22);
     m.set_reg(Area::F, 0, 7);
+    m.set_reg(Area::R, 3813, 9500);  // PWM 2 at 95.00 %
     return 0;
   });
   auto server = serve(plc, 0);
   Collector c;
   Bridge b(link_to(server->port(), yaml("signals: {x3: X3, y1: Y1, m7: M7, m8: M8}\n"
                                         "groups:\n  - {name: g, rate: 100, points: "
-                                        "[\"DM[1]:2\", A, \"ADC[1]:2\", \"EEPROM[1]:3\", \"TIMERPV[1]\"]}\n")),
+                                        "[\"DM[1]:2\", A, \"ADC[1]:2\", \"EEPROM[1]:3\", \"TIMERPV[1]\", \"PWM[2]\"]}\n")),
            c.sinks());
   // INPUT[1], OUTPUT[1] (the signals X3 and Y1 are in them) and RELAY[1] for M7 and M8.
   EXPECT_EQ(b.io_frames(), 3u);
-  // DM[1], DM[2], RVI A, one RA, one RXI, RVS 06 01.
-  EXPECT_EQ(b.group_frames(0), 6u);
+  // DM[1], DM[2], RVI A, one RA, one RXI, RVS 06 01, RVS 0D 02.
+  EXPECT_EQ(b.group_frames(0), 7u);
   b.start();
   ASSERT_TRUE(c.wait([&] { return !c.io.empty() && !c.groups.empty(); }));
   {
@@ -239,7 +242,7 @@ TEST(TriBridge, PollsTheCellInTheFramesPlanned) {
     EXPECT_EQ(io.signals, (std::vector<bool>{true, true, true, false}));
     const GroupResult g = c.groups.front();
     ASSERT_TRUE(g.ok) << g.error;
-    EXPECT_EQ(g.values, (std::vector<uint32_t>{1234, 5, 0x00020001, 11, 22, 7, 0, 0, 0}));
+    EXPECT_EQ(g.values, (std::vector<uint32_t>{1234, 5, 0x00020001, 11, 22, 7, 0, 0, 0, 9500}));
   }
   b.stop();
   // The frames the server answered for one read of the group are the frames planned.
@@ -269,6 +272,7 @@ TEST(TriBridge, WritesForcingAndRunModeReachTheCell) {
   b.write(A("M9"), {1});                     // relay 10: wb
   b.write(A("WM16"), {0xA5A5});              // RELAY[2]: one WVS
   b.write(b.resolve("TIMERSV[1]"), {150});
+  b.write(b.resolve("PWM[1]"), {2500});     // WVS 0D 01
   b.write(A("F10"), {1, 2, 3});              // EEPROM[11..13]: one WXI
   b.write(A("X4"), {1});                     // plays the sensor
   EXPECT_EQ(plc.read(A("D99"), 2), (std::vector<uint32_t>{4321, 7}));
@@ -276,6 +280,7 @@ TEST(TriBridge, WritesForcingAndRunModeReachTheCell) {
   EXPECT_EQ(plc.read(A("M9"), 1)[0], 1u);
   EXPECT_EQ(plc.read(A("WM16"), 1)[0], 0xA5A5u);
   EXPECT_EQ(plc.read(A("R3600"), 1)[0], 150u);
+  EXPECT_EQ(plc.read(A("R3812"), 1)[0], 2500u);
   EXPECT_EQ(plc.read(A("F10"), 3), (std::vector<uint32_t>{1, 2, 3}));
   EXPECT_EQ(b.read(A("DR3762"), 1)[0], 123456u);
   EXPECT_THROW(b.write(A("R3762"), {1}), Error);  // half of B: refused before the link

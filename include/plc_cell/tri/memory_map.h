@@ -17,6 +17,7 @@ constexpr uint32_t kDmWords = 4000;      // DM[1..4000]
 constexpr uint32_t kHsc = 2;             // HSCPV[1..2]
 constexpr uint32_t kAdcChannels = 8;     // ADC 1..8
 constexpr uint32_t kDacChannels = 4;     // DAC 1..4 (2 on board, 2 on the I2C-FRTC)
+constexpr uint32_t kPwmChannels = 4;     // PWM 1..4
 constexpr uint32_t kEepromInts = 4000;   // EEPROM integers 1..4000
 constexpr uint32_t kEepromStrings = 150; // EEPROM strings 1..150, 40 characters
 constexpr uint32_t kEepromStringChars = 40;
@@ -29,6 +30,7 @@ constexpr uint32_t kIntegersR = 3760;    // A..Z: DR3760, DR3762, ... DR3810 (lo
 constexpr uint32_t kFirstTimer = 50;     // timer n: T(49+n), RT(49+n) (T50..T199 are 0.1 s)
 constexpr uint32_t kAdcR = 3840;         // ADC n: R(3839+n), the FBs analog inputs
 constexpr uint32_t kDacR = 3904;         // DAC n: R(3903+n), the FBs analog outputs
+constexpr uint32_t kPwmR = 3812;         // PWM n: R(3811+n), the duty of the last SETPWM (0.01 %)
 constexpr uint32_t kHscCvR = 4096;       // HSCPV[n]: DR(4096+4(n-1)), the CV of HSC0, HSC1
 constexpr uint32_t kEepromF = 0;         // EEPROM integer a: F(a-1), F0..F3999
 constexpr uint32_t kEepromStringF = 4000;// EEPROM string s: F(4000+20(s-1)), 20 words each
@@ -50,6 +52,7 @@ bool dm(uint32_t n, Address* out);            // DM[n], 1..4000 -> D(n-1)
 bool hsc_pv(uint32_t n, Address* out);        // 1..2 -> DR4096, DR4100
 bool adc(uint32_t n, Address* out);           // 1..8 -> R3840..R3847
 bool dac(uint32_t n, Address* out);           // 1..4 -> R3904..R3907
+bool pwm(uint32_t n, Address* out);           // 1..4 -> R3812..R3815
 bool eeprom_int(uint32_t a, Address* out);    // 1..4000 -> F0..F3999
 // String storage: first word and words; 2 characters a word, high byte first, ending at
 // the first NUL (or filling every word).

@@ -5,7 +5,7 @@
 // (docs/tri.md, "tri_bridge"). Coalesced: discretes by words of 16 (one RVS frame per
 // word, whatever number of points in it), ADC channels by RA runs, EEPROM integers by
 // RXI runs of up to 32 words, and the same element asked twice is read once. Every other
-// element is one frame each (RVD, RVI, RVH, RVS 06/07/0C, Rm, Ru): the TRi has no
+// element is one frame each (RVD, RVI, RVH, RVS 06/07/0C/0D, Rm, Ru): the TRi has no
 // multi-word read of them.
 #include <cstdint>
 #include <string>
@@ -21,10 +21,10 @@ namespace tri {
 
 // A plc_node address on the TRi (X0-X255, Y0-Y255, M0-M511, T50-T113, C0-C63 and their
 // W/DW views, RT50-RT113, RC0-RC63, R3600-R3727, DR3760-DR3810, R3840-R3847,
-// R3904-R3907, DR4096, DR4100, D0-D3999, F0-F3999), or a TRi name: INPUT[n] (n 1-16, 16
+// R3812-R3815, R3904-R3907, DR4096, DR4100, D0-D3999, F0-F3999), or a TRi name: INPUT[n] (n 1-16, 16
 // inputs: WX(16(n-1))), OUTPUT[n], RELAY[n] (1-32), TIMERBIT[n] and CTRBIT[n] (1-4),
 // TIMERPV[n], TIMERSV[n], CTRPV[n], CTRSV[n] (1-64), DM[n] (1-4000), A-Z, HSCPV[n]
-// (1-2), ADC[n] (1-8), DAC[n] (1-4), EEPROM[n] (1-4000). Throws Error naming the text and
+// (1-2), ADC[n] (1-8), DAC[n] (1-4), PWM[n] (1-4), EEPROM[n] (1-4000). Throws Error naming the text and
 // what a TRi has.
 Address parse_point(const std::string& text);
 // Throws Error when an element of count from start is not on a TRi.
@@ -57,7 +57,7 @@ PollPlan plan_poll(const std::vector<PollItem>& items);
 std::vector<std::vector<uint32_t>> run_poll(Client& c, const PollPlan& plan);
 
 // The frames that write raw elements (encode_element's bit patterns) from start: wb per
-// discrete, WVS per aligned word of 16, WVD, WVI, WVH, WVS 06/07/0C, Wm, Wu, WXI runs.
+// discrete, WVS per aligned word of 16, WVD, WVI, WVH, WVS 06/07/0C/0D, Wm, Wu, WXI runs.
 // Throws Error before anything is sent for an element the TRi cannot take (ADC, half of
 // A-Z or HSCPV, an SV over 9999).
 std::vector<Request> plan_write(const Address& start, const std::vector<uint32_t>& raw);
