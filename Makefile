@@ -94,7 +94,8 @@ bench: build
 FUZZ_TIME ?= 60
 fuzz: build
 	@for t in fatek_decoder:fatek il_parser:il address:address config:config motion_table:motion \
-	    modbus_handler:modbus fatek_slave_live:fatek modbus_handler_tsan:modbus fatek_slave_live_tsan:fatek cell:cell; do \
+	    modbus_handler:modbus fatek_slave_live:fatek modbus_handler_tsan:modbus fatek_slave_live_tsan:fatek \
+	    tri_slave_live:tri tri_slave_live_tsan:tri tri_codec:tri_codec cell:cell; do \
 	  n=$${t%%:*}; c=$${t##*:}; mkdir -p $(BUILD)/fuzz-corpus/$$c; \
 	  ml=512; opts=; [ $$n != cell ] || { ml=8192; opts=-entropic=0; }; \
 	  echo "== fuzz_$$n for $(FUZZ_TIME) s"; \

@@ -57,6 +57,11 @@ TEST(Fuzz, ModbusHandlerOnLivePlc) { expect_clean("modbus_handler", "modbus", 30
 TEST(Fuzz, FatekSlaveOnLivePlc) { expect_clean("fatek_slave_live", "fatek", 50000); }
 TEST(Fuzz, ModbusHandlerOnLivePlcThreadSanitizer) { expect_clean("modbus_handler_tsan", "modbus", 1000); }
 TEST(Fuzz, FatekSlaveOnLivePlcThreadSanitizer) { expect_clean("fatek_slave_live_tsan", "fatek", 10000); }
+TEST(Fuzz, TriSlaveOnLivePlc) { expect_clean("tri_slave_live", "tri", 50000); }
+TEST(Fuzz, TriSlaveOnLivePlcThreadSanitizer) { expect_clean("tri_slave_live_tsan", "tri", 10000); }
+
+// A TRi master's codec: any request body and any reply to it (test/fuzz/tri_codec_fuzz.cpp).
+TEST(Fuzz, TriRequestAndResponseCodec) { expect_clean("tri_codec", "tri_codec", 100000); }
 
 // Whole cells (YAML + IL + run bytes): the seeds are the examples/ cells, up to 4 KiB each.
 // Generated and mutated whole cells (test/fuzz/cell_fuzz.cpp): about 20 executions a second under ASan.
