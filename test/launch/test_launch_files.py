@@ -58,6 +58,8 @@ def test_tri_bridge_default_is_the_local_soft_plc():
     assert cfg.params["/tri_bridge/tcp"].value == "127.0.0.1:9080"
     assert "/tri_bridge/port" not in cfg.params
     assert cfg.params["/tri_bridge/baud"].value == 38400
+    # The demo cell's points, so the bare launch shows plc_node's signal names.
+    assert cfg.params["/tri_bridge/config"].value.endswith("/examples/tri/conveyor.yaml")
     serial = load("tri_bridge.launch", "port:=/dev/ttyUSB0")
     assert serial.params["/tri_bridge/port"].value == "/dev/ttyUSB0"
     assert "/tri_bridge/tcp" not in serial.params

@@ -6,6 +6,7 @@
 
 #include <deque>
 #include <fstream>
+#include <map>
 
 #include "../bridge_collector.h"
 #include "../fatek/fatek_link.h"
@@ -384,4 +385,49 @@ TEST(TriBridge, PollsOverASerialLine) {
   EXPECT_TRUE(b.status().connected);
   b.stop();
   server.stop();
+}
+
+// examples/tri/conveyor.yaml, tri_bridge.launch's default, names the demo cell's signals as
+// the cell YAML does (so /tri_bridge/signals/<name> are /plc_node/signals/<name>), and its
+// groups poll what the demo's program keeps: parts done (counter 1) and the pick and
+// release timers (T50, T51).
+TEST(TriBridge, ExampleConfigNamesTheDemoCellsSignals) {
+  const BridgeConfig cfg = load_bridge_config(std::string(PLC_CELL_SOURCE_DIR) + "/examples/tri/conveyor.yaml");
+  const YAML::Node cell = YAML::LoadFile(std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/conveyor.yaml");
+  std::vector<std::pair<std::string, Address>> demo;
+  for (const auto& kv : cell["signals"]) demo.emplace_back(kv.first.as<std::string>(), A(kv.second.as<std::string>().c_str()));
+  EXPECT_EQ(cfg.signals, demo);
+
+  Plc plc;
+  plc.locked([](ScanEngine&, Memory& m) {
+    m.set_bit(Area::X, 3, true);  // part_present
+    m.set_bit(Area::M, 0, true);  // line_running
+    m.set_reg(Area::RC, 0, 7);    // 7 parts done
+    m.set_reg(Area::RT, 50, 12);  // picking for 1.2 s
+    for (uint16_t i = 0; i < 4; ++i) m.set_reg(Area::D, i, uint16_t(100 + i));
+    return 0;
+  });
+  auto server = serve(plc, 0);
+  Collector c;
+  Bridge b(link_to(server->port(), cfg), c.sinks());
+  b.start();
+  const auto both_groups = [&] {
+    bool seen[2] = {false, false};
+    for (const GroupResult& g : c.groups) seen[g.group] = true;
+    return seen[0] && seen[1];
+  };
+  ASSERT_TRUE(c.wait([&] { return !c.io.empty() && both_groups(); }));
+  b.stop();
+  const IoResult io = c.io.front();
+  ASSERT_TRUE(io.ok) << io.error;
+  // start_button, stop_button, part_present, stopper_down, conveyor_run, stopper_lower,
+  // pick_request, line_running
+  EXPECT_EQ(io.signals, (std::vector<bool>{false, false, true, false, false, false, false, true}));
+  std::map<std::string, std::vector<uint32_t>> groups;
+  for (const GroupResult& g : c.groups) {
+    ASSERT_TRUE(g.ok) << g.error;
+    groups[cfg.groups[g.group].name] = g.values;
+  }
+  EXPECT_EQ(groups["parts"], (std::vector<uint32_t>{7, 12, 0}));
+  EXPECT_EQ(groups["recipe"], (std::vector<uint32_t>{100, 101, 102, 103}));
 }
