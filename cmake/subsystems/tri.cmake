@@ -19,6 +19,13 @@ set_target_properties(plc_cell_tri PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_tri)
 
+# The host link's speed beside FATEK's in the same run (docs/tri.md, "Performance").
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+  add_executable(bench_tri bench/tri_bench.cpp)
+  target_link_libraries(bench_tri plc_cell_tri plc_cell_fatek plc_cell_sim benchmark::benchmark)
+endif()
+
 if(CATKIN_ENABLE_TESTING)
   file(GLOB TRI_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/tri/*_test.cpp)
   catkin_add_gtest(tri_tests test/core/test_main.cpp ${TRI_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
