@@ -144,6 +144,14 @@ TEST(TriMap, MbpollReadsDm1AtRegister1000) {
   auto out = test::run(base + "-r 1001 -c 1 127.0.0.1");
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("[1001]: \t1234"), std::string::npos) << out.text;
+  // The same register by its wire address (mbpoll -0: references from 0).
+  out = test::run(base + "-0 -r 1000 -c 1 127.0.0.1");
+  ASSERT_EQ(out.status, 0) << out.text;
+  EXPECT_NE(out.text.find("[1000]: \t1234"), std::string::npos) << out.text;
+  // 4-1000 (wire 999) is not in Table 14.1: exception 02, illegal data address.
+  out = test::run(base + "-r 1000 -c 1 127.0.0.1");
+  EXPECT_NE(out.status, 0) << out.text;
+  EXPECT_NE(out.text.find("Illegal data address"), std::string::npos) << out.text;
   out = test::run(base + "-t 3 -r 1 -c 1 127.0.0.1");  // FC04 on INPUT[1]
   ASSERT_EQ(out.status, 0) << out.text;
   EXPECT_NE(out.text.find("[1]: \t0"), std::string::npos) << out.text;
