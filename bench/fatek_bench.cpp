@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "latency_counters.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/client.h"
 #include "plc_cell/fatek/server.h"
@@ -25,18 +26,6 @@
 using namespace plc_cell;
 using namespace plc_cell::fatek;
 using Clock = std::chrono::steady_clock;
-
-namespace {
-
-void latency_counters(benchmark::State& st, std::vector<double>& us) {
-  if (us.empty()) return;
-  std::sort(us.begin(), us.end());
-  st.counters["p50_us"] = us[us.size() / 2];
-  st.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
-  st.counters["req_per_s"] = benchmark::Counter(double(us.size()), benchmark::Counter::kIsRate);
-}
-
-}  // namespace
 
 static void BM_CodecEncodeDecode64(benchmark::State& st) {
   Request req;

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <vector>
 
+#include "latency_counters.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/client.h"
 #include "plc_cell/fatek/server.h"
@@ -23,14 +24,6 @@ using namespace plc_cell;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-void latency_counters(benchmark::State& st, std::vector<double>& us) {
-  if (us.empty()) return;
-  std::sort(us.begin(), us.end());
-  st.counters["p50_us"] = us[us.size() / 2];
-  st.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
-  st.counters["req_per_s"] = benchmark::Counter(double(us.size()), benchmark::Counter::kIsRate);
-}
 
 template <class Once>
 void timed(benchmark::State& st, Once once) {
