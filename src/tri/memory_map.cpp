@@ -4,13 +4,7 @@ namespace plc_cell {
 namespace tri {
 namespace {
 
-Address reg(Area a, uint32_t i, Width w = Width::Word) {
-  Address x;
-  x.area = a;
-  x.index = i;
-  x.width = w;
-  return x;
-}
+Address reg(Area a, uint32_t i, Width w = Width::Word) { return Address{a, w, i}; }
 
 bool in(uint32_t n, uint32_t hi) { return n >= 1 && n <= hi; }
 

@@ -163,13 +163,7 @@ uint32_t parse_index(const std::string& text, size_t open, uint32_t hi) {
   return uint32_t(v);
 }
 
-Address at(Area area, uint32_t index, Width w = Width::Word) {
-  Address a;
-  a.area = area;
-  a.index = index;
-  a.width = w;
-  return a;
-}
+Address at(Area area, uint32_t index, Width w = Width::Word) { return Address{area, w, index}; }
 
 }  // namespace
 
