@@ -71,6 +71,9 @@ def test_cell_sim_keeps_the_cells_scan_period():
     given = load("cell_sim.launch", "scan_period:=0.005")
     assert given.params["/plc_node/scan_period"].value == 0.005
     assert "/plc_node/modbus_tcp" not in cfg.params and "/plc_node/fatek_tcp" not in cfg.params
+    assert "/plc_node/tri_tcp" not in cfg.params
+    served = load("cell_sim.launch", "tri_tcp:=127.0.0.1:9080")
+    assert served.params["/plc_node/tri_tcp"].value == "127.0.0.1:9080"
 
 
 def test_cells_restart_alone():
