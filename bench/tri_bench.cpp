@@ -7,7 +7,6 @@
 //    client is the one tri_bridge and fatek_bridge use; the server is plc_cell run's.
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <chrono>
 #include <vector>
 
