@@ -1,7 +1,6 @@
 // The cell YAML's axes: section.
 #include "plc_cell/motion/axis_config.h"
 
-#include <cctype>
 #include <climits>
 #include <map>
 
@@ -195,16 +194,14 @@ AxesConfig parse_axes_config(const YAML::Node& axes, const std::string& file) {
       } else if (k == "params") {
         {
           a.has_params = true;
-          a.params_at = register_at(r, v, pre + k);
+          if (!v.IsMap()) r.fail(v, pre + k, "expected a mapping {p8: 100, ...} (at: a register for MPARA, optional)");
+          a.params_image = bool(v["at"]);
+          if (a.params_image) a.params_at = register_at(r, v, pre + k);
           for (const auto& pf : v) {
             const std::string pk = pf.first.as<std::string>();
             if (pk == "at") continue;
             const int64_t val = r.integer(pf.second, pre + "params." + pk, INT64_MIN, INT64_MAX);
-            // "p0" .. "p17"
-            int n = -1;
-            if (pk.size() >= 2 && pk.size() <= 3 && pk[0] == 'p' && std::isdigit(static_cast<unsigned char>(pk[1])) &&
-                (pk.size() == 2 || std::isdigit(static_cast<unsigned char>(pk[2]))) && !(pk.size() == 3 && pk[1] == '0'))
-              n = std::stoi(pk.substr(1));
+            const int n = pk[0] == 'p' ? param_number(pk) : -1;  // the YAML's keys are lower case
             if (!a.params.set(n, val)) r.fail(pf.first, pre + "params." + pk, "expected at, p0 ... p17");
             given.emplace(pk, pf.first);
           }

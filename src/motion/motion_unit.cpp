@@ -116,16 +116,17 @@ void MotionUnit::after_program(uint64_t now_us) { write_status(now_us * 1000); }
 void MotionUnit::preload() {
   // The cell YAML's tables and parameter tables, as an MMI would write them at RUN.
   preloaded_ = true;
-  for (const auto& a : cfg_.axes) {
-    const auto put = [&](const Address& at, const uint16_t* w, size_t n) {
-      for (size_t i = 0; i < n && at.index + i < Memory::word_count(at.area); ++i)
+  for (int n = 0; n < kAxes; ++n) {
+    const AxisDef& a = cfg_.axes[n];
+    const auto put = [&](const Address& at, const uint16_t* w, size_t count) {
+      for (size_t i = 0; i < count && at.index + i < Memory::word_count(at.area); ++i)
         mem_.set_reg(at.area, static_cast<uint32_t>(at.index + i), w[i]);
     };
     if (a.has_table) {
       const std::vector<uint16_t> r = encode_table(a.table);
       put(a.table_at, r.data(), r.size());
     }
-    if (a.has_params) {
+    if (a.params_image) {
       uint16_t r[kParamWords];
       a.params.to_registers(r);
       put(a.params_at, r, kParamWords);
@@ -565,6 +566,9 @@ bool MotionUnit::command(int ps, Command c, std::string* why) {
 void MotionUnit::configure(const AxesConfig& cfg) {
   detach_signals();
   cfg_ = cfg;
+  // The YAML's parameters configure the axis from the start: a move through ROS, FUN147
+  // or FUN148 ramps with them before (or without) any ladder MPARA.
+  for (int n = 0; n < kAxes; ++n) axes_[n].params = cfg_.axes[n].has_params ? cfg_.axes[n].params : AxisParams();
   attach_signals();
 }
 

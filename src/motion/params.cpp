@@ -187,12 +187,64 @@ int AxisParams::validate(ParamError* e) const {
 }
 
 bool AxisParams::check_values(const int64_t* v, ParamError* e) {
-  const bool machine = v[0] == 0;
-  for (int n = 0; n < kParamCount; ++n)
-    if (!check_param(n, v[n], machine, e)) return false;
+  std::vector<std::pair<int, int64_t>> all;
+  for (int n = 0; n < kParamCount; ++n) all.push_back({n, v[n]});
   AxisParams p;
-  for (int n = 0; n < kParamCount; ++n) p.set(n, v[n]);
-  return p.validate(e) == 0;
+  return AxisParams().updated(all, &p, e);
+}
+
+bool AxisParams::updated(const std::vector<std::pair<int, int64_t>>& changes, AxisParams* out, ParamError* e) const {
+  bool machine = p0_unit == 0;
+  for (const auto& c : changes)
+    if (c.first == 0) machine = c.second == 0;
+  for (const auto& c : changes)
+    if (!check_param(c.first, c.second, machine, e)) return false;
+  AxisParams p = *this;
+  for (const auto& c : changes) p.set(c.first, c.second);
+  if (p.validate(e) != 0) return false;
+  *out = p;
+  return true;
+}
+
+bool param_changes(const std::vector<std::string>& names, const std::vector<int64_t>& values,
+                   std::vector<std::pair<int, int64_t>>* out, std::string* why) {
+  out->clear();
+  if (names.empty()) {
+    if (values.size() != size_t(kParamCount)) {
+      *why = "give the 18 values P0..P17 in order, or names with their values (names: [p8], values: [100]); got " +
+             std::to_string(values.size()) + " values and no names";
+      return false;
+    }
+    for (int n = 0; n < kParamCount; ++n) out->push_back({n, values[size_t(n)]});
+    return true;
+  }
+  if (names.size() != values.size()) {
+    *why = std::to_string(names.size()) + " names but " + std::to_string(values.size()) + " values: one value per name";
+    return false;
+  }
+  for (size_t i = 0; i < names.size(); ++i) {
+    const int n = param_number(names[i]);
+    if (n < 0) {
+      *why = "'" + names[i] + "': no such parameter (p0 ... p17)";
+      return false;
+    }
+    for (const auto& c : *out)
+      if (c.first == n) {
+        *why = "P" + std::to_string(n) + " given twice";
+        return false;
+      }
+    out->push_back({n, values[i]});
+  }
+  return true;
+}
+
+int param_number(const std::string& key) {
+  if (key.size() < 2 || key.size() > 3 || (key[0] != 'p' && key[0] != 'P')) return -1;
+  for (size_t i = 1; i < key.size(); ++i)
+    if (key[i] < '0' || key[i] > '9') return -1;
+  if (key.size() == 3 && key[1] == '0') return -1;  // p08
+  const int n = std::stoi(key.substr(1));
+  return n < kParamCount ? n : -1;
 }
 
 int64_t AxisParams::ut_to_pulses(int64_t stroke) const {

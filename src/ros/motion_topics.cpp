@@ -77,26 +77,23 @@ MotionTopics::MotionTopics(ros::NodeHandle& nh, ros::NodeHandle& pnh, SoftCell& 
         }));
     a->services.push_back(pnh.advertiseService<SetMotionParams::Request, SetMotionParams::Response>(
         base + "/set_params", [n, locked](SetMotionParams::Request& req, SetMotionParams::Response& res) {
-          if (req.values.size() != size_t(motion::kParamCount)) {
-            res.success = false;
-            res.message = "give the 18 values P0..P17";
-            return true;
-          }
-          // The values as given against the FUN141 ranges (before they are narrowed
-          // to the table's fields): a refused request changes nothing.
+          res.success = false;
+          std::vector<std::pair<int, int64_t>> changes;
+          if (!motion::param_changes(req.names, req.values, &changes, &res.message)) return true;
+          // The values as given against the FUN141 ranges (before they are narrowed to
+          // the table's fields), on top of the axis's present ones: a refused request
+          // changes nothing.
           motion::ParamError e;
-          res.success = motion::AxisParams::check_values(req.values.data(), &e);
+          res.success = locked([&](MotionUnit& u) {
+            motion::AxisParams p;
+            if (!u.params(n).updated(changes, &p, &e)) return false;
+            u.set_params(n, p);
+            return true;
+          });
           if (!res.success) {
             res.error_code = e.code;
             res.message = e.message;
-            return true;
           }
-          motion::AxisParams p;
-          for (int k = 0; k < motion::kParamCount; ++k) p.set(k, req.values[size_t(k)]);
-          locked([&](MotionUnit& u) {
-            u.set_params(n, p);
-            return 0;
-          });
           return true;
         }));
     a->services.push_back(pnh.advertiseService<MotionCommand::Request, MotionCommand::Response>(

@@ -100,10 +100,7 @@ class MotionTest(unittest.TestCase):
         assert cls.action.wait_for_server(30)
         cls.joints = Latest("/joint_states", JointState)  # the node's namespace, not private
         cls.status = Latest(NS + "status", AxisStatus)
-        # P8 = 200 ms: 460 kHz/0.2 s = 2.3 MHz/s.
-        values = [1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 1]
-        res = cls.params(values)
-        assert res.success, res.message
+        # The ramps are the cell YAML's params: P8 = 200 ms, 460 kHz/0.2 s = 2.3 MHz/s.
 
     def test_1_bad_table_and_bad_params_are_refused(self):
         res = self.load("SPD 5000\nDRV ADR,+,10,Ps\nGOTO NEXT\nSPD 0\nDRV ADR,+,1,Ps\nGOTO NEXT\nMEND\n")
@@ -118,6 +115,22 @@ class MotionTest(unittest.TestCase):
         res = self.params([1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 256])
         self.assertFalse(res.success)
         self.assertEqual(res.message, "P17: 256 out of range 0..255")
+        # Named, a partial update: each value against its range, nothing changed on a refusal.
+        res = self.params(names=["p8"], values=[30001])
+        self.assertFalse(res.success)
+        self.assertEqual((res.error_code, res.message), (9, "P8: 30001 out of range 0..30000"))
+        res = self.params(names=["p18"], values=[1])
+        self.assertFalse(res.success)
+        self.assertEqual(res.message, "'p18': no such parameter (p0 ... p17)")
+        res = self.params(names=["p8", "P8"], values=[100, 100])
+        self.assertFalse(res.success)
+        self.assertEqual(res.message, "P8 given twice")
+        res = self.params(names=["p8", "p12"], values=[100])
+        self.assertFalse(res.success)
+        self.assertEqual(res.message, "2 names but 1 values: one value per name")
+        res = self.params(values=[200])
+        self.assertFalse(res.success)
+        self.assertIn("give the 18 values P0..P17 in order, or names with their values", res.message)
 
     def test_2_loaded_table_runs_to_its_end_with_the_action(self):
         res = self.load("001 SPD 20000\n    DRV ADR,+,20000,Ut\n    GOTO NEXT\n002 SPD 10000\n"
@@ -229,8 +242,8 @@ class MotionTest(unittest.TestCase):
         read = rospy.ServiceProxy("/plc_node/read", ReadMemory)
         # P12 = 2 s: 460 kHz / 2 s = 230 kHz/s, so 100 kHz -> 141 Hz takes 0.43 s of
         # deceleration, about 20 feedback messages at 50 Hz.
-        slow = [1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 2000, 500, 0, 0xFFFFFFFF, 0, 1]
-        self.assertTrue(self.params(slow).success)
+        # Only P12 changes: the YAML's P8 (200 ms) stays the acceleration.
+        self.assertTrue(self.params(names=["p12"], values=[2000]).success)
         client = actionlib.SimpleActionClient(NS + "run", RunMotionTableAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(TIMEOUT)))
 
@@ -286,8 +299,7 @@ class MotionTest(unittest.TestCase):
         self.assertTrue(client.wait_for_result(rospy.Duration(TIMEOUT)))
         self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED, client.get_goal_status_text())
         self.assertEqual(client.get_result().pulses, result.pulses + 1000)
-        self.assertTrue(self.params([1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0,
-                                     0xFFFFFFFF, 0, 1]).success)
+        self.assertTrue(self.params(names=["P12"], values=[0]).success)
 
     def test_4_unknown_command(self):
         res = self.command(42, 0, 0)

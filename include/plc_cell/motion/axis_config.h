@@ -68,8 +68,11 @@ struct AxisDef {
   bool has_table = false;
   Address table_at{};          // table: {at: R0, text: ...} (text form, parsed at load)
   Table table;
+  // params: {p8: 100, ...} (defaults + these): the axis's FUN141 parameters from the
+  // start; with at: also written there at each STOP -> RUN for a ladder MPARA.
   bool has_params = false;
-  Address params_at{};         // params: {at: R2000, p8: 100, ...} (defaults + these)
+  bool params_image = false;   // at: given
+  Address params_at{};
   AxisParams params;
   // `stepspeed:` the ramp in steps instead of FUN141's P4/P5/P8/P12 (step_speed.h).
   StepSpeed stepspeed;

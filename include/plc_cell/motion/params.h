@@ -4,6 +4,8 @@
 // conversions (Ut -> pulses, machine speed -> Hz). docs/motion.md has the choices.
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace plc_cell {
 namespace motion {
@@ -35,6 +37,13 @@ struct ParamError {
 };
 // Pn = v as given (machine: P0 = 0); false with *e filled when out of range.
 bool check_param(int n, int64_t v, bool machine, ParamError* e);
+// "p8" or "P8" -> 8; -1 for any other key (p18, p08, x).
+int param_number(const std::string& key);
+// A request for some parameters (ROS set_params): no names and the 18 values P0..P17 in
+// order, or each name with its value. False with *why for a name that is no parameter
+// or given twice, or counts that do not match.
+bool param_changes(const std::vector<std::string>& names, const std::vector<int64_t>& values,
+                   std::vector<std::pair<int, int64_t>>* out, std::string* why);
 
 struct AxisParams {
   int p0_unit = 1;            // 0 machine, 1 motor (pulses), 2 compound
@@ -72,6 +81,10 @@ struct AxisParams {
   // All 18 values as given (before set() narrows them): every parameter against its
   // range, then validate(). False with *e for the first bad one.
   static bool check_values(const int64_t* v, ParamError* e);
+  // These parameters with some changed ((n, value as set() takes it), each n once): every
+  // value given against its range (machine units when the resulting P0 is 0), then the
+  // whole table. False with *e for the first bad one, and *out unchanged.
+  bool updated(const std::vector<std::pair<int, int64_t>>& changes, AxisParams* out, ParamError* e) const;
 
   uint32_t ppr() const { return p14_ppr != 0 ? static_cast<uint32_t>(p14_ppr) : p1_ppr; }
   // Stroke in Ut -> pulses. P0 = 1: Ut is one pulse (AMBIG-20). P0 = 0/2:
