@@ -107,12 +107,12 @@ class MotionTest(unittest.TestCase):
         self.assertFalse(res.success)
         self.assertEqual(res.error_code, 31)
         self.assertEqual(res.line, 4)
-        res = self.params([1, 2000, 2000, 2, 460000, 141, 1000, 0, 30001, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 1])
+        res = self.params(values=[1, 2000, 2000, 2, 460000, 141, 1000, 0, 30001, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 1])
         self.assertFalse(res.success)
         self.assertEqual(res.error_code, 9)
         self.assertEqual(res.message, "P8: 30001 out of range 0..30000")
         # P17 has no code in the manual; the value is still refused, by name.
-        res = self.params([1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 256])
+        res = self.params(values=[1, 2000, 2000, 2, 460000, 141, 1000, 0, 200, 0x100, 0, 0, 0, 500, 0, 0xFFFFFFFF, 0, 256])
         self.assertFalse(res.success)
         self.assertEqual(res.message, "P17: 256 out of range 0..255")
         # Named, a partial update: each value against its range, nothing changed on a refusal.
