@@ -30,3 +30,16 @@ class Latest(object):
                     return self.msg
                 self.cond.wait(left)
             return self.msg
+
+
+def wait_until(cond, pred, timeout):
+    """Blocks until pred() holds (checked under cond, again whenever cond is notified);
+    False if it still does not at the time-out."""
+    deadline = time.monotonic() + timeout
+    with cond:
+        while not pred():
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return False
+            cond.wait(left)
+        return True

@@ -455,7 +455,7 @@ uint64_t HscUnit::next_event_ns() {
   if (!edges_.empty()) t = std::min(t, std::max(edges_.top().t, now()));
   for (const auto& tr : trains_) {
     bool up;
-    t = std::min(t, tr.next_after(now(), &up));
+    if (!muted_[tr.x]) t = std::min(t, tr.next_after(now(), &up));
   }
   return t;
 }
@@ -479,11 +479,15 @@ void HscUnit::at(uint64_t t) {
   std::vector<std::pair<int, bool>> group;
   for (const auto& tr : trains_) {
     bool up;
-    if (tr.next_after(prev_ns_, &up) == t) group.push_back({tr.x, up});
+    if (!muted_[tr.x] && tr.next_after(prev_ns_, &up) == t) group.push_back({tr.x, up});
   }
   while (!edges_.empty() && edges_.top().t <= t) {
     const Edge e = edges_.top();
     edges_.pop();
+    if (e.simulated) {
+      sim_raw_[e.x] = e.level;
+      if (muted_[e.x]) continue;
+    }
     raw_edge(e, &group);
   }
   if (group.empty()) return;
@@ -536,10 +540,32 @@ void HscUnit::raw_edge(const Edge& e, std::vector<std::pair<int, bool>>* group) 
   if (e.level != term_[e.x]) edges_.push({e.t + w, edge_seq_++, e.x, e.level, true, gen_[e.x]});
 }
 
-void HscUnit::schedule_edge(int x, uint64_t t_ns, bool level) { edges_.push({t_ns, edge_seq_++, x, level}); }
+void HscUnit::schedule_edge(int x, uint64_t t_ns, bool level) {
+  if (x >= 0 && x < 16) simulated_[x] = true;
+  Edge e{t_ns, edge_seq_++, x, level};
+  e.simulated = true;
+  edges_.push(e);
+}
+
+void HscUnit::mute_simulation(int x, bool muted) {
+  if (x < 0 || x > 15 || muted_[x] == muted) return;
+  muted_[x] = muted;
+  if (muted || !simulated_[x]) return;
+  engine_.set_input(x, raw_[x]);  // not yet scanned: the simulation's level comes instead
+  const auto train = std::find_if(trains_.begin(), trains_.end(), [x](const Train& t) { return t.x == x; });
+  if (train == trains_.end()) {
+    edges_.push({now(), edge_seq_++, x, sim_raw_[x]});  // through the filter, as the steps' edges
+    return;
+  }
+  // A train's levels are the filter's output already: they act unfiltered, and whatever
+  // the filter still holds from outside is void.
+  ++gen_[x];
+  edges_.push({now(), edge_seq_++, x, train->level_at(now()), true, gen_[x]});
+}
 
 void HscUnit::add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint64_t delay_ns) {
   if (x < 0 || x > 15 || pin_src_[x]) throw Error("X" + std::to_string(x) + ": no pulse train here");
+  simulated_[x] = true;
   if (period_ns == 0 || width_ns == 0) return;  // never on
   if (width_ns >= period_ns) {
     schedule_edge(x, delay_ns, true);  // on for good
@@ -581,7 +607,7 @@ void HscUnit::before_inputs(uint64_t) {
   if (!running()) return;  // the scheduler's hook, before this one, has brought the clock to now
   // Levels that the simulation or a ROS topic set since the last scan change now.
   for (int x = 0; x < 16; ++x)
-    if (!pin_src_[x] && engine_.input(x) != raw_[x]) schedule_edge(x, now(), engine_.input(x));
+    if (!pin_src_[x] && engine_.input(x) != raw_[x]) edges_.push({now(), edge_seq_++, x, engine_.input(x)});
   if (!edges_.empty() && edges_.top().t <= now()) sched_.advance(now());
   if (!running()) return;
   for (int x = 0; x < 16; ++x)

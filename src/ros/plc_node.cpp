@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Temperature.h>
 
 #include "plc_cell/ForcedPoints.h"
@@ -53,7 +54,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
     input_subs_.push_back(pnh.subscribe<std_msgs::Bool>(
         "inputs/" + name, 10, [this, x, name](const std_msgs::Bool::ConstPtr& m) {
           cell_->plc().locked([&](ScanEngine& e, Memory&) {
-            cell_->soft().simulation().release(x);  // the topic now plays this sensor
+            cell_->soft().simulation().override_input(x);  // the topic now plays this sensor
             e.set_input(x, m->data);
             return 0;
           });
@@ -63,6 +64,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   services_.push_back(pnh.advertiseService("set_run_mode", &PlcNode::on_run, this));
   services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
   services_.push_back(pnh.advertiseService("reset", &PlcNode::on_reset, this));
+  services_.push_back(pnh.advertiseService("simulate", &PlcNode::on_simulate, this));
   double counter_rate = 0;  // 0: the cell's counters.publish_rate
   pnh.param("counter_rate", counter_rate, counter_rate);
   topic_groups_.add(std::make_unique<CounterTopics>(pnh, cell_->soft(), counter_rate));
@@ -76,6 +78,23 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   pnh.param("virtual_time", virtual_time_, false);
   add_register_topics(pnh, cell_->soft(), &topic_groups_);
+  // Real time: the cell's clock on ~clock, from its time 0 on, so that a recording of it and
+  // of the stamped inputs replays into a virtual-time plc_node (~clock_topic: ~clock).
+  double clock_rate = 10.0;
+  pnh.param("clock_rate", clock_rate, clock_rate);
+  if (!(clock_rate >= 0 && clock_rate <= 1000)) throw Error("~clock_rate must be in [0, 1000] Hz (0: no ~clock)");
+  if (!virtual_time_ && clock_rate > 0) {
+    // A recorder that connects after the start gets the cell's time 0 first: a bag of
+    // ~clock then starts the replayed cell where this one started.
+    clock_pub_ = pnh.advertise<rosgraph_msgs::Clock>("clock", 100, [this](const ros::SingleSubscriberPublisher& p) {
+      const int64_t origin = origin_ns_;
+      if (origin < 0) return;  // the first scan's tick sends it
+      rosgraph_msgs::Clock c;
+      c.clock.fromNSec(uint64_t(origin));
+      p.publish(c);
+    });
+    clock_timer_ = nh.createTimer(ros::Duration(1.0 / clock_rate), [this](const ros::TimerEvent&) { publish_clock(); });
+  }
   // Virtual time publishes every change with its scan's stamp, and nothing else: the
   // periodic republish would add wall-clock stamps to a replay.
   if (!virtual_time_) io_timer_ = nh.createTimer(ros::Duration(1.0 / io_rate), [this](const ros::TimerEvent&) {
@@ -131,6 +150,7 @@ PlcNode::~PlcNode() {
 PlcNode::Snapshot PlcNode::take_snapshot() {
   return cell_->plc().locked([&](ScanEngine& e, Memory& m) {
     Snapshot s;
+    s.scan_us = e.now_us();  // virtual time: the clock's time instead
     s.run = e.mode() == RunMode::Run;
     s.x.resize(256);
     s.y.resize(256);
@@ -147,11 +167,27 @@ PlcNode::Snapshot PlcNode::take_snapshot() {
 // Runs on the scan thread: compare, and hand changes to the publisher thread.
 void PlcNode::after_scan() {
   Snapshot s = take_snapshot();
+  if (origin_ns_ < 0) origin_ns_ = int64_t(ros::Time::now().toNSec()) - int64_t(s.scan_us) * 1000;
   std::lock_guard<std::mutex> lk(snap_mu_);
   if (published_once_ && s == last_scan_) return;
   last_scan_ = std::move(s);
   dirty_ = true;
   snap_cv_.notify_one();
+}
+
+// ~clock: the wall-clock time of the cell's time 0 first, then of its last scan.
+void PlcNode::publish_clock() {
+  const int64_t origin = origin_ns_;
+  if (origin < 0) return;  // not scanned yet
+  rosgraph_msgs::Clock c;
+  if (!clock_sent_) {
+    c.clock.fromNSec(uint64_t(origin));
+    clock_pub_.publish(c);
+    clock_sent_ = true;
+  }
+  const uint64_t now_us = cell_->plc().locked([](ScanEngine& e, Memory&) { return e.now_us(); });
+  c.clock.fromNSec(uint64_t(origin) + now_us * 1000);
+  clock_pub_.publish(c);
 }
 
 void PlcNode::publisher_loop() {

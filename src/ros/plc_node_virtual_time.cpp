@@ -1,6 +1,7 @@
 // plc_node in virtual time (~virtual_time: true): no real-time loop. Each message on
 // ~clock_topic (rosgraph_msgs/Clock, default /clock, e.g. `rosbag play --clock`) runs
-// every scan at times k * scan_period up to clock - ~virtual_time_lag. Stamped inputs are
+// every scan at times k * scan_period up to clock - ~virtual_time_lag (the cell's own time
+// starting at 0 at the first clock message, or after ~reset at its first scan). Stamped inputs are
 // applied before the first scan at or after their stamp, and every change is published
 // with its scan's time; the topic groups (counters, axes, temperatures, register groups)
 // are published at their rates of virtual time, stamped with their scan. So the same
@@ -54,7 +55,7 @@ void PlcNode::start_virtual_time(ros::NodeHandle& pnh, uint64_t period_us) {
 void PlcNode::on_stamped_input(uint32_t x, uint64_t stamp_us, bool v) {
   if (!virtual_time_) {
     cell_->plc().locked([&](ScanEngine& e, Memory&) {
-      cell_->soft().simulation().release(x);
+      cell_->soft().simulation().override_input(x);
       e.set_input(x, v);
       return 0;
     });
@@ -85,8 +86,12 @@ void PlcNode::on_temperature_input(size_t channel, uint64_t stamp_us, double cel
 }
 
 void PlcNode::apply(ScanEngine& e, const PendingInput& in) {
+  if (in.resume) {
+    cell_->soft().simulation().resume(in.x);
+    return;
+  }
   if (in.channel < 0) {
-    cell_->soft().simulation().release(in.x);  // the topic now plays this sensor
+    cell_->soft().simulation().override_input(in.x);  // the topic now plays this sensor
     e.set_input(in.x, in.v);
     return;
   }
@@ -97,13 +102,26 @@ void PlcNode::apply(ScanEngine& e, const PendingInput& in) {
 
 void PlcNode::on_clock(uint64_t now_us) {
   std::lock_guard<std::mutex> lk(virtual_mu_);  // one clock message at a time, in order
-  if (now_us < lag_us_) return;
-  const uint64_t until = now_us - lag_us_;
-  if (!next_scan_us_) {
-    next_scan_us_ = (until + period_us_ - 1) / period_us_ * period_us_;  // first multiple
-    if (epoch_at_first_scan_) epoch_us_ = next_scan_us_;  // a fresh cell's time 0
-    epoch_at_first_scan_ = false;
+  if (!clock_started_) {
+    // The cell's time 0 (what its simulation, timers and counters see): on start the
+    // first clock message's instant, rounded up to a scan, so that a recording's clock
+    // (a real-time cell's ~clock starts at its first scan) starts the replayed cell with
+    // the recorded one; after ~reset the first scan that message runs (a test driver's
+    // first scan). The scans run once the clock is the lag beyond them.
+    uint64_t first = now_us;
+    if (after_reset_) {
+      if (now_us < lag_us_) return;
+      first = now_us - lag_us_;
+    }
+    next_scan_us_ = epoch_us_ = (first + period_us_ - 1) / period_us_ * period_us_;  // first multiple
+    clock_started_ = true;
+    after_reset_ = false;
   }
+  if (now_us < lag_us_ + next_scan_us_) {
+    publish_progress();
+    return;
+  }
+  const uint64_t until = now_us - lag_us_;
   std::stable_sort(pending_.begin(), pending_.end(), [](const PendingInput& a, const PendingInput& b) {
     return a.stamp_us != b.stamp_us ? a.stamp_us < b.stamp_us : a.seq < b.seq;
   });
@@ -237,7 +255,8 @@ bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
   next_scan_us_ = last_scan_us_ = 0;
   late_inputs_ = input_seq_ = inputs_received_ = scans_ = 0;
   virtual_published_ = false;  // the first scan publishes every topic, as on start
-  epoch_at_first_scan_ = true;
+  clock_started_ = false;
+  after_reset_ = true;
   std::fill(published_.begin(), published_.end(), 0);
   ++resets_;
   {

@@ -1,5 +1,6 @@
 // plc_node as a scenario target: scans by clock messages, reads from the topics a robot
-// stack subscribes to, drives through ~inputs_stamped/<name>, ~write, ~force and ~release.
+// stack subscribes to, drives through ~inputs_stamped/<name>, ~write, ~force, ~release and
+// ~simulate.
 //
 // Synchronisation: plc_node publishes each topic on its own connection, so nothing orders
 // them. After the clock message of the scan at t, plc_node publishes on
@@ -21,6 +22,7 @@
 #include "plc_cell/ForceDiscrete.h"
 #include "plc_cell/ReadMemory.h"
 #include "plc_cell/ReleaseDiscrete.h"
+#include "plc_cell/SimulateInputs.h"
 #include "plc_cell/WriteMemory.h"
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/area.h"
@@ -530,6 +532,13 @@ void RosTarget::release(const Probe* p) {
   ReleaseDiscrete srv;
   srv.request.address = p ? p->name : "";
   if (!ros::service::call(link_.node_ + "/release", srv)) throw Error("plc_node " + link_.node_ + ": ~release failed");
+  if (!srv.response.success) throw Error(srv.response.message);
+}
+
+void RosTarget::simulate(const Probe* p) {
+  SimulateInputs srv;
+  if (p) srv.request.inputs.push_back(p->name);
+  if (!ros::service::call(link_.node_ + "/simulate", srv)) throw Error("plc_node " + link_.node_ + ": ~simulate failed");
   if (!srv.response.success) throw Error(srv.response.message);
 }
 

@@ -204,7 +204,7 @@ void CellTarget::set(const Probe& p, const Value& v) {
     if (a.area == Area::X && a.width == Width::Bit) {
       // An input terminal: the scenario plays this sensor from now on, not the simulation.
       plc().locked([&](ScanEngine& e, Memory&) {
-        s.simulation().release(a.index);
+        s.simulation().override_input(a.index);
         e.set_input(a.index, x != 0);
         return 0;
       });
@@ -245,6 +245,21 @@ void CellTarget::release(const Probe* p) {
   if (p) points.push_back(address(p->name));
   else points = plc().locked([](ScanEngine&, Memory& m) { return m.disabled_points(); });
   for (const Address& a : points) plc().force(a, ForceAction::Enable);
+}
+
+void CellTarget::simulate(const Probe* p) {
+  SoftCell& s = cell_->soft();
+  if (!p) {
+    plc().locked([&](ScanEngine&, Memory&) {
+      for (uint32_t x : s.simulation().simulated_inputs()) s.simulation().resume(x);
+      return 0;
+    });
+    return;
+  }
+  const Address a = address(p->name);
+  if (a.area != Area::X || a.width != Width::Bit) throw Error(p->text + ": only an input (X) is simulated");
+  const bool ok = plc().locked([&](ScanEngine&, Memory&) { return s.simulation().resume(a.index); });
+  if (!ok) throw Error(p->text + ": the cell's simulation: has no signal on " + format_address(a));
 }
 
 std::string CellTarget::fault() {

@@ -234,6 +234,19 @@ class CaseRun {
         if (s.assignments.empty()) t_.release(nullptr);
         for (const auto& a : s.assignments) t_.release(&a.target);
         return;
+      case Step::Kind::Simulate:
+        if (s.assignments.empty()) {
+          // A pulse still running would take its input again when it ends.
+          background_.erase(std::remove_if(background_.begin(), background_.end(),
+                                           [](const Background& b) { return b.kind == Step::Kind::Pulse; }),
+                            background_.end());
+          t_.simulate(nullptr);
+        }
+        for (const auto& a : s.assignments) {
+          cancel_background(a.target);
+          t_.simulate(&a.target);
+        }
+        return;
       case Step::Kind::Pulse:
       case Step::Kind::Ramp:
         for (const auto& a : s.assignments) {
@@ -378,7 +391,7 @@ std::vector<Diagnostic> check_case(const Case& c, Target& target) {
     errors.push_back(d);
   };
   for (const auto& s : c.steps) {
-    for (const auto& a : s.assignments) check(s, a.line, a.target, s.kind != Step::Kind::Release);
+    for (const auto& a : s.assignments) check(s, a.line, a.target, s.kind != Step::Kind::Release && s.kind != Step::Kind::Simulate);
     for (const auto& cmp : s.cond.all) check(s, s.line, cmp.probe, false);
     for (const auto& e : s.sequence)
       for (const auto& cmp : e.cond.all) check(s, e.line, cmp.probe, false);

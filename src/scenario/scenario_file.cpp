@@ -15,9 +15,9 @@ namespace scenario {
 
 namespace {
 
-const std::set<std::string> kActions = {"set", "write", "force", "release", "pulse",
+const std::set<std::string> kActions = {"set", "write", "force", "release", "simulate", "pulse",
                                         "ramp", "expect", "wait_until", "expect_sequence"};
-const std::set<std::string> kStepKeys = {"set", "write", "force", "release", "pulse", "ramp", "expect",
+const std::set<std::string> kStepKeys = {"set", "write", "force", "release", "simulate", "pulse", "ramp", "expect",
                                          "wait_until", "expect_sequence", "at", "after", "timeout",
                                          "stays", "within", "between", "tolerance"};
 
@@ -134,7 +134,7 @@ class Reader {
     }
     if (n["after"]) s.after_us = duration(n["after"], key + ".after");
     if (action.empty() && !n["at"] && !n["after"])
-      r_.fail(n, key, "a step needs an action (set, write, force, release, pulse, ramp, expect, wait_until, "
+      r_.fail(n, key, "a step needs an action (set, write, force, release, simulate, pulse, ramp, expect, wait_until, "
                       "expect_sequence) or a time (at, after)");
     s.key = action.empty() ? (n["at"] ? "at" : "after") : action;
     auto only_for = [&](const char* k, std::initializer_list<const char*> actions) {
@@ -161,8 +161,9 @@ class Reader {
         for (const auto& as : s.assignments)
           if (as.target.kind != Probe::Kind::Address)
             r_.fail(a, k, as.target.text + ": write takes addresses and signals (set drives channels)");
-    } else if (action == "release") {
-      s.kind = Step::Kind::Release;
+    } else if (action == "release" || action == "simulate") {
+      // A list of points, one point, or "all" (no assignment).
+      s.kind = action == "release" ? Step::Kind::Release : Step::Kind::Simulate;
       std::vector<YAML::Node> items;
       if (a.IsSequence()) {
         for (const auto& i : a) items.push_back(i);
@@ -173,7 +174,8 @@ class Reader {
         Assignment as;
         as.line = YamlReader::line(i);
         as.target = probe(i, k);
-        if (as.target.kind != Probe::Kind::Address) r_.fail(i, k, "only an address or signal is forced");
+        if (as.target.kind != Probe::Kind::Address)
+          r_.fail(i, k, action == "release" ? "only an address or signal is forced" : "only an input (X) is simulated");
         s.assignments.push_back(as);
       }
     } else if (action == "pulse") {

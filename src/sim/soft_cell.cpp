@@ -96,9 +96,10 @@ void SoftCell::build(const std::string& program_path) {
   // Pulse and step signals on the high-speed inputs X0-X15 become exact-time edges,
   // so counters and edge interrupts see every pulse, not the scan's samples.
   plc_.locked([&](ScanEngine&, Memory&) {
+    sim_->exact_edges(&hsc);
     for (const auto& d : config_.sim_inputs) {
       if (d.x > 15 || d.kind == SimInputDef::Kind::Follow || hsc.source_on(static_cast<int>(d.x))) continue;
-      sim_->release(d.x);
+      sim_->drop(d.x);
       if (d.kind == SimInputDef::Kind::Steps) {
         for (const auto& st : d.steps) hsc.schedule_edge(static_cast<int>(d.x), st.first * 1000, st.second);
       } else {

@@ -1,11 +1,14 @@
 #!/usr/bin/python3
 """rostest: replaying a bag's clock and input topics into plc_node in virtual time
 reproduces the recorded outputs bit for bit (values and stamps), on every kind of topic:
-I/O, signals, register groups, counters, axes and temperatures."""
+I/O, signals, register groups, counters, axes and temperatures. A recording of a real-time
+cell's ~clock and stamped inputs replays too: the simulated sensor and the input's effect
+come at the same times as they did live."""
 import io
 import math
 import os
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -18,6 +21,9 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState, Temperature
 
 from plc_cell.msg import AxisStatus, Counter, CounterArray, IoState, RegisterBlock, Signal
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from latest_message import wait_until  # noqa: E402
 
 TIMEOUT = 20.0
 T0 = 1000.0      # virtual start time, s
@@ -88,9 +94,90 @@ def wait_connected(pub_or_sub):
         time.sleep(0.01)  # rospy has no event for "a connection is up"
 
 
+class Changes(object):
+    """(stamp ns, data) of each message on some Signal topics, and the clock's values with
+    the time each arrived (what rosbag record keeps)."""
+
+    def __init__(self, topics, clock=None):
+        self.cond = threading.Condition()
+        self.seen = {t: [] for t in topics}
+        self.clock = []
+        self.subs = [rospy.Subscriber(t, Signal, self._cb, t, queue_size=1000) for t in topics]
+        if clock:
+            self.subs.append(rospy.Subscriber(clock, Clock, self._clock, queue_size=1000))
+
+    def _cb(self, m, topic):
+        with self.cond:
+            self.seen[topic].append((m.header.stamp.to_nsec(), m.data))
+            self.cond.notify_all()
+
+    def _clock(self, m):
+        with self.cond:
+            self.clock.append((m, rospy.Time.now()))
+            self.cond.notify_all()
+
+    def wait(self, pred):
+        return wait_until(self.cond, pred, TIMEOUT)
+
+
 class ReplayTest(unittest.TestCase):
-    def test_replay_reproduces_outputs(self):
+    @classmethod
+    def setUpClass(cls):
         rospy.init_node("replay_test", anonymous=True)
+
+    def test_real_time_recording_replays(self):
+        """The demo conveyor in real time: record its ~clock and a stamped stop_button
+        message as rosbag record would (each at its arrival), play them into a
+        virtual-time node: its cell starts where the live one did (the ~clock's first
+        message, sent to every new subscriber), so the simulated part sensor changes at the
+        live stamps, and the input, the recording's last, is scanned with its effect at
+        the live stamp. Live stamps carry the real-time scan's jitter: 50 ms is allowed."""
+        part, running = "signals_stamped/part_present", "signals_stamped/line_running"
+        live = Changes(["/live/plc_node/" + part, "/live/plc_node/" + running], clock="/live/plc_node/clock")
+        replay = Changes(["/live_replay/plc_node/" + part, "/live_replay/plc_node/" + running])
+        stop = rospy.Publisher("/live/plc_node/inputs_stamped/stop_button", Signal, queue_size=10)
+        for p in live.subs + replay.subs + [stop]:
+            wait_connected(p)
+        self.assertTrue(live.wait(lambda: len(live.clock) >= 2), "no ~clock from the real-time cell")
+        origin = live.clock[0][0].clock.to_nsec()
+        started = live.clock[-1][0].clock.to_nsec()  # the recording's first clock of now
+        self.assertLess(origin, started)
+        # The next change of the simulated part sensor (every 2.5 s) in the recording.
+        self.assertTrue(live.wait(lambda: any(t > started for t, _ in live.seen["/live/plc_node/" + part])))
+        part_live = [c for c in live.seen["/live/plc_node/" + part] if c[0] > started][0]
+        press = Signal(data=False)  # the normally closed stop button, pressed
+        press.header.stamp = rospy.Time.now()
+        stop.publish(press)
+        received = rospy.Time.now()
+        self.assertTrue(live.wait(lambda: any(t >= press.header.stamp.to_nsec() and not on
+                                              for t, on in live.seen["/live/plc_node/" + running])))
+        stop_live = [t for t, on in live.seen["/live/plc_node/" + running] if t >= press.header.stamp.to_nsec()][0]
+        # The recording ends 0.3 s after the input: more than the replay's lag.
+        end = press.header.stamp.to_nsec() + 300000000
+        self.assertTrue(live.wait(lambda: live.clock[-1][0].clock.to_nsec() > end))
+        bag_path = os.path.join(tempfile.mkdtemp(), "live.bag")
+        with rosbag.Bag(bag_path, "w") as bag:
+            with live.cond:
+                clock = list(live.clock)
+            for c, t in clock:
+                bag.write("/live/plc_node/clock", c, t)
+            bag.write("/live/plc_node/inputs_stamped/stop_button", press, received)
+        r = subprocess.run(["rosbag", "play", "--quiet", "--wait-for-subscribers", bag_path,
+                            "__name:=live_player", "/live/plc_node/clock:=/live_replay/clock",
+                            "/live/plc_node/inputs_stamped/stop_button:=/live_replay/plc_node/inputs_stamped/stop_button"],
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=90)
+        self.assertEqual(r.returncode, 0, r.stdout.decode(errors="replace"))
+        tolerance = 50000000
+        self.assertTrue(replay.wait(lambda: any(abs(t - stop_live) < tolerance and not on
+                                                for t, on in replay.seen["/live_replay/plc_node/" + running])),
+                        "the recorded input: live %d, replayed %s" % (stop_live, replay.seen["/live_replay/plc_node/" + running]))
+        with replay.cond:
+            parts = replay.seen["/live_replay/plc_node/" + part]
+        self.assertTrue(any(abs(t - part_live[0]) < tolerance and on == part_live[1] for t, on in parts),
+                        "the part sensor: live %s, replayed %s (origin %d)" % (part_live, parts, origin))
+        self.assertLess(parts[0][0] - origin, 1000000, "the replayed cell starts at the live one's time 0")
+
+    def test_replay_reproduces_outputs(self):
         rec = Collector("rec")
         replay = Collector("replay")
         clock = rospy.Publisher("/rec/clock", Clock, queue_size=1000)

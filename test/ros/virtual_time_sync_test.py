@@ -2,7 +2,11 @@
 """rostest: in virtual time, ~virtual_time/scanned counts every message plc_node published
 on each topic, so a driver that has received that many has the whole scan; a stamped input
 is acknowledged there; ~reset gives a fresh cell whose first scan is the next clock
-message's, with every topic published again; in real time ~reset refuses."""
+message's, with every topic published again; in real time ~reset refuses. On the demo
+conveyor, a message on ~inputs/part_present takes the simulated part sensor (X3, which also
+feeds the counters' exact edges) until ~simulate hands it back."""
+import os
+import sys
 import threading
 import time
 import unittest
@@ -11,10 +15,14 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState, Temperature
+from std_msgs.msg import Bool
 from std_srvs.srv import Trigger
 
 from plc_cell.msg import AxisStatus, Counter, CounterArray, ForcedPoints, IoState, RegisterBlock, ScanProgress, Signal
-from plc_cell.srv import ForceDiscrete, ReadMemory, WriteMemory
+from plc_cell.srv import ForceDiscrete, ReadMemory, SimulateInputs, WriteMemory
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from latest_message import wait_until  # noqa: E402
 
 TIMEOUT = 20.0
 NODE = "/vt/plc_node"
@@ -88,14 +96,7 @@ class Driver(object):
                 time.sleep(0.01)  # rospy has no event for "a connection is up"
 
     def wait(self, pred):
-        deadline = time.monotonic() + TIMEOUT
-        with self.cond:
-            while not pred():
-                left = deadline - time.monotonic()
-                if left <= 0:
-                    return False
-                self.cond.wait(left)
-            return True
+        return wait_until(self.cond, pred, TIMEOUT)
 
     def reset(self, t0):
         with self.cond:
@@ -207,11 +208,83 @@ class VirtualTimeSyncTest(unittest.TestCase):
             self.assertEqual(list(d.latest[NODE + "/forced"].addresses), [], "nothing forced any more")
             self.assertEqual(d.latest[NODE + "/registers/sums"].values[0], 0)
 
+    def test_part_sensor_is_the_topics_until_simulate(self):
+        # The demo's simulation: a part at X3 from 1 s to 3.5 s, every 5 s.
+        d = DemoPartSensor()
+        ms, s = 1000000, 1000000000
+        d.clock.publish(Clock(clock=rospy.Time(0)))  # the cell's time 0: its first clock message
+        self.assertTrue(d.scan_to(2 * s))
+        self.assertEqual(d.changes, [(0, False), (1 * s, True)])
+        d.part.publish(Bool(False))
+        t = 2 * s
+        while d.changes[-1][1] and t < 3 * s:  # the next scans apply it (another connection)
+            t += ms
+            self.assertTrue(d.scan_to(t))
+        t_off = d.changes[-1][0]
+        self.assertFalse(d.changes[-1][1], "~inputs/part_present false never reached X3")
+        self.assertLess(t_off, 3 * s)
+        self.assertTrue(d.scan_to(12 * s))
+        self.assertEqual(d.changes[-1], (t_off, False), "the simulation's parts at 6 s and 11 s still came")
+        bad = d.simulate(["start_button"])  # X0: the demo simulates no start button
+        self.assertFalse(bad.success)
+        self.assertIn("no signal on X0", bad.message)
+        self.assertFalse(d.simulate(["conveyor_run"]).success)
+        r = d.simulate(["part_present"])
+        self.assertTrue(r.success, r.message)
+        self.assertEqual(list(r.simulated), ["X3"])
+        # At 12 s a part is at the sensor (11 s to 13.5 s): ON at the next scan, OFF at 13.5 s.
+        self.assertTrue(d.scan_to(14 * s))
+        self.assertEqual(d.changes[-2:], [(12 * s + ms, True), (13500 * ms, False)])
+
     def test_reset_refuses_in_real_time(self):
         rospy.wait_for_service("/rt/plc_node/reset", TIMEOUT)
         r = rospy.ServiceProxy("/rt/plc_node/reset", Trigger)()
         self.assertFalse(r.success)
         self.assertIn("virtual time only", r.message)
+
+
+class DemoPartSensor(object):
+    """/demo/plc_node: the clock, the part sensor's changes and ~virtual_time/scanned."""
+    NODE = "/demo/plc_node"
+    SIGNAL = NODE + "/signals_stamped/part_present"
+    LAG_NS = 100000000  # the default ~virtual_time_lag
+
+    def __init__(self):
+        self.cond = threading.Condition()
+        self.changes = []  # (stamp ns, level) of signals_stamped/part_present
+        self.progress = None
+        self.clock = rospy.Publisher("/demo/clock", Clock, queue_size=1000)
+        self.part = rospy.Publisher(self.NODE + "/inputs/part_present", Bool, queue_size=10)
+        self.subs = [rospy.Subscriber(self.SIGNAL, Signal, self._signal, queue_size=1000),
+                     rospy.Subscriber(self.NODE + "/virtual_time/scanned", ScanProgress, self._progress,
+                                      queue_size=1000)]
+        for c in self.subs + [self.clock, self.part]:
+            deadline = time.monotonic() + TIMEOUT
+            while c.get_num_connections() == 0 and time.monotonic() < deadline:
+                time.sleep(0.01)  # rospy has no event for "a connection is up"
+        rospy.wait_for_service(self.NODE + "/simulate", TIMEOUT)
+        self.simulate = rospy.ServiceProxy(self.NODE + "/simulate", SimulateInputs)
+
+    def _signal(self, m):
+        with self.cond:
+            self.changes.append((m.header.stamp.to_nsec(), m.data))
+            self.cond.notify_all()
+
+    def _progress(self, m):
+        with self.cond:
+            self.progress = m
+            self.cond.notify_all()
+
+    def _complete(self, stamp):
+        p = self.progress
+        if p is None or p.header.stamp.to_nsec() < stamp:
+            return False
+        return len(self.changes) >= dict(zip(p.topics, p.published))[self.SIGNAL]
+
+    def scan_to(self, stamp):
+        """Every scan up to stamp (ns), with every change of the sensor it published."""
+        self.clock.publish(Clock(clock=rospy.Time(nsecs=stamp + self.LAG_NS)))
+        return wait_until(self.cond, lambda: self._complete(stamp), TIMEOUT)
 
 
 if __name__ == "__main__":

@@ -80,6 +80,7 @@ class Bounded : public Target {
   void write(const Probe& p, const Value& v) override { t_.write(p, v); }
   void force(const Probe& p, bool on) override { t_.force(p, on); }
   void release(const Probe* p) override { t_.release(p); }
+  void simulate(const Probe* p) override { t_.simulate(p); }
   std::string fault() override { return t_.fault(); }
 
  private:

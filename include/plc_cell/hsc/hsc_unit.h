@@ -63,12 +63,21 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   void immediate_io(const Address& first, uint32_t n);   // FUN74 IMDIO
 
   // ---- simulation and observation (hold the Plc lock) ----
-  // An exact-time switch edge at the terminal; a filtered input sees it through its filter.
+  // An exact-time switch edge of the cell's simulation at the terminal; a filtered input
+  // sees it through its filter.
   void schedule_edge(int x, uint64_t t_ns, bool level);
   // A periodic switch on X0-X15 (the cell YAML's simulation pulse): on for width of
   // every period from delay, as exact edges (one event per edge: for fast signals
   // use a PulseSource, whose edges cost nothing).
   void add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint64_t delay_ns);
+  // Something outside the simulation (a scenario's set, a ROS topic) plays X0-X15 input x
+  // (muted true): the scheduled edges and the pulse train of x no longer reach the
+  // terminal, so neither the image nor a counter or an edge interrupt sees them. Unmuted,
+  // the simulation plays x again from the level it gives now (a level set from outside
+  // and not yet scanned is dropped).
+  void mute_simulation(int x, bool muted);
+  // Scheduled edges or a pulse train play input x.
+  bool simulates(int x) const { return x >= 0 && x < 16 && simulated_[x]; }
   PulseSource* source(const std::string& name);
   // Another analytic source (owned by the caller, e.g. a pulse-output axis wired to
   // inputs) on X pin_a (phase 0) and pin_b (phase 1, -1: none). Throws Error if a pin
@@ -129,6 +138,7 @@ class HscUnit : public ScanHook, public timeline::EventSource {
     bool level;
     bool commit = false;  // the filter's output: valid only if gen is still the pin's
     uint64_t gen = 0;
+    bool simulated = false;  // from schedule_edge: muted with the pin
     bool operator>(const Edge& o) const { return t != o.t ? t > o.t : seq > o.seq; }
   };
 
@@ -180,6 +190,9 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   std::array<uint64_t, 16> gen_{};           // filter: a raw change cancels the pending output
   std::array<bool, 16> latch_{};             // capture: ON at some instant since the last image
   std::array<int64_t, 16> cap_q_{};          // capture of an analytic pin: quarter at the last image
+  std::array<bool, 16> simulated_{};         // scheduled edges or a pulse train play the pin
+  std::array<bool, 16> muted_{};             // ... but something outside plays it now
+  std::array<bool, 16> sim_raw_{};           // the raw level the scheduled edges gave, muted or not
   std::array<ScanDebounce, kFilteredInputs - 16> scan_filter_;  // X16-X35
   std::array<Counter, 8> counters_;
   // Pulse measurement of X0-X15. Explicit edges reach a meter as they act; an analytic
@@ -198,6 +211,7 @@ class HscUnit : public ScanHook, public timeline::EventSource {
     int x;
     uint64_t period, width, delay;
     uint64_t next_after(uint64_t t, bool* rising) const;
+    bool level_at(uint64_t t) const { return t >= delay && (t - delay) % period < width; }
   };
   std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> edges_;
   std::vector<Train> trains_;

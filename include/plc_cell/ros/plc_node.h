@@ -1,6 +1,7 @@
 #pragma once
 // plc_node: the soft PLC on ROS. A thin layer: the Cell (runtime/cell.h) does the work,
 // this class maps it to topics, services and /diagnostics.
+#include <atomic>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -15,6 +16,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "plc_cell/LoadProgram.h"
+#include "plc_cell/SimulateInputs.h"
 #include "plc_cell/ros/memory_services.h"
 #include "plc_cell/ros/topic_group.h"
 #include "plc_cell/runtime/cell.h"
@@ -30,7 +32,7 @@ class PlcNode : private MemoryAccess {
 
  private:
   struct Snapshot {
-    uint64_t scan_us = 0;  // virtual time: the scan it was taken after
+    uint64_t scan_us = 0;  // the scan it was taken after: the cell's time (virtual time: the clock's)
     bool run = false;
     std::vector<uint8_t> x, y, signals;
     uint64_t forced_gen = 0;  // Memory::disabled_generation(): the forced set changed
@@ -43,6 +45,7 @@ class PlcNode : private MemoryAccess {
   void after_scan();
   void publisher_loop();
   void publish(const Snapshot& s, bool all_signals);
+  void publish_clock();  // real time: ~clock
   // Virtual time (plc_node_virtual_time.cpp): scans driven by ~clock_topic.
   void start_virtual_time(ros::NodeHandle& pnh, uint64_t period_us);
   void on_clock(uint64_t now_us);
@@ -65,6 +68,8 @@ class PlcNode : private MemoryAccess {
   std::vector<Address> release(const Address* bit) override;
   bool on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool on_load(LoadProgram::Request& req, LoadProgram::Response& res);
+  // ~simulate (simulated_inputs.cpp): inputs back to the cell's simulation.
+  bool on_simulate(SimulateInputs::Request& req, SimulateInputs::Response& res);
 
   std::unique_ptr<Cell> cell_;  // the PLC, its servers, store and scan loop
   std::string cell_path_;       // ~cell and the overrides it was built with: ~reset builds
@@ -96,6 +101,7 @@ class PlcNode : private MemoryAccess {
     bool v;
     int channel = -1;  // >= 0: a temperature channel driven to celsius, not an X
     double celsius = 0;
+    bool resume = false;  // ~simulate: x goes back to the cell's simulation
   };
   // ~temperature_inputs/<channel>: what the channel's sensor measures from the stamp on.
   void on_temperature_input(size_t channel, uint64_t stamp_us, double celsius);
@@ -106,9 +112,11 @@ class PlcNode : private MemoryAccess {
   // ~virtual_time/scanned: since the start or the last ~reset.
   uint64_t scans_ = 0, last_scan_us_ = 0, inputs_received_ = 0;
   uint32_t resets_ = 0;
-  // After ~reset the cell's own time (what its simulation, timers and counters see) starts
-  // at 0 at its first scan: epoch_us_ is that scan's clock time. Stamps stay the clock's.
-  bool epoch_at_first_scan_ = false;
+  // The cell's own time (what its simulation, timers and counters see) starts at 0 at the
+  // first clock message (after ~reset: at the first scan of the next one): epoch_us_ is
+  // that instant's clock time. Stamps stay the clock's.
+  bool clock_started_ = false;
+  bool after_reset_ = false;
   uint64_t epoch_us_ = 0;
   // Messages published on ~io, ~forced, ~signals/<name> and ~signals_stamped/<name>, in
   // that order (the signals in the config's order).
@@ -120,7 +128,12 @@ class PlcNode : private MemoryAccess {
   Snapshot virtual_last_;
   bool virtual_published_ = false;
   std::vector<ros::ServiceServer> services_;
-  ros::Timer io_timer_, diag_timer_;
+  // Real time: ~clock, the wall-clock time of the cell's time 0 (set at the first scan)
+  // and then of its scans.
+  ros::Publisher clock_pub_;
+  std::atomic<int64_t> origin_ns_{-1};
+  bool clock_sent_ = false;  // the timer's thread only
+  ros::Timer io_timer_, diag_timer_, clock_timer_;
   ros::WallTime started_;
   diagnostic_updater::Updater updater_;
 

@@ -111,6 +111,7 @@ class RosTarget : public Target {
   void write(const Probe& p, const Value& v) override;
   void force(const Probe& p, bool on) override;
   void release(const Probe* p) override;
+  void simulate(const Probe* p) override;
   std::string fault() override;
 
  private:

@@ -45,6 +45,7 @@ struct Step {
     Write,     // one memory write, as a client's
     Force,
     Release,   // assignments name the points; none: all
+    Simulate,  // the inputs go back to the cell's simulation; none: all
     Pulse,     // on now, off after duration_us
     Ramp,      // from -> value linearly over duration_us, applied before every scan
     Expect,

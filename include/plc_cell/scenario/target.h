@@ -29,6 +29,9 @@ class Target {
   virtual void write(const Probe& p, const Value& v) = 0;  // memory, once (as a client)
   virtual void force(const Probe& p, bool on) = 0;
   virtual void release(const Probe* p) = 0;  // nullptr: every forced point
+  // The cell's simulation plays input p again (nullptr: every input it has a signal for);
+  // an input it has no signal for is refused.
+  virtual void simulate(const Probe* p) = 0;
   // Non-empty once the PLC stopped on a fault: the case ends there.
   virtual std::string fault() = 0;
 };

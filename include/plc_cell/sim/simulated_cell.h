@@ -9,13 +9,26 @@
 
 namespace plc_cell {
 
+namespace hsc {
+class HscUnit;
+}
+
 class SimulatedCell : public ScanHook {
  public:
   SimulatedCell(ScanEngine& engine, const Memory& mem) : engine_(engine), mem_(mem) {}
 
   void drive(uint32_t x, std::unique_ptr<InputSignal> signal);
-  // Stops simulating input x (something else, e.g. a ROS topic, now drives it).
-  void release(uint32_t x);
+  // The counter unit plays the signals of X0-X15 it was given as exact edges; this cell
+  // stops sampling x (drop) and mutes the unit's edges with its own overrides.
+  void exact_edges(hsc::HscUnit* unit) { exact_ = unit; }
+  void drop(uint32_t x);
+  // Something else (a scenario's set, a ROS topic) plays input x from now on: no later
+  // level or edge of the simulation reaches it, until resume(x).
+  void override_input(uint32_t x);
+  // The simulation plays x again, from the level it gives now. False if it has no signal on x.
+  bool resume(uint32_t x);
+  bool simulates(uint32_t x) const;
+  std::vector<uint32_t> simulated_inputs() const;  // in address order
   // Input x is a capture input: a pulse between two scans is seen ON at the next scan.
   void capture(uint32_t x) { captured_.push_back(x); }
   void before_inputs(uint64_t now_us) override;
@@ -25,9 +38,11 @@ class SimulatedCell : public ScanHook {
   struct Driver {
     uint32_t x;
     std::unique_ptr<InputSignal> signal;
+    bool overridden = false;  // still evaluated (a follow keeps its delays), not applied
   };
   ScanEngine& engine_;
   const Memory& mem_;
+  hsc::HscUnit* exact_ = nullptr;
   std::vector<Driver> drivers_;
   std::vector<uint32_t> captured_;
   bool scanned_ = false;
