@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <deque>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -306,6 +307,8 @@ class CaseRun {
     const size_t n = s.sequence.size();
     std::vector<bool> before(n);
     for (size_t i = 0; i < n; ++i) before[i] = holds(s.sequence[i].cond);
+    // When each entry last turned true; none: true since the start or never true.
+    std::vector<std::optional<uint64_t>> rose(n);
     size_t next = 0;
     uint64_t last_match = t0;
     std::vector<const Condition*> involved;
@@ -317,29 +320,42 @@ class CaseRun {
     auto since = [&](size_t i) {
       return i == 0 ? std::string("the start of the sequence") : "entry " + std::to_string(i) + "'s match";
     };
+    // Why entry i has not matched: what is still false, or, when it holds, that it holds
+    // without having changed where it could count (an entry is a change).
+    auto why = [&](size_t i) {
+      const Condition& c = s.sequence[i].cond;
+      if (!holds(c)) return still_false(c);
+      const std::string before_match = i == 0 ? "" : ", before " + since(i) + " at " + format_time(last_match);
+      if (!rose[i])
+        return "already true when the sequence started" + before_match + ", and never went false since: " + actual(c);
+      return "became true at " + format_time(*rose[i]) + before_match + ", and never went false since: " + actual(c);
+    };
     while (next < n) {
       if (next_scan_ > t0 + s.timeout_us) {
         advance_to(t0 + s.timeout_us);
         fail("expect_sequence: " + label(next) + " did not happen within the sequence's " +
-                 format_time(s.timeout_us) + ": " + still_false(s.sequence[next].cond),
+                 format_time(s.timeout_us) + ": " + why(next),
              involved);
       }
       const SequenceEntry& e = s.sequence[next];
       if (e.max_us != UINT64_MAX && next_scan_ > last_match + e.max_us) {
         advance_to(last_match + e.max_us);
         fail("expect_sequence: " + label(next) + " did not happen within " + format_time(e.max_us) + " of " +
-                 since(next) + " at " + format_time(last_match) + ": " + still_false(e.cond),
+                 since(next) + " at " + format_time(last_match) + ": " + why(next),
              involved);
       }
       scan_next();
       std::vector<bool> now(n);
-      for (size_t i = 0; i < n; ++i) now[i] = holds(s.sequence[i].cond);
+      for (size_t i = 0; i < n; ++i) {
+        now[i] = holds(s.sequence[i].cond);
+        if (now[i] && !before[i]) rose[i] = now_;
+      }
       // Entries match in order; several may change at the same scan.
       while (next < n && now[next] && !before[next]) {
         const SequenceEntry& m = s.sequence[next];
         if (now_ - last_match < m.min_us)
           fail("expect_sequence: " + label(next) + " happened " + format_time(now_ - last_match) + " after " +
-                   since(next) + ", before the earliest " + format_time(m.min_us),
+                   since(next) + ", before the earliest " + format_time(m.min_us) + ": " + actual(m.cond),
                involved);
         last_match = now_;
         ++next;

@@ -120,6 +120,81 @@ TEST(ScenarioRunner, SequenceEntriesAreChangesInOrderWithBounds) {
       << early.failure;
 }
 
+// Every way an entry can fail says why, with the values, in the headline itself
+// (docs/testing-your-cell.md: "what was still false with its value").
+TEST(ScenarioRunner, SequenceFailureHeadlinesSayWhyWithTheValues) {
+  ScenarioCell cell("sequence_why");
+  // Never true within the sequence's timeout: what is still false.
+  const CaseResult never = cell.run(
+      "      - expect_sequence:\n"
+      "          - motor\n"
+      "        timeout: 100ms\n");
+  ASSERT_FALSE(never.passed);
+  EXPECT_TRUE(has(never.failure, "expect_sequence: entry 1 (line 6) 'motor' did not happen within the sequence's "
+                                 "0.100 s: motor (motor is OFF)"))
+      << never.failure;
+  // True when the sequence starts and never false since: no change, and the value says so.
+  const CaseResult stale = cell.run(
+      "      - set: {start: on}\n"
+      "      - after: 1ms\n"
+      "      - expect_sequence:\n"
+      "          - motor\n"
+      "        timeout: 100ms\n");
+  ASSERT_FALSE(stale.passed);
+  EXPECT_TRUE(has(stale.failure, "entry 1 (line 8) 'motor' did not happen within the sequence's 0.100 s: already "
+                                 "true when the sequence started, and never went false since: motor is ON"))
+      << stale.failure;
+  // The same for a later entry, bounded from the previous match: done comes at 0.5 s.
+  const CaseResult stale2 = cell.run(
+      "      - set: {start: on, hold: on}\n"
+      "      - after: 1ms\n"
+      "      - expect_sequence:\n"
+      "          - done\n"
+      "          - {that: motor, within: 100ms}\n");
+  ASSERT_FALSE(stale2.passed);
+  EXPECT_TRUE(has(stale2.failure, "entry 2 (line 9) 'motor' did not happen within 0.100 s of entry 1's match at "
+                                  "0.500 s: already true when the sequence started, before entry 1's match at "
+                                  "0.500 s, and never went false since: motor is ON"))
+      << stale2.failure;
+  EXPECT_EQ(stale2.virtual_us, 600000u);
+  // Turned true after the start but before the previous entry matched: when, and the value.
+  // The pulse turns motor on at the scan at 0, done comes at 0.5 s.
+  const CaseResult early_rise = cell.run(
+      "      - set: {hold: on}\n"
+      "      - pulse: {start: 2s}\n"
+      "      - expect_sequence:\n"
+      "          - done\n"
+      "          - {that: motor, within: 100ms}\n");
+  ASSERT_FALSE(early_rise.passed);
+  EXPECT_TRUE(has(early_rise.failure, "entry 2 (line 9) 'motor' did not happen within 0.100 s of entry 1's match "
+                                      "at 0.500 s: became true at 0.000 s, before entry 1's match at 0.500 s, and "
+                                      "never went false since: motor is ON"))
+      << early_rise.failure;
+  // False at the end of its window: what is still false.
+  const CaseResult late = cell.run(
+      "      - set: {hold: on}\n"
+      "      - expect_sequence:\n"
+      "          - done\n"
+      "          - {that: motor, within: 100ms}\n");
+  ASSERT_FALSE(late.passed);
+  EXPECT_TRUE(has(late.failure, "entry 2 (line 8) 'motor' did not happen within 0.100 s of entry 1's match at "
+                                "0.500 s: motor (motor is OFF)"))
+      << late.failure;
+  // Too early: when, the bound, and the values at that scan.
+  const CaseResult early = cell.run(
+      "      - pulse: {start: 5ms}\n"
+      "      - expect_sequence:\n"
+      "          - motor\n"
+      "          - {that: not motor, between: [6ms, 10ms]}\n");
+  ASSERT_FALSE(early.passed);
+  EXPECT_TRUE(has(early.failure, "entry 2 (line 8) 'not motor' happened 0.005 s after entry 1's match, before the "
+                                 "earliest 0.006 s: motor is OFF"))
+      << early.failure;
+  // No headline of any of these ends on an empty reason.
+  for (const CaseResult* r : {&never, &stale, &stale2, &early_rise, &late, &early})
+    EXPECT_NE(r->failure.back(), ' ') << r->failure;
+}
+
 TEST(ScenarioRunner, PulseHoldsItsWidthThenReleases) {
   ScenarioCell cell("pulse");
   // A 3 ms pulse from the scan at 0: on at 0, 1, 2 ms, off from 3 ms.
