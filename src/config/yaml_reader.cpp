@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include <yaml-cpp/depthguard.h>
+
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
@@ -30,11 +32,20 @@ void YamlReader::fail(const YAML::Node& n, const std::string& key, const std::st
                         "key '" + key + "': " + msg);
 }
 
+// yaml-cpp reports its recursion limit as "bad file": say what it is, with the limit.
+static SourceError syntax_error(const std::string& file, const YAML::ParserException& e) {
+  std::string why = e.msg;
+  if (const auto* deep = dynamic_cast<const YAML::DeepRecursion*>(&e))
+    why = "nesting too deep: more than " + std::to_string(deep->depth() - 1) +
+          " levels of mappings and lists inside each other (the reader's limit)";
+  return SourceError::at(file, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + why);
+}
+
 YAML::Node YamlReader::load(const std::string& text) const {
   try {
     return YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw SourceError::at(file_, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
+    throw syntax_error(file_, e);
   }
 }
 
@@ -42,7 +53,7 @@ YAML::Node YamlReader::load_file(const std::string& path) {
   try {
     return YAML::LoadFile(path);
   } catch (const YAML::ParserException& e) {
-    throw SourceError::at(path, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
+    throw syntax_error(path, e);
   } catch (const YAML::BadFile&) {
     throw Error(path + ": cannot read the file");
   }

@@ -126,6 +126,36 @@ TEST(YamlReader, FilesAndValueParsersReportTheirLine) {
   EXPECT_EQ(r.host_port(YAML::Load("127.0.0.1:502"), "k"), "127.0.0.1:502");
 }
 
+// yaml-cpp stops at 500 levels of nesting and calls it "bad file": the error says what it
+// is and the limit, at the line where the reader stopped, in the file and in text alike.
+TEST(YamlReader, TooDeepNestingSaysSoWithTheLimit) {
+  const std::string why =
+      "YAML syntax: nesting too deep: more than 499 levels of mappings and lists inside each other "
+      "(the reader's limit)";
+  std::string block = "cell: {name: t}\nsignals:\n";
+  for (int i = 1; i < 600; ++i) block += std::string(static_cast<size_t>(i), ' ') + "k:\n";
+  const std::string e = error_of(block);
+  EXPECT_EQ(e.rfind("cell.yaml:", 0), 0u) << e;
+  EXPECT_NE(e.find(why), std::string::npos) << e;
+  EXPECT_EQ(e.find("bad file"), std::string::npos) << e;
+  const std::string flow = "cell: {name: t}\nregisters: " + std::string(600, '[') + std::string(600, ']') + "\n";
+  EXPECT_EQ(error_of(flow).rfind("cell.yaml:2:", 0), 0u) << error_of(flow);
+  EXPECT_NE(error_of(flow).find(why), std::string::npos) << error_of(flow);
+  // 499 levels are read (and then refused for what they mean, not for their depth).
+  const std::string ok = "registers: " + std::string(498, '[') + std::string(498, ']') + "\n";
+  EXPECT_EQ(error_of(ok).find("nesting too deep"), std::string::npos) << error_of(ok);
+
+  const std::string path = ::testing::TempDir() + "/plc_cell_deep.yaml";
+  std::ofstream(path) << flow;
+  try {
+    YamlReader::load_file(path);
+    FAIL() << "no error";
+  } catch (const SourceError& x) {
+    EXPECT_EQ(std::string(x.what()).rfind(path + ":2:", 0), 0u) << x.what();
+    EXPECT_NE(std::string(x.what()).find(why), std::string::npos) << x.what();
+  }
+}
+
 // ~registers/<group> of plc_node (and fatek_bridge's groups): same YAML, same checks.
 TEST(CellConfig, RegisterGroups) {
   const CellConfig c = parse_cell_config(
