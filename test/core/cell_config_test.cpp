@@ -89,6 +89,10 @@ TEST(CellConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(error_of("cell: [1, 2\n").find("cell.yaml:"), std::string::npos);
   EXPECT_NE(error_of("cell: [1, 2\n").find("YAML syntax"), std::string::npos);
   EXPECT_NE(error_of("bogus: 1\n").find("key 'bogus': unknown key"), std::string::npos);
+  // YAML is Unicode text: other bytes are refused where they are, as a syntax error is.
+  EXPECT_EQ(error_of("cell: {name: t}\nsignals: {caf\xE9: X1}\n"),
+            "cell.yaml:2:14: error: not UTF-8: byte 0xE9 (a YAML file is Unicode text, read as UTF-8)");
+  EXPECT_EQ(error_of("cell: {name: \"a\x02\"}\n").rfind("cell.yaml:1:16: error: character U+0002 is not allowed", 0), 0u);
 }
 
 // The reader every YAML file of plc_cell goes through (cell, fatek_bridge, modbus_bridge).

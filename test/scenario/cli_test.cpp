@@ -2,6 +2,9 @@
 // the same output every run, and bad files.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -152,4 +155,32 @@ TEST(ScenarioCli, CoverageOfTheWholeRun) {
   // Coverage without a flag is not recorded: the same run prints no coverage.
   const ToolResult plain = run_tool("test " + kSrc + "/examples/conveyor/conveyor.scenario.yaml");
   EXPECT_FALSE(has(plain.out, "coverage of")) << plain.out;
+}
+
+// End to end: a folder whose name is not UTF-8 and a case name with control characters
+// (written as YAML escapes) give JUnit that an XML parser reads, with the bytes shown.
+TEST(ScenarioCli, JUnitOfHostileNamesParses) {
+  const std::string dir = ::testing::TempDir() + "/hostile_\xFF\x01<&\"dir";
+  ::mkdir(dir.c_str(), 0755);
+  std::ofstream(dir + "/cell.il") << "ORG X0\nOUT Y0\nEND\n";
+  std::ofstream(dir + "/cell.yaml") << "cell: {name: t, program: cell.il}\nplc: {scan_period: 0.001}\n";
+  std::ofstream(dir + "/s.yaml") << "cell: cell.yaml\ncases:\n"
+                                    "  - name: \"tab\\there bell\\a nul\\0 esc\\e <&> \\u00e9\"\n"
+                                    "    steps:\n      - expect: Y0\n";
+  std::ofstream(::testing::TempDir() + "/hostile_check.py")
+      << "import sys, xml.etree.ElementTree as E\n"
+         "root = E.parse(sys.argv[1]).getroot()\n"
+         "case = root.find('testsuite/testcase')\n"
+         "assert case.get('name') == 'tab\\there bell\\\\u0007 nul\\\\u0000 esc\\\\u001B <&> \\u00e9', case.get('name')\n"
+         "assert case.get('file').endswith('hostile_\\\\xFF\\\\u0001<&\"dir/s.yaml'), case.get('file')\n"
+         "msg = case.find('failure').get('message')\n"
+         "assert msg.endswith('hostile_\\\\xFF\\\\u0001<&\"dir/s.yaml:5: expect Y0: Y0 (Y0 is OFF)'), msg\n"
+         "print('parsed')\n";
+  setenv("PLC_CELL_HOSTILE", dir.c_str(), 1);
+  const ToolResult r = run_tool("test \"$PLC_CELL_HOSTILE/s.yaml\" --junit \"$PLC_CELL_HOSTILE/out.xml\"");
+  EXPECT_EQ(r.status, 1) << r.out;
+  const ToolResult parsed = plc_cell::testing::run_shell("/usr/bin/python3 " + ::testing::TempDir() +
+                                                         "/hostile_check.py \"$PLC_CELL_HOSTILE/out.xml\"");
+  EXPECT_EQ(parsed.status, 0) << parsed.out;
+  EXPECT_TRUE(has(parsed.out, "parsed")) << parsed.out;
 }
