@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 
@@ -265,6 +267,39 @@ TEST(SoftCell, ErrorsComeWithTheFileName) {
     EXPECT_NE(std::string(e.what()).find("no program"), std::string::npos);
   }
   EXPECT_THROW(SoftCell("/nonexistent.yaml", ""), SourceError);
+}
+
+// A file that cannot be opened: the system's reason and the absolute path it was looked
+// for at, and, when the cell YAML named it, that key's line (a relative program is taken
+// from the YAML's folder, a relative config from the working directory).
+TEST(SoftCell, AFileThatCannotBeOpenedNamesTheLineThatNamedItAndWhereItLooked) {
+  const std::string dir = (std::filesystem::path(::testing::TempDir()) / "missing_files").string();
+  ASSERT_EQ(std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
+  const std::string cwd = std::filesystem::current_path().string();
+  auto first_error = [](const std::string& config, const std::string& program) {
+    try {
+      SoftCell cell(config, program);
+    } catch (const SourceError& e) {
+      return e.diagnostics().at(0).to_string();
+    }
+    return std::string("no error");
+  };
+  std::ofstream(dir + "/cell.yaml") << "cell: {name: t,\n       program: progs/missing.il}\n";
+  EXPECT_EQ(first_error(dir + "/cell.yaml", ""),
+            dir + "/cell.yaml:2:17: error: key 'cell.program': cannot open the program file: No such file or "
+                  "directory (looked for " + dir + "/progs/missing.il)");
+  // --program, or ~program: no line named it; its own path and where it led.
+  EXPECT_EQ(first_error(dir + "/cell.yaml", "rel/none.il"),
+            "rel/none.il: error: cannot open the program file: No such file or directory (looked for " + cwd +
+                "/rel/none.il)");
+  EXPECT_EQ(first_error("nowhere/cell.yaml", ""),
+            "nowhere/cell.yaml: error: cannot open the cell config: No such file or directory (looked for " + cwd +
+                "/nowhere/cell.yaml)");
+  // A folder is not a program.
+  ASSERT_EQ(std::system(("mkdir -p " + dir + "/progs/missing.il").c_str()), 0);
+  EXPECT_NE(first_error(dir + "/cell.yaml", "").find(dir + "/cell.yaml:2:17: error: key 'cell.program': cannot open "
+                                                           "the program file: it is a directory"),
+            std::string::npos);
 }
 
 TEST(CellConfig, TheTemplateParses) {

@@ -2,8 +2,11 @@
 // error of a file in one reading, each at its file:line:column with the key and why.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
+#include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/scenario/scenario_file.h"
 #include "scenario_fixture.h"
@@ -218,6 +221,29 @@ TEST(ScenarioFile, TextThatIsNotUtf8IsRefusedAtItsLine) {
   } catch (const SourceError& e) {
     EXPECT_EQ(std::string(e.what()).rfind(path + ":3:11: error: not UTF-8: byte 0xFC", 0), 0u) << e.what();
   }
+}
+
+// The cell and program a scenario names, checked at the lines that name them, with the
+// path each led to (relative to the scenario's folder).
+TEST(ScenarioFile, ACellOrProgramThatCannotBeOpenedIsAnErrorAtItsLine) {
+  const std::string dir = (std::filesystem::path(::testing::TempDir()) / "scenario_missing").string();
+  ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
+  std::ofstream(dir + "/s.yaml") << "cell: cells/none.yaml\nprogram: /nonexistent/p.il\n"
+                                    "cases:\n  - name: a\n    steps: [{expect: Y0}]\n";
+  ErrorList errors;
+  const Scenario sc = read_scenario(dir + "/s.yaml", errors);
+  std::vector<std::string> e;
+  try {
+    errors.throw_if_any();
+  } catch (const SourceError& x) {
+    for (const auto& d : x.diagnostics()) e.push_back(d.to_string());
+  }
+  EXPECT_EQ(e, (std::vector<std::string>{
+                   dir + "/s.yaml:1:7: error: key 'cell': cannot open the cell config: No such file or directory "
+                         "(looked for " + dir + "/cells/none.yaml)",
+                   dir + "/s.yaml:2:10: error: key 'program': cannot open the program file: No such file or "
+                         "directory (looked for /nonexistent/p.il)"}));
+  EXPECT_EQ(sc.cell, "");  // no cell is built from it: its own error would name neither line
 }
 
 TEST(ScenarioFile, NamesTheCellDoesNotHaveAreReportedForEveryCaseBeforeRunning) {
