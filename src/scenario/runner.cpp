@@ -169,18 +169,27 @@ class CaseRun {
     std::set<std::string> seen;
     for (const auto& cmp : c.all) {
       if (!seen.insert(cmp.probe.text).second) continue;
-      s += (s.empty() ? "" : ", ") + cmp.probe.text + " is " + t_.read(cmp.probe).text;
+      s += (s.empty() ? "" : ", ") + label(cmp.probe) + " is " + t_.read(cmp.probe).text;
     }
     return s;
   }
-  // What is still false of c, with the values.
+  // What is still false of c, with the values: "motor (Y0) is OFF" for a bare name (the
+  // comparison says no more), else "R0 >= 3 (R0 is 1)".
   std::string still_false(const Condition& c) {
     std::string s;
     for (const auto& cmp : c.all) {
       const Reading r = t_.read(cmp.probe);
-      if (!cmp.holds(r)) s += (s.empty() ? "" : "; ") + cmp.text + " (" + cmp.probe.text + " is " + r.text + ")";
+      if (cmp.holds(r)) continue;
+      const std::string value = label(cmp.probe) + " is " + r.text;
+      s += (s.empty() ? "" : "; ") + (cmp.text == cmp.probe.text ? value : cmp.text + " (" + value + ")");
     }
     return s;
+  }
+  // The name reports use, once per probe: "stop_pb (X1)".
+  const std::string& label(const Probe& p) {
+    auto it = labels_.find(p.text);
+    if (it == labels_.end()) it = labels_.emplace(p.text, t_.label(p)).first;
+    return it->second;
   }
   bool holds(const Condition& c) {
     for (const auto& cmp : c.all)
@@ -195,14 +204,15 @@ class CaseRun {
   std::string details(const Failure& f) {
     std::ostringstream o;
     o << "  at " << format_time(f.at_us) << "\n";
-    std::vector<std::string> shown;
+    std::vector<const Probe*> shown;
     for (const Condition* c : f.involved)
       for (const auto& cmp : c->all)
-        if (std::find(shown.begin(), shown.end(), cmp.probe.text) == shown.end()) shown.push_back(cmp.probe.text);
+        if (std::find_if(shown.begin(), shown.end(), [&](const Probe* p) { return *p == cmp.probe; }) == shown.end())
+          shown.push_back(&cmp.probe);
     if (!shown.empty()) o << "  last changes (time value):\n";
-    for (const auto& p : shown) {
-      o << "    " << p << ":";
-      for (const auto& ch : history_[p])
+    for (const Probe* p : shown) {
+      o << "    " << label(*p) << ":";
+      for (const auto& ch : history_[p->text])
         o << "  " << (ch.initial ? std::string("initially") : format_time(ch.t_us)) << " " << ch.text;
       o << "\n";
     }
@@ -373,6 +383,7 @@ class CaseRun {
   std::vector<Probe> probes_;
   std::set<std::string> known_;
   std::map<std::string, std::deque<Change>> history_;
+  std::map<std::string, std::string> labels_;  // by probe text
   std::vector<Background> background_;
 };
 

@@ -64,10 +64,10 @@ TEST(ScenarioCli, TheFailingExampleNamesItsExpectation) {
   // The expectation that failed (the sequence's second entry, line 17), the value, the
   // time, and the changes: the part arrived at 1.000 s, the stopper had not lowered at 2 s.
   EXPECT_TRUE(has(r.out, "too_strict.fails.yaml:15: expect_sequence: entry 2 (line 17) 'stopper_lower' did not happen "
-                         "within 1.000 s of entry 1's match at 1.000 s: stopper_lower (stopper_lower is OFF)\n"))
+                         "within 1.000 s of entry 1's match at 1.000 s: stopper_lower (Y1) is OFF\n"))
       << r.out;
   EXPECT_TRUE(has(r.out, "      at 2.000 s\n")) << r.out;
-  EXPECT_TRUE(has(r.out, "        pick_request:  initially OFF  1.000 s ON\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "        pick_request (Y2):  initially OFF  1.000 s ON\n")) << r.out;
   EXPECT_TRUE(has(r.out, "== 1 passed, 1 failed")) << r.out;
   const std::string x = slurp(xml);
   EXPECT_TRUE(has(x, "tests=\"2\" failures=\"1\"")) << x;
@@ -146,7 +146,9 @@ TEST(ScenarioCli, CoverageOfTheWholeRun) {
                          "  every network, contact, coil and FUN exercised\n"))
       << r.out;
   // The count-up stop never runs the motor again after the stop: RST Y0's rung is always ON.
-  EXPECT_TRUE(has(r.out, kSrc + "/examples/hsc/count_up_stop.il:13 coil RST Y0 never switched (rung always ON)")) << r.out;
+  // Y0 is the cell's signal motor: the finding names both.
+  EXPECT_TRUE(has(r.out, kSrc + "/examples/hsc/count_up_stop.il:13 coil RST motor (Y0) never switched (rung always ON)"))
+      << r.out;
   const std::string html = slurp(dir + "/index.html");
   for (const char* p : {"conveyor/conveyor.il", "hsc/count_up_stop.il", "motion/positioning.il", "oven/oven.il"}) {
     EXPECT_TRUE(has(html, p)) << p;
@@ -174,7 +176,7 @@ TEST(ScenarioCli, JUnitOfHostileNamesParses) {
          "assert case.get('name') == 'tab\\there bell\\\\u0007 nul\\\\u0000 esc\\\\u001B <&> \\u00e9', case.get('name')\n"
          "assert case.get('file').endswith('hostile_\\\\xFF\\\\u0001<&\"dir/s.yaml'), case.get('file')\n"
          "msg = case.find('failure').get('message')\n"
-         "assert msg.endswith('hostile_\\\\xFF\\\\u0001<&\"dir/s.yaml:5: expect Y0: Y0 (Y0 is OFF)'), msg\n"
+         "assert msg.endswith('hostile_\\\\xFF\\\\u0001<&\"dir/s.yaml:5: expect Y0: Y0 is OFF'), msg\n"
          "print('parsed')\n";
   setenv("PLC_CELL_HOSTILE", dir.c_str(), 1);
   const ToolResult r = run_tool("test \"$PLC_CELL_HOSTILE/s.yaml\" --junit \"$PLC_CELL_HOSTILE/out.xml\"");

@@ -28,6 +28,7 @@ class CellTarget : public Target {
   void force(const Probe& p, bool on) override;
   void release(const Probe* p) override;
   std::string fault() override;
+  std::string label(const Probe& p) override { return probe_label(p, cell_->config()); }
 
  private:
   Plc& plc() { return cell_->plc(); }

@@ -29,6 +29,9 @@ class Target {
   virtual void write(const Probe& p, const Value& v) = 0;  // memory, once (as a client)
   virtual void force(const Probe& p, bool on) = 0;
   virtual void release(const Probe* p) = 0;  // nullptr: every forced point
+  // How a report names p (probe_label: "stop_pb (X1)"); as written when the target has no
+  // cell config to look it up in.
+  virtual std::string label(const Probe& p) { return p.text; }
   // Non-empty once the PLC stopped on a fault: the case ends there.
   virtual std::string fault() = 0;
 };
