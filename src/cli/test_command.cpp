@@ -71,7 +71,7 @@ int cmd_test(const std::vector<std::string>& argv_in) {
     for (const auto& c : sc.cases) {
       if (!selected(filters, c.name)) continue;
       scenario::CellTarget target(sc.cell, sc.program);  // a fresh cell for every case
-      if (coverage) recorders.attach(target.cell().plc());
+      if (coverage) recorders.attach(target.cell().plc(), target.cell().config().signals);
       results.push_back(scenario::run_case(c, target));
       if (coverage) recorders.detach(target.cell().plc());
       const auto& r = results.back();

@@ -10,6 +10,7 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/plc.h"
+#include "plc_cell/core/unreadable.h"
 
 namespace plc_cell {
 namespace {
@@ -201,6 +202,8 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
 }
 
 CellConfig load_cell_config(const std::string& path, ErrorList* errors, const std::set<std::string>& sections) {
+  const std::string why = why_unreadable(path);
+  if (!why.empty()) throw SourceError::at(path, 0, 0, "cannot open the cell config: " + why);
   std::ifstream f(path);
   if (!f) throw SourceError::at(path, 0, 0, "cannot open the cell config");
   std::stringstream ss;

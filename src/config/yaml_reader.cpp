@@ -1,12 +1,20 @@
 #include "plc_cell/config/yaml_reader.h"
 
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <set>
+#include <sstream>
+
+#include <yaml-cpp/depthguard.h>
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/utf8.h"
 #include "plc_cell/io/serial_settings.h"
 
 namespace plc_cell {
@@ -30,22 +38,54 @@ void YamlReader::fail(const YAML::Node& n, const std::string& key, const std::st
                         "key '" + key + "': " + msg);
 }
 
+// yaml-cpp reports its recursion limit as "bad file": say what it is, with the limit.
+static SourceError syntax_error(const std::string& file, const YAML::ParserException& e) {
+  std::string why = e.msg;
+  if (const auto* deep = dynamic_cast<const YAML::DeepRecursion*>(&e))
+    why = "nesting too deep: more than " + std::to_string(deep->depth() - 1) +
+          " levels of mappings and lists inside each other (the reader's limit)";
+  return SourceError::at(file, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + why);
+}
+
+// YAML is Unicode text of printable characters (YAML 1.2, 5.1), here read as UTF-8.
+// yaml-cpp would take any bytes and pass them on into names that reports (JUnit XML, the
+// topics) must carry, so other bytes are refused where they are, as a syntax error is.
+static void check_text(const std::string& file, const std::string& text) {
+  int line = 1, column = 1;
+  for (size_t i = 0; i < text.size(); ++column) {
+    const size_t at = i;
+    const char32_t c = utf8::next(text, &i);
+    char why[160] = "";
+    if (c == utf8::kInvalid) {
+      std::snprintf(why, sizeof why, "not UTF-8: byte 0x%02X (a YAML file is Unicode text, read as UTF-8)",
+                    static_cast<unsigned>(static_cast<unsigned char>(text[at])));
+    } else if (!(c == '\t' || c == '\n' || c == '\r' || (c >= 0x20 && c <= 0x7E) || c == 0x85 ||
+                 (c >= 0xA0 && c <= 0xD7FF) || (c >= 0xE000 && c <= 0xFFFD) || c >= 0x10000)) {
+      std::snprintf(why, sizeof why,
+                    "character U+%04X is not allowed in YAML text (a control character: in double quotes, "
+                    "write it as an escape such as \\x07)",
+                    static_cast<unsigned>(c));
+    }
+    if (why[0]) throw SourceError::at(file, line, column, why);
+    if (c == '\n') ++line, column = 0;
+  }
+}
+
 YAML::Node YamlReader::load(const std::string& text) const {
+  check_text(file_, text);
   try {
     return YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw SourceError::at(file_, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
+    throw syntax_error(file_, e);
   }
 }
 
 YAML::Node YamlReader::load_file(const std::string& path) {
-  try {
-    return YAML::LoadFile(path);
-  } catch (const YAML::ParserException& e) {
-    throw SourceError::at(path, e.mark.line + 1, e.mark.column + 1, "YAML syntax: " + e.msg);
-  } catch (const YAML::BadFile&) {
-    throw Error(path + ": cannot read the file");
-  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot read the file: " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return YamlReader(path).load(text.str());
 }
 
 void YamlReader::only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {

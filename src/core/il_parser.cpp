@@ -9,6 +9,7 @@
 #include "plc_cell/core/interpreter.h"
 // The reserved interrupt labels: they cannot be jump targets.
 #include "plc_cell/core/interrupt_sources.h"
+#include "plc_cell/core/unreadable.h"
 
 namespace plc_cell {
 namespace {
@@ -620,6 +621,8 @@ Program parse_program(std::string_view text, const std::string& file, const Func
 }
 
 Program load_program_file(const std::string& path, const FunctionTable& functions) {
+  const std::string why = why_unreadable(path);
+  if (!why.empty()) throw SourceError::at(path, 0, 0, "cannot open the program file: " + why);
   std::ifstream f(path);
   if (!f) throw SourceError::at(path, 0, 0, "cannot open the program file");
   std::stringstream ss;

@@ -15,11 +15,14 @@ namespace coverage {
 namespace {
 
 // The page is opened from disk, often where there is no network: styles are inline and
-// nothing is fetched. The colours are the legend's; test/coverage checks them in a browser.
+// nothing is fetched. The colours are the legend's; test/coverage checks them in a browser,
+// and that at 900 px nothing runs off the page: long comments and notes wrap, never cut.
 const char* const kStyle = R"(body{font-family:sans-serif;margin:1.5em;color:#222}
 table.summary{border-collapse:collapse;margin-bottom:1em}
 table.summary th,table.summary td{border:1px solid #bbb;padding:.2em .6em;text-align:right}
-table.summary th:first-child,table.summary td:first-child{text-align:left}
+table.summary{max-width:100%}
+table.summary th:first-child,table.summary td:first-child{text-align:left;min-width:12em;overflow-wrap:anywhere}
+h2,.findings,.error{overflow-wrap:anywhere}
 .legend span{display:inline-block;padding:.1em .6em;margin-right:.6em;border:1px solid #bbb}
 .findings{font-family:monospace}
 .error{color:#a00}
@@ -30,14 +33,15 @@ table.summary th:first-child,table.summary td:first-child{text-align:left}
 .net.bad{background:#fbe3e3;border-color:#c62828}
 .net.off{background:#efefef;border-color:#9e9e9e}
 .gap{border-left:6px solid transparent}
-.line{display:flex;white-space:pre}
+.line{display:flex;align-items:baseline}
 .line.ok{background:#b9e8b9}
 .line.bad{background:#f5b5b5}
 .line.off{background:#d6d6d6}
 .no{width:4em;text-align:right;color:#777;padding-right:1em;flex:none}
-.code{width:18em;flex:none;overflow:hidden}
-.comment{color:#666;width:30em;flex:none;overflow:hidden}
-.note{font-family:sans-serif;font-style:italic}
+.code{flex:none;width:18em;white-space:pre-wrap;overflow-wrap:anywhere}
+.comment{color:#666;flex:1 1 24em;min-width:8em;white-space:pre-wrap;overflow-wrap:anywhere}
+.note{font-family:sans-serif;font-style:italic;flex:0 1 18em;min-width:8em;padding-left:.6em;overflow-wrap:anywhere}
+@media (max-width:700px){.line{flex-wrap:wrap}.code{width:auto;flex:1 1 12em}.comment,.note{flex-basis:100%;padding-left:5em}}
 )";
 
 std::string escape(const std::string& s) {
@@ -70,7 +74,7 @@ std::string note(const Item& it) {
   const std::string level = it.seen_on ? "ON" : "OFF";
   switch (it.kind) {
     case ItemKind::Contact:
-      return it.exercised() ? it.name + " seen OFF and ON" : "never changed: " + it.name + " always " + level;
+      return it.exercised() ? label(it) + " seen OFF and ON" : "never changed: " + label(it) + " always " + level;
     case ItemKind::Coil:
       return it.exercised() ? "switched: rung OFF and ON" : "never switched: rung always " + level;
     case ItemKind::Fun:

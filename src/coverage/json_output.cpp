@@ -64,7 +64,8 @@ void network(const Network& n, std::ostream& out) {
   for (size_t i = 0; i < n.items.size(); ++i) {
     const Item& it = n.items[i];
     out << (i ? ",\n" : "\n") << "           {\"kind\": \"" << kind_name(it.kind) << "\", \"line\": " << it.line
-        << ", \"name\": " << quoted(it.name) << ", \"seen\": " << seen(it)
+        << ", \"name\": " << quoted(it.name) << (it.signal.empty() ? "" : ", \"signal\": " + quoted(it.signal))
+        << ", \"seen\": " << seen(it)
         << ", \"exercised\": " << boolean(it.exercised()) << "}";
   }
   out << (n.items.empty() ? "]}" : "\n         ]}");

@@ -30,7 +30,7 @@ const Program& Recorder::program() const {
   return *program_;
 }
 
-void Recorder::attach(Plc& plc) {
+void Recorder::attach(Plc& plc, const SignalNames& names) {
   for (const auto& a : attached_)
     if (a.plc == &plc) throw Error("coverage: this PLC is already being recorded");
   std::unique_ptr<uint8_t[]> seen;
@@ -53,6 +53,7 @@ void Recorder::attach(Plc& plc) {
     interp.record_into(seen.get());
   });
   attached_.push_back({&plc, std::move(seen)});
+  if (names_.empty()) names_ = names;
 }
 
 void Recorder::detach(Plc& plc) {

@@ -5,11 +5,11 @@
 namespace plc_cell {
 namespace coverage {
 
-Recorder& Recorders::attach(Plc& plc) {
+Recorder& Recorders::attach(Plc& plc, const SignalNames& names) {
   const std::string file = plc.locked([](ScanEngine& e, Memory&) { return e.program().file; });
   Recorder& r = by_file_[file];
   try {
-    r.attach(plc);
+    r.attach(plc, names);
   } catch (const Error&) {
     if (r.empty()) by_file_.erase(file);  // a PLC with no program leaves no empty recorder behind
     throw;

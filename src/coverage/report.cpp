@@ -53,6 +53,20 @@ bool item_of(const Instruction& in, const std::string& fun_name, Item* item) {
   }
 }
 
+// The point an item reads or drives, if it is a bit a signal can name.
+const Address* point_of(const Instruction& in) {
+  if (in.op == Op::RstReg || in.op == Op::Fun || in.op == Op::Jmp || in.op == Op::Call) return nullptr;
+  return &in.addr;
+}
+
+std::string signal_of(const Instruction& in, const SignalNames& names) {
+  const Address* a = point_of(in);
+  if (!a) return "";
+  for (const auto& n : names)
+    if (n.second == *a) return n.first;
+  return "";
+}
+
 const char* level(bool on) { return on ? "ON" : "OFF"; }
 
 void add_findings(const Network& n, std::vector<Finding>& out) {
@@ -65,14 +79,14 @@ void add_findings(const Network& n, std::vector<Finding>& out) {
   for (const Item& it : n.items) {
     const char* what = it.kind == ItemKind::Contact ? "contact " : it.kind == ItemKind::Coil ? "coil " : "";
     if (!it.evaluated()) {
-      out.push_back({it.line, what + it.name + " not evaluated"});
+      out.push_back({it.line, what + label(it) + " not evaluated"});
     } else if (!it.exercised()) {
       if (it.kind == ItemKind::Contact)
-        out.push_back({it.line, what + it.name + " never changed (always " + level(it.seen_on) + ")"});
+        out.push_back({it.line, what + label(it) + " never changed (always " + level(it.seen_on) + ")"});
       else if (it.kind == ItemKind::Coil)
-        out.push_back({it.line, what + it.name + " never switched (rung always " + level(it.seen_on) + ")"});
+        out.push_back({it.line, what + label(it) + " never switched (rung always " + level(it.seen_on) + ")"});
       else
-        out.push_back({it.line, it.name + " never enabled"});
+        out.push_back({it.line, label(it) + " never enabled"});
     }
   }
 }
@@ -112,6 +126,13 @@ void read_source(const Program& p, Report& r) {
 
 }  // namespace
 
+std::string label(const Item& it) {
+  if (it.signal.empty()) return it.name;
+  const size_t sp = it.name.rfind(' ');  // the address is the name's last word
+  const std::string address = sp == std::string::npos ? it.name : it.name.substr(sp + 1);
+  return (sp == std::string::npos ? "" : it.name.substr(0, sp + 1)) + it.signal + " (" + address + ")";
+}
+
 Report report(const Recorder& rec) {
   const Program& p = rec.program();
   const std::vector<uint8_t>& seen = rec.seen();
@@ -136,6 +157,7 @@ Report report(const Recorder& rec) {
     open->end_line = in.line;
     Item item;
     if (!item_of(in, rec.fun_names()[i], &item)) continue;
+    item.signal = signal_of(in, rec.signal_names());
     item.index = static_cast<uint32_t>(i);
     item.line = in.line;
     item.seen_off = seen[i] & Interpreter::kSeenOff;

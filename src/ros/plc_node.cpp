@@ -15,6 +15,7 @@
 #include "plc_cell/ros/extension_diagnostics.h"
 #include "plc_cell/ros/frame_id.h"
 #include "plc_cell/ros/motion_topics.h"
+#include "plc_cell/ros/param_path.h"
 #include "plc_cell/ros/pulse_topics.h"
 #include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
@@ -25,6 +26,10 @@ namespace plc_cell {
 
 PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::WallTime::now()), updater_(nh, pnh) {
   pnh.param<std::string>("cell", cell_path_, "");
+  for (const char* p : {"cell", "program"}) {
+    const std::string problem = relative_param_path_problem("plc_node", p, pnh.param<std::string>(p, ""));
+    if (!problem.empty()) throw Error(problem);
+  }
   overrides_ = cell_overrides(pnh);
   cell_ = std::make_unique<Cell>(cell_path_, overrides_, Cell::Purpose::Serve,
                                  [](const std::string& l) { ROS_INFO("plc_node: %s", l.c_str()); });

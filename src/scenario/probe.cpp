@@ -21,6 +21,19 @@ bool is_name(const std::string& s) {
 
 }  // namespace
 
+std::string probe_label(const Probe& p, const CellConfig& cell) {
+  if (p.kind != Probe::Kind::Address) return p.text;
+  Address a;
+  try {
+    a = cell.resolve(p.name);
+  } catch (const Error&) {
+    return p.text;  // the target reports an unknown name before a case runs
+  }
+  for (const auto& s : cell.signals)
+    if (s.second == a) return s.first + " (" + format_address(a) + ")";
+  return p.text;
+}
+
 Reading address_reading(const Address& a, uint32_t v, ValueFormat f) {
   Reading r;
   const int bits = value_bits(a);

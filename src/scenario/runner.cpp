@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <deque>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -168,18 +169,27 @@ class CaseRun {
     std::set<std::string> seen;
     for (const auto& cmp : c.all) {
       if (!seen.insert(cmp.probe.text).second) continue;
-      s += (s.empty() ? "" : ", ") + cmp.probe.text + " is " + t_.read(cmp.probe).text;
+      s += (s.empty() ? "" : ", ") + label(cmp.probe) + " is " + t_.read(cmp.probe).text;
     }
     return s;
   }
-  // What is still false of c, with the values.
+  // What is still false of c, with the values: "motor (Y0) is OFF" for a bare name (the
+  // comparison says no more), else "R0 >= 3 (R0 is 1)".
   std::string still_false(const Condition& c) {
     std::string s;
     for (const auto& cmp : c.all) {
       const Reading r = t_.read(cmp.probe);
-      if (!cmp.holds(r)) s += (s.empty() ? "" : "; ") + cmp.text + " (" + cmp.probe.text + " is " + r.text + ")";
+      if (cmp.holds(r)) continue;
+      const std::string value = label(cmp.probe) + " is " + r.text;
+      s += (s.empty() ? "" : "; ") + (cmp.text == cmp.probe.text ? value : cmp.text + " (" + value + ")");
     }
     return s;
+  }
+  // The name reports use, once per probe: "stop_pb (X1)".
+  const std::string& label(const Probe& p) {
+    auto it = labels_.find(p.text);
+    if (it == labels_.end()) it = labels_.emplace(p.text, t_.label(p)).first;
+    return it->second;
   }
   bool holds(const Condition& c) {
     for (const auto& cmp : c.all)
@@ -194,14 +204,15 @@ class CaseRun {
   std::string details(const Failure& f) {
     std::ostringstream o;
     o << "  at " << format_time(f.at_us) << "\n";
-    std::vector<std::string> shown;
+    std::vector<const Probe*> shown;
     for (const Condition* c : f.involved)
       for (const auto& cmp : c->all)
-        if (std::find(shown.begin(), shown.end(), cmp.probe.text) == shown.end()) shown.push_back(cmp.probe.text);
+        if (std::find_if(shown.begin(), shown.end(), [&](const Probe* p) { return *p == cmp.probe; }) == shown.end())
+          shown.push_back(&cmp.probe);
     if (!shown.empty()) o << "  last changes (time value):\n";
-    for (const auto& p : shown) {
-      o << "    " << p << ":";
-      for (const auto& ch : history_[p])
+    for (const Probe* p : shown) {
+      o << "    " << label(*p) << ":";
+      for (const auto& ch : history_[p->text])
         o << "  " << (ch.initial ? std::string("initially") : format_time(ch.t_us)) << " " << ch.text;
       o << "\n";
     }
@@ -319,6 +330,8 @@ class CaseRun {
     const size_t n = s.sequence.size();
     std::vector<bool> before(n);
     for (size_t i = 0; i < n; ++i) before[i] = holds(s.sequence[i].cond);
+    // When each entry last turned true; none: true since the start or never true.
+    std::vector<std::optional<uint64_t>> rose(n);
     size_t next = 0;
     uint64_t last_match = t0;
     std::vector<const Condition*> involved;
@@ -330,29 +343,42 @@ class CaseRun {
     auto since = [&](size_t i) {
       return i == 0 ? std::string("the start of the sequence") : "entry " + std::to_string(i) + "'s match";
     };
+    // Why entry i has not matched: what is still false, or, when it holds, that it holds
+    // without having changed where it could count (an entry is a change).
+    auto why = [&](size_t i) {
+      const Condition& c = s.sequence[i].cond;
+      if (!holds(c)) return still_false(c);
+      const std::string before_match = i == 0 ? "" : ", before " + since(i) + " at " + format_time(last_match);
+      if (!rose[i])
+        return "already true when the sequence started" + before_match + ", and never went false since: " + actual(c);
+      return "became true at " + format_time(*rose[i]) + before_match + ", and never went false since: " + actual(c);
+    };
     while (next < n) {
       if (next_scan_ > t0 + s.timeout_us) {
         advance_to(t0 + s.timeout_us);
         fail("expect_sequence: " + label(next) + " did not happen within the sequence's " +
-                 format_time(s.timeout_us) + ": " + still_false(s.sequence[next].cond),
+                 format_time(s.timeout_us) + ": " + why(next),
              involved);
       }
       const SequenceEntry& e = s.sequence[next];
       if (e.max_us != UINT64_MAX && next_scan_ > last_match + e.max_us) {
         advance_to(last_match + e.max_us);
         fail("expect_sequence: " + label(next) + " did not happen within " + format_time(e.max_us) + " of " +
-                 since(next) + " at " + format_time(last_match) + ": " + still_false(e.cond),
+                 since(next) + " at " + format_time(last_match) + ": " + why(next),
              involved);
       }
       scan_next();
       std::vector<bool> now(n);
-      for (size_t i = 0; i < n; ++i) now[i] = holds(s.sequence[i].cond);
+      for (size_t i = 0; i < n; ++i) {
+        now[i] = holds(s.sequence[i].cond);
+        if (now[i] && !before[i]) rose[i] = now_;
+      }
       // Entries match in order; several may change at the same scan.
       while (next < n && now[next] && !before[next]) {
         const SequenceEntry& m = s.sequence[next];
         if (now_ - last_match < m.min_us)
           fail("expect_sequence: " + label(next) + " happened " + format_time(now_ - last_match) + " after " +
-                   since(next) + ", before the earliest " + format_time(m.min_us),
+                   since(next) + ", before the earliest " + format_time(m.min_us) + ": " + actual(m.cond),
                involved);
         last_match = now_;
         ++next;
@@ -370,6 +396,7 @@ class CaseRun {
   std::vector<Probe> probes_;
   std::set<std::string> known_;
   std::map<std::string, std::deque<Change>> history_;
+  std::map<std::string, std::string> labels_;  // by probe text
   std::vector<Background> background_;
 };
 

@@ -9,6 +9,7 @@
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/config/yaml_reader.h"
+#include "plc_cell/core/unreadable.h"
 
 namespace plc_cell {
 namespace scenario {
@@ -306,11 +307,13 @@ Scenario parse_scenario(const std::string& text, const std::string& file, ErrorL
     if (!doc["cell"]) r.fail(doc, "cell", "missing 'cell': the cell YAML this scenario runs");
     sc.cell = folder_of(file) + r.str(doc["cell"], "cell");
     if (!sc.cell.empty() && r.str(doc["cell"], "cell")[0] == '/') sc.cell = r.str(doc["cell"], "cell");
+    sc.cell_at = {file, YamlReader::line(doc["cell"]), doc["cell"].Mark().column + 1};
   }, file, doc);
   errors.collect([&] {
     if (doc["program"]) {
       const std::string p = r.str(doc["program"], "program");
       sc.program = p[0] == '/' ? p : folder_of(file) + p;
+      sc.program_at = {file, YamlReader::line(doc["program"]), doc["program"].Mark().column + 1};
     }
   }, file, doc);
   std::vector<Step> common;
@@ -399,12 +402,29 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
 Scenario read_scenario(const std::string& path, ErrorList& errors) {
   std::ifstream in(path);
   if (!in) {
-    errors.add(SourceError::at(path, 0, 0, "cannot open the scenario file " + path));
+    errors.add(SourceError::at(path, 0, 0, "cannot open the scenario file " + path + ": " + why_unreadable(path)));
     return Scenario();
   }
   std::ostringstream s;
   s << in.rdbuf();
-  return parse_scenario(s.str(), path, errors);
+  Scenario sc = parse_scenario(s.str(), path, errors);
+  // The files it names, each checked at the line that names it, with the path it led to;
+  // no cell is then built from them (its error would name neither).
+  struct Named {
+    const std::string& path;
+    const SourceLocation& at;
+    const char* key;
+    const char* what;
+  };
+  for (const Named& n : {Named{sc.cell, sc.cell_at, "cell", "the cell config"},
+                         Named{sc.program, sc.program_at, "program", "the program file"}}) {
+    const std::string why = n.path.empty() ? "" : why_unreadable(n.path);
+    if (why.empty()) continue;
+    errors.add(SourceError::at(n.at.file, n.at.line, n.at.column,
+                               std::string("key '") + n.key + "': cannot open " + n.what + ": " + why));
+    sc.cell.clear();
+  }
+  return sc;
 }
 
 Scenario load_scenario(const std::string& path) {

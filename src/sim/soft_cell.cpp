@@ -1,6 +1,8 @@
 #include "plc_cell/sim/soft_cell.h"
 
+#include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/unreadable.h"
 #include "plc_cell/hsc/counters_extension.h"
 #include "plc_cell/motion/axes_extension.h"
 #include "plc_cell/sim/apply_config.h"
@@ -118,7 +120,21 @@ void SoftCell::build(const std::string& program_path) {
     errors.throw_if_any();  // a cell: section in error may be why there is no program
     throw Error("no program: give --program or set cell.program in the cell config");
   }
-  if (functions_complete_) errors.collect([&] { plc_.load_program_file(program_path_); }, program_path_);
+  // A program the cell YAML names but that cannot be read: the error is at that line,
+  // with where the path led (relative paths are from the YAML's folder).
+  const YAML::Node& doc = config_.document;
+  bool readable = true;
+  if (program_path.empty() && doc.IsMap() && doc["cell"].IsMap() && doc["cell"]["program"]) {
+    const std::string why = why_unreadable(program_path_);
+    readable = why.empty();
+    if (!readable) {
+      errors.collect([&] {
+        YamlReader(config_.file).fail(doc["cell"]["program"], "cell.program", "cannot open the program file: " + why);
+      }, config_.file);
+    }
+  }
+  if (functions_complete_ && readable)
+    errors.collect([&] { plc_.load_program_file(program_path_); }, program_path_);
   errors.throw_if_any();
 }
 

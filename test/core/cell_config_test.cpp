@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 
@@ -89,6 +91,10 @@ TEST(CellConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(error_of("cell: [1, 2\n").find("cell.yaml:"), std::string::npos);
   EXPECT_NE(error_of("cell: [1, 2\n").find("YAML syntax"), std::string::npos);
   EXPECT_NE(error_of("bogus: 1\n").find("key 'bogus': unknown key"), std::string::npos);
+  // YAML is Unicode text: other bytes are refused where they are, as a syntax error is.
+  EXPECT_EQ(error_of("cell: {name: t}\nsignals: {caf\xE9: X1}\n"),
+            "cell.yaml:2:14: error: not UTF-8: byte 0xE9 (a YAML file is Unicode text, read as UTF-8)");
+  EXPECT_EQ(error_of("cell: {name: \"a\x02\"}\n").rfind("cell.yaml:1:16: error: character U+0002 is not allowed", 0), 0u);
 }
 
 // The reader every YAML file of plc_cell goes through (cell, fatek_bridge, modbus_bridge).
@@ -124,6 +130,36 @@ TEST(YamlReader, FilesAndValueParsersReportTheirLine) {
             "cell.yaml:5:7: error: key 'line.on': expected one of: normal, slow");
   EXPECT_EQ(r.serial_line(YAML::Load("/dev/ttyS1:19200"), "k", "8E1"), "/dev/ttyS1:19200");
   EXPECT_EQ(r.host_port(YAML::Load("127.0.0.1:502"), "k"), "127.0.0.1:502");
+}
+
+// yaml-cpp stops at 500 levels of nesting and calls it "bad file": the error says what it
+// is and the limit, at the line where the reader stopped, in the file and in text alike.
+TEST(YamlReader, TooDeepNestingSaysSoWithTheLimit) {
+  const std::string why =
+      "YAML syntax: nesting too deep: more than 499 levels of mappings and lists inside each other "
+      "(the reader's limit)";
+  std::string block = "cell: {name: t}\nsignals:\n";
+  for (int i = 1; i < 600; ++i) block += std::string(static_cast<size_t>(i), ' ') + "k:\n";
+  const std::string e = error_of(block);
+  EXPECT_EQ(e.rfind("cell.yaml:", 0), 0u) << e;
+  EXPECT_NE(e.find(why), std::string::npos) << e;
+  EXPECT_EQ(e.find("bad file"), std::string::npos) << e;
+  const std::string flow = "cell: {name: t}\nregisters: " + std::string(600, '[') + std::string(600, ']') + "\n";
+  EXPECT_EQ(error_of(flow).rfind("cell.yaml:2:", 0), 0u) << error_of(flow);
+  EXPECT_NE(error_of(flow).find(why), std::string::npos) << error_of(flow);
+  // 499 levels are read (and then refused for what they mean, not for their depth).
+  const std::string ok = "registers: " + std::string(498, '[') + std::string(498, ']') + "\n";
+  EXPECT_EQ(error_of(ok).find("nesting too deep"), std::string::npos) << error_of(ok);
+
+  const std::string path = ::testing::TempDir() + "/plc_cell_deep.yaml";
+  std::ofstream(path) << flow;
+  try {
+    YamlReader::load_file(path);
+    FAIL() << "no error";
+  } catch (const SourceError& x) {
+    EXPECT_EQ(std::string(x.what()).rfind(path + ":2:", 0), 0u) << x.what();
+    EXPECT_NE(std::string(x.what()).find(why), std::string::npos) << x.what();
+  }
 }
 
 // ~registers/<group> of plc_node (and fatek_bridge's groups): same YAML, same checks.
@@ -231,6 +267,39 @@ TEST(SoftCell, ErrorsComeWithTheFileName) {
     EXPECT_NE(std::string(e.what()).find("no program"), std::string::npos);
   }
   EXPECT_THROW(SoftCell("/nonexistent.yaml", ""), SourceError);
+}
+
+// A file that cannot be opened: the system's reason and the absolute path it was looked
+// for at, and, when the cell YAML named it, that key's line (a relative program is taken
+// from the YAML's folder, a relative config from the working directory).
+TEST(SoftCell, AFileThatCannotBeOpenedNamesTheLineThatNamedItAndWhereItLooked) {
+  const std::string dir = (std::filesystem::path(::testing::TempDir()) / "missing_files").string();
+  ASSERT_EQ(std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
+  const std::string cwd = std::filesystem::current_path().string();
+  auto first_error = [](const std::string& config, const std::string& program) {
+    try {
+      SoftCell cell(config, program);
+    } catch (const SourceError& e) {
+      return e.diagnostics().at(0).to_string();
+    }
+    return std::string("no error");
+  };
+  std::ofstream(dir + "/cell.yaml") << "cell: {name: t,\n       program: progs/missing.il}\n";
+  EXPECT_EQ(first_error(dir + "/cell.yaml", ""),
+            dir + "/cell.yaml:2:17: error: key 'cell.program': cannot open the program file: No such file or "
+                  "directory (looked for " + dir + "/progs/missing.il)");
+  // --program, or ~program: no line named it; its own path and where it led.
+  EXPECT_EQ(first_error(dir + "/cell.yaml", "rel/none.il"),
+            "rel/none.il: error: cannot open the program file: No such file or directory (looked for " + cwd +
+                "/rel/none.il)");
+  EXPECT_EQ(first_error("nowhere/cell.yaml", ""),
+            "nowhere/cell.yaml: error: cannot open the cell config: No such file or directory (looked for " + cwd +
+                "/nowhere/cell.yaml)");
+  // A folder is not a program.
+  ASSERT_EQ(std::system(("mkdir -p " + dir + "/progs/missing.il").c_str()), 0);
+  EXPECT_NE(first_error(dir + "/cell.yaml", "").find(dir + "/cell.yaml:2:17: error: key 'cell.program': cannot open "
+                                                           "the program file: it is a directory"),
+            std::string::npos);
 }
 
 TEST(CellConfig, TheTemplateParses) {

@@ -57,9 +57,10 @@ class CoverageTest : public ::testing::Test {
     now_us += 10000;
   }
   // One test case: a fresh PLC running path, recorded by rec, one scan per entry of scans.
-  void run_case(Recorder& rec, const std::string& path, const std::vector<Inputs>& scans) {
+  void run_case(Recorder& rec, const std::string& path, const std::vector<Inputs>& scans,
+                const SignalNames& names = {}) {
     auto plc = plc_running(path);
-    rec.attach(*plc);
+    rec.attach(*plc, names);
     for (const Inputs& in : scans) scan(*plc, in);
     rec.detach(*plc);
   }

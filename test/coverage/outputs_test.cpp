@@ -33,6 +33,31 @@ TEST_F(Outputs, Text) {
             path + ":6 coil OUT Y1 never switched (rung always OFF)\n");
 }
 
+// The cell's signal names beside the addresses: findings, and JSON's "signal" (its
+// "name" stays the instruction's, as before).
+TEST_F(Outputs, SignalNamesStandBesideTheAddresses) {
+  Recorder named;
+  run_case(named, path, {{{0, true}}, {{0, false}}},
+           {{"stop_pb", parse_address("X1")}, {"belt", parse_address("Y1")}, {"spare", parse_address("X9")}});
+  std::ostringstream text;
+  write_text({report(named)}, text);
+  EXPECT_NE(text.str().find(path + ":3 contact stop_pb (X1) never changed (always OFF)\n"), std::string::npos)
+      << text.str();
+  EXPECT_NE(text.str().find(path + ":5 contact X2 never changed (always OFF)\n"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find(path + ":6 coil OUT belt (Y1) never switched (rung always OFF)\n"), std::string::npos)
+      << text.str();
+  std::ostringstream json;
+  write_json({report(named)}, json);
+  EXPECT_NE(json.str().find("{\"kind\": \"contact\", \"line\": 3, \"name\": \"X1\", \"signal\": \"stop_pb\", "
+                            "\"seen\": [\"off\"]"),
+            std::string::npos)
+      << json.str();
+  EXPECT_NE(json.str().find("{\"kind\": \"contact\", \"line\": 2, \"name\": \"X0\", \"seen\""), std::string::npos)
+      << json.str();
+  EXPECT_NE(json.str().find("\"message\": \"coil OUT belt (Y1) never switched (rung always OFF)\""), std::string::npos)
+      << json.str();
+}
+
 TEST_F(Outputs, TextOfSeveralPrograms) {
   const std::string other = write("all.il", "ORG X0\nOUT Y0\nEND\n");
   Recorder all;

@@ -2,6 +2,9 @@
 // the same output every run, and bad files.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -61,10 +64,10 @@ TEST(ScenarioCli, TheFailingExampleNamesItsExpectation) {
   // The expectation that failed (the sequence's second entry, line 17), the value, the
   // time, and the changes: the part arrived at 1.000 s, the stopper had not lowered at 2 s.
   EXPECT_TRUE(has(r.out, "too_strict.fails.yaml:15: expect_sequence: entry 2 (line 17) 'stopper_lower' did not happen "
-                         "within 1.000 s of entry 1's match at 1.000 s: stopper_lower (stopper_lower is OFF)\n"))
+                         "within 1.000 s of entry 1's match at 1.000 s: stopper_lower (Y1) is OFF\n"))
       << r.out;
   EXPECT_TRUE(has(r.out, "      at 2.000 s\n")) << r.out;
-  EXPECT_TRUE(has(r.out, "        pick_request:  initially OFF  1.000 s ON\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "        pick_request (Y2):  initially OFF  1.000 s ON\n")) << r.out;
   EXPECT_TRUE(has(r.out, "== 1 passed, 1 failed")) << r.out;
   const std::string x = slurp(xml);
   EXPECT_TRUE(has(x, "tests=\"2\" failures=\"1\"")) << x;
@@ -143,7 +146,9 @@ TEST(ScenarioCli, CoverageOfTheWholeRun) {
                          "  every network, contact, coil and FUN exercised\n"))
       << r.out;
   // The count-up stop never runs the motor again after the stop: RST Y0's rung is always ON.
-  EXPECT_TRUE(has(r.out, kSrc + "/examples/hsc/count_up_stop.il:13 coil RST Y0 never switched (rung always ON)")) << r.out;
+  // Y0 is the cell's signal motor: the finding names both.
+  EXPECT_TRUE(has(r.out, kSrc + "/examples/hsc/count_up_stop.il:13 coil RST motor (Y0) never switched (rung always ON)"))
+      << r.out;
   const std::string html = slurp(dir + "/index.html");
   for (const char* p : {"conveyor/conveyor.il", "hsc/count_up_stop.il", "motion/positioning.il", "oven/oven.il"}) {
     EXPECT_TRUE(has(html, p)) << p;
@@ -152,4 +157,32 @@ TEST(ScenarioCli, CoverageOfTheWholeRun) {
   // Coverage without a flag is not recorded: the same run prints no coverage.
   const ToolResult plain = run_tool("test " + kSrc + "/examples/conveyor/conveyor.scenario.yaml");
   EXPECT_FALSE(has(plain.out, "coverage of")) << plain.out;
+}
+
+// End to end: a folder whose name is not UTF-8 and a case name with control characters
+// (written as YAML escapes) give JUnit that an XML parser reads, with the bytes shown.
+TEST(ScenarioCli, JUnitOfHostileNamesParses) {
+  const std::string dir = ::testing::TempDir() + "/hostile_\xFF\x01<&\"dir";
+  ::mkdir(dir.c_str(), 0755);
+  std::ofstream(dir + "/cell.il") << "ORG X0\nOUT Y0\nEND\n";
+  std::ofstream(dir + "/cell.yaml") << "cell: {name: t, program: cell.il}\nplc: {scan_period: 0.001}\n";
+  std::ofstream(dir + "/s.yaml") << "cell: cell.yaml\ncases:\n"
+                                    "  - name: \"tab\\there bell\\a nul\\0 esc\\e <&> \\u00e9\"\n"
+                                    "    steps:\n      - expect: Y0\n";
+  std::ofstream(::testing::TempDir() + "/hostile_check.py")
+      << "import sys, xml.etree.ElementTree as E\n"
+         "root = E.parse(sys.argv[1]).getroot()\n"
+         "case = root.find('testsuite/testcase')\n"
+         "assert case.get('name') == 'tab\\there bell\\\\u0007 nul\\\\u0000 esc\\\\u001B <&> \\u00e9', case.get('name')\n"
+         "assert case.get('file').endswith('hostile_\\\\xFF\\\\u0001<&\"dir/s.yaml'), case.get('file')\n"
+         "msg = case.find('failure').get('message')\n"
+         "assert msg.endswith('hostile_\\\\xFF\\\\u0001<&\"dir/s.yaml:5: expect Y0: Y0 is OFF'), msg\n"
+         "print('parsed')\n";
+  setenv("PLC_CELL_HOSTILE", dir.c_str(), 1);
+  const ToolResult r = run_tool("test \"$PLC_CELL_HOSTILE/s.yaml\" --junit \"$PLC_CELL_HOSTILE/out.xml\"");
+  EXPECT_EQ(r.status, 1) << r.out;
+  const ToolResult parsed = plc_cell::testing::run_shell("/usr/bin/python3 " + ::testing::TempDir() +
+                                                         "/hostile_check.py \"$PLC_CELL_HOSTILE/out.xml\"");
+  EXPECT_EQ(parsed.status, 0) << parsed.out;
+  EXPECT_TRUE(has(parsed.out, "parsed")) << parsed.out;
 }

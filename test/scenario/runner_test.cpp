@@ -45,7 +45,7 @@ TEST(ScenarioRunner, StaysFailsAtTheFirstScanWhereItIsFalse) {
   EXPECT_TRUE(has(bad.failure, "s.yaml:6: expect not done to stay for 0.600 s: false at 0.500 s (0.500 s in)"))
       << bad.failure;
   EXPECT_EQ(bad.virtual_us, 500000u);
-  EXPECT_TRUE(has(bad.details, "done:  initially OFF  0.500 s ON")) << bad.details;
+  EXPECT_TRUE(has(bad.details, "done (Y1):  initially OFF  0.500 s ON")) << bad.details;
 }
 
 TEST(ScenarioRunner, WithinAndBetweenBoundTheFirstScanThatHolds) {
@@ -54,7 +54,7 @@ TEST(ScenarioRunner, WithinAndBetweenBoundTheFirstScanThatHolds) {
   EXPECT_TRUE(cell.run("      - set: {hold: on}\n      - expect: done\n        within: 500ms\n").passed);
   const CaseResult late = cell.run("      - set: {hold: on}\n      - expect: done\n        within: 499ms\n");
   ASSERT_FALSE(late.passed);
-  EXPECT_TRUE(has(late.failure, "expect done within 0.499 s: never held: done (done is OFF)")) << late.failure;
+  EXPECT_TRUE(has(late.failure, "expect done within 0.499 s: never held: done (Y1) is OFF")) << late.failure;
   EXPECT_EQ(late.virtual_us, 499000u);
   EXPECT_TRUE(cell.run("      - set: {hold: on}\n      - expect: done\n        between: [500ms, 501ms]\n").passed);
   const CaseResult early = cell.run("      - set: {hold: on}\n      - expect: done\n        between: [501ms, 600ms]\n");
@@ -74,7 +74,7 @@ TEST(ScenarioRunner, WaitUntilTimesOutSayingWhatIsStillFalse) {
   ASSERT_FALSE(r.passed);
   // Only what is still false is listed, with its value; R101 == 7 holds since the first scan.
   EXPECT_TRUE(has(r.failure, "wait_until R101 == 7 and motor and R100 >= 0: still false after 0.250 s: "
-                             "motor (motor is OFF)"))
+                             "motor (Y0) is OFF"))
       << r.failure;
   EXPECT_EQ(r.virtual_us, 250000u);
 }
@@ -118,6 +118,98 @@ TEST(ScenarioRunner, SequenceEntriesAreChangesInOrderWithBounds) {
   EXPECT_TRUE(has(early.failure, "entry 2 (line 8) 'not motor' happened 0.005 s after entry 1's match, before the "
                                  "earliest 0.006 s"))
       << early.failure;
+}
+
+// Every way an entry can fail says why, with the values, in the headline itself
+// (docs/testing-your-cell.md: "what was still false with its value").
+TEST(ScenarioRunner, SequenceFailureHeadlinesSayWhyWithTheValues) {
+  ScenarioCell cell("sequence_why");
+  // Never true within the sequence's timeout: what is still false.
+  const CaseResult never = cell.run(
+      "      - expect_sequence:\n"
+      "          - motor\n"
+      "        timeout: 100ms\n");
+  ASSERT_FALSE(never.passed);
+  EXPECT_TRUE(has(never.failure, "expect_sequence: entry 1 (line 6) 'motor' did not happen within the sequence's "
+                                 "0.100 s: motor (Y0) is OFF"))
+      << never.failure;
+  // True when the sequence starts and never false since: no change, and the value says so.
+  const CaseResult stale = cell.run(
+      "      - set: {start: on}\n"
+      "      - after: 1ms\n"
+      "      - expect_sequence:\n"
+      "          - motor\n"
+      "        timeout: 100ms\n");
+  ASSERT_FALSE(stale.passed);
+  EXPECT_TRUE(has(stale.failure, "entry 1 (line 8) 'motor' did not happen within the sequence's 0.100 s: already "
+                                 "true when the sequence started, and never went false since: motor (Y0) is ON"))
+      << stale.failure;
+  // The same for a later entry, bounded from the previous match: done comes at 0.5 s.
+  const CaseResult stale2 = cell.run(
+      "      - set: {start: on, hold: on}\n"
+      "      - after: 1ms\n"
+      "      - expect_sequence:\n"
+      "          - done\n"
+      "          - {that: motor, within: 100ms}\n");
+  ASSERT_FALSE(stale2.passed);
+  EXPECT_TRUE(has(stale2.failure, "entry 2 (line 9) 'motor' did not happen within 0.100 s of entry 1's match at "
+                                  "0.500 s: already true when the sequence started, before entry 1's match at "
+                                  "0.500 s, and never went false since: motor (Y0) is ON"))
+      << stale2.failure;
+  EXPECT_EQ(stale2.virtual_us, 600000u);
+  // Turned true after the start but before the previous entry matched: when, and the value.
+  // The pulse turns motor on at the scan at 0, done comes at 0.5 s.
+  const CaseResult early_rise = cell.run(
+      "      - set: {hold: on}\n"
+      "      - pulse: {start: 2s}\n"
+      "      - expect_sequence:\n"
+      "          - done\n"
+      "          - {that: motor, within: 100ms}\n");
+  ASSERT_FALSE(early_rise.passed);
+  EXPECT_TRUE(has(early_rise.failure, "entry 2 (line 9) 'motor' did not happen within 0.100 s of entry 1's match "
+                                      "at 0.500 s: became true at 0.000 s, before entry 1's match at 0.500 s, and "
+                                      "never went false since: motor (Y0) is ON"))
+      << early_rise.failure;
+  // False at the end of its window: what is still false.
+  const CaseResult late = cell.run(
+      "      - set: {hold: on}\n"
+      "      - expect_sequence:\n"
+      "          - done\n"
+      "          - {that: motor, within: 100ms}\n");
+  ASSERT_FALSE(late.passed);
+  EXPECT_TRUE(has(late.failure, "entry 2 (line 8) 'motor' did not happen within 0.100 s of entry 1's match at "
+                                "0.500 s: motor (Y0) is OFF"))
+      << late.failure;
+  // Too early: when, the bound, and the values at that scan.
+  const CaseResult early = cell.run(
+      "      - pulse: {start: 5ms}\n"
+      "      - expect_sequence:\n"
+      "          - motor\n"
+      "          - {that: not motor, between: [6ms, 10ms]}\n");
+  ASSERT_FALSE(early.passed);
+  EXPECT_TRUE(has(early.failure, "entry 2 (line 8) 'not motor' happened 0.005 s after entry 1's match, before the "
+                                 "earliest 0.006 s: motor (Y0) is OFF"))
+      << early.failure;
+  // No headline of any of these ends on an empty reason.
+  for (const CaseResult* r : {&never, &stale, &stale2, &early_rise, &late, &early})
+    EXPECT_NE(r->failure.back(), ' ') << r->failure;
+}
+
+// A failure names a signal and its address together, "motor (Y0)", whichever the scenario
+// wrote, in the headline and in the last changes; an address no signal names stays as written.
+TEST(ScenarioRunner, ReportsShowSignalNamesBesideAddresses) {
+  ScenarioCell cell("labels");
+  const CaseResult r = cell.run(
+      "      - set: {X0: on}\n"
+      "      - after: 2ms\n"
+      "      - expect: not Y0 and R101 == 1 and not X0\n");
+  ASSERT_FALSE(r.passed);
+  EXPECT_TRUE(has(r.failure, "s.yaml:7: expect not Y0 and R101 == 1 and not X0: not Y0 (motor (Y0) is ON); "
+                             "R101 == 1 (R101 is 0); not X0 (start (X0) is ON)"))
+      << r.failure;
+  EXPECT_TRUE(has(r.details, "    motor (Y0):  initially OFF  0.000 s ON\n")) << r.details;
+  EXPECT_TRUE(has(r.details, "    R101:  initially 0\n")) << r.details;
+  EXPECT_TRUE(has(r.details, "    start (X0):  initially OFF  0.000 s ON\n")) << r.details;
 }
 
 TEST(ScenarioRunner, PulseHoldsItsWidthThenReleases) {

@@ -2,6 +2,11 @@
 // error of a file in one reading, each at its file:line:column with the key and why.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/scenario/scenario_file.h"
 #include "scenario_fixture.h"
@@ -183,6 +188,62 @@ TEST(ScenarioFile, TheFileItself) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/s.yaml: error: cannot open the scenario file /nonexistent/s.yaml"), std::string::npos) << e.what();
   }
+}
+
+// YAML is Unicode: a byte that is not UTF-8, or a raw control character, is refused where
+// it is, like a syntax error, so no name that cannot be reported reaches a run.
+TEST(ScenarioFile, TextThatIsNotUtf8IsRefusedAtItsLine) {
+  EXPECT_EQ(errors_of("cell: a.yaml\ncases:\n  - name: caf\xE9 ok\n    steps: [{expect: Y0}]\n"),
+            std::vector<std::string>{"/d/bad.yaml:3:14: error: not UTF-8: byte 0xE9 (a YAML file is Unicode text, "
+                                     "read as UTF-8)"});
+  // A sequence cut short, a stray continuation byte, an overlong form, a surrogate.
+  for (const char* bad : {"\xC3", "\x80", "\xC0\xAF", "\xED\xA0\x80", "\xF4\x90\x80\x80"}) {
+    const auto e = errors_of(std::string("cell: a.yaml\ncases:\n  - name: x") + bad + "\n    steps: [{expect: Y0}]\n");
+    ASSERT_EQ(e.size(), 1u);
+    EXPECT_EQ(e[0].rfind("/d/bad.yaml:3:12: error: not UTF-8: byte 0x", 0), 0u) << e[0];
+  }
+  EXPECT_EQ(errors_of("cell: a.yaml\ncases:\n  - name: a\x07" "b\n    steps: [{expect: Y0}]\n").at(0),
+            "/d/bad.yaml:3:12: error: character U+0007 is not allowed in YAML text (a control character: in "
+            "double quotes, write it as an escape such as \\x07)");
+  // Characters beyond ASCII are welcome, and the column counts characters.
+  EXPECT_TRUE(errors_of("cell: a.yaml\ncases:\n  - name: \xC3\xA9" "t\xC3\xA9 \xE2\x86\x92 \xF0\x9F\x99\x82\n"
+                        "    steps: [{expect: Y0}]\n")
+                  .empty());
+  EXPECT_EQ(errors_of("cell: a.yaml\ncases:\n  - name: \xC3\xA9\xFF\n    steps: [{expect: Y0}]\n").at(0)
+                .rfind("/d/bad.yaml:3:12: error: not UTF-8: byte 0xFF", 0),
+            0u);
+  // A file on disk, as plc_cell test reads it.
+  const std::string path = ::testing::TempDir() + "/latin1.scenario.yaml";
+  std::ofstream(path) << "cell: a.yaml\ncases:\n  - name: \xFC" "ber\n    steps: [{expect: Y0}]\n";
+  try {
+    load_scenario(path);
+    ADD_FAILURE();
+  } catch (const SourceError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ":3:11: error: not UTF-8: byte 0xFC", 0), 0u) << e.what();
+  }
+}
+
+// The cell and program a scenario names, checked at the lines that name them, with the
+// path each led to (relative to the scenario's folder).
+TEST(ScenarioFile, ACellOrProgramThatCannotBeOpenedIsAnErrorAtItsLine) {
+  const std::string dir = (std::filesystem::path(::testing::TempDir()) / "scenario_missing").string();
+  ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
+  std::ofstream(dir + "/s.yaml") << "cell: cells/none.yaml\nprogram: /nonexistent/p.il\n"
+                                    "cases:\n  - name: a\n    steps: [{expect: Y0}]\n";
+  ErrorList errors;
+  const Scenario sc = read_scenario(dir + "/s.yaml", errors);
+  std::vector<std::string> e;
+  try {
+    errors.throw_if_any();
+  } catch (const SourceError& x) {
+    for (const auto& d : x.diagnostics()) e.push_back(d.to_string());
+  }
+  EXPECT_EQ(e, (std::vector<std::string>{
+                   dir + "/s.yaml:1:7: error: key 'cell': cannot open the cell config: No such file or directory "
+                         "(looked for " + dir + "/cells/none.yaml)",
+                   dir + "/s.yaml:2:10: error: key 'program': cannot open the program file: No such file or "
+                         "directory (looked for /nonexistent/p.il)"}));
+  EXPECT_EQ(sc.cell, "");  // no cell is built from it: its own error would name neither line
 }
 
 TEST(ScenarioFile, NamesTheCellDoesNotHaveAreReportedForEveryCaseBeforeRunning) {

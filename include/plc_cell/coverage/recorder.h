@@ -28,7 +28,9 @@ class Recorder {
   // another), or its program differs from the one this recorder holds (file or
   // instructions). Loading another program into plc ends the recording (what was
   // recorded until then still counts at detach).
-  void attach(Plc& plc);
+  // names: the cell's signals, which the reports show beside the addresses (the first
+  // attach that gives any is kept: the cells of one program normally name it alike).
+  void attach(Plc& plc, const SignalNames& names = {});
   // Stops recording and adds what was recorded to the totals. Safe to call twice, and for
   // a Plc that was never attached. Call it before plc is destroyed.
   void detach(Plc& plc);
@@ -43,6 +45,7 @@ class Recorder {
   // Per instruction, the FUN's mnemonic (empty for other instructions), taken from the
   // first attached Plc's instruction set.
   const std::vector<std::string>& fun_names() const { return fun_names_; }
+  const SignalNames& signal_names() const { return names_; }
   // Recordings detached so far (each Plc's run counts once).
   uint32_t runs() const { return runs_; }
 
@@ -53,6 +56,7 @@ class Recorder {
   };
   std::unique_ptr<Program> program_;
   std::vector<std::string> fun_names_;
+  SignalNames names_;
   std::vector<uint8_t> seen_;
   std::vector<Attachment> attached_;
   uint32_t runs_ = 0;

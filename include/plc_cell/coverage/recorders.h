@@ -14,7 +14,7 @@ class Recorders {
  public:
   // The recorder of plc's program file, made on its first use, attached to plc. Throws as
   // Recorder::attach does: a file whose instructions changed between two PLCs is refused.
-  Recorder& attach(Plc& plc);
+  Recorder& attach(Plc& plc, const SignalNames& names = {});
   // Detaches plc from whichever recorder holds it; safe twice.
   void detach(Plc& plc);
   // One report per program recorded, in file-name order.

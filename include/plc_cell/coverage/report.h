@@ -3,12 +3,18 @@
 // the one model the text, JSON and HTML outputs render (docs/coverage.md).
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "plc_cell/core/address.h"
 
 namespace plc_cell {
 namespace coverage {
 
 class Recorder;
+
+// A cell's names of its points (signals: {stop_pb: X1}), in the cell YAML's order.
+using SignalNames = std::vector<std::pair<std::string, Address>>;
 
 enum class ItemKind : uint8_t {
   Contact,  // ORG/LD/AND/OR (NOT, TU, TD): the value of the device it reads
@@ -21,6 +27,7 @@ struct Item {
   uint32_t index = 0;  // instruction index in the program
   int line = 0;
   std::string name;    // X4, OUT NOT Y1, TMR T50, FUN 8 MOV, CALL ADD_TEN
+  std::string signal;  // the cell's name of the point it reads or drives (stop_pb), if any
   bool seen_off = false;
   bool seen_on = false;
   bool evaluated() const { return seen_off || seen_on; }
@@ -66,6 +73,10 @@ struct Report {
 
 // Throws plc_cell::Error if the recorder is empty.
 Report report(const Recorder& r);
+
+// How the reports show an item: its name with the cell's signal name beside the address,
+// "stop_pb (X1)", "OUT conveyor_run (Y0)"; the name alone when the point has none.
+std::string label(const Item& it);
 
 }  // namespace coverage
 }  // namespace plc_cell

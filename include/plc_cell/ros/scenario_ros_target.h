@@ -106,6 +106,7 @@ class RosTarget : public Target {
   uint64_t period_us() const override { return link_.period_us_; }
   void scan(uint64_t t_us) override { link_.scan(t_us); }
   std::string check(const Probe& p, bool writing) override;
+  std::string label(const Probe& p) override { return probe_label(p, link_.config_); }
   Reading read(const Probe& p) override;
   void set(const Probe& p, const Value& v) override;
   void write(const Probe& p, const Value& v) override;

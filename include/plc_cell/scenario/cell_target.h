@@ -29,6 +29,7 @@ class CellTarget : public Target {
   void release(const Probe* p) override;
   void simulate(const Probe* p) override;
   std::string fault() override;
+  std::string label(const Probe& p) override { return probe_label(p, cell_->config()); }
 
  private:
   Plc& plc() { return cell_->plc(); }

@@ -9,6 +9,7 @@
 // through its topics (docs/testing-your-cell.md, "What a condition reads").
 #include <string>
 
+#include "plc_cell/config/cell_config.h"
 #include "plc_cell/sim/virtual_run.h"
 
 namespace plc_cell {
@@ -38,6 +39,10 @@ struct Reading {
   bool valid = true; // false: NaN temperature (line broken), counter or axis unknown
   std::string text;  // how a report prints it ("ON", "-3", "199.8 C", "moving")
 };
+
+// How reports name p: a bit that is one of the cell's signals shows both, "stop_pb (X1)",
+// whichever of the two the scenario wrote; anything else as written.
+std::string probe_label(const Probe& p, const CellConfig& cell);
 
 // An address's value v (one read of it: a bit, 16 or 32 bits) as every target reads it in
 // format f: a bit ON/OFF, a register signed unless f says otherwise, a float for :f32.

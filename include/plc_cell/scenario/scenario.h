@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/core/error.h"
 #include "plc_cell/scenario/condition.h"
 #include "plc_cell/temp/sensor_signal.h"
 
@@ -82,6 +83,7 @@ struct Scenario {
   std::string file;
   std::string cell;     // the cell YAML, resolved against the scenario's folder
   std::string program;  // overrides the cell's program; empty: the cell's
+  SourceLocation cell_at, program_at;  // where the file names them
   std::vector<Case> cases;
 };
 

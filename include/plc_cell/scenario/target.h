@@ -32,6 +32,9 @@ class Target {
   // The cell's simulation plays input p again (nullptr: every input it has a signal for);
   // an input it has no signal for is refused.
   virtual void simulate(const Probe* p) = 0;
+  // How a report names p (probe_label: "stop_pb (X1)"); as written when the target has no
+  // cell config to look it up in.
+  virtual std::string label(const Probe& p) { return p.text; }
   // Non-empty once the PLC stopped on a fault: the case ends there.
   virtual std::string fault() = 0;
 };
