@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -347,7 +348,7 @@ class Parser {
                                        " takes a 16-bit preset (only C200-C255 take a 32-bit one)");
     Operand pv;
     if (!value_operand(toks[2], wide, OperandRole::Source, 1, &pv)) return;
-    if (pv.kind == Operand::Kind::Const && (pv.k < 0 || (!wide && pv.k > 32767)))
+    if (pv.kind == Operand::Kind::Const && (pv.k < 0 || pv.k > (wide ? INT32_MAX : 32767)))
       return error(toks[2].column, "preset " + toks[2].text + " out of range (0.." +
                                        (wide ? std::string("2147483647") : std::string("32767")) + ")");
     if (!output_ok(head, 1)) return;

@@ -223,6 +223,10 @@ TEST_F(ProgramRules, ThirtyTwoBitCountersReadAPairPreset) {
   EXPECT_NE(errors_of("ORG X0\nCTR C0 DR0\nEND\n").find("p.il:2:8: error: 'DR0' is 32-bit; C0 takes a 16-bit preset"),
             std::string::npos);
   EXPECT_NE(errors_of("ORG X0\nTMR T0 DR0\nEND\n").find("'DR0' is 32-bit; T0 takes a 16-bit preset"), std::string::npos);
+  // Constant presets: 0..2147483647 for C200-C255 (3000000000 would read negative).
+  EXPECT_EQ(errors_of("ORG X0\nCTR C200 2147483647\nEND\n"), "");
+  EXPECT_NE(errors_of("ORG X0\nCTR C200 3000000000\nEND\n").find("p.il:2:10: error: preset 3000000000 out of range (0..2147483647)"),
+            std::string::npos);
   // DR0 = H00010000 = 65536: R0 alone would read 0 and turn C200 on at once.
   load("ORG X0\nCTR C200 DR0\nORG X0\nCTR C201 R0\nEND\n");
   put("DR0", 0x00010000u);
