@@ -33,23 +33,30 @@ def count(xml_path):
     """(passed, failed, names of failures) of one JUnit file.
 
     A suite can report errors that belong to no test case (a failing setUpClass, a test
-    node that died): they count as failures, and so does a file with no test case at all."""
+    node that died): they count as failures, and so does a file with no test case at all.
+
+    A rostest writes two files: its test node's own results (rosunit-<test>.xml), counted
+    like any other, and a wrapper (rostest-<file>.xml) with one case per test node that
+    passes when the node wrote its results. A passing wrapper case counts nothing (its
+    tests are counted from their own file); a failing one is a failure (the node crashed,
+    timed out or wrote no results), since there is then nothing else to count."""
     passed, failed, names = 0, 0, []
     root = ET.parse(xml_path).getroot()
+    wrapper = os.path.basename(xml_path).startswith("rostest-")
     for case in root.iter("testcase"):
         bad = case.find("failure") is not None or case.find("error") is not None
         skipped = case.find("skipped") is not None
         if bad or skipped:  # a skipped check is a defect here, not a pass
             failed += 1
             names.append(case.get("classname", "") + "." + case.get("name", ""))
-        else:
+        elif not wrapper:
             passed += 1
     suites = [root] if root.tag == "testsuite" else list(root.iter("testsuite"))
     reported = sum(int(s.get("errors", "0") or 0) + int(s.get("failures", "0") or 0) for s in suites)
     if reported > failed:
         names.append("%d error(s) outside any test case (setUpClass, a crashed test node)" % (reported - failed))
         failed = reported
-    if passed + failed == 0:
+    if passed + failed == 0 and not (wrapper and any(True for _ in root.iter("testcase"))):
         failed = 1
         names.append("no test case ran")
     return passed, failed, names

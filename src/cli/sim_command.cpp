@@ -28,6 +28,9 @@ int cmd_sim(const std::vector<std::string>& argv) {
   const uint64_t scan = cell.scan_period_us();
 
   Plc& plc = cell.plc();
+  if (!plc.set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
+  // After RUN's clearing of the non-retentive memory: the values hold at the first scan,
+  // retentive or not.
   for (const auto& s : args.all("set")) {
     const auto eq = s.find('=');
     if (eq == std::string::npos) throw UsageError("--set takes ADDR=VALUE, got '" + s + "'");
@@ -46,7 +49,6 @@ int cmd_sim(const std::vector<std::string>& argv) {
     if (v < 0) throw UsageError("--set " + s + ": value below the address's range");
     plc.write(a, {static_cast<uint32_t>(v)});
   }
-  if (!plc.set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
 
   VirtualRun run(plc, scan);
   std::vector<std::string> names;  // as given, format suffix and all

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -264,6 +265,15 @@ class Parser {
       o->k = k;
       return true;
     }
+    const std::string u = upper(t.text);
+    if (u.size() > 2 && (u[0] == '-' || u[0] == '+') && u[1] == 'K') {
+      error(t.column, "'" + t.text + "': the sign goes after K (K" + u.substr(0, 1) + u.substr(2) + ")");
+      return false;
+    }
+    if (u.size() > 2 && u[0] == 'H' && (u[1] == '-' || u[1] == '+')) {
+      error(t.column, "'" + t.text + "': a hexadecimal constant has no sign; write the two's complement (H-1 is HFFFF)");
+      return false;
+    }
     if (role == OperandRole::Const) {
       error(t.column, "'" + t.text + "' must be a constant");
       return false;
@@ -332,9 +342,14 @@ class Parser {
     const Area want = m == "TMR" ? Area::T : Area::C;
     if (a.area != want) return error(toks[1].column, m + " needs " + (m == "TMR" ? "a timer T0..T255" : "a counter C0..C255"));
     const bool wide = m == "CTR" && a.index >= kFirst32BitCounter;
+    Address pa;
+    std::string ignored;
+    if (!wide && try_parse_address(toks[2].text, &pa, &ignored) && pa.width == Width::DWord)
+      return error(toks[2].column, "'" + toks[2].text + "' is 32-bit; " + toks[1].text +
+                                       " takes a 16-bit preset (only C200-C255 take a 32-bit one)");
     Operand pv;
     if (!value_operand(toks[2], wide, OperandRole::Source, 1, &pv)) return;
-    if (pv.kind == Operand::Kind::Const && (pv.k < 0 || (!wide && pv.k > 32767)))
+    if (pv.kind == Operand::Kind::Const && (pv.k < 0 || pv.k > (wide ? INT32_MAX : 32767)))
       return error(toks[2].column, "preset " + toks[2].text + " out of range (0.." +
                                        (wide ? std::string("2147483647") : std::string("32767")) + ")");
     if (!output_ok(head, 1)) return;
@@ -383,10 +398,10 @@ class Parser {
       if (prog_.labels.count(name))
         return error(t->column, "label " + t->text + " is defined twice (first on line " +
                                     std::to_string(prog_.code[prog_.labels[name]].line) + ")");
-      if (after_end_) {
-        check_open_fors(head);
-        in_routine_ = true;
-      }
+      // Inside an open FOR body a label is a jump target within that body, in a routine as
+      // in the main program; FOR and NEXT pair by position, and one left open is reported
+      // at END or, after END, at the end of the file.
+      if (after_end_) in_routine_ = true;
       prog_.labels[name] = static_cast<uint32_t>(prog_.code.size());
       label_region_[name] = after_end_;
       emit(Op::Lbl, head).label = name;
@@ -453,7 +468,24 @@ class Parser {
       return error(toks[1].column, why.empty() ? "FUN " + std::to_string(number) + " is not available in plc_cell" : why);
     }
     size_t first = 2;
-    if (first < toks.size() && upper(toks[first].text) == upper(spec->mnemonic)) ++first;
+    if (first < toks.size() && toks[first].text.find('=') == std::string::npos) {
+      // The mnemonic may follow the number, with the modifiers on either (FUN 8D MOV, FUN 8 MOV.D).
+      const std::string word = upper(toks[first].text);
+      const auto dot = word.find('.');
+      const std::string base = word.substr(0, dot);
+      const std::string more = dot == std::string::npos ? "" : word.substr(dot + 1);
+      if (base == upper(spec->mnemonic)) {
+        if (!more.empty() && !mods.empty())
+          return error(toks[first].column, "modifiers given twice ('" + toks[1].text + "' and '" +
+                                               toks[first].text + "'): write them on one of the two");
+        mods += more;
+        ++first;
+      } else if (const FunctionSpec* other = fns_.find(base)) {
+        if (other->number != spec->number)
+          return error(toks[first].column, "FUN " + std::to_string(spec->number) + " is " + spec->mnemonic + "; " +
+                                               base + " is FUN " + std::to_string(other->number));
+      }
+    }
     fun(spec, mods, toks[1], toks, first);
   }
 
@@ -542,8 +574,8 @@ class Parser {
       d.where.line = line_;
       d.message = "the program has no END";
       errors_.push_back(d);
-      check_open_fors(eof);
     }
+    check_open_fors(eof);
     for (const auto& r : refs_) {
       Instruction& in = prog_.code[r.index];
       auto it = prog_.labels.find(in.label);

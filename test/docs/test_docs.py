@@ -170,11 +170,16 @@ def test_there_are_commands_to_run():
     assert n >= 20, "only %d runnable commands found in the docs" % n
 
 
-@pytest.mark.parametrize("path", DOCS)
+def runs_something(path):
+    """A page has a case of its own only if it has a command to run: a page with none would
+    count as a test that passed having run nothing."""
+    return any(cmd not in SELF for _, kind, body in blocks(path) if kind in ("sh", "console")
+               for cmd, _ in commands(kind, body))
+
+
+@pytest.mark.parametrize("path", [p for p in DOCS if runs_something(p)])
 def test_commands_work_when_pasted(path, workdir):
     runnable = [(line, kind, body) for line, kind, body in blocks(path) if kind in ("sh", "console")]
-    if not runnable:
-        return
     shell = Shell(workdir, free_port())
     cell = None
     failures = []

@@ -1,10 +1,12 @@
 // Hostile clients against `plc_cell run` as a child process on 127.0.0.1: random bytes,
 // partial and oversized frames, slowloris, more connections than the cap, half-open
 // connections, clients that never read, and a flood. For each: the process stays up,
-// a well-behaved client keeps being served (p99 reported and bounded), fds and RSS end
-// where they began, CPU stays flat while hostile peers sit idle, a refused request
-// changes nothing, and the scan has no watchdog fault. Bounded in count and time;
-// results are waited for by polling with deadlines, never by sleeping.
+// a well-behaved client has every request answered, in order, fds and RSS end where
+// they began, CPU stays flat while hostile peers sit idle, a refused request changes
+// nothing, and the scan has no watchdog fault. Nothing here asserts on latency (a loaded
+// machine stretches it); `make soak` reports the well-behaved clients' latency under
+// abuse. Bounded in count and time; results are waited for by polling with deadlines,
+// never by sleeping.
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
@@ -50,10 +52,11 @@ bool eventually(const std::function<bool()>& cond, int deadline_ms) {
   return true;
 }
 
-double p99_ms(std::vector<double> v) {
-  if (v.empty()) return 1e9;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, size_t(double(v.size()) * 0.99))];
+// True once the peer has closed or reset the connection, seen without reading what it
+// sent: an end of file (POLLRDHUP) or a reset (POLLERR/POLLHUP).
+bool dropped_by_peer(int fd) {
+  pollfd p{fd, POLLRDHUP, 0};
+  return ::poll(&p, 1, 0) > 0 && (p.revents & (POLLRDHUP | POLLHUP | POLLERR));
 }
 
 void report(const std::string& name, const std::string& figures) {
@@ -74,8 +77,8 @@ class HostileClients : public ::testing::Test {
     ASSERT_GT(mb_, 0) << child_->log;
     ASSERT_GT(ft_, 0) << child_->log;
     // Warm up (first allocations, thread stacks) before the baseline.
-    ASSERT_FALSE(modbus_latencies(50).empty());
-    ASSERT_FALSE(fatek_latencies(20).empty());
+    ASSERT_EQ(modbus_served(50), 50);
+    ASSERT_EQ(fatek_served(20), 20);
     fds0_ = abuse::fd_count(pid());
     rss0_ = abuse::rss_kb(pid());
     mem0_ = holding(0, 100);
@@ -85,42 +88,39 @@ class HostileClients : public ::testing::Test {
     const std::string log = child_->terminate();
     EXPECT_EQ(log.find("fault:"), std::string::npos) << log;
     EXPECT_NE(log.find(" scans, cycle avg"), std::string::npos) << log;
-    const auto k = log.find(" max ", log.find("cycle avg"));
-    if (k != std::string::npos) {
-      EXPECT_LT(std::stod(log.substr(k + 5)), 20000.0) << "max scan cycle, us: " << log;
-    }
   }
   pid_t pid() const { return child_->pid(); }
 
-  // Well-behaved Modbus client: n reads of 10 registers on one connection.
-  std::vector<double> modbus_latencies(int n) {
-    std::vector<double> out;
+  // Well-behaved Modbus client: n reads of 10 registers on one connection. Counts the
+  // replies that came in order: each carries its request's transaction id and 10 values.
+  int modbus_served(int n) {
+    int served = 0;
     const int fd = plc_cell::test::tcp_connect(mb_);
-    if (fd < 0) return out;
+    if (fd < 0) return 0;
     for (int i = 0; i < n; ++i) {
-      const auto t0 = Clock::now();
-      if (!plc_cell::test::write_all(fd, plc_cell::test::mbap(uint16_t(i), 1, {3, 0, 0, 0, 10}))) break;
+      const uint16_t tid = uint16_t(0x100 + i);
+      if (!plc_cell::test::write_all(fd, plc_cell::test::mbap(tid, 1, {3, 0, 0, 0, 10}))) break;
       const Bytes r = plc_cell::test::read_tcp_reply(fd, 2000);
-      if (r.size() != 9 + 20) break;
-      out.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+      if (r.size() != 9 + 20 || (r[0] << 8 | r[1]) != tid || r[7] != 3 || r[8] != 20) break;
+      ++served;
     }
     ::close(fd);
-    return out;
+    return served;
   }
-  std::vector<double> fatek_latencies(int n) {
-    std::vector<double> out;
+  // Well-behaved FATEK client: n reads of R0..R9, each answered with 10 values.
+  int fatek_served(int n) {
+    int served = 0;
     try {
       plc_cell::fatek::ClientOptions o;
       o.retries = 0;
       plc_cell::fatek::Client c(plc_cell::fatek::tcp_transport("127.0.0.1:" + std::to_string(ft_)), o);
       for (int i = 0; i < n; ++i) {
-        const auto t0 = Clock::now();
-        c.read(plc_cell::Address{plc_cell::Area::R, plc_cell::Width::Word, 0}, 10);
-        out.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        if (c.read(plc_cell::Address{plc_cell::Area::R, plc_cell::Width::Word, 0}, 10).size() != 10) break;
+        ++served;
       }
     } catch (const std::exception&) {
     }
-    return out;
+    return served;
   }
   std::vector<uint16_t> holding(uint16_t a, uint16_t n) {
     std::vector<uint16_t> v;
@@ -143,15 +143,10 @@ class HostileClients : public ::testing::Test {
     report(name + ".fds_rss", "fds " + std::to_string(fds0_) + " -> " + std::to_string(fds) +
                                   ", RSS " + std::to_string(rss0_) + " -> " + std::to_string(rss) + " kB");
   }
-  void expect_served(const std::string& name, double bound_ms = 100) {
-    const auto m = modbus_latencies(200), f = fatek_latencies(100);
-    EXPECT_EQ(m.size(), 200u) << name;
-    EXPECT_EQ(f.size(), 100u) << name;
-    EXPECT_LT(p99_ms(m), bound_ms) << name;
-    EXPECT_LT(p99_ms(f), bound_ms) << name;
-    char b[128];
-    std::snprintf(b, sizeof b, "well-behaved p99 Modbus %.2f ms, FATEK %.2f ms", p99_ms(m), p99_ms(f));
-    report(name + ".p99", b);
+  // Every request of a well-behaved client answered, in order.
+  void expect_served(const std::string& name) {
+    EXPECT_EQ(modbus_served(200), 200) << name;
+    EXPECT_EQ(fatek_served(100), 100) << name;
   }
 
   TempDir dir_;
@@ -244,15 +239,8 @@ TEST_F(HostileClients, SlowlorisDoesNotHoldTheSlots) {
   int served = 0;
   const auto t0 = Clock::now();
   for (int round = 0; round < 5; ++round) {
-    double waited = 0;
-    EXPECT_TRUE(eventually([&] {
-      const auto t = Clock::now();
-      const bool ok = modbus_latencies(5).size() == 5 && fatek_latencies(5).size() == 5;
-      waited = std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-      return ok;
-    }, 3000)) << "round " << round;
+    EXPECT_TRUE(eventually([&] { return modbus_served(5) == 5 && fatek_served(5) == 5; }, 3000)) << "round " << round;
     ++served;
-    (void)waited;
   }
   stop = true;
   trickle.join();
@@ -277,7 +265,7 @@ TEST_F(HostileClients, MoreConnectionsThanTheCapAndHalfOpen) {
   // or taken from the longest-silent one, so a new client is served within the timeout plus
   // a margin, however the server's accepts interleaved with the burst.
   const auto t0 = Clock::now();
-  EXPECT_TRUE(eventually([&] { return modbus_latencies(1).size() == 1 && fatek_latencies(1).size() == 1; }, 3000));
+  EXPECT_TRUE(eventually([&] { return modbus_served(1) == 1 && fatek_served(1) == 1; }, 3000));
   report("MoreConnectionsThanTheCapAndHalfOpen.admitted",
          "a new client served after " +
              std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - t0).count()) +
@@ -289,29 +277,46 @@ TEST_F(HostileClients, MoreConnectionsThanTheCapAndHalfOpen) {
 
 TEST_F(HostileClients, ClientsThatNeverReadTheirReplies) {
   // Pipeline thousands of 125-register reads and never read: the socket buffers fill
-  // and the server drops those clients instead of waiting on them.
+  // and the server drops those clients instead of waiting on them. The drop is seen on
+  // each socket as the server's end of file or reset, with the replies still unread.
   std::vector<int> hogs;
   Bytes burst;
   for (int i = 0; i < 400; ++i) {
     const Bytes r = plc_cell::test::mbap(uint16_t(i), 1, {3, 0, 0, 0, 125});
     burst.insert(burst.end(), r.begin(), r.end());
   }
+  const int small = 4096;
   for (int i = 0; i < 4; ++i) {
     const int fd = plc_cell::test::tcp_connect(mb_);
-    const int small = 4096;
     setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
     hogs.push_back(fd);
   }
-  for (int round = 0; round < 20; ++round)
-    for (int fd : hogs) (void)!::send(fd, burst.data(), burst.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
-  // FATEK: requests never read until its output limit.
+  // FATEK: requests never read until its output limit (64 KiB pending).
   const int f = plc_cell::test::tcp_connect(ft_);
+  setsockopt(f, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
   std::string many;
   for (int i = 0; i < 2000; ++i) many += plc_cell::fatek::encode_frame(plc_cell::fatek::Frame{1, 0x46, "40R00000"});
-  (void)!::send(f, many.data(), many.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  std::vector<int> all = hogs;
+  all.push_back(f);
+  // Keep the requests coming (bounded) until every client has been dropped.
+  int rounds = 0;
+  const auto all_dropped = [&] {
+    return std::all_of(all.begin(), all.end(), [](int fd) { return dropped_by_peer(fd); });
+  };
+  EXPECT_TRUE(eventually([&] {
+    if (all_dropped()) return true;
+    if (rounds < 200) {
+      ++rounds;
+      for (int fd : hogs) (void)!::send(fd, burst.data(), burst.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+      (void)!::send(f, many.data(), many.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+    }
+    return false;
+  }, 10000)) << "Modbus clients dropped: " << dropped_by_peer(hogs[0]) << dropped_by_peer(hogs[1])
+             << dropped_by_peer(hogs[2]) << dropped_by_peer(hogs[3]) << ", FATEK client dropped: " << dropped_by_peer(f);
+  report("ClientsThatNeverReadTheirReplies", "4 Modbus and 1 FATEK client dropped after " + std::to_string(rounds) +
+                                                 " bursts of requests");
   expect_served("ClientsThatNeverReadTheirReplies");
-  for (int fd : hogs) ::close(fd);
-  ::close(f);
+  for (int fd : all) ::close(fd);
   expect_flat("ClientsThatNeverReadTheirReplies");
 }
 
@@ -341,18 +346,15 @@ TEST_F(HostileClients, FloodOfValidRequestsFrom16Clients) {
       }
       ::close(fd);
     });
-  const auto m = modbus_latencies(300);
-  const auto fl = fatek_latencies(150);
+  const int m = modbus_served(300);
+  const int fl = fatek_served(150);
   stop = true;
   for (auto& t : flood) t.join();
-  EXPECT_EQ(m.size(), 300u);
-  EXPECT_EQ(fl.size(), 150u);
-  EXPECT_LT(p99_ms(m), 250.0);
-  EXPECT_LT(p99_ms(fl), 250.0);
-  char b[160];
-  std::snprintf(b, sizeof b, "%llu flood requests answered; well-behaved p99 Modbus %.2f ms, FATEK %.2f ms",
-                (unsigned long long)answered.load(), p99_ms(m), p99_ms(fl));
-  report("FloodOfValidRequestsFrom16Clients", b);
+  EXPECT_EQ(m, 300);
+  EXPECT_EQ(fl, 150);
+  EXPECT_GT(answered.load(), 0u);
+  report("FloodOfValidRequestsFrom16Clients",
+         std::to_string(answered.load()) + " flood requests answered beside 300 Modbus and 150 FATEK reads");
   expect_flat("FloodOfValidRequestsFrom16Clients");
 }
 

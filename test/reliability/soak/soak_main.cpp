@@ -1,12 +1,15 @@
 // make soak: `plc_cell run` with FATEK and Modbus TCP servers and persistence, hammered for
 // a bounded time by clients that check what they read, while a fault thread sends garbage,
 // cuts frames mid-way and opens more connections than allowed. Reports requests, errors,
-// mismatches, the server's memory growth and scan overruns. Exit 1 on any mismatch or death.
+// mismatches, the server's memory growth and scan overruns, and the latency a well-behaved
+// reader sees meanwhile (p99 and maximum: figures, not a pass condition, since they follow
+// the machine's load). Exit 1 on any mismatch or death.
 #include <arpa/inet.h>
 #include <modbus/modbus.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +18,7 @@
 #include <random>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include "../kill9_loop.h"
 #include "../run_child.h"
@@ -122,6 +126,42 @@ void modbus_client(int port, int id) {
   }
 }
 
+// A well-behaved reader beside the abuse: one Modbus and one FATEK read of 10 registers
+// at a time, each timed. The latency figures of the hostile-client tests live here.
+std::vector<double> modbus_ms, fatek_ms;
+
+void latency_probe(int fatek_port, int modbus_port) {
+  modbus_t* ctx = modbus_new_tcp("127.0.0.1", modbus_port);
+  const bool mb_ok = modbus_connect(ctx) == 0;
+  std::unique_ptr<fatek::Client> c;
+  uint16_t regs[10];
+  while (!g_stop) {
+    auto t0 = Clock::now();
+    if (mb_ok && modbus_read_registers(ctx, 0, 10, regs) == 10)
+      modbus_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    try {
+      if (!c) c = std::make_unique<fatek::Client>(fatek::tcp_transport("127.0.0.1:" + std::to_string(fatek_port)));
+      t0 = Clock::now();
+      c->read(Address{Area::R, Width::Word, 0}, 10);
+      fatek_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    } catch (const std::exception&) {
+      c.reset();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the probe's pace
+  }
+  modbus_close(ctx);
+  modbus_free(ctx);
+}
+
+std::string latency(std::vector<double> v) {
+  if (v.empty()) return "no reply";
+  std::sort(v.begin(), v.end());
+  char b[96];
+  std::snprintf(b, sizeof b, "%zu reads, p99 %.2f ms, max %.2f ms", v.size(),
+                v[std::min(v.size() - 1, size_t(double(v.size()) * 0.99))], v.back());
+  return b;
+}
+
 void fault_thread(int fatek_port, int modbus_port) {
   std::mt19937 rng(7);
   while (!g_stop) {
@@ -173,6 +213,7 @@ int main(int argc, char** argv) {
   for (int i = 0; i < 2; ++i) ts.emplace_back(fatek_client, fport, i);
   for (int i = 0; i < 2; ++i) ts.emplace_back(modbus_client, mport, i);
   ts.emplace_back(fault_thread, fport, mport);
+  ts.emplace_back(latency_probe, fport, mport);
   const auto t0 = Clock::now();
   std::this_thread::sleep_for(std::chrono::seconds(std::min(5, std::max(1, seconds / 10))));  // warm-up
   const long rss0 = rss_kb(child.pid());
@@ -193,6 +234,8 @@ int main(int argc, char** argv) {
               (unsigned long long)mismatches);
   std::printf("soak: server RSS %ld kB after warm-up, %ld kB at the end (growth %ld kB)\n", rss0, rss1, rss1 - rss0);
   std::printf("soak: %s\n", summary.empty() ? "(no summary from plc_cell run)" : summary.c_str());
+  std::printf("soak: a well-behaved reader meanwhile: Modbus %s; FATEK %s\n", latency(modbus_ms).c_str(),
+              latency(fatek_ms).c_str());
   // Second phase: kill -9 at random moments under three writers (kill9_loop.h), as many
   // rounds as fit in the same time again, at least 100.
   TempDir kdir;
