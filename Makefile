@@ -33,7 +33,7 @@ export PATH := /usr/bin:$(PATH)
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps build test test-fresh demo bench clean fuzz soak
+.PHONY: all deps ws-src build test test-fresh demo bench clean fuzz soak
 
 all: build
 
@@ -48,11 +48,19 @@ deps:
 	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing < /dev/null; \
 	fi
 
-# The workspace lives inside the package, in a hidden folder: roslaunch and rosrun
-# skip hidden folders when they search the package, so they find each file once.
-$(WS)/src/plc_cell:
-	mkdir -p $(WS)/src
-	ln -sfn ../../.. $(WS)/src/plc_cell
+# The workspace lives inside the package, in a hidden folder. Its src/plc_cell is a folder
+# of links to the package's visible entries, not one link to the package: a link back to
+# the package would put the workspace inside itself, a loop that rosrun's `find -L` walks
+# into and warns about. Entries the package gains or loses are linked or unlinked at each
+# build; `build` is the workspace copy's own (the tool's link for PATH, cmake/env-hooks).
+ws-src:
+	@mkdir -p $(WS)/src
+	@if [ -L $(WS)/src/plc_cell ]; then rm $(WS)/src/plc_cell; fi
+	@mkdir -p $(WS)/src/plc_cell
+	@for f in *; do case $$f in build|devel|install|logs) continue;; esac; \
+	  [ -e $(WS)/src/plc_cell/$$f ] || ln -sfn "$$(realpath -s --relative-to=$(WS)/src/plc_cell $$f)" $(WS)/src/plc_cell/$$f; \
+	done
+	@find $(WS)/src/plc_cell -maxdepth 1 -xtype l -delete
 
 # Everything a catkin pass reads. make demo runs catkin only when one of these is newer
 # than the last build, so a built tree starts the demo in seconds.
@@ -60,7 +68,7 @@ SOURCES := $(shell find CMakeLists.txt package.xml src include msg srv action cm
   -type f -not -name '*.pyc' 2>/dev/null)
 BUILT   := $(WS)/.built
 
-build: deps $(WS)/src/plc_cell
+build: deps ws-src
 	cd $(WS) && catkin_make -j$(JOBS) $(CMAKE_ARGS) all tests 2>&1 | grep -v -E '^-- (Using|Found|Looking|Detecting|Check|Performing|Configuring done|Generating done)' ; exit $${PIPESTATUS[0]}
 	touch $(BUILT)
 
@@ -70,14 +78,19 @@ $(BUILT): $(SOURCES)
 test: build
 	$(PY) scripts/run_tests.py --workspace $(WS) --jobs $(JOBS)
 
+# The demo runs on loopback: ROS_HOSTNAME=localhost unless ROS_HOSTNAME or ROS_IP is set,
+# and a hint instead of roslaunch's stack trace when the master could not reach itself
+# (scripts/ros_loopback.py).
 demo: deps $(BUILT)
-	@echo "== starting the demo cell. In another shell:"
-	@echo "     source $(WS)/devel/setup.bash"
-	@echo "     rostopic list"
-	@echo "     rostopic echo /plc_node/signals/conveyor_run"
-	@echo "     rostopic echo /plc_node/io"
-	@echo "     rosservice call /plc_node/read R0 1"
-	@echo "   Ctrl-C stops it."
+	@ros_env=$$($(PY) scripts/ros_loopback.py) && eval "$$ros_env" && \
+	echo "== starting the demo cell. In another shell:" && \
+	echo "     source $(WS)/devel/setup.bash" && \
+	if [ -n "$$ros_env" ]; then echo "     $$ros_env"; fi && \
+	echo "     rostopic list" && \
+	echo "     rostopic echo /plc_node/signals/conveyor_run" && \
+	echo "     rostopic echo /plc_node/io_words" && \
+	echo "     rosservice call /plc_node/read R0 1" && \
+	echo "   Ctrl-C stops it." && \
 	source $(WS)/devel/setup.bash && roslaunch plc_cell cell_sim.launch
 
 # The whole suite in a throwaway Debian 12 root: proves `make test` on a machine with nothing

@@ -17,6 +17,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/scenario_positioning.test DEPENDENCIES plc_node scenario_runner)
   add_rostest(test/ros/scenario_oven.test DEPENDENCIES plc_node scenario_runner)
   add_rostest(test/ros/scenario_pulses.test DEPENDENCIES plc_node scenario_runner)
+  add_rostest(test/ros/scenario_two_cells.test DEPENDENCIES plc_node scenario_runner)
 endif()
 
 if(CATKIN_ENABLE_TESTING)

@@ -79,6 +79,7 @@ void ScanEngine::report_cycle(uint64_t exec_ns, uint64_t wake_latency_ns, uint64
   stats_.cycle.add(exec_ns);
   stats_.wake_latency.add(wake_latency_ns);
   stats_.overruns += missed_periods;
+  stats_.recent.add(now_us_, wake_latency_ns, missed_periods);
   if (mode_ == RunMode::Run && watchdog_us_ > 0 && exec_ns > watchdog_us_ * 1000) {
     watchdog_tripped_ = true;
     fault_stop("watchdog: a scan took " + std::to_string(exec_ns / 1000) + " us, the limit is " +

@@ -23,7 +23,9 @@ CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_h
   if (rate_hz <= 0) rate_hz = cfg.publish_rate_hz;
   if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~counter_rate must be in (0, 1000] Hz");
   rate_hz_ = rate_hz;
-  all_pub_ = pnh.advertise<CounterArray>("counters", 10);
+  // A cell with no counters has no ~counters topic: an empty array every period would
+  // only suggest that counters are there but report nothing.
+  if (!numbers_.empty()) all_pub_ = pnh.advertise<CounterArray>("counters", 10);
   for (size_t i = 0; i < numbers_.size(); ++i) {
     const int n = numbers_[i];
     const std::string base = "counters/" + names_[i];
@@ -70,7 +72,8 @@ CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_h
 }
 
 std::vector<std::string> CounterTopics::topics() const {
-  std::vector<std::string> out{all_pub_.getTopic()};
+  std::vector<std::string> out;
+  if (all_pub_) out.push_back(all_pub_.getTopic());
   for (const auto& p : one_pubs_) out.push_back(p.getTopic());
   return out;
 }
@@ -80,6 +83,7 @@ void CounterTopics::publish(const ros::Time& stamp) {
     int64_t count;
     double frequency;
   };
+  if (numbers_.empty()) return;
   std::vector<Value> values(numbers_.size());
   cell_->plc().locked([&](ScanEngine&, Memory&) {
     for (size_t i = 0; i < numbers_.size(); ++i)

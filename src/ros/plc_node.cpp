@@ -9,6 +9,7 @@
 
 #include "plc_cell/ForcedPoints.h"
 #include "plc_cell/IoState.h"
+#include "plc_cell/IoWords.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/ros/counter_topics.h"
@@ -16,6 +17,7 @@
 #include "plc_cell/ros/frame_id.h"
 #include "plc_cell/ros/motion_topics.h"
 #include "plc_cell/ros/param_path.h"
+#include "plc_cell/ros/node_parameters.h"
 #include "plc_cell/ros/pulse_topics.h"
 #include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
@@ -24,6 +26,14 @@
 
 namespace plc_cell {
 
+namespace {
+// Bit b of word i is point 16 i + b, as in the W views.
+void pack_words(const std::vector<uint8_t>& bits, IoWords::_x_type* words) {
+  for (size_t i = 0; i < bits.size() && i / 16 < words->size(); ++i)
+    if (bits[i]) (*words)[i / 16] |= static_cast<uint16_t>(1u << (i % 16));
+}
+}  // namespace
+
 PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::WallTime::now()), updater_(nh, pnh) {
   pnh.param<std::string>("cell", cell_path_, "");
   for (const char* p : {"cell", "program"}) {
@@ -31,6 +41,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
     if (!problem.empty()) throw Error(problem);
   }
   overrides_ = cell_overrides(pnh);
+  for (const auto& name : unknown_parameters(pnh, plc_node_parameters()))
+    ROS_WARN("plc_node: ~%s is not a parameter of plc_node: ignored (docs/plc-node.md lists them)", name.c_str());
   cell_ = std::make_unique<Cell>(cell_path_, overrides_, Cell::Purpose::Serve,
                                  [](const std::string& l) { ROS_INFO("plc_node: %s", l.c_str()); });
   program_path_ = cell_->program_path();
@@ -46,6 +58,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
 
   frame_id_ = frame_id_param(pnh);
   io_pub_ = pnh.advertise<IoState>("io", 10);
+  io_words_pub_ = pnh.advertise<IoWords>("io_words", 10);
   forced_pub_ = pnh.advertise<ForcedPoints>("forced", 1, /*latch=*/true);
   for (const auto& s : cfg.signals) {
     signal_pubs_.push_back(pnh.advertise<std_msgs::Bool>("signals/" + s.first, 1, /*latch=*/true));
@@ -76,7 +89,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   topic_groups_.add(std::make_unique<PulseTopics>(pnh, cell_->soft(), counter_rate));
   topic_groups_.add(std::make_unique<MotionTopics>(nh, pnh, cell_->soft(), pnh.param("motion_rate", 50.0)));
 
-  updater_.setHardwareID("plc_cell/" + cfg.name);
+  // Two nodes may run the same cell YAML (cells.launch): the node name tells them apart.
+  updater_.setHardwareID("plc_cell/" + cfg.name + "@" + ros::this_node::getName());
   updater_.add("scan", this, &PlcNode::diagnose);
   updater_.add("forced points", this, &PlcNode::diagnose_forced);
   extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());
@@ -225,6 +239,12 @@ void PlcNode::publish(const Snapshot& s, bool all_signals) {
   msg.x.assign(s.x.begin(), s.x.end());
   msg.y.assign(s.y.begin(), s.y.end());
   io_pub_.publish(msg);
+  IoWords words;
+  words.header = msg.header;
+  words.run = s.run;
+  pack_words(s.x, &words.x);
+  pack_words(s.y, &words.y);
+  io_words_pub_.publish(words);
   if (virtual_time_) ++published_[0];
   Snapshot prev;
   {
@@ -257,11 +277,18 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
     ScanStats st;
     RunMode mode;
     std::string fault;
+    uint64_t now_us;
   };
-  const View v = cell_->plc().locked([](ScanEngine& e, Memory&) { return View{e.stats(), e.mode(), e.fault()}; });
+  const View v = cell_->plc().locked(
+      [](ScanEngine& e, Memory&) { return View{e.stats(), e.mode(), e.fault(), e.now_us()}; });
+  const ScanWindow::Summary recent = v.st.recent.summary(v.now_us);
+  const ScanHealth health = assess_scan(recent, cell_->scan_period_us());
+  const std::string mode = v.mode == RunMode::Run ? "RUN" : "STOP";
   if (!v.fault.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "stopped: " + v.fault);
-  else if (v.mode == RunMode::Run) stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "RUN");
-  else stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "STOP");
+  else if (health.level == ScanHealthLevel::Error) stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, mode + ": " + health.reason);
+  else if (health.level == ScanHealthLevel::Warn || v.mode != RunMode::Run)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, health.reason.empty() ? mode : mode + ": " + health.reason);
+  else stat.summary(diagnostic_msgs::DiagnosticStatus::OK, mode);
   {
     std::lock_guard<std::mutex> lk(path_mu_);
     stat.add("program", program_path_);
@@ -274,6 +301,8 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("wake latency avg (us)", v.st.wake_latency.avg_ns() / 1000.0);
   stat.add("wake latency max (us)", v.st.wake_latency.max_ns / 1000.0);
   stat.add("overruns", v.st.overruns);
+  stat.add("overruns, last 10 s", recent.overruns);
+  stat.add("wake latency max, last 10 s (us)", recent.max_wake_latency_ns / 1000.0);
   // A respawned cell shows as a new pid with a short uptime (launch/cells.launch restarts it).
   stat.add("pid", static_cast<int>(::getpid()));
   stat.add("uptime (s)", (ros::WallTime::now() - started_).toSec());

@@ -166,6 +166,8 @@ void PlcNode::publish_progress() {
   for (const auto& p : signal_pubs_) m.topics.push_back(p.getTopic());
   for (const auto& p : stamped_pubs_) m.topics.push_back(p.getTopic());
   m.published.assign(published_.begin(), published_.end());
+  m.topics.push_back(io_words_pub_.getTopic());  // published with every ~io
+  m.published.push_back(published_[0]);
   topic_groups_.count_published(&m.topics, &m.published);
   scanned_pub_.publish(m);
 }

@@ -22,12 +22,17 @@ import shlex
 import signal
 import socket
 import subprocess
+import sys
 import tempfile
 import time
 
 import pytest
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# realpath: run from the workspace, this file is reached through its links to the package.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from ros_loopback import loopback_env  # noqa: E402
+
 WS = os.path.join(ROOT, ".build", "ws")
 DOCS = ["README.md"] + sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "docs", "*.md")))
 
@@ -85,8 +90,9 @@ class Shell:
 
     def __init__(self, workdir, master_port):
         self.workdir, home = workdir
-        self.env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % master_port,
-                        ROS_HOME=home, PYTHONUNBUFFERED="1")
+        # On loopback: no doc command depends on the machine's hostname resolving.
+        self.env = loopback_env(dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % master_port,
+                                     ROS_HOME=home, PYTHONUNBUFFERED="1"))
         self.env.pop("ROS_NAMESPACE", None)
 
     def start(self, cmd):

@@ -9,7 +9,8 @@ import re
 import roslaunch.config
 import yaml
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# realpath: run from the workspace, this file is reached through its links to the package.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 LAUNCH = os.path.join(ROOT, "launch")
 
 
@@ -85,3 +86,41 @@ def test_cells_restart_alone():
         assert not n.required, "%s/%s is required: its crash stops the other cells" % (n.namespace, n.name)
     assert not any(k.endswith("/persist_file") or k.endswith("/modbus_tcp") for k in cfg.params), \
         "empty arguments must not override the cell YAML's servers or store"
+
+
+def test_no_argument_is_listed_as_required():
+    """`roslaunch ... --ros-args` lists an argument with an empty default under "Required
+    Arguments": every argument of the launch files has a default (and a doc line)."""
+    import roslaunch.arg_dump
+    for name in sorted(os.listdir(LAUNCH)):
+        if not name.endswith(".launch"):
+            continue
+        for arg, (doc, default) in roslaunch.arg_dump.get_args([os.path.join(LAUNCH, name)]).items():
+            assert default, "%s: %s would be listed as required" % (name, arg)
+            assert doc, "%s: %s is undocumented" % (name, arg)
+
+
+def test_scan_period_help_names_the_yaml_key():
+    import roslaunch.arg_dump
+    for name in ("cell_sim.launch", "cells.launch"):
+        doc = roslaunch.arg_dump.get_args([os.path.join(LAUNCH, name)])["scan_period"][0]
+        assert "plc.scan_period" in doc, "%s: %s" % (name, doc)
+
+
+def test_cells_pass_only_what_is_given():
+    cfg = load("cells.launch")
+    assert not any(k.endswith(("/persist_file", "/modbus_tcp", "/fatek_tcp", "/scan_period")) for k in cfg.params)
+    given = load("cells.launch", "scan_period:=0.005", "b_persist:=/tmp/b.bin", "a_fatek_tcp:=127.0.0.1:5001")
+    assert given.params["/cell_a/plc_node/scan_period"].value == 0.005
+    assert given.params["/cell_b/plc_node/scan_period"].value == 0.005
+    assert given.params["/cell_b/plc_node/persist_file"].value == "/tmp/b.bin"
+    assert "/cell_a/plc_node/persist_file" not in given.params
+    assert given.params["/cell_a/plc_node/fatek_tcp"].value == "127.0.0.1:5001"
+    assert "/cell_b/plc_node/fatek_tcp" not in given.params
+
+
+def test_cell_sim_passes_only_what_is_given():
+    cfg = load("cell_sim.launch")
+    assert "/plc_node/program" not in cfg.params
+    given = load("cell_sim.launch", "program:=/tmp/p.il")
+    assert given.params["/plc_node/program"].value == "/tmp/p.il"

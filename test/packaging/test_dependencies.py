@@ -12,7 +12,8 @@ import xml.etree.ElementTree as ET
 
 import yaml
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# realpath: run from the workspace, this file is reached through its links to the package.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 
 
 def read(path):

@@ -7,7 +7,8 @@ import subprocess
 
 import pytest
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# realpath: run from the workspace, this file is reached through its links to the package.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 LIB_DIR = os.environ.get("PLC_CELL_LIB_DIR", os.path.join(ROOT, ".build", "ws", "devel", "lib"))
 
 # What each folder of src/ (and include/plc_cell/) may include besides itself. The order is

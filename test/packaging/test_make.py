@@ -3,7 +3,8 @@ source sends it through catkin again."""
 import os
 import subprocess
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# realpath: run from the workspace, this file is reached through its links to the package.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 
 
 def dry_run(target):

@@ -75,6 +75,16 @@ class TwoCellsTest(unittest.TestCase):
         keys = dict((kv.key, kv.value) for kv in s.values)
         self.assertTrue(keys["file"].endswith("two_cells_a_store.bin"))
 
+    def test_each_cell_has_its_own_hardware_id(self):
+        # Both cells run test_cell.yaml: the same cell name, so the node tells them apart.
+        ids = {}
+        for c in ["cell_a", "cell_b"]:
+            arr = self.diag.wait_for(lambda a: any(c + "/plc_node" in s.name for s in a.status))
+            ids[c] = [s.hardware_id for s in arr.status if c + "/plc_node" in s.name][0]
+        self.assertNotEqual(ids["cell_a"], ids["cell_b"])
+        self.assertIn("test_cell", ids["cell_a"])
+        self.assertIn("/cell_a/plc_node", ids["cell_a"])
+
     def test_z_a_crashed_cell_restarts_alone(self):
         """kill -9 of cell_a: cell_b keeps scanning, cell_a respawns with its retentive D7, and
         /diagnostics shows the new process (pid, uptime)."""

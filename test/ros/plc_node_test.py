@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """rostest for plc_node: topics in, program outputs observed on topics out, services."""
 import os
+import subprocess
 import sys
+import threading
 import unittest
 
 import rospy
@@ -10,11 +12,12 @@ from diagnostic_msgs.msg import DiagnosticArray
 from std_msgs.msg import Bool
 from std_srvs.srv import SetBool
 
-from plc_cell.msg import ForcedPoints, IoState, RegisterBlock
+from plc_cell.msg import ForcedPoints, IoState, IoWords, RegisterBlock
 from plc_cell.srv import ForceDiscrete, LoadProgram, ReadMemory, ReleaseDiscrete, WriteMemory
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from latest_message import Latest  # noqa: E402
+from tool_path import find_tool  # noqa: E402
 
 NS = "/plc_node/"
 TIMEOUT = 10.0
@@ -38,6 +41,7 @@ class PlcNodeTest(unittest.TestCase):
         cls.load = rospy.ServiceProxy(NS + "load_program", LoadProgram)
         cls.start_pub = rospy.Publisher(NS + "inputs/start", Bool, queue_size=1, latch=True)
         cls.io = Latest(NS + "io", IoState, timeout=TIMEOUT)
+        cls.io_words = Latest(NS + "io_words", IoWords, timeout=TIMEOUT)
         cls.motor = Latest(NS + "signals/motor", Bool, timeout=TIMEOUT)
         cls.part_seen = Latest(NS + "signals/part_seen", Bool, timeout=TIMEOUT)
         cls.sums = Latest(NS + "registers/sums", RegisterBlock, timeout=TIMEOUT)  # R10, R11, R12, R20
@@ -62,6 +66,35 @@ class PlcNodeTest(unittest.TestCase):
         self.assertEqual(io.header.frame_id, "")  # no ~frame_id: the cell name is no frame
         self.assertGreater(io.header.stamp.to_sec(), 0)
         self.assertTrue(io.run)
+
+    def test_io_words_are_the_image_as_16_bit_words(self):
+        """~io_words: x[i] = WX(16 i), bit b = X(16 i + b); the same image as ~io."""
+        self.assertTrue(self.write("X3", [1]).success)  # part_present: the program sets Y1
+        self.start_pub.publish(Bool(True))               # X0: the program sets Y0
+        w = self.io_words.wait_for(lambda m: m.x[0] & 0x9 == 0x9 and m.y[0] & 0x3 == 0x3)
+        self.assertIsNotNone(w)
+        self.assertEqual((len(w.x), len(w.y)), (16, 16))
+        self.assertEqual(w.x[0] & 0x9, 0x9, "X0 and X3 are bits 0 and 3 of x[0]")
+        self.assertEqual(w.y[0] & 0x3, 0x3, "Y0 and Y1 are bits 0 and 1 of y[0]")
+        self.assertEqual(list(w.x[1:]), [0] * 15)
+        self.assertTrue(w.run)
+        # Every point as ~io shows it in the message of the same stamp (both are published
+        # together: the latest of each match once neither is mid-delivery).
+        pair = []
+
+        def same_stamp(io):
+            words = self.io_words.msg
+            pair[:] = [io, words]
+            return words.header.stamp == io.header.stamp
+
+        self.io.wait_for(same_stamp)
+        io, w = pair
+        self.assertEqual(io.header.stamp, w.header.stamp)
+        for i in range(256):
+            self.assertEqual(bool(w.x[i // 16] >> (i % 16) & 1), io.x[i], "X%d" % i)
+            self.assertEqual(bool(w.y[i // 16] >> (i % 16) & 1), io.y[i], "Y%d" % i)
+        self.start_pub.publish(Bool(False))
+        self.write("X3", [0])
 
     def test_write_then_program_computes(self):
         r = self.write("R11", [5, 7])
@@ -201,10 +234,39 @@ class PlcNodeTest(unittest.TestCase):
         msg = diag.wait_for(lambda m: bool(scan(m)), timeout=15)
         self.assertIsNotNone(msg)
         st = scan(msg)[0]
-        self.assertEqual(st.level, 0, st.message)
+        # RUN; on a loaded machine the 1 ms scan may also be late (a WARN or ERROR saying so).
+        self.assertTrue(st.message.startswith("RUN"), st.message)
         keys = dict((kv.key, kv.value) for kv in st.values)
         self.assertGreater(int(keys["scans"]), 0)
         self.assertIn("cycle max (us)", keys)
+
+    def test_a_cell_with_no_counters_has_no_counters_topic(self):
+        # test_cell.yaml has no counters: none of its topics is ~counters.
+        rospy.wait_for_service(NS + "read", timeout=30)
+        topics = [t for t, _ in rospy.get_published_topics()]
+        self.assertIn(NS + "io", topics)
+        self.assertNotIn(NS + "counters", topics)
+
+    def test_a_misspelled_private_parameter_is_named_in_a_warning(self):
+        """_io_rte:=50 (for io_rate) is not silently ignored: the node warns, naming it, and
+        says nothing of the parameters it knows."""
+        cell = os.path.join(os.path.dirname(os.path.abspath(__file__)), "test_cell.yaml")
+        node = subprocess.Popen([find_tool("plc_node"), "__name:=misspelled", "_cell:=" + cell,
+                                 "_io_rte:=50", "_io_rate:=5", "_autostart:=false"],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        killer = threading.Timer(30, node.kill)  # bounds the wait for the start-up line
+        killer.start()
+        try:
+            for line in node.stdout:  # ROS_INFO: the start-up line comes after the check
+                if "plc_node: cell" in line:
+                    break
+        finally:
+            killer.cancel()
+            node.terminate()
+            _, err = node.communicate(timeout=30)
+        self.assertIn("~io_rte is not a parameter of plc_node", err)
+        self.assertNotIn("~io_rate", err)
+        self.assertNotIn("~cell", err)
 
 
 if __name__ == "__main__":

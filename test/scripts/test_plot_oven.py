@@ -4,7 +4,8 @@ import os
 import subprocess
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# realpath: run from the workspace, this file is reached through its links to the package.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 TOOL = os.path.join(ROOT, ".build", "ws", "devel", "lib", "plc_cell", "plc_cell")
 PLOT = os.path.join(ROOT, "scripts", "plot_oven.py")
 

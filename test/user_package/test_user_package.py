@@ -10,7 +10,8 @@ import subprocess
 import tempfile
 import xml.etree.ElementTree as ET
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# realpath: run from the workspace, this file is reached through its links to the package.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 PACKAGE = os.path.join(ROOT, "test", "user_package", "my_cell_tests")
 CASES = ["start runs the motor, the lamp follows after 1 s", "stop stops the motor and the lamp"]
 

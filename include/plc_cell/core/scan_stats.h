@@ -2,6 +2,8 @@
 // Scan statistics: cycle (execution) time and, in real time, wake latency and overruns.
 #include <cstdint>
 
+#include "plc_cell/core/scan_health.h"
+
 namespace plc_cell {
 
 struct DurationStats {
@@ -26,6 +28,7 @@ struct ScanStats {
   DurationStats cycle;         // time spent in one scan (real-time loop only)
   DurationStats wake_latency;  // how late the loop woke after its deadline
   uint64_t overruns = 0;       // periods missed because a scan ran past its deadline
+  ScanWindow recent;           // the same, over the last seconds of scans (real-time loop only)
 };
 
 }  // namespace plc_cell

@@ -85,6 +85,7 @@ class PlcNode : private MemoryAccess {
   std::string frame_id_;  // ~frame_id of every header
 
   ros::Publisher io_pub_;
+  ros::Publisher io_words_pub_;  // ~io_words: the same image as 16-bit words, with every ~io
   ros::Publisher forced_pub_;  // ~forced, latched
   std::mutex forced_mu_;
   std::vector<std::pair<std::string, bool>> forced_;  // as last published
