@@ -23,7 +23,7 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-p
   ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rosmaster rosout python3-roslaunch librostest-dev python3-rostest python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
-  libyaml-cpp-dev libmodbus-dev zlib1g-dev \
+  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev \
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
   socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest python3-matplotlib git \
   chromium-headless-shell
