@@ -21,7 +21,7 @@ static std::string seconds(uint64_t us) {
 }
 
 int cmd_sim(const std::vector<std::string>& argv) {
-  Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace"});
+  Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace", "engine"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   const uint64_t duration = parse_duration_us(args.require("duration"));
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Simulate);
@@ -47,6 +47,8 @@ int cmd_sim(const std::vector<std::string>& argv) {
     plc.write(a, {static_cast<uint32_t>(v)});
   }
   if (!plc.set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
+  const std::string engine = plc.locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
+  if (engine != "interpreter") std::cerr << "plc_cell sim: engine " << engine << "\n";
 
   VirtualRun run(plc, scan);
   std::vector<std::string> names;  // as given, format suffix and all
@@ -102,7 +104,7 @@ int cmd_sim(const std::vector<std::string>& argv) {
 
 Command sim_command() {
   return {"sim",
-          "--program FILE [--config FILE] --duration 2.5s [--scan 1ms]\n"
+          "--program FILE [--config FILE] --duration 2.5s [--scan 1ms] [--engine E]\n"
           "         [--set ADDR=VALUE ...] [--watch ADDR,...] [--trace FILE.csv]\n"
           "         run the program in virtual time and print the watched values\n",
           cmd_sim};

@@ -177,6 +177,11 @@ void Interpreter::load(const Program& program) {
   reset_state();
 }
 
+void Interpreter::use_native(bool on) {
+  want_native_ = on;
+  if (loaded()) bind_native();
+}
+
 void Interpreter::bind_native() {
   native_.reset();
   native_code_.clear();

@@ -78,7 +78,7 @@ class Interpreter {
   // to machine code by load(); every other instruction keeps its handler here. Takes effect
   // at the next load(). Where the code cannot be generated the interpreter runs the whole
   // program and engine_status() says why. Coverage recording always runs the interpreter.
-  void use_native(bool on) { want_native_ = on; }
+  void use_native(bool on);
   bool native_requested() const { return want_native_; }
   bool native_active() const { return native_ != nullptr; }
   const native::NativeCode* native_code() const { return native_.get(); }

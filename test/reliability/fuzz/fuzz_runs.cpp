@@ -46,6 +46,9 @@ void expect_clean(const std::string& target, const std::string& corpus, int runs
 
 TEST(Fuzz, FatekDecoderAndSlave) { expect_clean("fatek_decoder", "fatek", 100000); }
 TEST(Fuzz, IlParser) { expect_clean("il_parser", "il", 5000); }
+// Random valid programs on the native engine and the interpreter in lockstep, up to 200
+// scans each with random inputs, forcing and interrupts (test/fuzz/native_lockstep_fuzz.cpp).
+TEST(Fuzz, NativeEngineEqualsTheInterpreter) { expect_clean("native_lockstep", "native_lockstep", 3000, 4096); }
 TEST(Fuzz, AddressParser) { expect_clean("address", "address", 50000); }
 TEST(Fuzz, CellConfigLoader) { expect_clean("config", "config", 3000); }
 TEST(Fuzz, MotionTableParserAndDecoder) { expect_clean("motion_table", "motion", 20000); }
