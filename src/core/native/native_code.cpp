@@ -212,7 +212,7 @@ bool NativeCode::compile(const std::vector<Step>& steps, std::string* why) {
   Error err = code.flatten();
   if (!err) err = code.resolveUnresolvedLinks();
   if (err) {
-    *why = std::string("code generation failed: ") + DebugUtils::errorAsString(err);
+    *why = std::string("code generation failed: ") + "asmjit error " + std::to_string(err);
     return false;
   }
   const size_t size = std::max<size_t>(code.codeSize(), 1);
@@ -226,7 +226,7 @@ bool NativeCode::compile(const std::vector<Step>& steps, std::string* why) {
   if (!err) err = code.copyFlattenedData(pages, size, CopySectionFlags::kPadSectionBuffer);
   if (err || mprotect(pages, size, PROT_READ | PROT_EXEC) != 0) {
     munmap(pages, size);
-    *why = err ? std::string("code relocation failed: ") + DebugUtils::errorAsString(err)
+    *why = err ? std::string("code relocation failed: ") + "asmjit error " + std::to_string(err)
                : std::string("the native code could not be made executable");
     return false;
   }
