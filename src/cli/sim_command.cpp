@@ -47,8 +47,11 @@ int cmd_sim(const std::vector<std::string>& argv) {
     plc.write(a, {static_cast<uint32_t>(v)});
   }
   if (!plc.set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
-  const std::string engine = plc.locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
-  if (engine != "interpreter") std::cerr << "plc_cell sim: engine " << engine << "\n";
+  // Said only on a fallback: the status line carries the generation time, and sim's output
+  // is the same on every run.
+  const std::string fallback =
+      plc.locked([](ScanEngine& e, Memory&) { return e.engine_fell_back() ? e.engine_status() : std::string(); });
+  if (!fallback.empty()) std::cerr << "plc_cell sim: engine " << fallback << "\n";
 
   VirtualRun run(plc, scan);
   std::vector<std::string> names;  // as given, format suffix and all

@@ -48,6 +48,8 @@ class ScanEngine {
   EngineChoice engine() const { return engine_; }
   // What actually runs the program, and why (the native engine may fall back).
   std::string engine_status() const;
+  // The native engine was chosen but the interpreter runs the loaded program.
+  bool engine_fell_back() const { return engine_ != EngineChoice::Interpreter && interp_.loaded() && !interp_.native_active(); }
   // An interrupt service routine, on the chosen engine (in lockstep, on both, compared).
   // False on a runtime fault or a lockstep difference: the reason is in *why.
   bool run_routine(const std::string& label, uint64_t now_us, std::string* why);
