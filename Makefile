@@ -23,7 +23,7 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-p
   ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rosmaster rosout python3-roslaunch librostest-dev python3-rostest python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
-  libyaml-cpp-dev libmodbus-dev zlib1g-dev \
+  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev \
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
   socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest python3-matplotlib git \
   chromium-headless-shell
@@ -108,9 +108,9 @@ FUZZ_TIME ?= 60
 fuzz: build
 	@for t in fatek_decoder:fatek il_parser:il address:address config:config motion_table:motion \
 	    modbus_handler:modbus fatek_slave_live:fatek modbus_handler_tsan:modbus fatek_slave_live_tsan:fatek \
-	    tri_slave_live:tri tri_slave_live_tsan:tri tri_codec:tri_codec cell:cell; do \
+	    tri_slave_live:tri tri_slave_live_tsan:tri tri_codec:tri_codec cell:cell native_lockstep:native_lockstep; do \
 	  n=$${t%%:*}; c=$${t##*:}; mkdir -p $(BUILD)/fuzz-corpus/$$c; \
-	  ml=512; opts=; [ $$n != cell ] || { ml=8192; opts=-entropic=0; }; \
+	  ml=512; opts=; [ $$n != cell ] || { ml=8192; opts=-entropic=0; }; [ $$n != native_lockstep ] || ml=4096; \
 	  echo "== fuzz_$$n for $(FUZZ_TIME) s"; \
 	  $(WS)/build/plc_cell/fuzz/fuzz_$$n -max_total_time=$(FUZZ_TIME) -max_len=$$ml $$opts -timeout=20 \
 	    -artifact_prefix=$(BUILD)/fuzz-corpus/ $(BUILD)/fuzz-corpus/$$c test/fuzz/corpus/$$c || exit 1; \

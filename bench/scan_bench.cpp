@@ -20,6 +20,7 @@
 #include "plc_cell/core/il_parser.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/memory.h"
+#include "plc_cell/core/native/lockstep.h"
 #include "plc_cell/core/plc.h"
 
 namespace {
@@ -362,7 +363,8 @@ struct BareInterpreter {
   Stimulus in;
   uint64_t now_us = 0;
 
-  void load(const plc_cell::Program& p) {
+  void load(const plc_cell::Program& p, bool native = false) {
+    interp.use_native(native);
     interp.load(p);
     for (uint32_t i = 0; i < ladder::kInputs; ++i) mem.set_bit(plc_cell::Area::X, i, in.x[i]);
     mem.set_bit(plc_cell::Area::M, ladder::kAlwaysOn, true);
@@ -499,6 +501,63 @@ void interpreter_scans(benchmark::State& state, bool record) {
 }
 void BM_Interpreter(benchmark::State& state) { interpreter_scans(state, false); }
 BENCHMARK(BM_Interpreter)->Unit(benchmark::kMicrosecond);
+
+// The native engine (docs/native-engine.md) on the same ladder, checked first against the
+// interpreter: both memories equal after 600 scans.
+void BM_Native(benchmark::State& state) {
+  BareInterpreter b, ref;
+  plc_cell::Program prog;
+  std::string why;
+  if (!parse_ladder(b.fns, &prog, &why)) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  b.load(prog, true);
+  if (!b.interp.native_active()) {
+    state.SkipWithError(b.interp.engine_status().c_str());
+    return;
+  }
+  ref.load(prog);
+  for (int s = 0; s < 600; ++s) {
+    b.scan();
+    ref.scan();
+  }
+  why = plc_cell::first_difference(b.mem, ref.mem, prog, "600 scans");
+  if (!why.empty()) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  for (auto _ : state) {
+    if (!b.scan()) {
+      state.SkipWithError(("native engine fault: " + b.interp.fault()).c_str());
+      return;
+    }
+  }
+  per_instruction_counter(state);
+  state.SetLabel(b.interp.engine_status());
+}
+BENCHMARK(BM_Native)->Unit(benchmark::kMicrosecond);
+
+// Code generation for the whole ladder: what choosing the native engine adds to a load.
+void BM_NativeCodeGeneration(benchmark::State& state) {
+  BareInterpreter b;
+  plc_cell::Program prog;
+  std::string why;
+  if (!parse_ladder(b.fns, &prog, &why)) {
+    state.SkipWithError(why.c_str());
+    return;
+  }
+  b.load(prog);
+  for (auto _ : state) {
+    b.interp.use_native(true);  // binds and generates the loaded program's code again
+    if (!b.interp.native_active()) {
+      state.SkipWithError(b.interp.engine_status().c_str());
+      return;
+    }
+  }
+  per_instruction_counter(state);
+}
+BENCHMARK(BM_NativeCodeGeneration)->Unit(benchmark::kMillisecond);
 void BM_InterpreterRecording(benchmark::State& state) { interpreter_scans(state, true); }
 BENCHMARK(BM_InterpreterRecording)->Unit(benchmark::kMicrosecond);
 
@@ -521,8 +580,12 @@ void BM_CompiledLadder(benchmark::State& state) {
 BENCHMARK(BM_CompiledLadder)->Unit(benchmark::kMicrosecond);
 
 // Fixed cost of a scan with a one-network program: what BM_PlcScan pays besides the program.
-void BM_PlcScanOverhead(benchmark::State& state) {
+void plc_scan_overhead(benchmark::State& state, plc_cell::EngineChoice engine) {
   plc_cell::Plc plc;
+  plc.locked([&](plc_cell::ScanEngine& e, plc_cell::Memory&) {
+    e.set_engine(engine);
+    return 0;
+  });
   try {
     plc.load_program_text("ORG M1925\nOUT Y0\nEND\n", "tiny.il");
   } catch (const std::exception& e) {
@@ -536,7 +599,10 @@ void BM_PlcScanOverhead(benchmark::State& state) {
     now_us += kScanUs;
   }
 }
+void BM_PlcScanOverhead(benchmark::State& state) { plc_scan_overhead(state, plc_cell::EngineChoice::Interpreter); }
 BENCHMARK(BM_PlcScanOverhead)->Unit(benchmark::kMicrosecond);
+void BM_PlcScanOverheadNative(benchmark::State& state) { plc_scan_overhead(state, plc_cell::EngineChoice::Native); }
+BENCHMARK(BM_PlcScanOverheadNative)->Unit(benchmark::kMicrosecond);
 
 // Describes the generated ladder on stderr (stdout may carry JSON).
 void describe_ladder() {

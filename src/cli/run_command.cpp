@@ -18,7 +18,7 @@ int cmd_run(const std::vector<std::string>& argv) {
   // waits until start-up is done and then stops cleanly, with the store flushed.
   StopSignal stop;
   std::vector<std::string> options = {"program", "config", "scan", "duration", "rt-priority", "persist",
-                                      "persist-interval"};
+                                      "persist-interval", "engine"};
   const auto servers = server_options();
   options.insert(options.end(), servers.begin(), servers.end());
   Args args(argv, options);
@@ -28,6 +28,8 @@ int cmd_run(const std::vector<std::string>& argv) {
             [](const std::string& l) { std::cerr << "plc_cell run: " << l << "\n"; });
   if (!cell.plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
   cell.start_servers([](const Server& s) { std::cerr << "plc_cell run: serving " << s.describe() << "\n"; });
+  std::cerr << "plc_cell run: engine " << cell.plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); })
+            << "\n";
   cell.start_scanning();
   std::cerr << "plc_cell run: " << cell.program_path() << " scanning every " << cell.scan_period_us()
             << " us; Ctrl-C to stop\n";
@@ -61,7 +63,7 @@ int cmd_run(const std::vector<std::string>& argv) {
 Command run_command() {
   return {"run",
           "--program FILE [--config FILE] [--scan 1ms] [--duration T] [--rt-priority N]\n"
-          "         [--persist FILE] [--persist-interval DURATION] [--SERVER-SETTING VALUE ...]\n"
+          "         [--persist FILE] [--persist-interval DURATION] [--engine E] [--SERVER-SETTING VALUE ...]\n"
           "         run the soft PLC in real time until interrupted; keep the retentive ranges in\n"
           "         FILE across restarts and crashes (default 100ms); serve the cell's protocols\n"
           "         (below), each option overriding the cell YAML's servers.SERVER.SETTING\n",

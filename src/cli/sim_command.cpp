@@ -21,7 +21,7 @@ static std::string seconds(uint64_t us) {
 }
 
 int cmd_sim(const std::vector<std::string>& argv) {
-  Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace"});
+  Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace", "engine"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   const uint64_t duration = parse_duration_us(args.require("duration"));
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Simulate);
@@ -49,6 +49,11 @@ int cmd_sim(const std::vector<std::string>& argv) {
     if (v < 0) throw UsageError("--set " + s + ": value below the address's range");
     plc.write(a, {static_cast<uint32_t>(v)});
   }
+  // Said only on a fallback: the status line carries the generation time, and sim's output
+  // is the same on every run.
+  const std::string fallback =
+      plc.locked([](ScanEngine& e, Memory&) { return e.engine_fell_back() ? e.engine_status() : std::string(); });
+  if (!fallback.empty()) std::cerr << "plc_cell sim: engine " << fallback << "\n";
 
   VirtualRun run(plc, scan);
   std::vector<std::string> names;  // as given, format suffix and all
@@ -104,7 +109,7 @@ int cmd_sim(const std::vector<std::string>& argv) {
 
 Command sim_command() {
   return {"sim",
-          "--program FILE [--config FILE] --duration 2.5s [--scan 1ms]\n"
+          "--program FILE [--config FILE] --duration 2.5s [--scan 1ms] [--engine E]\n"
           "         [--set ADDR=VALUE ...] [--watch ADDR,...] [--trace FILE.csv]\n"
           "         run the program in virtual time and print the watched values\n",
           cmd_sim};

@@ -34,8 +34,13 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   // -k NAME, as pytest spells it, is --case NAME.
   std::vector<std::string> argv;
   for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a);
-  Args args(argv, {"junit", "case", "coverage-json", "coverage-html"}, {"coverage"});
+  Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine"}, {"coverage"});
   if (args.positional().empty()) throw UsageError("no scenario file given");
+  // Each cell's own plc.engine unless --engine says otherwise.
+  EngineChoice engine{};
+  const bool engine_given = args.has("engine");
+  if (engine_given && !parse_engine_choice(args.get("engine"), &engine))
+    throw UsageError("--engine " + args.get("engine") + ": expected native, interpreter or lockstep");
   const auto filters = args.all("case");
 
   // Every file read, and the names of every step that reads well checked against its cell,
@@ -71,6 +76,10 @@ int cmd_test(const std::vector<std::string>& argv_in) {
     for (const auto& c : sc.cases) {
       if (!selected(filters, c.name)) continue;
       scenario::CellTarget target(sc.cell, sc.program);  // a fresh cell for every case
+      if (engine_given) target.cell().plc().locked([&](ScanEngine& e, Memory&) {
+        e.set_engine(engine);
+        return 0;
+      });
       if (coverage) recorders.attach(target.cell().plc(), target.cell().config().signals);
       results.push_back(scenario::run_case(c, target));
       if (coverage) recorders.detach(target.cell().plc());
@@ -116,7 +125,7 @@ int cmd_test(const std::vector<std::string>& argv_in) {
 Command test_command() {
   return {"test",
           "FILE.scenario.yaml... [-k NAME] [--junit OUT.xml] [--coverage]\n"
-          "         [--coverage-json OUT.json] [--coverage-html DIR]\n"
+          "         [--coverage-json OUT.json] [--coverage-html DIR] [--engine E]\n"
           "         run the scenarios' test cases in virtual time, each on a fresh cell;\n"
           "         rung coverage summed over the cases\n",
           cmd_test};

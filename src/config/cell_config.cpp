@@ -40,12 +40,16 @@ namespace {
 
 void parse_plc(const YamlReader& r, const YAML::Node& plc, CellConfig& cfg, ErrorList& errors) {
   const std::string& file = r.file();
-  r.only(plc, "plc", {"scan_period", "watchdog", "retentive", "timer_bases", "persist"}, &errors);
+  r.only(plc, "plc", {"scan_period", "watchdog", "retentive", "timer_bases", "persist", "engine"}, &errors);
   errors.collect([&] {
     if (plc["scan_period"]) cfg.scan_period_us = r.seconds_us(plc["scan_period"], "plc.scan_period", 0.0001, 1.0);
   }, file, plc);
   errors.collect([&] {
     if (plc["watchdog"]) cfg.watchdog_us = r.seconds_us(plc["watchdog"], "plc.watchdog", 0.001, 10.0);
+  }, file, plc);
+  errors.collect([&] {
+    if (plc["engine"] && !parse_engine_choice(r.str(plc["engine"], "plc.engine"), &cfg.engine))
+      r.fail(plc["engine"], "plc.engine", "expected native, interpreter or lockstep");
   }, file, plc);
   errors.collect([&] {
     const auto ret = plc["retentive"];

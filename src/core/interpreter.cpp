@@ -1,6 +1,8 @@
 #include "plc_cell/core/interpreter.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 
 #include "plc_cell/core/error.h"
 
@@ -70,6 +72,7 @@ Interpreter::Interpreter(Memory& mem, const FunctionTable& functions)
     : mem_(mem), functions_(functions) {
   run_plain(kInitDispatch, 0, 0, nullptr, false);
   run_recording(kInitDispatch, 0, 0, nullptr, false);
+  run_native(kInitDispatch, 0, 0, nullptr, false);
   for (uint32_t t = 0; t < 256; ++t) timer_base_us_[t] = t < 50 ? 10000 : t < 200 ? 100000 : 1000000;
 }
 
@@ -170,7 +173,49 @@ void Interpreter::load(const Program& program) {
   ops_ = std::move(ops);
   bound_op_ = std::move(bound_op);
   record_into(nullptr);  // a recording belongs to the program it was started on
+  bind_native();
   reset_state();
+}
+
+void Interpreter::use_native(bool on) {
+  want_native_ = on;
+  if (loaded()) bind_native();
+}
+
+void Interpreter::bind_native() {
+  native_.reset();
+  native_code_.clear();
+  if (!want_native_) {
+    engine_status_ = "interpreter";
+    return;
+  }
+  std::vector<native::Step> steps(program_.code.size());
+  for (size_t i = 0; i < steps.size(); ++i) {
+    const Op op = bound_op_[i];
+    steps[i].op = op;
+    if (op <= Op::Rst && op != Op::AndLd && op != Op::OrLd) steps[i].bit = code_[i].bit;
+    if (op == Op::Fun) steps[i].fun_inputs = code_[i].extra->n_inputs;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  auto nc = std::make_unique<native::NativeCode>();
+  std::string why;
+  if (!nc->compile(steps, &why)) {
+    engine_status_ = "native engine unavailable (" + why + "): the program runs on the interpreter";
+    return;
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  native_code_ = code_;
+  for (size_t i = 0; i < native_code_.size(); ++i)
+    native_code_[i].handler = native_handler_of_[static_cast<size_t>(bound_op_[i])];
+  for (const native::Run& r : nc->runs()) {
+    native_code_[r.first].handler = native_handler_of_[kNativeEntry];
+    native_code_[r.first].run = &r;
+  }
+  char line[200];
+  std::snprintf(line, sizeof line, "native: %u of %zu instructions in %zu machine-code runs (%zu bytes, %.2f ms)",
+                nc->native_instructions(), program_.code.size(), nc->runs().size(), nc->code_bytes(), ms);
+  engine_status_ = line;
+  native_ = std::move(nc);
 }
 
 void Interpreter::record_into(uint8_t* seen) {
@@ -213,7 +258,8 @@ bool Interpreter::run_routine(const std::string& label, uint64_t now_us, ScanEng
 // ---- execution --------------------------------------------------------------
 
 bool Interpreter::execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine) {
-  return seen_ ? run_recording(pc, now_us, dt_us, engine, routine) : run_plain(pc, now_us, dt_us, engine, routine);
+  if (seen_) return run_recording(pc, now_us, dt_us, engine, routine);
+  return native_ ? run_native(pc, now_us, dt_us, engine, routine) : run_plain(pc, now_us, dt_us, engine, routine);
 }
 
 // The plain loop and the recording loop are two ordinary functions from one source. As a
@@ -222,13 +268,25 @@ bool Interpreter::execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngi
 // existed; as an ordinary function it is level (docs/performance.md, "Coverage recording").
 #define PLC_RUN run_plain
 #define PLC_RECORD 0
+#define PLC_NATIVE 0
 #include "interpreter_run.inc"
 #undef PLC_RUN
 #undef PLC_RECORD
+#undef PLC_NATIVE
 #define PLC_RUN run_recording
 #define PLC_RECORD 1
+#define PLC_NATIVE 0
 #include "interpreter_run.inc"
 #undef PLC_RUN
 #undef PLC_RECORD
+#undef PLC_NATIVE
+// The native engine's driver: the same handlers, plus the entry into a machine-code run.
+#define PLC_RUN run_native
+#define PLC_RECORD 0
+#define PLC_NATIVE 1
+#include "interpreter_run.inc"
+#undef PLC_RUN
+#undef PLC_RECORD
+#undef PLC_NATIVE
 
 }  // namespace plc_cell

@@ -4,10 +4,12 @@
 
 namespace plc_cell {
 
-ScanEngine::ScanEngine(Memory& mem, const FunctionTable& functions) : mem_(mem), interp_(mem, functions) {}
+ScanEngine::ScanEngine(Memory& mem, const FunctionTable& functions)
+    : mem_(mem), functions_(functions), interp_(mem, functions) {}
 
 void ScanEngine::load(const Program& program) {
   interp_.load(program);
+  if (lockstep_) lockstep_->load(program);
   first_scan_ = true;  // a new program sees the first-scan pulse, as after a download
 }
 
@@ -17,6 +19,7 @@ bool ScanEngine::set_mode(RunMode m) {
     if (!interp_.loaded()) return false;
     mem_.clear_non_retentive(retentive_);
     interp_.reset_state();
+    if (lockstep_) lockstep_->reset_state();
     fault_.clear();
     watchdog_tripped_ = false;
     first_scan_ = true;
@@ -27,6 +30,49 @@ bool ScanEngine::set_mode(RunMode m) {
   for (uint32_t y = 0; y < area_size(Area::Y); ++y) mem_.set_bit(Area::Y, y, false);
   for (auto* h : hooks_) h->on_stop();
   return true;
+}
+
+void ScanEngine::set_engine(EngineChoice e) {
+  if (e == engine_) return;
+  engine_ = e;
+  interp_.use_native(e != EngineChoice::Interpreter);
+  if (e != EngineChoice::Lockstep) {
+    lockstep_.reset();
+    return;
+  }
+  // The shadow starts where the native engine is: same program, fresh edges and timers
+  // only if the native engine's are fresh too (a STOP -> RUN resets both).
+  lockstep_ = std::make_unique<Lockstep>(functions_);
+  if (interp_.loaded()) lockstep_->load(interp_.program());
+}
+
+std::string ScanEngine::engine_status() const {
+  std::string s = interp_.engine_status();
+  if (engine_ == EngineChoice::Lockstep) s = "lockstep: " + s + ", compared with the interpreter after every scan and routine";
+  return s;
+}
+
+bool ScanEngine::run_program(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why) {
+  if (lockstep_) lockstep_->sync(mem_, interp_);
+  const bool ok = routine.empty() ? interp_.run_main(now_us, dt_us, this) : interp_.run_routine(routine, now_us, this);
+  if (!ok) *why = interp_.fault();
+  if (!lockstep_) return ok;
+  const bool shadow_ok = lockstep_->run(routine, now_us, dt_us);
+  if (ok != shadow_ok || (!ok && interp_.fault() != lockstep_->fault())) {
+    *why = "lockstep: the native engine " + (ok ? std::string("ran") : "faulted (" + interp_.fault() + ")") +
+           ", the interpreter " + (shadow_ok ? std::string("ran") : "faulted (" + lockstep_->fault() + ")");
+    return false;
+  }
+  const std::string what = (routine.empty() ? std::string("scan ") : "routine " + routine + " in scan ") +
+                           std::to_string(stats_.scans);
+  const std::string diff = lockstep_->compare(mem_, what);
+  if (diff.empty()) return ok;
+  *why = diff;
+  return false;
+}
+
+bool ScanEngine::run_routine(const std::string& label, uint64_t now_us, std::string* why) {
+  return run_program(label, now_us, 0, why);
 }
 
 void ScanEngine::add_hook(ScanHook* h) {
@@ -66,10 +112,11 @@ void ScanEngine::scan(uint64_t now_us) {
   if (mode_ != RunMode::Run) return;
   update_special_relays();
   for (auto* h : hooks_) h->before_program(now_us);
-  const bool ok = interp_.run_main(now_us, dt, this);
+  std::string why;
+  const bool ok = run_program({}, now_us, dt, &why);
   first_scan_ = false;
   if (!ok) {
-    fault_stop(interp_.fault());
+    fault_stop(why);
     return;
   }
   for (auto* h : hooks_) h->after_program(now_us);

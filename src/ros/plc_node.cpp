@@ -141,6 +141,9 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   if (!cell_->servers().empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
 
   if (autostart && !cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program");
+  // Said once here and on /diagnostics: a cell that falls back to the interpreter says why.
+  const std::string engine = cell_->plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
+  ROS_INFO("plc_node: engine %s", engine.c_str());
   if (virtual_time_) {
     start_virtual_time(pnh, cell_->scan_period_us());
     ROS_INFO("plc_node: cell '%s', program %s, scan %.3f ms of virtual time, %s", cfg.name.c_str(),
@@ -278,9 +281,11 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
     RunMode mode;
     std::string fault;
     uint64_t now_us;
+    std::string engine;
   };
-  const View v = cell_->plc().locked(
-      [](ScanEngine& e, Memory&) { return View{e.stats(), e.mode(), e.fault(), e.now_us()}; });
+  const View v = cell_->plc().locked([](ScanEngine& e, Memory&) {
+    return View{e.stats(), e.mode(), e.fault(), e.now_us(), e.engine_status()};
+  });
   const ScanWindow::Summary recent = v.st.recent.summary(v.now_us);
   const ScanHealth health = assess_scan(recent, cell_->scan_period_us());
   const std::string mode = v.mode == RunMode::Run ? "RUN" : "STOP";
@@ -293,6 +298,7 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
     std::lock_guard<std::mutex> lk(path_mu_);
     stat.add("program", program_path_);
   }
+  stat.add("engine", v.engine);
   stat.add("scans", v.st.scans);
   stat.add("cycle last (us)", v.st.cycle.last_ns / 1000.0);
   stat.add("cycle min (us)", v.st.cycle.min_ns / 1000.0);

@@ -67,6 +67,7 @@ const std::vector<SettingSpec>& Cell::run_settings() {
       integer_setting("rt_priority", 0, 0, 99, "SCHED_FIFO priority of the scan thread, 0 = normal"),
       setting("persist_file", SettingType::Text, "retentive store (default plc.persist.file)"),
       duration_setting("persist_interval", "", 1000, 60000000, "store flush interval (default plc.persist.interval)"),
+      setting("engine", SettingType::Text, "native, interpreter or lockstep (default plc.engine)"),
   };
   return specs;
 }
@@ -84,6 +85,15 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
   persist_ = cfg.persist;
   if (run_value(o.run, "persist_file", &v)) persist_.file = v;  // "" turns the store off
   if (run_value(o.run, "persist_interval", &v)) persist_.interval_us = parse_duration_us(v);
+  EngineChoice engine = cfg.engine;
+  if (const std::string* e = run_value(o.run, "engine", &v); e && !parse_engine_choice(*e, &engine)) {
+    const auto at = std::find_if(o.run.rbegin(), o.run.rend(), [](const SettingOverride& x) { return x.key == "engine"; });
+    throw Error(at->origin + " " + *e + ": expected native, interpreter or lockstep");
+  }
+  plc().locked([&](ScanEngine& se, Memory&) {
+    se.set_engine(engine);
+    return 0;
+  });
 
   for (const auto& k : kinds)
     for (auto& s : k.make(plc(), server_settings_.at(k.name))) servers_.push_back(std::move(s));

@@ -11,6 +11,7 @@ void apply_cell_config(const CellConfig& cfg, Plc& plc, SimulatedCell& sim) {
   plc.locked([&](ScanEngine& e, Memory&) {
     e.set_retentive(cfg.retentive);
     e.set_watchdog_us(cfg.watchdog_us);
+    e.set_engine(cfg.engine);
     for (const auto& tb : cfg.timer_bases)
       for (uint32_t t = tb.first; t <= tb.last; ++t) e.interpreter().set_timer_base(t, tb.base_us);
     return 0;

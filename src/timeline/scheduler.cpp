@@ -82,9 +82,9 @@ void Scheduler::dispatch() {
 bool Scheduler::run_isr(int source) {
   for (auto& f : isr_obs_) f(now_ns_, source);
   const std::string label = irq_.label(source);
-  Interpreter& in = engine_->interpreter();
-  if (in.run_routine(label, now_ns_ / 1000, engine_)) return true;
-  engine_->stop_with_fault("interrupt " + label + ": " + in.fault());
+  std::string why;
+  if (engine_->run_routine(label, now_ns_ / 1000, &why)) return true;
+  engine_->stop_with_fault("interrupt " + label + ": " + why);
   return false;
 }
 

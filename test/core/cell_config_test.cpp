@@ -66,9 +66,14 @@ TEST(CellConfig, ReadsEveryKey) {
   EXPECT_EQ(c.sim_inputs[2].on_delay_us, 200000u);
 }
 
+TEST(CellConfig, EngineIsOneOfThree) {
+  EXPECT_NE(error_of("plc:\n  engine: jit\n").find("cell.yaml:2:11: error: key 'plc.engine': expected native, interpreter or lockstep"),
+            std::string::npos) << error_of("plc:\n  engine: jit\n");
+}
+
 TEST(CellConfig, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(error_of("plc:\n  scan_perod: 0.001\n"),
-            "cell.yaml:2:3: error: key 'plc.scan_perod': unknown key (expected one of: persist, retentive, "
+            "cell.yaml:2:3: error: key 'plc.scan_perod': unknown key (expected one of: engine, persist, retentive, "
             "scan_period, timer_bases, watchdog)");
   EXPECT_NE(error_of("signals:\n  a: Q1\n").find("cell.yaml:2:6: error: key 'signals.a': bad address 'Q1'"),
             std::string::npos);

@@ -2,11 +2,13 @@
 // Executes a Program against a Memory. Single-threaded; the scan engine owns it.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/memory.h"
+#include "plc_cell/core/native/native_code.h"
 #include "plc_cell/core/program.h"
 
 namespace plc_cell {
@@ -72,6 +74,17 @@ class Interpreter {
   void record_into(uint8_t* seen);
   uint8_t* recording() const { return seen_; }
 
+  // The native engine (docs/native-engine.md): straight runs of contacts and coils compiled
+  // to machine code by load(); every other instruction keeps its handler here. Takes effect
+  // at the next load(). Where the code cannot be generated the interpreter runs the whole
+  // program and engine_status() says why. Coverage recording always runs the interpreter.
+  void use_native(bool on);
+  bool native_requested() const { return want_native_; }
+  bool native_active() const { return native_ != nullptr; }
+  const native::NativeCode* native_code() const { return native_.get(); }
+  // One line for logs and diagnostics: which engine runs the loaded program, and why.
+  const std::string& engine_status() const { return engine_status_; }
+
  private:
   // One bound instruction in 16 bytes, so a large ladder stays cache-friendly:
   // contacts and coils carry their bit pointer; the rest point to an Extra.
@@ -92,6 +105,7 @@ class Interpreter {
     union {
       uint8_t* bit;
       Extra* extra;
+      const native::Run* run;  // the entry of a native run (native_code_ only)
     };
   };
   static_assert(sizeof(Bound) == 16, "keep a bound instruction at 16 bytes");
@@ -100,17 +114,27 @@ class Interpreter {
   bool execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   bool run_plain(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   bool run_recording(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
+  bool run_native(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
+  void bind_native();
   void set_fault(size_t pc, const std::string& why);
 
   Memory& mem_;
   const FunctionTable& functions_;
   Program program_;
-  std::array<int32_t, static_cast<size_t>(Op::End) + 1> handler_of_{};
-  std::array<int32_t, static_cast<size_t>(Op::End) + 1> recording_handler_of_{};
+  // One handler per opcode, then the native-run entry.
+  static constexpr size_t kNativeEntry = static_cast<size_t>(Op::End) + 1;
+  using HandlerOffsets = std::array<int32_t, kNativeEntry + 1>;
+  HandlerOffsets handler_of_{};
+  HandlerOffsets recording_handler_of_{};
+  HandlerOffsets native_handler_of_{};
   std::vector<Bound> code_;
   std::vector<Op> bound_op_;          // the handler each instruction runs, for recorded_code_
   std::vector<Bound> recorded_code_;  // code_ bound to the recording run loop's handlers
   uint8_t* seen_ = nullptr;
+  bool want_native_ = false;
+  std::unique_ptr<native::NativeCode> native_;
+  std::vector<Bound> native_code_;  // code_ bound to run_native, native runs at their first instruction
+  std::string engine_status_ = "interpreter";
   std::vector<Extra> extras_;
   std::vector<BoundOperand> ops_;
   std::vector<uint8_t> edges_;

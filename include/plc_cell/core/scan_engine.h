@@ -3,12 +3,15 @@
 // timers, RUN/STOP and the watchdog. Not thread-safe; the Plc facade locks around it.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "plc_cell/core/extension_slots.h"
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/memory.h"
+#include "plc_cell/core/native/engine_choice.h"
+#include "plc_cell/core/native/lockstep.h"
 #include "plc_cell/core/scan_stats.h"
 
 namespace plc_cell {
@@ -38,6 +41,18 @@ class ScanEngine {
   void load(const Program& program);
   const Program& program() const { return interp_.program(); }
   Interpreter& interpreter() { return interp_; }
+
+  // Which engine runs the program (docs/native-engine.md); effective at once, on the
+  // loaded program too, with its edge memories and timers kept.
+  void set_engine(EngineChoice e);
+  EngineChoice engine() const { return engine_; }
+  // What actually runs the program, and why (the native engine may fall back).
+  std::string engine_status() const;
+  // The native engine was chosen but the interpreter runs the loaded program.
+  bool engine_fell_back() const { return engine_ != EngineChoice::Interpreter && interp_.loaded() && !interp_.native_active(); }
+  // An interrupt service routine, on the chosen engine (in lockstep, on both, compared).
+  // False on a runtime fault or a lockstep difference: the reason is in *why.
+  bool run_routine(const std::string& label, uint64_t now_us, std::string* why);
 
   void set_retentive(std::vector<AreaRange> ranges) { retentive_ = std::move(ranges); }
   const std::vector<AreaRange>& retentive() const { return retentive_; }
@@ -77,10 +92,15 @@ class ScanEngine {
 
  private:
   void update_special_relays();
+  // Runs the main program (routine empty) or a routine; in lockstep also the shadow, then compares.
+  bool run_program(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why);
   void fault_stop(const std::string& why);
 
   Memory& mem_;
+  const FunctionTable& functions_;
   Interpreter interp_;
+  EngineChoice engine_ = EngineChoice::Interpreter;
+  std::unique_ptr<Lockstep> lockstep_;  // the interpreter's copy, in lockstep only
   std::vector<AreaRange> retentive_;
   std::vector<ScanHook*> hooks_;
   ExtensionSlots extensions_;

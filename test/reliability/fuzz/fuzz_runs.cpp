@@ -138,6 +138,9 @@ TEST(Fuzz, IlParser) {
   ASSERT_GE(s.count(), 17);  // the example programs are there
   expect_clean("il_parser", "il", 10000, 4096, s.dir());
 }
+// Random valid programs on the native engine and the interpreter in lockstep, up to 200
+// scans each with random inputs, forcing and interrupts (test/fuzz/native_lockstep_fuzz.cpp).
+TEST(Fuzz, NativeEngineEqualsTheInterpreter) { expect_clean("native_lockstep", "native_lockstep", 3000, 4096); }
 TEST(Fuzz, AddressParser) { expect_clean("address", "address", 50000); }
 // The target also requires every error to name fuzz.yaml and a line (test/fuzz/config_fuzz.cpp).
 TEST(Fuzz, CellConfigLoader) {

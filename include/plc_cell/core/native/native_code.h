@@ -1,0 +1,68 @@
+#pragma once
+// Machine code for the straight runs of an IL program (docs/native-engine.md).
+//
+// A run is a sequence of instructions that have a machine-code template: plain and negated
+// contacts, ANDLD/ORLD and the bit coils OUT, OUT NOT, SET, RST. Every other instruction
+// (edge contacts, timers, counters, FUN, register resets, flow) is left to the
+// interpreter's own handler, so the two engines share those semantics by construction.
+// Inside a run the accumulator and the block stack live in registers (the first six
+// levels; deeper levels in the interpreter's stack array), and every device is an
+// absolute address bound at load time.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plc_cell/core/program.h"
+
+namespace plc_cell::native {
+
+// One bound instruction as the generator sees it.
+struct Step {
+  Op op = Op::Lbl;
+  uint8_t* bit = nullptr;   // the device of a contact or coil
+  uint8_t fun_inputs = 1;   // a FUN's number of inputs (it pops all but one block)
+};
+
+// acc is the rung result on entry (0/1); stack is the interpreter's block stack, whose
+// levels below the run's entry depth it reads and whose levels below its exit depth it
+// leaves as the interpreter would. Returns the rung result.
+using RunFn = unsigned (*)(unsigned acc, uint8_t* stack);
+
+struct Run {
+  uint32_t first = 0;   // index of its first instruction
+  uint32_t length = 0;  // instructions it covers
+  int32_t depth_after = 0;  // block stack depth when it returns
+  RunFn fn = nullptr;
+};
+
+class NativeCode {
+ public:
+  // Shorter runs stay on the interpreter: entering a run costs about one dispatch.
+  static constexpr uint32_t kMinRun = 3;
+
+  NativeCode();
+  ~NativeCode();
+  NativeCode(const NativeCode&) = delete;
+  NativeCode& operator=(const NativeCode&) = delete;
+
+  // False, with the reason, where this CPU has no code generator.
+  static bool host_supported(std::string* why);
+
+  // Generates the runs of steps. False, with the reason, if the generator failed; then
+  // runs() is empty.
+  bool compile(const std::vector<Step>& steps, std::string* why);
+  const std::vector<Run>& runs() const { return runs_; }
+  uint32_t native_instructions() const { return native_instructions_; }
+  size_t code_bytes() const { return size_; }
+
+ private:
+  void release();
+
+  std::vector<Run> runs_;
+  uint32_t native_instructions_ = 0;
+  void* pages_ = nullptr;  // read+execute once written, never both writable and executable
+  size_t size_ = 0;
+};
+
+}  // namespace plc_cell::native

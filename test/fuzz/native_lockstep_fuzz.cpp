@@ -1,0 +1,196 @@
+// Differential fuzzer (docs/native-engine.md): a random valid program over the whole
+// instruction set (contacts and edge contacts, nested blocks, coils, SET/RST, timers,
+// counters, FUN with .P/.D and with several inputs, JMP, CALL/RTS, FOR/NEXT, an interrupt
+// routine) runs on the interpreter and on the native engine, each on its own memory, with
+// the same random inputs, forced points and interrupts, for up to 200 scans. Any
+// difference between the two memories, or between their faults, is a finding.
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/core/il_parser.h"
+#include "plc_cell/core/interpreter.h"
+#include "plc_cell/core/native/lockstep.h"
+
+using namespace plc_cell;
+
+namespace {
+
+// The core's FUNs and one with three inputs (EN and two LD blocks), as cells' PID or FUN140
+// have, without their subsystems: it writes what it saw.
+FunctionTable table() {
+  FunctionTable t = FunctionTable::with_core_functions();
+  FunctionSpec s;
+  s.number = 250;
+  s.mnemonic = "SEE3";
+  s.inputs = {"EN", "B", "C"};
+  s.operands = {{"D", OperandRole::Dest}};
+  s.always_runs = true;
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    c.put(o[0], c.get(o[0]) * 8 + (c.inputs[0] | c.inputs[1] << 1 | c.inputs[2] << 2));
+  };
+  t.add(s);
+  return t;
+}
+
+class Generator {
+ public:
+  explicit Generator(FuzzedDataProvider& f) : f_(f) {}
+
+  std::string program() {
+    const int nets = f_.ConsumeIntegralInRange(1, 14);
+    int labels = 0;
+    for (int n = 0; n < nets; ++n) {
+      if (f_.ConsumeIntegralInRange(0, 5) == 0) {
+        out_ += "FOR " + std::to_string(f_.ConsumeIntegralInRange(0, 4)) + "\n";
+        network(2, labels, nets);
+        out_ += "NEXT\n";
+      } else {
+        network(2, labels, nets);
+      }
+      if (pending_label_ > labels && f_.ConsumeBool()) out_ += "LBL L" + std::to_string(labels++) + "\n";
+    }
+    while (labels < pending_label_) out_ += "LBL L" + std::to_string(labels++) + "\n";
+    out_ += "END\n";
+    for (int s = 0; s < 2; ++s) {  // S0 may call S1, never the other way: no recursion
+      out_ += "LBL S" + std::to_string(s) + "\n";
+      network(s == 0 ? 1 : 0, labels, 0);
+      out_ += "RTS\n";
+    }
+    out_ += "LBL X0+I\n";
+    network(0, labels, 0);
+    out_ += "RTI\n";
+    return out_;
+  }
+
+ private:
+  std::string bit(const char* areas) {
+    const std::string a(1, areas[f_.ConsumeIntegralInRange<size_t>(0, std::strlen(areas) - 1)]);
+    const int n = a == "X" ? 16 : a == "T" || a == "C" ? 4 : 12;
+    return a + std::to_string(f_.ConsumeIntegralInRange(0, n - 1));
+  }
+  std::string contact(const char* op) {
+    static const char* const mods[] = {"", "NOT ", "TU ", "TD "};
+    return std::string(op) + " " + mods[f_.ConsumeIntegralInRange(0, 3)] + bit("XYMTC") + "\n";
+  }
+  void block(int depth) {  // a contact expression; leaves the stack as it found it
+    const int n = f_.ConsumeIntegralInRange(0, 6);
+    for (int k = 0; k < n; ++k) {
+      const int what = f_.ConsumeIntegralInRange(0, 5);
+      if (what <= 1) out_ += contact("AND");
+      else if (what <= 3) out_ += contact("OR");
+      else if (depth < 12) {
+        out_ += contact("LD");
+        block(depth + 1);
+        out_ += f_.ConsumeBool() ? "ANDLD\n" : "ORLD\n";
+      }
+    }
+  }
+  std::string reg() { return (f_.ConsumeBool() ? "R" : "D") + std::to_string(f_.ConsumeIntegralInRange(0, 7)); }
+  std::string mods() {
+    std::string m = f_.ConsumeBool() ? ".D" : "";
+    if (f_.ConsumeBool()) m += m.empty() ? ".P" : "P";
+    return m;
+  }
+  void output(int calls, int& labels, int nets) {
+    switch (f_.ConsumeIntegralInRange(0, 12)) {
+      case 0: out_ += "OUT " + bit("YM") + "\n"; break;
+      case 1: out_ += "OUT NOT " + bit("YM") + "\n"; break;
+      case 2: out_ += "SET " + bit("YM") + "\n"; break;
+      case 3: out_ += "RST " + bit("YMTC") + "\n"; break;
+      case 4: out_ += "RST " + reg() + "\n"; break;
+      case 5: out_ += "TMR T" + std::to_string(f_.ConsumeIntegralInRange(0, 3)) + " " +
+                      std::to_string(f_.ConsumeIntegralInRange(0, 30)) + "\n"; break;
+      case 6: out_ += "CTR C" + std::to_string(f_.ConsumeIntegralInRange(0, 3)) + " " +
+                      std::to_string(f_.ConsumeIntegralInRange(0, 9)) + "\n"; break;
+      case 7: out_ += "INC" + mods() + " " + reg() + "\n"; break;
+      case 8: out_ += "ADD" + mods() + " Sa=" + reg() + " Sb=" + std::to_string(f_.ConsumeIntegralInRange(-9, 9)) +
+                      " D=" + reg() + "\n"; break;
+      case 9: out_ += "MOV" + mods() + " S=WX0 D=" + reg() + "\n"; break;
+      case 10:
+        if (nets > 0) {  // main only: a forward jump; the LBLs come after later networks
+          out_ += "JMP L" + std::to_string(labels + f_.ConsumeIntegralInRange(0, 1)) + "\n";
+          pending_label_ = std::max(pending_label_, labels + 2);
+        }
+        break;
+      case 11:
+        if (calls > 0) out_ += "CALL S" + std::to_string(2 - calls + f_.ConsumeIntegralInRange(0, calls - 1)) + "\n";
+        break;
+      default: out_ += "MOV S=" + std::to_string(f_.ConsumeIntegralInRange(0, 99)) + " D=" + reg() + "\n"; break;
+    }
+  }
+  void network(int calls, int& labels, int nets) {
+    out_ += contact("ORG");
+    block(0);
+    if (f_.ConsumeIntegralInRange(0, 7) == 0) {  // a three-input FUN takes two LD blocks
+      for (int k = 0; k < 2; ++k) {
+        out_ += contact("LD");
+        block(1 + k);
+      }
+      out_ += "SEE3" + std::string(f_.ConsumeBool() ? ".P" : "") + " D=" + reg() + "\n";
+    }
+    const int outs = f_.ConsumeIntegralInRange(1, 3);
+    for (int k = 0; k < outs; ++k) {
+      output(calls, labels, nets);
+      if (f_.ConsumeBool()) out_ += contact(f_.ConsumeBool() ? "AND" : "OR");
+    }
+  }
+
+  FuzzedDataProvider& f_;
+  std::string out_;
+  int pending_label_ = 0;
+};
+
+[[noreturn]] void finding(const std::string& what, const std::string& text) {
+  std::fprintf(stderr, "%s\n--- program ---\n%s", what.c_str(), text.c_str());
+  std::abort();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  static const FunctionTable fns = table();
+  FuzzedDataProvider f(data, size);
+  const std::string text = Generator(f).program();
+  Program prog;
+  try {
+    prog = parse_program(text, "gen.il", fns);
+  } catch (const Error& e) {
+    finding(std::string("the generator wrote an invalid program: ") + e.what(), text);
+  }
+  Memory mem_i, mem_n;
+  Interpreter interp(mem_i, fns), native(mem_n, fns);
+  native.use_native(true);
+  interp.load(prog);
+  native.load(prog);
+  if (!native.native_active()) finding(native.engine_status(), text);
+  for (Memory* m : {&mem_i, &mem_n}) m->set_bit(Area::M, special::kAlwaysOn, true);
+  const int scans = f.ConsumeIntegralInRange(1, 200);
+  uint64_t now = 0;
+  for (int s = 1; s <= scans && f.remaining_bytes() > 0; ++s) {
+    const uint16_t x = f.ConsumeIntegral<uint16_t>();
+    const int forced = f.ConsumeIntegralInRange(-1, 15);  // a point forced (disabled) or released, or none
+    const bool disable = f.ConsumeBool();
+    for (Memory* m : {&mem_i, &mem_n}) {
+      for (uint32_t i = 0; i < 16; ++i) m->set_bit(Area::X, i, (x >> i) & 1u);
+      if (forced >= 0) m->set_disabled(forced < 8 ? Area::Y : Area::M, static_cast<uint32_t>(forced) % 8, disable);
+    }
+    const uint32_t dt = f.ConsumeIntegralInRange<uint32_t>(0, 40000);
+    now += dt;
+    const bool irq = f.ConsumeIntegralInRange(0, 3) == 0;
+    const std::string what = (irq ? "routine X0+I in scan " : "scan ") + std::to_string(s);
+    const bool ok_i = irq ? interp.run_routine("X0+I", now, nullptr) : interp.run_main(now, dt, nullptr);
+    const bool ok_n = irq ? native.run_routine("X0+I", now, nullptr) : native.run_main(now, dt, nullptr);
+    if (ok_i != ok_n || interp.fault() != native.fault())
+      finding("faults differ after " + what + ": interpreter '" + interp.fault() + "', native '" + native.fault() + "'",
+              text);
+    const std::string d = first_difference(mem_n, mem_i, prog, what);
+    if (!d.empty()) finding(d, text);
+    if (!ok_i) break;
+  }
+  return 0;
+}
