@@ -108,11 +108,12 @@ class PtyProxy {
   };
 
   static void write_out(int to, const std::string& s) {
-    if (from == dev_master_ && faults_.delay_ms > 0) {
-      held_.push_back({std::chrono::steady_clock::now() + std::chrono::milliseconds(faults_.delay_ms), s});
-      return;
+    size_t off = 0;
+    while (off < s.size()) {
+      const ssize_t w = ::write(to, s.data() + off, s.size() - off);
+      if (w <= 0) return;
+      off += size_t(w);
     }
-    write_out(to, s);
   }
 
   // Held bytes that are due, in order; the ms until the next is (or -1: none held).

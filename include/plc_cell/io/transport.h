@@ -40,7 +40,7 @@ class Transport {
   // old); a serial line, which cannot be, is drained until quiet for quiet_ms (a
   // line that does not go quiet throws CommError). The device must therefore answer
   // within twice the time-out at most, or not at all.
-  virtual void resynchronise(int quiet_ms) { close(); }
+  virtual void resynchronise(int /*quiet_ms*/) { close(); }
 };
 // "HOST:PORT" (HOST may be empty for 127.0.0.1).
 std::unique_ptr<Transport> tcp_transport(const std::string& host_port);
