@@ -21,6 +21,10 @@ int cmd_check(const std::vector<std::string>& argv) {
     const auto size = cell.plc().locked([](ScanEngine& e, Memory&) {
       return std::make_pair(e.program().code.size(), e.program().labels.size());
     });
+    // Operands the PLC accepts but refuses at run time: warned, the check still passes.
+    const auto warnings = cell.soft().warnings();
+    for (const auto& w : warnings) std::cerr << w.to_string() << "\n";
+    if (!warnings.empty()) std::cerr << warnings.size() << " warning(s)\n";
     if (!cell.config().file.empty()) std::cout << cell.config().file << ": OK, cell " << cell.config().name << "\n";
     std::cout << cell.program_path() << ": OK, " << size.first << " instructions, " << size.second << " labels\n";
     return 0;
@@ -33,7 +37,7 @@ int cmd_check(const std::vector<std::string>& argv) {
 
 Command check_command() {
   return {"check",
-          "--program FILE [--config CELL.yaml]   build the cell, stop, and report every error\n",
+          "--program FILE [--config CELL.yaml]   build the cell, stop, and report every error and warning\n",
           cmd_check};
 }
 

@@ -26,6 +26,7 @@ int cmd_sim(const std::vector<std::string>& argv) {
   const uint64_t duration = parse_duration_us(args.require("duration"));
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Simulate);
   const uint64_t scan = cell.scan_period_us();
+  for (const auto& w : cell.soft().warnings()) std::cerr << w.to_string() << "\n";  // the run goes on
 
   Plc& plc = cell.plc();
   if (!plc.set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");

@@ -8,7 +8,7 @@ std::string Diagnostic::to_string() const {
     s += ":" + std::to_string(where.line);
     if (where.column > 0) s += ":" + std::to_string(where.column);
   }
-  return s + ": error: " + message;
+  return s + (warning ? ": warning: " : ": error: ") + message;
 }
 
 static std::string join(const std::vector<Diagnostic>& ds) {

@@ -24,6 +24,7 @@ bool ScanEngine::set_mode(RunMode m) {
     watchdog_tripped_ = false;
     first_scan_ = true;
     mode_ = RunMode::Run;
+    for (auto* h : hooks_) h->on_run();
     return true;
   }
   mode_ = RunMode::Stop;

@@ -26,8 +26,6 @@ uint32_t max_block(const Address& start) {
 Client::Client(std::unique_ptr<Transport> t, ClientOptions opt) : t_(std::move(t)), opt_(opt) {}
 
 Response Client::once(const Request& req, const std::string& bytes) {
-  // Drop anything stale (a late answer to a timed-out request) before asking again.
-  drop_late_answer(*t_, &stale_);
   char buf[512];
   dec_.reset();
   const auto t0 = Clock::now();
@@ -58,7 +56,7 @@ Response Client::transact(Request req) {
       req.cmd != Cmd::WriteRegisters && req.cmd != Cmd::MixedWrite)
     throw Error("station 0 is broadcast: nobody answers command " + cmd_hex(req.cmd) + "; only writes can be broadcast");
   const std::string bytes = encode_request(req);
-  return with_retries(*t_, opt_.retries, &stale_, &retries_used_, [&] {
+  return with_retries(*t_, opt_.retries, opt_.timeout_ms, &retries_used_, [&] {
     Response rsp = once(req, bytes);
     if (rsp.error != ErrorCode::Ok)
       throw PlcError(rsp.error, "PLC error " + std::string(1, char(rsp.error)) + " (" + error_text(rsp.error) +

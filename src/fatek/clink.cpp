@@ -60,6 +60,7 @@ class ComPortTransport : public Transport {
     return 0;
   }
   std::string describe() const override { return port_->line().to_string(); }
+  void resynchronise(int quiet_ms) override { port_->resynchronise(quiet_ms); }
 
  private:
   std::shared_ptr<ComPort> port_;

@@ -1,5 +1,7 @@
 #include "plc_cell/io/com_port.h"
 
+#include "plc_cell/io/transport.h"
+
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -144,6 +146,12 @@ void ComPort::lost(const std::string& why) {
   serial_.lost(why);
   std::lock_guard<std::mutex> lk(mu_);
   error_ = serial_.last_error();
+}
+
+void ComPort::resynchronise(int quiet_ms) {
+  if (!is_open()) return;
+  if (line_.is_tcp()) return lost("closed after a request that got no answer: a late one may follow");
+  if (!drain_until_quiet(serial_.fd(), quiet_ms, 10 * quiet_ms)) lost("the line does not go quiet after a request that got no answer");
 }
 
 std::string ComPort::last_error() const {

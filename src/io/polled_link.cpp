@@ -74,6 +74,21 @@ void PolledLink::count_poll(double ms) {
   ++status_.polls;
 }
 
+void PolledLink::count_delivery(bool ok) {
+  std::lock_guard<std::mutex> lk(state_mu_);
+  if (ok) status_.failed_polls_in_row = 0, status_.delivered = true;
+  else ++status_.failed_polls_in_row;
+}
+
+LinkHealth link_health(const LinkStatus& s) {
+  if (!s.connected) return {LinkLevel::Error, "disconnected: " + s.last_error};
+  const uint64_t n = s.failed_polls_in_row;
+  if (n >= kLinkErrorPolls)
+    return {LinkLevel::Error, "connected, but the last " + std::to_string(n) + " polls failed: " + s.last_error};
+  if (n > 0) return {LinkLevel::Warn, "connected, the last poll failed: " + s.last_error};
+  return {LinkLevel::Ok, "connected"};
+}
+
 void PolledLink::fail(const std::string& what) {
   {
     std::lock_guard<std::mutex> lk(state_mu_);

@@ -8,6 +8,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -103,6 +104,12 @@ class SerialTransport : public FdTransport {
     line_.close();
   }
   std::string describe() const override { return "serial " + line_.settings().to_string(); }
+  void resynchronise(int quiet_ms) override {
+    if (fd_ >= 0 && !drain_until_quiet(fd_, quiet_ms, 10 * quiet_ms)) {
+      close();
+      throw CommError(describe() + ": the line does not go quiet after a request that got no answer");
+    }
+  }
 
  private:
   SerialLine line_;
@@ -117,16 +124,20 @@ std::unique_ptr<Transport> serial_transport(const SerialSettings& line) {
   return std::make_unique<SerialTransport>(line);
 }
 
-void drop_late_answer(Transport& t, bool* stale) {
+bool drain_until_quiet(int fd, int quiet_ms, int limit_ms) {
+  using Clock = std::chrono::steady_clock;
+  const auto end = Clock::now() + std::chrono::milliseconds(limit_ms);
   char buf[512];
-  try {
-    if (*stale && t.is_open())
-      while (t.recv(buf, sizeof buf, 0) > 0) {
-      }
-  } catch (const CommError&) {
-    // The peer closed an idle connection: send() reconnects.
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()).count();
+    if (left <= 0) return false;
+    if (!wait_readable(fd, int(std::min<int64_t>(quiet_ms, left)))) return left >= quiet_ms;  // quiet
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) return false;
+    if (n == 0) {  // a socket at EOF (a tty with nothing reads 0 only when poll said so: hang-up)
+      return false;
+    }
   }
-  *stale = false;
 }
 
 bool write_all(int fd, const char* buf, size_t n, int timeout_ms) {

@@ -1,5 +1,6 @@
 #include "plc_cell/modbus/bridge.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 
@@ -8,6 +9,7 @@
 #include "plc_cell/core/error.h"
 #include "plc_cell/io/backoff.h"
 #include "plc_cell/io/serial_settings.h"
+#include "plc_cell/io/transport.h"
 
 namespace plc_cell {
 namespace modbus {
@@ -125,10 +127,21 @@ bool Bridge::ensure_connected(Line& line) {
 // Sorts a failed transaction: an exception reply keeps the link; a timeout on a
 // serial line blames only that device; anything else drops the connection.
 void Bridge::note_error(Line& line, size_t dev, int err) {
+  const bool exception = err > MODBUS_ENOBASE && err < MODBUS_ENOBASE + 12;
+  const Device& device = cfg_.devices[dev];
+  // A slave that is not answering, or garbled its answer, leaves a serial line fine, but
+  // its reply (or the rest of it) may still come, and would pass for the answer to the
+  // next request of the same slave and size: the line is drained until quiet first.
+  bool resynchronised = false;
+  if (!device.rtu.empty() && (err == ETIMEDOUT || (!exception && err > MODBUS_ENOBASE))) {
+    const int quiet_ms = std::max(1, int(device.timeout_s * 1000));
+    resynchronised = drain_until_quiet(modbus_get_socket(line.ctx), quiet_ms, 10 * quiet_ms);
+    if (resynchronised) modbus_flush(line.ctx);
+  }
   std::lock_guard<std::mutex> lk(status_mu_);
   DeviceStatus& s = status_[dev];
   s.last_error = modbus_strerror(err);
-  if (err > MODBUS_ENOBASE && err < MODBUS_ENOBASE + 12) {
+  if (exception) {
     s.exceptions++;
     char code[8];
     snprintf(code, sizeof code, "%02X ", err - MODBUS_ENOBASE);
@@ -137,11 +150,7 @@ void Bridge::note_error(Line& line, size_t dev, int err) {
   }
   if (err == ETIMEDOUT) s.timeouts++;
   else s.io_errors++;
-  const bool serial = !cfg_.devices[dev].rtu.empty();
-  if (serial && err == ETIMEDOUT) {
-    modbus_flush(line.ctx);  // the line is fine; that slave is not answering
-    return;
-  }
+  if (resynchronised && err == ETIMEDOUT) return;  // the line itself is fine
   modbus_close(line.ctx);
   line.connected = false;
   // A link that worked is retried after the shortest delay; failing again, longer ones.
@@ -268,7 +277,12 @@ void Bridge::write(const std::string& name, double value) {
   if (!found) throw Error("no point '" + name + "'");
   const Point& p = *found;
   if (!p.writable()) throw Error("point '" + name + "' is a " + table_name(p.table) + ": read-only");
-  const uint64_t raw = to_raw(p.enc.type, value, p.scale, p.offset);
+  uint64_t raw;
+  try {
+    raw = to_raw(p.enc.type, value, p.scale, p.offset);
+  } catch (const Error& e) {
+    throw Error("point '" + name + "' (" + point_type_name(p.enc.type) + "): " + e.what());
+  }
   const Device& d = cfg_.devices[found_dev];
   Line& line = *line_of_[found_dev];
   std::lock_guard<std::mutex> lk(line.mu);

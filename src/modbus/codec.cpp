@@ -1,5 +1,6 @@
 #include "plc_cell/modbus/codec.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -97,35 +98,47 @@ Value decode(const Encoding& e, const uint16_t* regs) {
   return v;
 }
 
+std::string format_value(double v) {
+  // The shortest text that reads back as the same double: 70000, 0.1, 1e+300.
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
 uint64_t to_raw(PointType t, double value, double scale, double offset) {
-  if (scale == 0 || !std::isfinite(value)) throw Error("value " + std::to_string(value) + " cannot be written");
+  if (scale == 0 || !std::isfinite(value)) throw Error("value " + format_value(value) + " cannot be written");
   const double x = (value - offset) / scale;
-  const auto range = [&](double lo, double hi) {
+  // What was asked, and the raw value it became when scale/offset turned it into another.
+  const auto refuse = [&](const std::string& bounds) -> Error {
+    std::string what = "value " + format_value(value);
+    if (scale != 1 || offset != 0) what += " (raw " + format_value(is_integer(t) ? std::nearbyint(x) : x) + ")";
+    return Error(what + " does not fit " + point_type_name(t) + " (" + bounds + ")");
+  };
+  const auto range = [&](double lo, double hi, const char* bounds) {
     const double r = std::nearbyint(x);
-    if (!(r >= lo && r <= hi))
-      throw Error("value " + std::to_string(value) + " does not fit " + point_type_name(t));
+    if (!(r >= lo && r <= hi)) throw refuse(bounds);
     return r;
   };
   switch (t) {
     case PointType::Bool: return x != 0;
-    case PointType::Int16: return uint16_t(int16_t(range(-32768, 32767)));
-    case PointType::UInt16: return uint16_t(range(0, 65535));
-    case PointType::Int32: return uint32_t(int32_t(range(-2147483648.0, 2147483647.0)));
-    case PointType::UInt32: return uint32_t(range(0, 4294967295.0));
+    case PointType::Int16: return uint16_t(int16_t(range(-32768, 32767, "-32768..32767")));
+    case PointType::UInt16: return uint16_t(range(0, 65535, "0..65535"));
+    case PointType::Int32: return uint32_t(int32_t(range(-2147483648.0, 2147483647.0, "-2147483648..2147483647")));
+    case PointType::UInt32: return uint32_t(range(0, 4294967295.0, "0..4294967295"));
     // 2^63 and 2^64 are exact doubles; the bounds exclude them.
     case PointType::Int64: {
       const double r = std::nearbyint(x);
       if (!(r >= -9223372036854775808.0 && r < 9223372036854775808.0))
-        throw Error("value " + std::to_string(value) + " does not fit int64");
+        throw refuse("-9223372036854775808..9223372036854775807");
       return uint64_t(int64_t(r));
     }
     case PointType::UInt64: {
       const double r = std::nearbyint(x);
-      if (!(r >= 0 && r < 18446744073709551616.0)) throw Error("value " + std::to_string(value) + " does not fit uint64");
+      if (!(r >= 0 && r < 18446744073709551616.0)) throw refuse("0..18446744073709551615");
       return uint64_t(r);
     }
     case PointType::Float32: {
-      if (std::fabs(x) > std::numeric_limits<float>::max()) throw Error("value " + std::to_string(value) + " does not fit float32");
+      if (std::fabs(x) > std::numeric_limits<float>::max()) throw refuse("magnitude at most 3.4028235e+38");
       const float f = float(x);
       uint32_t b;
       std::memcpy(&b, &f, 4);

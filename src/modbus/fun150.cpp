@@ -152,10 +152,15 @@ class PortWorker {
       j.result = kOk;
     } else if (errno == ETIMEDOUT) {
       j.result = kNoResponse;
+      // A late reply carries the station and function of the next request too: no byte of
+      // it may be taken for one (io/com_port.h).
+      port_->resynchronise(j.timeout_ms);
       modbus_flush(ctx_);
     } else {
       j.result = kCommError;  // bad data or an exception reply
-      if (errno < MODBUS_ENOBASE) port_->lost(modbus_strerror(errno));  // the line itself failed
+      const int err = errno;
+      if (err < MODBUS_ENOBASE) port_->lost(modbus_strerror(err));  // the line itself failed
+      else if (err > MODBUS_ENOBASE + 11) port_->resynchronise(j.timeout_ms);  // garbled: its rest may follow
     }
   }
 

@@ -114,14 +114,18 @@ std::vector<ros::ServiceServer> advertise_link_services(ros::NodeHandle& pnh, Po
 
 void diagnose_link(diagnostic_updater::DiagnosticStatusWrapper& stat, const PolledLink& link) {
   const LinkStatus s = link.status();
-  if (s.connected) stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "connected");
-  else stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "disconnected: " + s.last_error);
+  const LinkHealth h = link_health(s);
+  stat.summary(h.level == LinkLevel::Ok     ? diagnostic_msgs::DiagnosticStatus::OK
+               : h.level == LinkLevel::Warn ? diagnostic_msgs::DiagnosticStatus::WARN
+                                            : diagnostic_msgs::DiagnosticStatus::ERROR,
+               h.message);
   stat.add("link", link.describe());
   stat.add("connected", s.connected);
   stat.add("last error", s.last_error);
   stat.add("errors", s.errors);
   stat.add("polls", s.polls);
   stat.add("reconnects", s.reconnects);
+  stat.add("failed polls in a row", s.failed_polls_in_row);
   stat.add("I/O poll latency (ms)", s.latency_last_ms);
   stat.add("I/O poll latency max (ms)", s.latency_max_ms);
 }

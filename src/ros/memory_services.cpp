@@ -46,8 +46,16 @@ std::vector<ros::ServiceServer> advertise_memory_services(ros::NodeHandle& pnh, 
         return reply(res, [&] {
           const Address a = m->resolve(req.address);
           std::vector<uint32_t> raw;  // every value checked before anything is written
-          for (size_t i = 0; i < req.values.size(); ++i)
-            raw.push_back(encode_element(offset_address(a, uint32_t(i)), req.values[i]));
+          for (size_t i = 0; i < req.values.size(); ++i) {
+            const Address at = offset_address(a, uint32_t(i));
+            try {
+              raw.push_back(encode_element(at, req.values[i]));
+            } catch (const Error& e) {
+              // The element's address says where; a name (a signal, DM[1]) is said too.
+              if (req.address == format_address(a)) throw;
+              throw Error(req.address + (i ? " + " + std::to_string(i) : "") + " -> " + e.what());
+            }
+          }
           m->write(a, raw);
         });
       }));

@@ -138,6 +138,10 @@ void SoftCell::build(const std::string& program_path) {
   errors.throw_if_any();
 }
 
+std::vector<Diagnostic> SoftCell::warnings() {
+  return plc_.locked([&](ScanEngine& e, Memory&) { return operand_warnings(e.program(), plc_.functions()); });
+}
+
 void SoftCell::release() {
   for (auto it = extensions_.rbegin(); it != extensions_.rend(); ++it) (*it)->detach(plc_);
   plc_.locked([&](ScanEngine& e, Memory&) {

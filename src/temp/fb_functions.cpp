@@ -22,9 +22,10 @@ using R = OperandRole;
 uint64_t fb_interval_us(unsigned code) { return code >= 3 ? 1000000 : uint64_t(2000000) << code; }
 
 // Default Kc by Pl (0-10 V 60, 0-5 V 30, +-10 V 120, +-5 V 60): the same band in degC.
-TpctlUnits fb_units(int pl) {
+// R4008 is in degrees; an RTD's readings (TR) are in 0.1 degC.
+TpctlUnits fb_units(int pl, bool rtd = false) {
   static const uint16_t kc[4] = {60, 30, 120, 60};
-  return {4095, fb_interval_us, 999, kc[pl & 3], 17, 100, 300};
+  return {4095, fb_interval_us, 999, kc[pl & 3], 17, 100, 300, rtd ? 10 : 1};
 }
 constexpr int kUniversal = 1;  // the FB instructions have no Md: the plain printed form
 
@@ -52,25 +53,79 @@ void with_store(ExecContext& c, const BoundOperand* o, F f) {
   if (c.engine) f(c.engine->extensions().owned<Store>(), c, o);
 }
 
-bool fits(const BoundOperand& o, uint32_t n) { return o.w && o.addr.index + n <= Memory::word_count(o.addr.area); }
-bool fits_y(const BoundOperand& o, uint32_t n) { return o.addr.area == Area::Y && o.addr.index + n <= 256; }
-bool is_ir(const BoundOperand& o) { return o.addr.area == Area::R && o.addr.index >= 3840 && o.addr.index <= 3903; }
+// The operands' positions, in spec order.
+namespace op72 { enum { Tp, Pl, Sm, Ym, AR, TR, WR, ERR, ALM, Count }; }
+namespace op73 { enum { Tp, Pl, Sm, Ym, AR, TR, Yh, Sh, Zh, Sv, Os, PR, IR, DR, OR, WR, ERR, AO0, AO1, Count }; }
+namespace op85 { enum { Tp, Pl, Zn, Yn, SR, WR, ERR, ALM, Count }; }
+namespace op86 { enum { Yn, Sn, Zn, Sv, Os, PR, IR, DR, OR, WR, ERR, ALM, Count }; }
 
-// FUN72/FUN73's measuring operands: Tp Pl Sm Ym AR TR WR; false on a range error.
-bool fun72_points(ExecContext& c, const BoundOperand* o, const BoundOperand& wr, uint32_t wr_words, FbPoints* p) {
-  const int64_t tp = c.get(o[0]), pl = c.get(o[1]), sm = c.get(o[2]);
-  p->tp = int(tp), p->pl = int(pl), p->first_point = uint32_t(sm), p->points = 4, p->per_ai = 4;
-  p->ai[0] = o[4].addr.index - 3840;
-  const bool rtd = tp >= 2;
-  return tp >= 0 && tp <= 3 && pl >= 0 && pl <= 3 && !(rtd && pl < 2) && sm >= 0 && sm <= 28 && sm % 4 == 0 &&
-         fits_y(o[3], 8) && is_ir(o[4]) && fits(o[5], 4) && fits(wr, wr_words);
+bool between(int64_t v, int64_t lo, int64_t hi) { return v >= lo && v <= hi; }
+
+// FUN72/FUN73's measuring operands (B:556-B:600), the first seven of both; WR takes
+// wr_words. The FUN73 page gives the same Tp (RTD included) and Pl as FUN72's.
+OperandRules measure_rules(size_t wr, uint32_t wr_words) {
+  return {
+      {"Tp 0 (K), 1 (J), 2 (PT-100) or 3 (PT-1000)", [](const OperandValues& v) { return between(v[0], 0, 3); }},
+      {"Pl 0 (0-10 V), 1 (0-5 V), 2 (-10..10 V) or 3 (-5..5 V)", [](const OperandValues& v) { return between(v[1], 0, 3); }},
+      {"Pl 2 or 3 for an RTD (Tp 2, 3): the FB-2AH(T)4 is bipolar only",
+       [](const OperandValues& v) { return !(v[0] >= kFbPt100 && between(v[0], 0, 3) && between(v[1], 0, 1)); }},
+      {"0 <= Sm <= 28, a multiple of 4", [](const OperandValues& v) { return between(v[2], 0, 28) && v[2] % 4 == 0; }},
+      {"Ym: 8 outputs within Y0-Y255", [](const OperandValues& v) { return v.y_fit(3, 8); }},
+      {"AR: an analog input register R3840-R3903",
+       [](const OperandValues& v) {
+         const Address& a = v.address(4);
+         return a.area == Area::R && between(a.index, 3840, 3903);
+       }},
+      {"TR: 4 registers", [](const OperandValues& v) { return v.words_fit(5, 4); }},
+      {"WR: " + std::to_string(wr_words) + " registers", [wr, wr_words](const OperandValues& v) { return v.words_fit(wr, wr_words); }},
+  };
 }
 
-void fun72(Store& s, ExecContext& c, const BoundOperand* o) {
-  const BoundOperand &wr = o[6], &err = o[7], &alm = o[8];
-  FbMeasureState& st = s.measure[c.instance];
+const OperandRules& fun72_rules() {
+  static const OperandRules r = measure_rules(op72::WR, 8);
+  return r;
+}
+
+const OperandRules& fun73_rules() {
+  static const OperandRules r = [] {
+    using namespace op73;
+    OperandRules x = measure_rules(WR, 17);
+    const auto zh_ok = [](const OperandValues& v) { return between(v[Zh], 1, 32); };
+    x.push_back({"0 <= Sh <= 31", [](const OperandValues& v) { return between(v[Sh], 0, 31); }});
+    x.push_back({"1 <= Zh <= 32 and Sh + Zh <= 32",
+                 [](const OperandValues& v) { return between(v[Zh], 1, 32) && v[Sh] + v[Zh] <= 32; }});
+    x.push_back({"Sh >= Sm when Zh > 4 (the TRs of every FUN72/73 contiguous)",
+                 [](const OperandValues& v) { return v[Zh] <= 4 || v[Sh] >= v[Sm]; }});
+    x.push_back(tpctl_outputs_rule(Yh, Zh, 32, "Zh"));
+    x.push_back(tpctl_tables_rule(Sv, Zh, 32, "Zh"));
+    // Point p's temperature is TR + (p - Sm) (B:757).
+    x.push_back({"the temperatures of points Sh..Sh+Zh-1 at TR + (Sh - Sm) within the registers",
+                 [zh_ok](const OperandValues& v) {
+                   // An Sm, Zh or Sh the rules above refuse is theirs to report.
+                   if (!zh_ok(v) || !between(v[Sm], 0, 28) || v[Sm] % 4 || (v[Zh] > 4 && v[Sh] < v[Sm])) return true;
+                   const int64_t first = int64_t(v.address(TR).index) + v[Sh] - v[Sm];
+                   return first >= 0 && first + v[Zh] <= int64_t(Memory::word_count(v.address(TR).area));
+                 }});
+    return x;
+  }();
+  return r;
+}
+
+// FUN72/FUN73's points, from operands the rules accepted.
+FbPoints measure_points(ExecContext& c, const BoundOperand* o) {
   FbPoints p;
-  const bool ok = fun72_points(c, o, wr, 8, &p);
+  p.tp = int(c.get(o[0])), p.pl = int(c.get(o[1])), p.first_point = uint32_t(c.get(o[2])), p.points = 4, p.per_ai = 4;
+  p.ai[0] = o[4].addr.index - 3840;
+  return p;
+}
+
+bool fits_y(const BoundOperand& o, uint32_t n) { return o.addr.area == Area::Y && o.addr.index + n <= 256; }
+
+void fun72(Store& s, ExecContext& c, const BoundOperand* o) {
+  const BoundOperand &wr = o[op72::WR], &err = o[op72::ERR], &alm = o[op72::ALM];
+  FbMeasureState& st = s.measure[c.instance];
+  const bool ok = !broken_rule(fun72_rules(), OperandValues(c, o, op72::Count));
+  const FbPoints p = measure_points(c, o);
   c.flag(err, c.en && !ok);  // "not performed and ERR on" (B:497)
   if (!ok || !c.en) {
     if (fits_y(o[3], 8)) fb_measure_stop(st, p, o[3]);
@@ -81,42 +136,64 @@ void fun72(Store& s, ExecContext& c, const BoundOperand* o) {
 }
 
 void fun73(Store& s, ExecContext& c, const BoundOperand* o) {
-  // Tp Pl Sm Ym AR TR | Yh Sh Zh Sv Os PR IR DR OR WR | ERR AO0 AO1
-  const BoundOperand &yh = o[6], &wr = o[15], &err = o[16], &ao0 = o[17], &ao1 = o[18];
-  const int64_t sh = c.get(o[7]), zh = c.get(o[8]);
+  using namespace op73;
+  const BoundOperand &yh = o[Yh], &wr = o[WR], &err = o[ERR], &ao0 = o[AO0], &ao1 = o[AO1];
   FbMeasureState& st = s.measure[c.instance];
   TpctlLoopState& loop = s.loops[c.instance];
-  FbPoints p;
-  bool ok = fun72_points(c, o, wr, 17, &p) && p.tp <= kFbJ;  // PID on thermocouples only (B:686)
-  ok = ok && sh >= 0 && sh <= 31 && zh >= 1 && zh <= 32 && sh + zh <= 32 && (zh <= 4 || sh >= int64_t(p.first_point)) &&
-       fits_y(yh, uint32_t(zh));
-  const uint32_t n = ok ? uint32_t(zh) : 0;
-  for (int k = 9; k <= 14 && ok; ++k) ok = fits(o[k], n);
-  // The PVs: TR + (Sh - Sm + i), the TRs of every FUN72/73 contiguous (B:757).
-  const int64_t pv_first = int64_t(o[5].addr.index) + sh - int64_t(p.first_point);
-  ok = ok && pv_first >= 0 && pv_first + zh <= int64_t(Memory::word_count(o[5].addr.area));
+  const bool ok = !broken_rule(fun73_rules(), OperandValues(c, o, Count));
+  const FbPoints p = measure_points(c, o);
+  const int64_t sh = c.get(o[Sh]);
+  const uint32_t n = ok ? uint32_t(c.get(o[Zh])) : 0;
   c.flag(err, c.en && !ok);
   if (!ok || !c.en) {
-    if (fits_y(o[3], 8)) fb_measure_stop(st, p, o[3]);
+    if (fits_y(o[Ym], 8)) fb_measure_stop(st, p, o[Ym]);
     tpctl_outputs_off(loop, yh, n, true);
     return;
   }
-  c.flag(ao0, fb_measure_step(st, c, p, o[3], o[5].w, wr.w));
+  c.flag(ao0, fb_measure_step(st, c, p, o[Ym], o[TR].w, wr.w));
   wr.w[2] = uint16_t(st.step), wr.w[3] = st.cycles;
   if (!fb_all_measured(st, p)) return tpctl_outputs_off(loop, yh, n, false);  // PID after every point (B:727)
-  const TpctlTables t{yh, o[9], o[10], o[11], o[12], o[13], o[14]};
-  const uint16_t* eng = c.mem.words(o[5].addr.area) + pv_first;
-  const double pos = fb_pos_factor(c, p);
+  const TpctlTables t{yh, o[Sv], o[Os], o[PR], o[IR], o[DR], o[OR]};
+  const uint16_t* eng = o[TR].w + (sh - int64_t(p.first_point));  // TR + (Sh - Sm): within, by the rules
+  const bool rtd = p.tp >= kFbPt100;
+  const double pos = rtd ? 0 : fb_pos_factor(c, p);
   loop.pv.resize(n);
   for (uint32_t i = 0; i < n; ++i) {
-    const int32_t prim = int16_t(c.mem.reg(Area::R, 3968 + uint32_t(sh) + i));
-    loop.pv[i] = {fb_counts_of(int16_t(t.sv.w[i]), p.pl, pos), prim, int16_t(eng[i])};
+    // The PID works on the primitive's counts (R3968 + point); the set point, in TR's
+    // unit (1 degC on a thermocouple, 0.1 degC on an RTD), is turned into those counts.
+    const int32_t prim = int16_t(c.mem.reg(Area::R, 3968 + uint32_t(sh) + i)), sv = int16_t(t.sv.w[i]);
+    loop.pv[i] = {rtd ? fb_rtd_counts_of(c, sv, p.pl) : fb_counts_of(sv, p.pl, pos), prim, int16_t(eng[i])};
   }
-  const TpctlResult r = tpctl_step(loop, c, fb_units(p.pl), t, uint32_t(sh), n, c.inputs[1], kUniversal);
+  const TpctlResult r = tpctl_step(loop, c, fb_units(p.pl, rtd), t, uint32_t(sh), n, c.inputs[1], kUniversal);
   wr.w[8] = uint16_t(r.in_zone), wr.w[9] = uint16_t(r.in_zone >> 16);
   wr.w[10] = uint16_t(r.warn), wr.w[11] = uint16_t(r.warn >> 16);
   wr.w[12] = uint16_t(loop.ts_tenths);
   c.flag(ao1, r.alarm);
+}
+
+const OperandRules& fun85_rules() {
+  using namespace op85;
+  static const OperandRules r = {
+      {"Tp 0 (K) or 1 (J)", [](const OperandValues& v) { return between(v[Tp], 0, 1); }},
+      {"Pl 0 (0-10 V), 1 (0-5 V), 2 (-10..10 V) or 3 (-5..5 V)", [](const OperandValues& v) { return between(v[Pl], 0, 3); }},
+      {"1 <= Zn <= 24", [](const OperandValues& v) { return between(v[Zn], 1, 24); }},
+      {"Yn: 6 outputs within Y0-Y255", [](const OperandValues& v) { return v.y_fit(Yn, 6); }},
+      {"SR: Zn registers", [](const OperandValues& v) { return !between(v[Zn], 1, 24) || v.words_fit(SR, uint32_t(v[Zn])); }},
+      {"WR: 5 registers", [](const OperandValues& v) { return v.words_fit(WR, 5); }},
+  };
+  return r;
+}
+
+const OperandRules& fb_fun86_rules() {
+  using namespace op86;
+  static const OperandRules r = {
+      {"0 <= Sn <= 23", [](const OperandValues& v) { return between(v[Sn], 0, 23); }},
+      {"1 <= Zn <= 24 and Sn + Zn <= 24", [](const OperandValues& v) { return between(v[Zn], 1, 24) && v[Sn] + v[Zn] <= 24; }},
+      tpctl_outputs_rule(Yn, Zn, 24, "Zn"),
+      tpctl_tables_rule(Sv, Zn, 24, "Zn"),
+      {"WR: 9 registers", [](const OperandValues& v) { return v.words_fit(WR, 9); }},
+  };
+  return r;
 }
 
 void fun85(Store& s, ExecContext& c, const BoundOperand* o) {
@@ -126,13 +203,13 @@ void fun85(Store& s, ExecContext& c, const BoundOperand* o) {
   FbMeasureState& st = s.measure[c.instance];
   if (!s.fun85) s.fun85.emplace();
   Fun85Info& info = *s.fun85;
-  // "can only be used once" (B:865): a second FUN85 executed in the same scan is an error.
+  // "can only be used once" (B:865; max_uses at load): a second FUN85 executed in the same
+  // scan is an error.
   const bool second = info.instance != c.instance && info.last_us == c.now_us && info.sr;
   FbPoints p;
   p.tp = int(tp), p.pl = int(pl), p.fun85 = true, p.points = int(zn), p.per_ai = 6;
   for (uint32_t g = 0; g < 4; ++g) p.ai[g] = 4 + g;  // the module is alone: its 5th-8th AI, R3844-R3847
-  const bool ok = !second && tp >= 0 && tp <= 1 && pl >= 0 && pl <= 3 && zn >= 1 && zn <= 24 && fits_y(yn, 6) &&
-                  fits(sr, uint32_t(zn)) && fits(wr, 5);
+  const bool ok = !second && !broken_rule(fun85_rules(), OperandValues(c, o, op85::Count));
   c.flag(err, c.en && !ok);
   if (!ok || !c.en) {
     if (fits_y(yn, 6)) fb_measure_stop(st, p, yn);
@@ -150,9 +227,8 @@ void fun86(Store& s, ExecContext& c, const BoundOperand* o) {
   const BoundOperand &yn = o[0], &wr = o[9], &err = o[10], &alm = o[11];
   const int64_t sn = c.get(o[1]), zn = c.get(o[2]);
   TpctlLoopState& loop = s.loops[c.instance];
-  bool ok = sn >= 0 && sn <= 23 && zn >= 1 && zn <= 24 && sn + zn <= 24 && fits_y(yn, uint32_t(zn)) && fits(wr, 9);
+  const bool ok = !broken_rule(fb_fun86_rules(), OperandValues(c, o, op86::Count));
   const uint32_t n = ok ? uint32_t(zn) : 0;
-  for (int k = 3; k <= 8 && ok; ++k) ok = fits(o[k], n);
   c.flag(err, c.en && !ok);
   // "FUN86 must be incorporated with FUN85 ... it must be enabled" (B:969): until then OFF.
   const bool ready = s.fun85 && s.fun85->en && s.fun85->ready && s.fun85->points.points >= sn + zn;
@@ -200,6 +276,7 @@ void add_fb_temperature_functions(FunctionTable& t) {
   ops72.insert(ops72.end(), {{"WR", R::Register, false, 8}, {"ERR", R::BitOut, true}, {"ALM", R::BitOut, true}});
   FunctionSpec s72 = spec(72, "TP4", {"EN"}, ops72);
   s72.handler = [](ExecContext& c, const BoundOperand* o) { with_store(c, o, fun72); };
+  s72.rules = fun72_rules();
   t.add(s72);
 
   auto ops73 = kMeasure;
@@ -209,6 +286,7 @@ void add_fb_temperature_functions(FunctionTable& t) {
                              {"AO0", R::BitOut, true}, {"AO1", R::BitOut, true}});
   FunctionSpec s73 = spec(73, "TSTC", {"EN", "HC"}, ops73);
   s73.handler = [](ExecContext& c, const BoundOperand* o) { with_store(c, o, fun73); };
+  s73.rules = fun73_rules();
   t.add(s73);
 
   // The operand figure is lost; the names are the text's (B:917), in its order.
@@ -217,6 +295,8 @@ void add_fb_temperature_functions(FunctionTable& t) {
                            {"SR", R::Register}, {"WR", R::Register, false, 5}, {"ERR", R::BitOut, true},
                            {"ALM", R::BitOut, true}});
   s85.handler = [](ExecContext& c, const BoundOperand* o) { with_store(c, o, fun85); };
+  s85.rules = fun85_rules();
+  s85.max_uses = 1;  // "can only be used once" (B:865)
   t.add(s85);
 
   FunctionSpec s86 = spec(86, "TPCTL", {"EN", "HC"},
@@ -225,6 +305,7 @@ void add_fb_temperature_functions(FunctionTable& t) {
                            {"OR", R::Register}, {"WR", R::Register, false, 9}, {"ERR", R::BitOut, true},
                            {"ALM", R::BitOut, true}});
   s86.handler = [](ExecContext& c, const BoundOperand* o) { with_store(c, o, fun86); };
+  s86.rules = fb_fun86_rules();
   t.add(s86);
 }
 

@@ -77,6 +77,12 @@ int32_t fb_counts_of(int32_t degc, int pl, double pos) {
   return int32_t(std::lround(degc * 1024.0 / ((fb_bipolar(pl) ? 2.0 : 1.0) * std::max(pos, 1.0))));
 }
 
+int32_t fb_rtd_counts_of(const ExecContext& c, int32_t tenths, int pl) {
+  double lo, hi;
+  fb_rtd_range(reg(c, treg::kFbRtd) >> 8 == 1 ? "JIS" : "DIN", fb_span10(pl), &lo, &hi);
+  return int32_t(std::clamp(std::round((tenths - lo * 10) / ((hi - lo) * 10) * 4095), 0.0, 4095.0));
+}
+
 void fb_measure_stop(FbMeasureState& st, const FbPoints& p, const BoundOperand& ym) {
   select(p, ym, -1);
   st.running = false;
@@ -126,9 +132,7 @@ bool fb_measure_step(FbMeasureState& st, ExecContext& c, const FbPoints& p, cons
       } else {  // 0.1 degC, then rescaled to 0..4095 over the span's range
         eng = int32_t(std::lround(prim * double(reg(c, treg::kFbRtdFactors + (p.tp == kFbPt1000 ? 1 : 0))) / 1024.0));
         broken = eng > 9000;  // "greater than 900.0 degC"
-        double lo, hi;
-        fb_rtd_range(r4020 >> 8 == 1 ? "JIS" : "DIN", fb_span10(p.pl), &lo, &hi);
-        tp_reg = int32_t(std::clamp(std::round((eng - lo * 10) / ((hi - lo) * 10) * 4095), 0.0, 4095.0));
+        tp_reg = fb_rtd_counts_of(c, eng, p.pl);
       }
       if (!(installed >> point & 1u)) eng = 0, tp_reg = 0, broken = false, w.clear();  // not installed: 0, no check
       tr[i] = uint16_t(std::clamp(eng, -32768, 32767));

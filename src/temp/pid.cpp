@@ -22,6 +22,17 @@ constexpr uint16_t kAuto = 1u << 0, kSolved = 1u << 1, kBumpless = 1u << 2, kErr
 
 int32_t s16(uint16_t v) { return int16_t(v); }
 
+constexpr size_t kOperands = 8;  // Ts SR OR PR WR ERR HAL LAL
+
+// Ts, often a constant: what `check` can tell before the first scan. The settings in
+// SR and PR are register contents, known at run time only.
+const OperandRules& rules() {
+  static const OperandRules r = {
+      {"1 <= Ts <= 3000 (0.01 s)", [](const OperandValues& v) { return v[0] >= 1 && v[0] <= 3000; }},
+  };
+  return r;
+}
+
 void run(ExecContext& c, const BoundOperand* o) {
   Memory& mem = c.mem;
   const bool autom = c.inputs[0], bum = c.inputs[1], direct = c.inputs[2];
@@ -40,7 +51,7 @@ void run(ExecContext& c, const BoundOperand* o) {
   const int32_t pb = pr[0], ki = pr[1], td = pr[2], bias = pr[3], hiwl = pr[4], liwl = pr[5], method = pr[6];
   // D4005, the gain constant (default 1000): a cleared register counts as the default.
   const int32_t gain = mem.reg(Area::D, 4005) == 0 ? 1000 : mem.reg(Area::D, 4005);
-  const bool ok = ts >= 1 && ts <= 3000 && her_u > -9999 && her_u <= 19999 && ler >= -9999 && ler <= lal_v &&
+  const bool ok = !broken_rule(rules(), OperandValues(c, o, kOperands)) && her_u > -9999 && her_u <= 19999 && ler >= -9999 && ler <= lal_v &&
                   lal_v < hal_v && hal_v <= her_u && sp >= ler && sp <= her_u && ram >= 0 && ram <= rmax &&
                   opv >= 0 && opv < rmax && pb >= 1 && pb <= 5000 && ki >= 0 && ki <= 9999 && td >= 0 &&
                   td <= 9999 && bias >= 0 && bias <= 16383 && hiwl >= 1 && hiwl <= 16383 && liwl >= 0 &&
@@ -120,6 +131,7 @@ void add_pid_function(FunctionTable& t) {
   s.allow_32 = false;
   s.allow_pulse = false;
   s.always_runs = true;  // manual mode (A/M = 0) still scales PV and drives HAL/LAL
+  s.rules = rules();
   s.handler = [](ExecContext& c, const BoundOperand* o) {
     // WR+0 bit 1 is on only in the scan the loop is solved.
     o[4].w[0] &= uint16_t(~kSolved);

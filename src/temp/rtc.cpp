@@ -121,6 +121,20 @@ void Rtc::before_program(uint64_t) {
   prev_stop_read_ = stop_read;
   prev_round_ = round;
   if (stop_read) return;  // the program owns R4128-R4135 while it sets the clock
+  publish();
+}
+
+void Rtc::attached(ScanEngine&) {
+  // A host link or Modbus master may read the clock before the first scan: a real
+  // controller never reports month 0 or the year 2000 of cleared registers.
+  if (!mem_.bit(Area::M, rtcreg::kStopRead)) publish();
+}
+
+void Rtc::on_run() {
+  publish();  // STOP -> RUN cleared R4128-R4135 (and M1952)
+}
+
+void Rtc::publish() {
   const DateTime& t = calendar();
   mem_.set_reg(Area::R, rtcreg::kSecond, static_cast<uint16_t>(t.second));
   mem_.set_reg(Area::R, rtcreg::kMinute, static_cast<uint16_t>(t.minute));

@@ -65,8 +65,20 @@ const uint16_t* pv_source(const ExecContext& c, uint32_t needed, bool* ready) {
   return mem.words(r.area) + r.index;
 }
 
-bool table_fits(const BoundOperand& o, uint32_t n) {
-  return o.w && o.addr.index + n <= Memory::word_count(o.addr.area);
+// Md Yn Sn Zn Sv Os PR IR DR OR WR ERR ALM
+constexpr size_t kMd = 0, kYn = 1, kSn = 2, kZn = 3, kSv = 4, kWr = 10, kOperands = 13;
+
+const OperandRules& rules() {
+  static const OperandRules r = {
+      {"Md 0 or 1", [](const OperandValues& v) { return v[kMd] == 0 || v[kMd] == 1; }},
+      {"0 <= Sn <= 31", [](const OperandValues& v) { return v[kSn] >= 0 && v[kSn] <= 31; }},
+      {"1 <= Zn <= 32 and Sn + Zn <= 32",
+       [](const OperandValues& v) { return v[kZn] >= 1 && v[kZn] <= 32 && v[kSn] + v[kZn] <= 32; }},
+      tpctl_outputs_rule(kYn, kZn, 32, "Zn"),
+      tpctl_tables_rule(kSv, kZn, 32, "Zn"),
+      {"WR: 9 registers", [](const OperandValues& v) { return v.words_fit(kWr, 9); }},
+  };
+  return r;
 }
 
 const TpctlUnits kFbsUnits{kTpctlFullScale, fbs_interval_us, 9999, 110, 17, 50, 60};
@@ -80,11 +92,8 @@ void run(ExecContext& c, const BoundOperand* o) {
 
   if (!c.engine) return c.flag(err, true);  // a loop's state lives in its PLC's scan engine
   TpctlLoopState& st = c.engine->extensions().owned<TpctlLoops>().by_instance[c.instance];
-  const bool shape_ok = md >= 0 && md <= 1 && sn >= 0 && sn <= 31 && zn >= 1 && zn <= 32 && sn + zn <= 32 &&
-                        yn.addr.area == Area::Y && yn.addr.index + zn <= 256;
-  const uint32_t n = shape_ok ? uint32_t(zn) : 0;
-  const bool tables_ok = shape_ok && table_fits(t.sv, n) && table_fits(t.os, n) && table_fits(t.pr, n) &&
-                         table_fits(t.ir, n) && table_fits(t.dr, n) && table_fits(t.out, n) && table_fits(wr, 9);
+  const bool tables_ok = !broken_rule(rules(), OperandValues(c, o, kOperands));
+  const uint32_t n = tables_ok ? uint32_t(zn) : 0;
   bool ready = false;
   const uint16_t* pvs = tables_ok ? pv_source(c, uint32_t(sn + zn), &ready) : nullptr;
 
@@ -128,6 +137,7 @@ void add_tpctl_function(FunctionTable& t) {
   s.allow_pulse = false;
   s.always_runs = true;  // sees EN fall: the outputs go OFF
   s.handler = run;
+  s.rules = rules();
   t.add(s);
 }
 

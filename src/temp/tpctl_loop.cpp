@@ -19,6 +19,21 @@ void set_y(const BoundOperand& y, uint32_t i, bool v) {
 
 }  // namespace
 
+OperandRule tpctl_outputs_rule(size_t yn, size_t zn, int64_t zn_max, const std::string& zn_name) {
+  return {"Yn: " + zn_name + " outputs within Y0-Y255", [=](const OperandValues& v) {
+            return v[zn] < 1 || v[zn] > zn_max || v.y_fit(yn, uint32_t(v[zn]));
+          }};
+}
+
+OperandRule tpctl_tables_rule(size_t tables, size_t zn, int64_t zn_max, const std::string& zn_name) {
+  return {"Sv, Os, PR, IR, DR and OR: " + zn_name + " registers each", [=](const OperandValues& v) {
+            if (v[zn] < 1 || v[zn] > zn_max) return true;  // the count's own rule says so
+            for (size_t k = tables; k < tables + 6; ++k)
+              if (!v.words_fit(k, uint32_t(v[zn]))) return false;
+            return true;
+          }};
+}
+
 void tpctl_outputs_off(TpctlLoopState& st, const BoundOperand& yn, uint32_t n, bool restart) {
   for (uint32_t i = 0; i < n; ++i) set_y(yn, i, false);
   if (restart) st.active = false;
@@ -64,7 +79,7 @@ TpctlResult tpctl_step(TpctlLoopState& st, ExecContext& c, const TpctlUnits& u, 
   const int large_pct = std::clamp<int>(mem.reg(Area::R, treg::kLargePower), 80, 100);
   const uint64_t large_us =
       uint64_t(std::max<uint16_t>(mem.reg(Area::R, treg::kLargePowerTime), u.large_time_min_s)) * 1000000;
-  const int32_t high = mem.reg(Area::R, treg::kHighAlarm);
+  const int32_t high = mem.reg(Area::R, treg::kHighAlarm) * u.zone_per_degree;
   const double fs = u.full_scale;
   for (uint32_t i = 0; i < n; ++i) {
     const TpctlPv& pv = st.pv[i];

@@ -16,7 +16,6 @@ Client::Client(std::unique_ptr<Transport> t, ClientOptions opt) : t_(std::move(t
 }
 
 Response Client::once(const Request& req, const std::string& body, const std::string& bytes) {
-  drop_late_answer(*t_, &stale_);
   char buf[512];
   // The reply's FCS is checked as sent: "00" is only the wildcard in a request.
   Decoder dec(false);
@@ -53,7 +52,7 @@ Response Client::transact(const Request& req) {
   f.id = opt_.id;
   f.body = encode_request(req);
   const std::string bytes = encode_frame(f);
-  return with_retries(*t_, opt_.retries, &stale_, &retries_used_, [&] {
+  return with_retries(*t_, opt_.retries, opt_.timeout_ms, &retries_used_, [&] {
     Response rsp = once(req, f.body, bytes);
     if (rsp.error != ErrorCode::Ok) {
       char code[8];

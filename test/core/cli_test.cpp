@@ -385,3 +385,41 @@ TEST(CheckConfig, OpensNoPort) {
   EXPECT_TRUE(pending()) << "sim did not open the port: the control of this test is void";
   ::close(srv);
 }
+
+// ---- check and sim warn about operands the FUNs refuse at run time ----------------------
+
+// The PLC accepts these operands and turns the FUN's ERR on when it runs; check says so at
+// the line beforehand and passes, sim says so at load and runs.
+TEST(CheckWarnings, ConstantOperandsTheFunRefusesAtRunTime) {
+  const std::string yaml = kCheckDir + "fb_warn.yaml";
+  std::ofstream(yaml) << "cell: {program: plc_cell_check_fb_warn.il}\nmodules: {generation: FB}\n";
+  const std::string prog = kCheckDir + "fb_warn.il";
+  std::ofstream(prog) << "ORG M3\nLD M1925\n"                                               // 1, 2
+                         "FUN 73 Tp=4 Pl=0 Sm=0 Ym=Y16 AR=R3842 TR=R0 Yh=Y48 Sh=0 Zh=4 Sv=R100 Os=R120 PR=R140 "
+                         "IR=R160 DR=R180 OR=R300 WR=R200 ERR=M10\n"                            // 3
+                         "ORG M3\nLD M1925\n"                                               // 4, 5
+                         "FUN 73 Tp=0 Pl=0 Sm=2 Ym=Y16 AR=R3842 TR=R0 Yh=Y48 Sh=0 Zh=0 Sv=R100 Os=R120 PR=R140 "
+                         "IR=R160 DR=R180 OR=R300 WR=R200 ERR=M10\n"                            // 6
+                         "ORG M4\nFUN 85 Tp=0 Pl=0 Zn=25 Yn=Y64 SR=R0 WR=R100 ERR=M1\n"       // 7, 8
+                         "ORG M5\nFUN 85 Tp=0 Pl=0 Zn=24 Yn=Y64 SR=R0 WR=R100 ERR=M1\n"       // 9, 10
+                         "END\n";
+  const Result r = tool("check --config " + yaml);
+  EXPECT_EQ(r.status, 0) << r.out;
+  const std::string tail = ": at run time the PLC turns its ERR on and the instruction does nothing";
+  for (const std::string& w : {
+           prog + ":3:1: warning: FUN 73 TSTC: Tp=4: needs Tp 0 (K), 1 (J), 2 (PT-100) or 3 (PT-1000)" + tail,
+           prog + ":6:1: warning: FUN 73 TSTC: Sm=2: needs 0 <= Sm <= 28, a multiple of 4" + tail,
+           prog + ":6:1: warning: FUN 73 TSTC: Zh=0: needs 1 <= Zh <= 32 and Sh + Zh <= 32" + tail,
+           prog + ":8:1: warning: FUN 85 TPSNS: Zn=25: needs 1 <= Zn <= 24" + tail,
+           prog + ":10:1: warning: FUN 85 TPSNS: may be used once in a program, this is use 2 (the first at line 8)" + tail,
+           std::string("5 warning(s)\n")})
+    EXPECT_NE(r.out.find(w), std::string::npos) << w << "\n" << r.out;
+  EXPECT_NE(r.out.find(prog + ": OK"), std::string::npos) << r.out;
+  // sim: the same lines at load, and the run goes on.
+  const Result sim = tool("sim --config " + yaml + " --duration 10ms");
+  EXPECT_EQ(sim.status, 0) << sim.out;
+  EXPECT_NE(sim.out.find(prog + ":8:1: warning: FUN 85 TPSNS: Zn=25"), std::string::npos) << sim.out;
+  // A program without such operands gets no warning.
+  const Result ok = tool("check --program " + std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/conveyor.il");
+  EXPECT_EQ(ok.out.find("warning"), std::string::npos) << ok.out;
+}

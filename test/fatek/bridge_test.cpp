@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "../bridge_collector.h"
+#include "../reliability/pty_proxy.h"
 #include "fatek_link.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/bridge.h"
@@ -227,4 +228,52 @@ TEST(FatekBridge, PollsAStationOnASerialLine) {
   EXPECT_TRUE(b.status().connected);
   b.stop();
   server.stop();
+}
+
+// A station that answers late but in order (the soft PLC's serial server behind a proxy
+// that holds each reply back 60 ms; ~timeout 50 ms, ~retries 1). Two one-register groups
+// have replies alike but for their value: a late reply must never pass for the other
+// group's, and once the station answers in time the same link delivers the true values.
+TEST(FatekBridge, ALateReplyIsNeverTakenForTheNextRequest) {
+  fatek_test::TempDir dir;
+  PtyProxy proxy(dir.path, 1);
+  PtyProxy::Faults f;
+  f.delay_ms = 60;
+  proxy.set_faults(f);
+  Plc plc;
+  plc.write(parse_address("R0"), {111});
+  plc.write(parse_address("R1000"), {222});
+  SerialServerOptions so;
+  so.line = parse_serial_settings(proxy.device_link() + ":115200:7E1");
+  so.station = 1;
+  SerialServer server(plc, so);
+  server.start();
+  BridgeConfig cfg = yaml("groups: [{name: a, rate: 20, points: [R0]}, {name: b, rate: 20, points: [R1000]}]");
+  cfg.serial = proxy.client_link() + ":115200:7E1";
+  cfg.timeout_s = 0.05;
+  cfg.retries = 1;
+  cfg.io_rate_hz = 20;
+  cfg.backoff_min_s = 0.01;
+  cfg.backoff_max_s = 0.05;
+  Collector c;
+  Bridge b(cfg, c.sinks());
+  b.start();
+  const auto only_true_values = [&] {
+    for (const auto& g : c.groups)
+      if (g.ok) EXPECT_EQ(g.values, (std::vector<uint32_t>{g.group == 0 ? 111u : 222u})) << "group " << g.group;
+  };
+  ASSERT_TRUE(c.wait([&] { return c.errors.size() >= 10; }, 30));
+  only_true_values();
+  for (const auto& g : c.groups) EXPECT_FALSE(g.ok);
+  f.delay_ms = 0;
+  proxy.set_faults(f);
+  c.clear();
+  ASSERT_TRUE(c.wait([&] {
+    bool a = false, bb = false;
+    for (const auto& g : c.groups) (g.group == 0 ? a : bb) |= g.ok;
+    return a && bb;
+  }, 30)) << b.status().last_error;
+  b.stop();
+  server.stop();
+  only_true_values();
 }

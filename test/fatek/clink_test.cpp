@@ -9,7 +9,9 @@
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/clink.h"
 #include "plc_cell/io/serial_line.h"
+#include "../reliability/pty_proxy.h"
 #include "fatek_link.h"
+#include "plc_cell/io/com_port.h"
 #include "plc_cell/fatek/serial_port.h"
 #include "plc_cell/fatek/server.h"
 
@@ -245,4 +247,61 @@ TEST_F(ClinkFree, Md2ReceivesByGapAndRepliesWhenTheLengthIsSet) {
   // EN off releases the port even while a receive is pending.
   master->write(parse_address("M20"), {0});
   EXPECT_TRUE(scan_until([&] { return m("Y20") == 0 && m("M1962") == 1; }));
+}
+
+// FUN151 MD0 on a COM port whose slave answers late but in order (the soft PLC's FATEK
+// serial server behind a proxy that holds each reply back 60 ms; time-out 50 ms). The two
+// packets read one register each: their replies are alike but for the value, and a late
+// one must never land in the other packet's master register.
+TEST(ClinkLate, ALateReplyIsNeverTakenForTheNextPacket) {
+  fatek_test::TempDir dir;
+  PtyProxy proxy(dir.path, 1);
+  PtyProxy::Faults f;
+  f.delay_ms = 60;
+  proxy.set_faults(f);
+  Plc slave;
+  slave.write(parse_address("R0"), {111, 222});
+  SerialServerOptions so;
+  so.line = parse_serial_settings(proxy.device_link() + ":115200:7E1");
+  so.station = 5;
+  SerialServer server(slave, so);
+  server.start();
+  auto ports = std::make_shared<ClinkPorts>();
+  ComLine line;
+  line.serial = parse_serial_settings(proxy.client_link() + ":115200:7E1");
+  ports->set_port(std::make_shared<ComPort>(1, line), 50);
+  FunctionTable t = FunctionTable::with_core_functions();
+  add_clink_function(t, ports);
+  Plc master(std::move(t));
+  master.load_program_text(kMaster, "master.il");
+  ASSERT_TRUE(master.set_mode(RunMode::Run));
+  master.write(parse_address("R100"), {2, 5, 1, 1, 12, 10, 12, 0, 5, 1, 1, 12, 11, 12, 1});
+  master.write(parse_address("M0"), {1});
+  uint64_t now = 0;
+  const auto m = [&](const char* a) { return master.read(parse_address(a), 1)[0]; };
+  // Scans until n packets are done (DN pulses); every scan checks the master registers.
+  const auto packets = [&](int n) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (n > 0 && std::chrono::steady_clock::now() < end) {
+      master.scan(now += 1000);
+      const uint32_t r10 = m("R10"), r11 = m("R11");
+      EXPECT_TRUE(r10 == 0 || r10 == 111) << r10;
+      EXPECT_TRUE(r11 == 0 || r11 == 222) << r11;
+      if (r10 == 222 || r11 == 111) return false;
+      if (m("Y2")) --n;
+      std::this_thread::yield();
+    }
+    return n == 0;
+  };
+  ASSERT_TRUE(packets(8));
+  EXPECT_EQ(m("R10"), 0u);  // every packet timed out
+  EXPECT_EQ(m("R11"), 0u);
+  f.delay_ms = 0;
+  proxy.set_faults(f);
+  ASSERT_TRUE(packets(6));
+  EXPECT_EQ(m("R10"), 111u);
+  EXPECT_EQ(m("R11"), 222u);
+  master.write(parse_address("M0"), {0});
+  master.scan(now += 1000);
+  server.stop();
 }

@@ -12,6 +12,7 @@
 #include "plc_cell/io/serial_settings.h"
 #include "plc_cell/modbus/bridge.h"
 #include "plc_cell/modbus/rtu_server.h"
+#include "../reliability/pty_proxy.h"
 #include "plc_cell/modbus/tcp_server.h"
 
 namespace plc_cell {
@@ -40,6 +41,10 @@ class Collector {
     });
     EXPECT_TRUE(ok) << "no matching poll result";
     return found;
+  }
+  std::vector<GroupResult> all() {
+    std::lock_guard<std::mutex> lk(mu_);
+    return results_;
   }
 
  private:
@@ -214,7 +219,19 @@ devices:
   EXPECT_EQ(plc.locked([](ScanEngine&, Memory& m) { return m.reg(Area::D, 10); }), 302);
   b.write("y4", 0);
   EXPECT_FALSE(plc.locked([](ScanEngine&, Memory& m) { return m.bit(Area::Y, 4); }));
-  EXPECT_THROW(b.write("i16", 40000), Error);  // does not fit int16
+  // A refused value names the point and its type, and is shown as it was written.
+  const auto refusal = [&](const std::string& point, double v) {
+    try {
+      b.write(point, v);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal("i16", 40000), "point 'i16' (int16): value 40000 does not fit int16 (-32768..32767)");
+  EXPECT_EQ(refusal("plc/i16", -32768.75), "point 'plc/i16' (int16): value -32768.75 does not fit int16 (-32768..32767)");
+  EXPECT_EQ(refusal("temp", 7000),  // scale 0.1: the raw value is said too
+            "point 'temp' (uint16): value 7000 (raw 70000) does not fit uint16 (0..65535)");
   EXPECT_THROW(b.write("nope", 1), Error);
   r = c.wait([](const GroupResult& x) { return x.ok && x.values[1].as_double() == -1.5; });
   EXPECT_EQ(r.values[3].raw, 0u);
@@ -379,6 +396,58 @@ devices:
   EXPECT_GE(b.status(1).timeouts, 1u);
   EXPECT_EQ(b.status(0).timeouts, 0u) << b.status(0).last_error;
   b.stop();
+}
+
+// A slave that answers late but in order (the soft PLC's RTU slave behind a proxy that
+// holds each reply back 60 ms; timeout 50 ms). Two one-register groups of the same slave
+// have replies alike but for their value: a late reply must never pass for the other
+// group's; once the slave answers in time the line delivers the true values.
+TEST(Bridge, ALateRtuReplyIsNeverTakenForTheNextRequest) {
+  char tmpl[] = "/tmp/plc_cell_late_rtu_XXXXXX";
+  ASSERT_NE(::mkdtemp(tmpl), nullptr);
+  const std::string dir = tmpl;
+  {
+    PtyProxy proxy(dir, 1);
+    PtyProxy::Faults f;
+    f.delay_ms = 60;
+    proxy.set_faults(f);
+    Plc plc;
+    plc.locked([](ScanEngine&, Memory& m) {
+      m.set_reg(Area::R, 0, 111);
+      m.set_reg(Area::R, 1, 222);
+      return 0;
+    });
+    RtuServer slave(plc, parse_serial_settings(proxy.device_link() + ":115200:8E1"), 1);
+    slave.start();
+    Collector c;
+    Bridge b(yaml(R"(
+devices:
+  - name: plc
+    rtu: )" + proxy.client_link() + R"(:115200:8E1
+    unit: 1
+    timeout: 0.05
+    groups:
+      - {name: a, rate: 20, points: [{name: r0, address: 0}]}
+      - {name: b, rate: 20, points: [{name: r1, address: 1}]}
+)"),
+             std::ref(c));
+    b.start();
+    const auto only_true_values = [&] {
+      for (const auto& r : c.all())
+        if (r.ok) EXPECT_EQ(r.values.at(0).raw, r.group == 0 ? 111u : 222u) << "group " << r.group;
+    };
+    c.wait([&](const GroupResult&) { return b.status(0).timeouts >= 10; }, 30);
+    only_true_values();
+    for (const auto& r : c.all()) EXPECT_FALSE(r.ok);
+    f.delay_ms = 0;
+    proxy.set_faults(f);
+    c.wait([](const GroupResult& x) { return x.ok && x.group == 0; }, 30);
+    c.wait([](const GroupResult& x) { return x.ok && x.group == 1; }, 30);
+    b.stop();
+    slave.stop();
+    only_true_values();
+  }
+  (void)!std::system(("rm -rf '" + dir + "'").c_str());
 }
 
 }  // namespace

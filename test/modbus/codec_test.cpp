@@ -96,6 +96,16 @@ TEST(Codec, ScaleOffsetAndRangeChecks) {
   EXPECT_THROW(to_raw(PointType::Int32, 2147483648.0), Error);
   EXPECT_THROW(to_raw(PointType::UInt64, 18446744073709551616.0), Error);
   EXPECT_THROW(to_raw(PointType::Float32, 1e39), Error);
+  // The value as written (no six decimals of an integer), the type and its bounds.
+  try {
+    to_raw(PointType::UInt16, 70000);
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "value 70000 does not fit uint16 (0..65535)");
+  }
+  EXPECT_EQ(format_value(70000), "70000");
+  EXPECT_EQ(format_value(0.1), "0.1");
+  EXPECT_EQ(format_value(-2.5e-7), "-2.5e-07");
   EXPECT_THROW(parse_point_type("float16"), Error);
   EXPECT_EQ(parse_point_type("float64"), PointType::Float64);
 }

@@ -1,5 +1,6 @@
 // FUN150 M-BUS: an IL program as Modbus master of a second soft PLC's TCP slave.
 #include <chrono>
+#include <functional>
 
 #include <gtest/gtest.h>
 
@@ -7,6 +8,9 @@
 #include "plc_cell/core/plc.h"
 #include "plc_cell/modbus/fun150.h"
 #include "plc_cell/modbus/tcp_server.h"
+#include "plc_cell/modbus/rtu_server.h"
+#include "plc_cell/io/serial_settings.h"
+#include "../reliability/pty_proxy.h"
 
 namespace plc_cell {
 namespace modbus {
@@ -121,6 +125,90 @@ TEST_F(Fun150, ResultCodes) {
   ASSERT_TRUE(run_until_done());
   EXPECT_EQ(r(*master, Area::R, 200), 0x0301);  // the last one: command error, transaction 1
   EXPECT_TRUE(m(111));
+}
+
+// FUN150 on an RTU port whose slave answers late but in order (the soft PLC's RTU slave
+// behind a proxy that holds each reply back 60 ms; R4147 = 5: 50 ms). The two
+// transactions read one register each: their replies are alike but for the value, and a
+// late one must never land in the other's master register.
+TEST(Fun150Late, ALateReplyIsNeverTakenForTheNextTransaction) {
+  char tmpl[] = "/tmp/plc_cell_late_fun150_XXXXXX";
+  ASSERT_NE(::mkdtemp(tmpl), nullptr);
+  const std::string dir = tmpl;
+  {
+    PtyProxy proxy(dir, 1);
+    PtyProxy::Faults f;
+    f.delay_ms = 60;
+    proxy.set_faults(f);
+    Plc slave;
+    slave.locked([](ScanEngine&, Memory& m) {
+      m.set_reg(Area::R, 0, 111);
+      m.set_reg(Area::R, 1, 222);
+      return 0;
+    });
+    RtuServer rtu(slave, parse_serial_settings(proxy.device_link() + ":115200:8E1"), 1);
+    rtu.start();
+    FunctionTable t = FunctionTable::with_core_functions();
+    std::map<int, MbusPort> ports;
+    ports[1].rtu = proxy.client_link() + ":115200:8E1";
+    auto engine = add_fun150(t, ports);
+    Plc master(std::move(t));
+    master.load_program_text(kProgram, "fun150.il");
+    ASSERT_TRUE(master.set_mode(RunMode::Run));
+    master.locked([](ScanEngine&, Memory& m) {
+      m.set_reg(Area::R, 4147, 5);  // 50 ms
+      const uint16_t table[] = {0xA550, 0x0702, 1, 1, 1, 12, 10, 4, 1, 1, 1, 1, 12, 11, 4, 2};
+      for (uint32_t i = 0; i < 16; ++i) m.set_reg(Area::R, 100 + i, table[i]);
+      m.set_bit(Area::M, 100, true);
+      return 0;
+    });
+    uint64_t now = 0;
+    const auto reg = [&](uint32_t i) { return master.locked([&](ScanEngine&, Memory& m) { return m.reg(Area::R, i); }); };
+    const auto done = [&] { return master.locked([&](ScanEngine&, Memory& m) { return m.bit(Area::M, 112); }); };
+    // Scans (the PLC's own work) until pred, bounded by 20 s; every scan checks the registers.
+    const auto scan_until = [&](const std::function<bool()>& pred) {
+      const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (std::chrono::steady_clock::now() < end) {
+        master.scan(now += 1000);
+        const uint16_t r10 = reg(10), r11 = reg(11);
+        EXPECT_TRUE(r10 == 0 || r10 == 111) << r10;
+        EXPECT_TRUE(r11 == 0 || r11 == 222) << r11;
+        if (r10 == 222 || r11 == 111) return false;
+        if (pred()) return true;
+      }
+      return false;
+    };
+    const auto en = [&](bool on) {
+      master.locked([&](ScanEngine&, Memory& m) {
+        m.set_bit(Area::M, 100, on);
+        return 0;
+      });
+      master.scan(now += 1000);
+    };
+    for (int round = 0; round < 4; ++round) {  // the table again and again
+      ASSERT_TRUE(scan_until(done));
+      en(false);
+      en(true);
+    }
+    EXPECT_EQ(reg(10), 0u);  // every transaction timed out
+    EXPECT_EQ(reg(11), 0u);
+    f.delay_ms = 0;
+    proxy.set_faults(f);
+    for (int round = 0; round < 3 && !(reg(10) == 111 && reg(11) == 222); ++round) {
+      ASSERT_TRUE(scan_until(done));
+      en(false);
+      en(true);
+    }
+    EXPECT_EQ(reg(10), 111u);
+    EXPECT_EQ(reg(11), 222u);
+    master.locked([](ScanEngine&, Memory& m) {
+      m.set_bit(Area::M, 100, false);
+      return 0;
+    });
+    master.scan(now += 1000);
+    rtu.stop();
+  }
+  (void)!std::system(("rm -rf '" + dir + "'").c_str());
 }
 
 TEST(Fun150Ports, UnconfiguredPortAndYaml) {

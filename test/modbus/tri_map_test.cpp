@@ -2,12 +2,14 @@
 // mbpoll against a Modbus/TCP server serving it: DM[1] at register 1000 (4-1001).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <vector>
 
 #include "helpers.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/modbus/slave_handler.h"
 #include "plc_cell/modbus/tcp_server.h"
+#include "plc_cell/sim/soft_cell.h"
 
 namespace plc_cell {
 namespace modbus {
@@ -46,6 +48,25 @@ void write_word(Plc& plc, uint16_t addr, uint16_t v) {
 uint32_t mem(Plc& plc, const std::string& a) { return plc.read(parse_address(a), 1)[0]; }
 
 }  // namespace
+
+// 4-0513..0520: a cell's clock from the first request on, never month 0 or the year 2000
+// of cleared registers (before the first scan, after STOP -> RUN).
+TEST(TriMap, TheClockBeforeTheFirstScan) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/tri_map_clock.yaml") << "cell: {name: clock}\nmodules:\n  rtc: {start: 2026-05-17T08:30:05}\n";
+  std::ofstream(dir + "/tri_map_clock.il") << "ORG M1925\nOUT M0\nEND\n";
+  SoftCell cell(dir + "/tri_map_clock.yaml", dir + "/tri_map_clock.il");
+  for (int pass = 0; pass < 2; ++pass) {
+    EXPECT_EQ(read_word(cell.plc(), 3, 512), 8u);      // 4-0513 TIME[1]
+    EXPECT_EQ(read_word(cell.plc(), 3, 513), 30u);
+    EXPECT_EQ(read_word(cell.plc(), 3, 514), 5u);
+    EXPECT_EQ(read_word(cell.plc(), 3, 516), 2026u);   // 4-0517 DATE[1]
+    EXPECT_EQ(read_word(cell.plc(), 3, 517), 5u);
+    EXPECT_EQ(read_word(cell.plc(), 3, 518), 17u);
+    EXPECT_EQ(read_word(cell.plc(), 3, 519), 7u);      // Sunday
+    ASSERT_TRUE(cell.plc().set_mode(RunMode::Run));
+  }
+}
 
 TEST(TriMap, BitsTheSameOnFc01AndFc02) {
   Plc plc;

@@ -3,15 +3,19 @@
 // opens device_link(), the client client_link() (stable symlinks in a temp folder). Per
 // chunk of bytes the proxy may drop one byte, flip one bit, or cut the chunk short (seeded
 // RNG), may go silent, and can unplug/replug the device side (its pty disappears, a new
-// one comes, the symlink follows) as a USB adapter does.
+// one comes, the symlink follows) as a USB adapter does, and may hold the device's bytes
+// back for a while (a device that answers late, in order).
 #include <fcntl.h>
 #include <poll.h>
 #include <pty.h>
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdio>
+#include <deque>
 #include <mutex>
 #include <random>
 #include <stdexcept>
@@ -25,6 +29,7 @@ class PtyProxy {
     double corrupt = 0;  // per chunk: flip one bit of one byte
     double cut = 0;      // per chunk: forward only a prefix
     bool silent = false; // forward nothing (a device that stopped answering)
+    int delay_ms = 0;    // the device's bytes reach the client this late, in order (a slow device)
   };
 
   PtyProxy(const std::string& folder, uint32_t seed) : folder_(folder), rng_(seed) {
@@ -96,6 +101,32 @@ class PtyProxy {
     if (::symlink(name, link.c_str()) != 0) throw std::runtime_error("symlink " + link);
   }
 
+  // The device's bytes held back (delay_ms), with when they are due at the client.
+  struct Held {
+    std::chrono::steady_clock::time_point due;
+    std::string bytes;
+  };
+
+  static void write_out(int to, const std::string& s) {
+    size_t off = 0;
+    while (off < s.size()) {
+      const ssize_t w = ::write(to, s.data() + off, s.size() - off);
+      if (w <= 0) return;
+      off += size_t(w);
+    }
+  }
+
+  // Held bytes that are due, in order; the ms until the next is (or -1: none held).
+  int release_held() {
+    const auto now = std::chrono::steady_clock::now();
+    while (!held_.empty() && held_.front().due <= now) {
+      if (client_master_ >= 0) write_out(client_master_, held_.front().bytes);
+      held_.pop_front();
+    }
+    if (held_.empty()) return -1;
+    return int(std::chrono::duration_cast<std::chrono::milliseconds>(held_.front().due - now).count()) + 1;
+  }
+
   void forward(int from, int to) {
     char buf[512];
     const ssize_t n = ::read(from, buf, sizeof buf);
@@ -115,12 +146,11 @@ class PtyProxy {
       s.resize(std::uniform_int_distribution<size_t>(1, s.size() - 1)(rng_));
       ++injected_;
     }
-    size_t off = 0;
-    while (off < s.size()) {
-      const ssize_t w = ::write(to, s.data() + off, s.size() - off);
-      if (w <= 0) return;
-      off += size_t(w);
+    if (from == dev_master_ && faults_.delay_ms > 0) {
+      held_.push_back({std::chrono::steady_clock::now() + std::chrono::milliseconds(faults_.delay_ms), s});
+      return;
     }
+    write_out(to, s);
   }
 
   void run() {
@@ -132,8 +162,13 @@ class PtyProxy {
         cli = client_master_;
       }
       // A negative fd is ignored by poll: an unplugged side simply has no events.
+      int wait_ms;
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        wait_ms = release_held();
+      }
       pollfd p[3] = {{wake_[0], POLLIN, 0}, {cli, POLLIN, 0}, {dev, POLLIN, 0}};
-      ::poll(p, 3, 1000);
+      ::poll(p, 3, wait_ms < 0 ? 1000 : std::min(wait_ms, 1000));
       char c[16];
       while (::read(wake_[0], c, sizeof c) > 0) {
       }
@@ -148,6 +183,7 @@ class PtyProxy {
   std::mt19937 rng_;
   std::mutex mu_;
   Faults faults_;
+  std::deque<Held> held_;
   int client_master_ = -1, dev_master_ = -1, client_hold_ = -1, dev_hold_ = -1;
   int wake_[2] = {-1, -1};
   std::atomic<bool> stop_{false};

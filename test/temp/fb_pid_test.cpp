@@ -65,18 +65,76 @@ TEST(Fun73, ManualExample1SixteenPoints) {
   EXPECT_EQ(c.r("M1031"), 1);
 }
 
-TEST(Fun73, ErrOnRtdOrShBelowSm) {
-  // PID on thermocouples only (B:686), and Zh > 4 needs Sh >= Sm (B:757).
-  for (const char* ops : {"Tp=2 Pl=2 Sm=0 Ym=Y16 AR=R3842 TR=R0 Yh=Y48 Sh=0 Zh=4",
-                          "Tp=0 Pl=0 Sm=4 Ym=Y16 AR=R3842 TR=R0 Yh=Y48 Sh=0 Zh=8"}) {
-    FbCell c(kEx1Yaml, std::string("ORG M3\nLD M1925\nFUN 73 ") + ops +
-                           " Sv=R100 Os=R120 PR=R140 IR=R160 DR=R180 OR=R300 WR=R200 ERR=M10\nEND\n");
-    c.set("M3", 1);
-    c.run_to(2100000);
-    EXPECT_EQ(c.r("M10"), 1) << ops;
-    EXPECT_EQ(c.r("R140"), 0) << ops;
-    EXPECT_EQ(c.r("R0"), 0) << ops;
-  }
+TEST(Fun73, ErrOnShBelowSm) {
+  // Zh > 4 needs Sh >= Sm (B:757): ERR on, nothing written.
+  FbCell c(kEx1Yaml, "ORG M3\nLD M1925\nFUN 73 Tp=0 Pl=0 Sm=4 Ym=Y16 AR=R3842 TR=R0 Yh=Y48 Sh=0 Zh=8 "
+                     "Sv=R100 Os=R120 PR=R140 IR=R160 DR=R180 OR=R300 WR=R200 ERR=M10\nEND\n");
+  c.set("M3", 1);
+  c.run_to(2100000);
+  EXPECT_EQ(c.r("M10"), 1);
+  EXPECT_EQ(c.r("R140"), 0);
+  EXPECT_EQ(c.r("R0"), 0);
+}
+
+// FUN73 program example 2 (B:782-B:830): four FB-2AH4 (PT-100, DIN) on the 5 V span,
+// bipolar (fixed), Tp=2 Pl=3, three FUN72 and one FUN73 over the 16 points. The page
+// also says "only ... while the sensor is the thermocouple" (B:686); plc_cell follows the
+// example (docs/analog-and-temperature.md, "FUN73 on an RTD"). Points 1-14 at 50.0 degC,
+// point 15 at 49.8, point 16 at 80.0; set points 50.0 degC, zone +-0.5.
+const std::string kEx2Yaml = fb_yaml(R"(
+      - {type: 2AH4, outputs: Y16, span: 5, channels: [{temperature: 50}, {temperature: 50}, {temperature: 50}, {temperature: 50}]}
+      - {type: 2AH4, outputs: Y24, span: 5, channels: [{temperature: 50}, {temperature: 50}, {temperature: 50}, {temperature: 50}]}
+      - {type: 2AH4, outputs: Y32, span: 5, channels: [{temperature: 50}, {temperature: 50}, {temperature: 50}, {temperature: 50}]}
+      - {type: 2AH4, outputs: Y40, span: 5, channels: [{temperature: 50}, {temperature: 50}, {temperature: 49.8}, {temperature: 80}]}
+)");
+const char* kEx2Program =
+    "ORG M1924\nMOV.D S=WM800 D=R4010\nMOV.D S=WM832 D=R4012\n"
+    "ORG M3\nFUN 72 Tp=2 Pl=3 Sm=12 Ym=Y40 AR=R3851 TR=R12 WR=R240\n"
+    "ORG M3\nFUN 72 Tp=2 Pl=3 Sm=8 Ym=Y32 AR=R3848 TR=R8 WR=R230\n"
+    "ORG M3\nFUN 72 Tp=2 Pl=3 Sm=4 Ym=Y24 AR=R3845 TR=R4 WR=R220\n"
+    "ORG M3\nLD M1925\n"
+    "FUN 73 Tp=2 Pl=3 Sm=0 Ym=Y16 AR=R3842 TR=R0 Yh=Y48 Sh=0 Zh=16 Sv=R100 Os=R120 PR=R140 IR=R160 DR=R180 "
+    "OR=R300 WR=R200 ERR=M10 AO0=M11 AO1=M12\n"
+    "END\n";
+
+TEST(Fun73, ManualExample2Pt100) {
+  FbCell c(kEx2Yaml, kEx2Program);
+  c.set("M3", 1);
+  c.run_to(0);
+  c.set("R4010", 0xFFFF), c.set("R4011", 0xFFFF), c.set("R4012", 0xFFFF), c.set("R4013", 0xFFFF);
+  for (uint32_t i = 0; i < 16; ++i)
+    c.p.write(Address{Area::R, Width::Word, 100 + i}, {500}), c.p.write(Address{Area::R, Width::Word, 120 + i}, {5});
+  c.run_to(2100000);
+  EXPECT_EQ(c.r("M10"), 0);  // no ERR: FUN73 takes the RTD
+  EXPECT_EQ(c.r("M11"), 0);  // no line broken
+  // The measurement, in 0.1 degC (R4022 = 1024), and the primitives 0..4095 over the 5 V
+  // span's -12.3..83.6 degC: (498 + 123) / 959 x 4095 = 2651.7.
+  EXPECT_EQ(c.r("R0"), 500);
+  EXPECT_EQ(c.r("R14"), 498);
+  EXPECT_EQ(c.r("R15"), 800);
+  EXPECT_EQ(c.r("R3982"), 2652);
+  // Defaults: Kc 60 for -5..5 V (Pl 3), Ti 17, Td 100.
+  EXPECT_EQ(c.r("R140"), 60);
+  EXPECT_EQ(c.r("R160"), 17);
+  EXPECT_EQ(c.r("R180"), 100);
+  // In zone 49.5..50.5 degC: points 1-15, not 16 -> WR+8; AO1 for point 16.
+  EXPECT_EQ(uint16_t(c.r("R208")), 0x7FFF);
+  EXPECT_EQ(c.r("M12"), 1);
+  // Point 15: the set point in the same counts, (500 + 123) / 959 x 4095 = 2660.2 -> 2660;
+  // error 2660 - 2652 = 8; the first solve: 60 x 8 x (1 + 17 x 20 / 60000) = 482.7.
+  EXPECT_EQ(c.r("R314"), 483);
+  EXPECT_EQ(c.r("R300"), 0);   // at the set point: no error, no output
+  EXPECT_EQ(c.r("R315"), 0);   // 80.0 degC: far above, heating off
+  EXPECT_EQ(c.r("Y62"), 1);    // PWM: 483 / 4095 of the 2 s cycle, on at its start
+  c.run_to(2300000);           // 0.236 s after the cycle start at 2.0 s
+  EXPECT_EQ(c.r("Y62"), 0);
+  // R4008 is in degrees (default 350): 80.0 degC is no high-temperature warning...
+  c.run_to(30000000);
+  EXPECT_EQ(uint16_t(c.r("R210")), 0);
+  // ...until R4008 is 60 degC: ten executions at 80.0 degC >= 60 -> WR+10 bit 15.
+  c.set("R4008", 60);
+  c.run_to(30020000);
+  EXPECT_EQ(uint16_t(c.r("R210")), 0x8000);
 }
 
 // The FB FUN86 with FUN85 on an FB-4AK12 (0-10 V), heating an oven (gain 300 degC, tau

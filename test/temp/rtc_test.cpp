@@ -110,6 +110,29 @@ TEST_F(RtcTest, FollowsTheVirtualClockFromTheConfiguredStart) {
   EXPECT_EQ(get("R4129"), 0u);
 }
 
+// A host link or Modbus master may read the clock before the first scan, and between
+// STOP -> RUN (which clears the non-retentive registers) and the next scan.
+TEST_F(RtcTest, TheRegistersHoldTheClockBeforeTheFirstScan) {
+  const YAML::Node doc = YAML::Load(kStart);
+  plc.locked([&](ScanEngine& e, Memory& m) {
+    rtc = make_rtc(doc, "cell.yaml", m);
+    e.add_hook(rtc.get());
+    return 0;
+  });
+  // Attached, not a scan yet: 2026-01-01 (a Thursday) 23:59:58.
+  EXPECT_EQ(get("R4128"), 58u);
+  EXPECT_EQ(get("R4130"), 23u);
+  EXPECT_EQ(get("R4131"), 1u);
+  EXPECT_EQ(get("R4132"), 1u);
+  EXPECT_EQ(get("R4133"), 26u);
+  EXPECT_EQ(get("R4134"), 4u);
+  EXPECT_EQ(get("R4135"), 0x173Bu);
+  load(kIdle);  // STOP -> RUN clears R4128-R4135: they are the clock again at once
+  EXPECT_EQ(get("R4132"), 1u);
+  EXPECT_EQ(get("R4133"), 26u);
+  EXPECT_EQ(get("R4131"), 1u);
+}
+
 TEST_F(RtcTest, KeepsRunningInStop) {
   setup(kStart, kIdle);
   scans(1, 1000000);

@@ -2,8 +2,11 @@
 // behind each command (docs/tri.md, "Memory map").
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/plc.h"
+#include "plc_cell/sim/soft_cell.h"
 #include "plc_cell/tri/fcs.h"
 #include "plc_cell/tri/memory_map.h"
 #include "plc_cell/tri/slave.h"
@@ -177,6 +180,27 @@ TEST_F(TriSlave, ClockAndDate) {
   set("R4128", 7);
   EXPECT_EQ(p2p("RVS0802"), "RVS003B*");
   EXPECT_EQ(p2p("RVS0803"), "RVS0007*");
+}
+
+// A real TRi never reports month 0: a cell's clock is served from the first request on,
+// before the first scan and right after STOP -> RUN.
+TEST(TriSlaveCell, TheClockBeforeTheFirstScan) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/tri_clock.yaml") << "cell: {name: clock}\nmodules:\n  rtc: {start: 2026-05-17T08:30:05}\n";
+  std::ofstream(dir + "/tri_clock.il") << "ORG M1925\nOUT M0\nEND\n";
+  SoftCell cell(dir + "/tri_clock.yaml", dir + "/tri_clock.il");
+  Slave slave(cell.plc(), 1);
+  const auto ask = [&](const std::string& body) { return slave.answer(body + "*\r"); };
+  EXPECT_EQ(ask("RVS0901"), "RVS07EA*\r");  // 2026
+  EXPECT_EQ(ask("RVS0902"), "RVS0005*\r");  // May
+  EXPECT_EQ(ask("RVS0903"), "RVS0011*\r");  // the 17th
+  EXPECT_EQ(ask("RVS0904"), "RVS0007*\r");  // a Sunday
+  EXPECT_EQ(ask("RVS0801"), "RVS0008*\r");
+  EXPECT_EQ(ask("RVS0802"), "RVS001E*\r");
+  EXPECT_EQ(ask("RVS0803"), "RVS0005*\r");
+  ASSERT_TRUE(cell.plc().set_mode(RunMode::Run));
+  EXPECT_EQ(ask("RVS0902"), "RVS0005*\r");
+  EXPECT_EQ(ask("RVS0901"), "RVS07EA*\r");
 }
 
 TEST_F(TriSlave, RangesAreCheckedAndRefusedRequestsChangeNothing) {

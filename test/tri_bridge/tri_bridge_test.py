@@ -75,6 +75,14 @@ class TriBridgeTest(unittest.TestCase):
         r = self.write("R3761", [1])  # half of A
         self.assertFalse(r.success)
         self.assertIn("32-bit", r.message)
+        # A value that does not fit names the point as it was written, and its element.
+        r = self.write("DM[3]", [70000])
+        self.assertFalse(r.success)
+        self.assertEqual(r.message, "DM[3] -> D2: value 70000 out of range -32768..65535")
+        r = self.write("DM[3]", [1, -40000])
+        self.assertFalse(r.success)
+        self.assertEqual(r.message, "DM[3] + 1 -> D3: value -40000 out of range -32768..65535")
+        self.assertEqual(list(self.read("DM[3]", 2).values), [9, 8])  # a refused write changes nothing
 
     def test_4_force_release_and_stamped_signals(self):
         stamped = Latest(NS + "signals_stamped/motor", Signal, timeout=TIMEOUT)

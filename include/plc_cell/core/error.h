@@ -21,7 +21,8 @@ struct SourceLocation {
 struct Diagnostic {
   SourceLocation where;
   std::string message;
-  std::string to_string() const;  // "file:line:col: error: message"
+  bool warning = false;           // what the PLC accepts but will refuse at run time
+  std::string to_string() const;  // "file:line:col: error: message" (or "warning:")
 };
 
 // Thrown when a text input has one or more errors; all of them are listed.

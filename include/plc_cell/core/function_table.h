@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/core/operand_rules.h"
 #include "plc_cell/core/program.h"
 
 namespace plc_cell {
@@ -56,6 +57,13 @@ struct FunctionSpec {
   // Optional parse-time check of the operands (in spec order); a non-empty answer
   // is reported as an error at the instruction.
   std::function<std::string(const std::vector<Operand>&)> check;
+  // What the PLC accepts in the program but refuses at run time with ERR (operand ranges,
+  // tables that must fit): the handler asks these rules each execution, and `check` and
+  // `sim` ask them at load, warning where the constants already break one
+  // (core/operand_rules.h).
+  OperandRules rules;
+  // How many times a program may use the instruction (0: any); a use beyond is warned.
+  uint16_t max_uses = 0;
 };
 
 class FunctionTable {

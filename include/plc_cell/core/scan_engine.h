@@ -32,6 +32,9 @@ class ScanHook {
   virtual void before_program(uint64_t /*now_us*/) {}  // after the input image is taken
   virtual void after_program(uint64_t /*now_us*/) {}   // before the output image is given
   virtual void on_stop() {}
+  // STOP -> RUN, after the non-retentive memory is cleared: what must read right before
+  // the first scan of the run (the clock registers) is put back here.
+  virtual void on_run() {}
 };
 
 class ScanEngine {

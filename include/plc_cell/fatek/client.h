@@ -74,7 +74,6 @@ class Client {
   Decoder dec_;
   uint64_t last_latency_us_ = 0;
   uint64_t retries_used_ = 0;
-  bool stale_ = false;  // the last transaction failed: input may hold a late answer
 };
 
 // Items per frame of commands 44..47 for a start address of this width.

@@ -57,6 +57,11 @@ class ComPort {
   // The line is dead (I/O error, hang-up, peer closed): closed now, reopened by the
   // next fd().
   void lost(const std::string& why);
+  // For a running job, after a request got no (readable) answer: no byte of that answer
+  // may be taken for a later request (io/transport.h, Transport::resynchronise). A TCP
+  // line is closed (the next fd() connects again); a serial line is drained until quiet
+  // for quiet_ms, or closed when it does not go quiet.
+  void resynchronise(int quiet_ms);
   // For a running job: whether the line is open now (nothing is tried).
   bool is_open() const { return line_.is_tcp() ? tcp_fd_ >= 0 : serial_.is_open(); }
 

@@ -23,7 +23,24 @@ struct LinkStatus {
   std::string last_error;  // "" until something fails, and after recover()
   uint64_t errors = 0, polls = 0, reconnects = 0;
   double latency_last_ms = 0, latency_max_ms = 0;  // of the counted poll (count_poll)
+  // Polls that failed since the last one that delivered (not reset by a reconnection: a
+  // device that answers the confirmation but garbles every poll keeps counting), and
+  // whether any poll delivered yet.
+  uint64_t failed_polls_in_row = 0;
+  bool delivered = false;
 };
+
+// What the link's state means for its diagnostics: OK only while polls deliver. A link
+// that is down is ERROR; one that is up but whose last kLinkErrorPolls polls (or more)
+// failed is ERROR too (it delivers nothing, however often it reconnects); one whose
+// last poll (or two) failed is WARN.
+constexpr uint64_t kLinkErrorPolls = 3;
+enum class LinkLevel { Ok, Warn, Error };
+struct LinkHealth {
+  LinkLevel level;
+  std::string message;
+};
+LinkHealth link_health(const LinkStatus& s);
 
 // What a bridge's polls report (the shapes of plc_node's topics). One poll of the I/O
 // image: the RUN flag, X0..X255 (inputs), Y0..Y255 (outputs) and each named signal.
@@ -122,12 +139,15 @@ class PolledLink {
         r.ok = true;
       });
     }
+    count_delivery(r.ok);
     if (sink) sink(r);
     return up;
   }
 
   // A poll that counts in status(): polls and latency.
   void count_poll(double ms);
+  // Every poll's outcome: the failed polls in a row (link_health).
+  void count_delivery(bool ok);
   void fail(const std::string& what);
   // Link lock held: the link broke, the next turn reconnects.
   void drop_link();

@@ -33,6 +33,14 @@ class Transport {
   virtual void send(const std::string& bytes, int timeout_ms) = 0;
   virtual size_t recv(char* buf, size_t n, int timeout_ms) = 0;
   virtual std::string describe() const = 0;
+  // After a request got no answer, or one that could not be read: its answer, or the rest
+  // of it, may still come, and a reply does not always name the request it answers (a
+  // TRi reply repeats no address), so no byte of it may be taken for a later request.
+  // A connection is closed (the next send opens a new one, which carries nothing of the
+  // old); a serial line, which cannot be, is drained until quiet for quiet_ms (a
+  // line that does not go quiet throws CommError). The device must therefore answer
+  // within twice the time-out at most, or not at all.
+  virtual void resynchronise(int /*quiet_ms*/) { close(); }
 };
 // "HOST:PORT" (HOST may be empty for 127.0.0.1).
 std::unique_ptr<Transport> tcp_transport(const std::string& host_port);
@@ -41,13 +49,14 @@ std::unique_ptr<Transport> tcp_transport(const std::string& host_port);
 std::unique_ptr<Transport> serial_transport(const SerialSettings& line);
 
 // One request of a master, retried: attempt() sends it and waits for its answer. After a
-// CommError (a timeout, a garbled answer) it is tried up to `retries` more times; a
-// connection that was open but turns out closed by the peer (its idle time-out) is opened
-// again once without counting, since the request never reached it. *stale is set after a
-// failure (a late answer may still come: the next attempt drops it first); every retry
-// counts in *retries_used.
+// CommError (a timeout, a garbled answer) the link is resynchronised (resynchronise(timeout_ms):
+// a late answer to it is never taken for the next request, this one's retry included) and
+// the request tried up to `retries` more times; a connection that was open but turns out
+// closed by the peer (its idle time-out) is opened again once without counting, since the
+// request never reached it. Every retry counts in *retries_used.
 template <class F>
-auto with_retries(Transport& t, int retries, bool* stale, uint64_t* retries_used, F&& attempt) -> decltype(attempt()) {
+auto with_retries(Transport& t, int retries, int timeout_ms, uint64_t* retries_used, F&& attempt)
+    -> decltype(attempt()) {
   bool reconnected = false;
   for (int n = 0;; ++n) {
     const bool reused = t.is_open();
@@ -59,22 +68,18 @@ auto with_retries(Transport& t, int retries, bool* stale, uint64_t* retries_used
         --n;
         continue;
       }
-      *stale = true;
       if (n >= retries) throw;
       ++*retries_used;
     } catch (const CommError&) {
-      *stale = true;
+      t.resynchronise(timeout_ms);
       if (n >= retries) throw;
       ++*retries_used;
     }
   }
 }
-
-// Before a request after a failed one (*stale): drops what is waiting on the link (a late
-// answer to a request that timed out); a peer that closed meanwhile is left to send(),
-// which reconnects. Clears *stale.
-void drop_late_answer(Transport& t, bool* stale);
-
+// Reads and drops what arrives on fd until nothing has come for quiet_ms, for at most
+// limit_ms overall: true once quiet, false when the line kept talking (or failed).
+bool drain_until_quiet(int fd, int quiet_ms, int limit_ms);
 // Writes all of buf, waiting at most timeout_ms overall. Returns false on error or timeout.
 bool write_all(int fd, const char* buf, size_t n, int timeout_ms);
 // Waits up to timeout_ms for fd to become readable.

@@ -46,8 +46,12 @@ struct Value {
 };
 
 Value decode(const Encoding& e, const uint16_t* regs);
+// A value as it was written: the shortest text that reads back as the same double
+// (70000, not 70000.000000).
+std::string format_value(double v);
 // Engineering value -> raw: (value - offset) / scale, rounded for integers.
-// Throws plc_cell::Error when the result does not fit the type.
+// Throws plc_cell::Error when the result does not fit the type (the value as written,
+// the raw value when scale/offset changed it, the type and its bounds).
 uint64_t to_raw(PointType t, double value, double scale = 1.0, double offset = 0.0);
 
 }  // namespace modbus

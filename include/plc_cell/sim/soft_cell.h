@@ -65,6 +65,9 @@ class SoftCell {
   // Pulse-output axes PSO0-PSO3 and FUN140 programs. Only touch it under plc().locked().
   motion::MotionUnit& motion();
   const std::string& program_path() const { return program_path_; }
+  // What the program's FUNs will refuse at run time although the PLC accepts them
+  // (core/operand_rules.h): a warning with file:line:column each, for `check` and `sim`.
+  std::vector<Diagnostic> warnings();
   // The temperature modules and thermal plants of `modules:`, or nullptr.
   temp::TemperatureCell* temperature();
   temp::Rtc* rtc();

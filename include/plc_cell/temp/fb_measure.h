@@ -45,6 +45,9 @@ double fb_pos_factor(const ExecContext& c, const FbPoints& p);
 
 // A TC set point (degC) in primitive counts with factor pos: the PID's units.
 int32_t fb_counts_of(int32_t degc, int pl, double pos);
+// An RTD's reading or set point (0.1 degC) in primitive counts: 0..4095 over the span's
+// range of the curve R4020's high byte names (R3968 + n of an RTD point).
+int32_t fb_rtd_counts_of(const ExecContext& c, int32_t tenths, int pl);
 
 // One execution with EN on: tr gets one word per point, wr[0] (and wr[1] for points
 // 16-23) the line-broken bits. Returns true while any point is line-broken (ALM).

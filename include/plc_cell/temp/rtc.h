@@ -1,7 +1,7 @@
 #pragma once
-// The FBs real-time clock (manual chapter 15) as a ScanHook: R4128-R4135 follow the
-// clock on every RUN scan; M1952 stops the copy and its falling edge sets the clock
-// from R4128-R4134; M1953 rounds to the minute; D4054 calibrates the rate.
+// The FBs real-time clock (manual chapter 15) as a ScanHook: R4128-R4135 hold the
+// clock from the moment the hook is attached and follow it on every RUN scan; M1952
+// stops the copy and its falling edge sets the clock from R4128-R4134; M1953 rounds to the minute; D4054 calibrates the rate.
 // The clock runs on the engine's clock: virtual time in tests and `plc_cell sim`,
 // the host's steady clock in real time. docs/analog-and-temperature.md, RTC.
 #include <cstdint>
@@ -39,6 +39,8 @@ class Rtc : public ScanHook {
   void before_inputs(uint64_t now_us) override;   // the clock runs, in RUN and STOP
   void before_program(uint64_t now_us) override;  // M1952/M1953 and the RTCR
   void on_stop() override;
+  void attached(ScanEngine& engine) override;     // the registers hold the clock at once
+  void on_run() override;                          // and again once STOP -> RUN cleared them
 
   int64_t seconds() const { return us_ / 1000000; }  // since 2000-01-01 00:00:00
   DateTime now() const { return from_seconds(seconds()); }
@@ -47,6 +49,7 @@ class Rtc : public ScanHook {
  private:
   void set_from_registers();
   void round_to_minute();
+  void publish();  // the clock into R4128-R4135
   const DateTime& calendar();
 
   RtcConfig cfg_;

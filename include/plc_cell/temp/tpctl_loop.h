@@ -5,6 +5,7 @@
 // heater-open warnings. The instructions differ only in where the PVs come from and
 // in their units (TpctlUnits).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "plc_cell/core/function_table.h"
@@ -22,6 +23,7 @@ struct TpctlUnits {
   int gain_max;                            // Kc 1..gain_max, Ki and Td 0..gain_max
   uint16_t kc0, ki0, td0;                  // defaults, into registers left at 0
   uint16_t large_time_min_s;               // R4007's lower limit
+  int32_t zone_per_degree = 1;             // readings per degree of R4008 (10: an RTD's 0.1 degC)
 };
 
 // One point this scan: the PID works on pid_sv/pid_pv; the in-zone and R4008 checks
@@ -51,6 +53,12 @@ struct TpctlResult {
   uint32_t in_zone = 0, warn = 0;  // bit i = point i of this instruction
   bool alarm = false;
 };
+
+// The operand rules every loop instruction shares (FUN73, the FBs and FB FUN86): its
+// outputs (operand yn) and its six tables Sv, Os, PR, IR, DR, OR (operands tables ..
+// tables + 5) take `count` (the operand zn, when 1 <= zn <= zn_max) points each.
+OperandRule tpctl_outputs_rule(size_t yn, size_t zn, int64_t zn_max, const std::string& zn_name);
+OperandRule tpctl_tables_rule(size_t tables, size_t zn, int64_t zn_max, const std::string& zn_name);
 
 // EN off, an error, or PVs not ready: the n outputs OFF; with restart the next
 // execution starts afresh (takes R4005 again).

@@ -50,7 +50,6 @@ class Client {
   uint64_t requests_ = 0;
   uint64_t last_latency_us_ = 0;
   uint64_t retries_used_ = 0;
-  bool stale_ = false;  // the last transaction failed: input may hold a late answer
 };
 
 }  // namespace tri
