@@ -26,6 +26,7 @@ int cmd_run(const std::vector<std::string>& argv) {
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Serve,
             [](const std::string& l) { std::cerr << "plc_cell run: " << l << "\n"; });
+  for (const auto& w : cell.soft().warnings()) std::cerr << w.to_string() << "\n";  // the PLC still runs
   if (!cell.plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
   cell.start_servers([](const Server& s) { std::cerr << "plc_cell run: serving " << s.describe() << "\n"; });
   std::cerr << "plc_cell run: engine " << cell.plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); })

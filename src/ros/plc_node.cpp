@@ -137,6 +137,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
           }));
     }
   }
+  // Operands the PLC will refuse with ERR at run time, known from the constants at load.
+  for (const auto& w : cell_->soft().warnings()) ROS_WARN("plc_node: %s", w.to_string().c_str());
   cell_->start_servers([](const Server& s) { ROS_INFO("plc_node: serving %s", s.describe().c_str()); });
   if (!cell_->servers().empty()) updater_.add("protocol servers", this, &PlcNode::diagnose_servers);
 

@@ -209,7 +209,7 @@ bool NativeCode::compile(const std::vector<Step>& steps, std::string* why) {
     a.bind(labels.back());
     emitter.emit(steps, depth, r.first, r.first + r.length);
   }
-  Error err = code.flatten();
+  asmjit::Error err = code.flatten();
   if (!err) err = code.resolveUnresolvedLinks();
   if (err) {
     *why = std::string("code generation failed: ") + "asmjit error " + std::to_string(err);
