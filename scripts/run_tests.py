@@ -13,7 +13,9 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-from ros_loopback import loopback_env
+# Its neighbour, also when a test loads this file as a module from elsewhere.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ros_loopback import loopback_env  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 

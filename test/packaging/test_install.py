@@ -129,8 +129,10 @@ def test_only_the_exported_layers_headers_are_installed(space):
     assert layers == EXPORTED, sorted(layers)
     # Each installed header finds every package header it includes in the install space.
     for layer in layers:
-        for name in os.listdir(os.path.join(include, layer)):
-            with open(os.path.join(include, layer, name)) as f:
-                for inc in re.findall(r'#include "(plc_cell/[^"]+)"', f.read()):
-                    assert os.path.exists(os.path.join(space.prefix, "include", inc)), \
-                        "%s/%s includes %s, which is not installed" % (layer, name, inc)
+        for folder, _, names in os.walk(os.path.join(include, layer)):  # core/native/ too
+            for name in names:
+                header = os.path.relpath(os.path.join(folder, name), include)
+                with open(os.path.join(folder, name)) as f:
+                    for inc in re.findall(r'#include "(plc_cell/[^"]+)"', f.read()):
+                        assert os.path.exists(os.path.join(space.prefix, "include", inc)), \
+                            "%s includes %s, which is not installed" % (header, inc)

@@ -18,7 +18,8 @@ from sensor_msgs.msg import JointState, Temperature
 from std_msgs.msg import Bool
 from std_srvs.srv import Trigger
 
-from plc_cell.msg import AxisStatus, Counter, CounterArray, ForcedPoints, IoState, RegisterBlock, ScanProgress, Signal
+from plc_cell.msg import (AxisStatus, Counter, CounterArray, ForcedPoints, IoState, IoWords, RegisterBlock, ScanProgress,
+                          Signal)
 from plc_cell.srv import ForceDiscrete, ReadMemory, SimulateInputs, WriteMemory
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -34,6 +35,8 @@ def msg_type(topic):
     rel = topic[len(NODE) + 1:] if topic.startswith(NODE + "/") else topic
     if rel == "io":
         return IoState
+    if rel == "io_words":
+        return IoWords
     if rel == "forced":
         return ForcedPoints
     if rel.startswith("signals_stamped/"):
