@@ -12,6 +12,7 @@ plc_cell_layer(plc_cell_hsc LINKS plc_cell_config plc_cell_timeline SOURCES
   src/hsc/hsc_functions.cpp
   src/hsc/input_filter.cpp
   src/hsc/scan_debounce.cpp
+  src/hsc/counter_probes.cpp
   src/hsc/counters_extension.cpp)
 
 if(CATKIN_ENABLE_TESTING)

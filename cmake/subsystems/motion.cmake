@@ -17,6 +17,7 @@ plc_cell_layer(plc_cell_motion LINKS plc_cell_hsc SOURCES
   src/motion/axis_config.cpp
   src/motion/motion_unit.cpp
   src/motion/motion_functions.cpp
+  src/motion/axis_probes.cpp
   src/motion/axes_extension.cpp)
 
 if(CATKIN_ENABLE_TESTING)

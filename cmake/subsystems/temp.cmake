@@ -25,6 +25,7 @@ plc_cell_layer(plc_cell_temp LINKS plc_cell_config SOURCES
   src/temp/fb_functions.cpp
   src/temp/sensor_signal.cpp
   src/temp/loop_settings.cpp
+  src/temp/module_probes.cpp
   src/temp/modules_extension.cpp
   src/temp/analog_conditioning.cpp)
 

@@ -12,6 +12,9 @@ void CountersExtension::attach(const CellConfig& cfg, Plc& plc, ErrorList& error
   HscConfig hc;
   if (!errors.collect([&] { hc = parse_hsc_config(section, cfg.file); }, cfg.file, section)) hc = HscConfig();
   unit_ = std::make_unique<HscUnit>(plc, hc);
+  probes_ = std::make_unique<CounterProbes>(unit_.get());
+  provide<HscUnit>(unit_.get());
+  provide<ProbeFacet>(probes_.get());
 }
 
 std::vector<ExtensionStatus> CountersExtension::status(Plc& plc) const {
@@ -31,7 +34,12 @@ std::vector<ExtensionStatus> CountersExtension::status(Plc& plc) const {
   return {s};
 }
 
-void CountersExtension::detach(Plc&) { unit_.reset(); }  // the unit unhooks itself
+void CountersExtension::detach(Plc&) {
+  withdraw<ProbeFacet>(probes_.get());
+  withdraw<HscUnit>(unit_.get());
+  probes_.reset();
+  unit_.reset();  // the unit unhooks itself
+}
 
 }  // namespace hsc
 }  // namespace plc_cell

@@ -9,6 +9,9 @@ void AxesExtension::install(const CellConfig&, FunctionTable& t) { add_functions
 
 void AxesExtension::attach(const CellConfig& cfg, Plc& plc, ErrorList& errors) {
   unit_ = std::make_unique<MotionUnit>(plc);
+  probes_ = std::make_unique<AxisProbes>(unit_.get());
+  provide<MotionUnit>(unit_.get());
+  provide<ProbeFacet>(probes_.get());
   const YAML::Node section = cfg.document.IsMap() ? cfg.document["axes"] : YAML::Node();
   errors.collect([&] { unit_->configure(parse_axes_config(section, cfg.file)); }, cfg.file, section);
 }
@@ -34,7 +37,12 @@ std::vector<ExtensionStatus> AxesExtension::status(Plc& plc) const {
   });
 }
 
-void AxesExtension::detach(Plc&) { unit_.reset(); }  // the unit unhooks itself
+void AxesExtension::detach(Plc&) {
+  withdraw<ProbeFacet>(probes_.get());
+  withdraw<MotionUnit>(unit_.get());
+  probes_.reset();
+  unit_.reset();  // the unit unhooks itself
+}
 
 }  // namespace motion
 }  // namespace plc_cell

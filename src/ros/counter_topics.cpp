@@ -1,5 +1,7 @@
 #include "plc_cell/ros/counter_topics.h"
 
+#include <sstream>
+
 #include <std_msgs/Float64.h>
 #include <std_srvs/Trigger.h>
 
@@ -8,13 +10,30 @@
 #include "plc_cell/PresetCounter.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/hsc/hsc_unit.h"
+#include "plc_cell/ros/extension_ros.h"
 #include "plc_cell/ros/frame_id.h"
+#include "plc_cell/ros/pulse_topics.h"
 
 namespace plc_cell {
+namespace {
+
+// Under the PLC lock only.
+hsc::HscUnit& unit(SoftCell& cell) { return *cell.get<hsc::HscUnit>(); }
+
+// The counters extension on ROS: ~counters and ~pulses at ~counter_rate (0: the cell's
+// counters.publish_rate).
+const RosSideRegistration kCountersSide("counters", [](RosSideContext& c, TopicGroups* groups) {
+  double rate = 0;
+  c.pnh.param("counter_rate", rate, rate);
+  groups->add(std::make_unique<CounterTopics>(c.pnh, c.cell, rate));
+  groups->add(std::make_unique<PulseTopics>(c.pnh, c.cell, rate));
+});
+
+}  // namespace
 
 CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
     : cell_(&cell), frame_id_(frame_id_param(pnh)) {
-  const hsc::HscConfig cfg = cell_->plc().locked([&](ScanEngine&, Memory&) { return cell_->counters().config(); });
+  const hsc::HscConfig cfg = cell_->plc().locked([&](ScanEngine&, Memory&) { return unit(*cell_).config(); });
   for (int n = 0; n < 8; ++n) {
     if (!cfg.counters[n].used) continue;
     numbers_.push_back(n);
@@ -39,7 +58,7 @@ CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_h
             return true;
           }
           cell_->plc().locked([&](ScanEngine&, Memory&) {
-            cell_->counters().preset(n, req.value);
+            unit(*cell_).preset(n, req.value);
             return 0;
           });
           cell_->plc().commit();  // a retentive counter is on disk before the reply
@@ -49,7 +68,7 @@ CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_h
     services_.push_back(pnh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
         base + "/clear", [this, n](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
           cell_->plc().locked([&](ScanEngine&, Memory&) {
-            cell_->counters().preset(n, 0);
+            unit(*cell_).preset(n, 0);
             return 0;
           });
           cell_->plc().commit();
@@ -64,11 +83,23 @@ CounterTopics::CounterTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_h
     subs_.push_back(pnh.subscribe<std_msgs::Float64>(
         "sources/" + name + "/rate", 10, [this, name](const std_msgs::Float64::ConstPtr& m) {
           cell_->plc().locked([&](ScanEngine&, Memory&) {
-            cell_->counters().set_source_rate(name, m->data);
+            unit(*cell_).set_source_rate(name, m->data);
             return 0;
           });
         }));
   }
+}
+
+std::string CounterTopics::layout(SoftCell& cell) const {
+  std::ostringstream out;
+  cell.plc().locked([&](ScanEngine&, Memory&) {
+    const hsc::HscConfig& hc = unit(cell).config();
+    for (int n = 0; n < 8; ++n)
+      if (hc.counters[n].used) out << "counter " << n << ' ' << hc.counters[n].name << '\n';
+    out << "counter rate " << hc.publish_rate_hz << '\n';
+    return 0;
+  });
+  return out.str();
 }
 
 std::vector<std::string> CounterTopics::topics() const {
@@ -87,7 +118,7 @@ void CounterTopics::publish(const ros::Time& stamp) {
   std::vector<Value> values(numbers_.size());
   cell_->plc().locked([&](ScanEngine&, Memory&) {
     for (size_t i = 0; i < numbers_.size(); ++i)
-      values[i] = {cell_->counters().count(numbers_[i]), cell_->counters().frequency(numbers_[i])};
+      values[i] = {unit(*cell_).count(numbers_[i]), unit(*cell_).frequency(numbers_[i])};
     return 0;
   });
   CounterArray all;

@@ -5,24 +5,17 @@
 #include <unistd.h>
 
 #include <rosgraph_msgs/Clock.h>
-#include <sensor_msgs/Temperature.h>
 
 #include "plc_cell/ForcedPoints.h"
 #include "plc_cell/IoState.h"
 #include "plc_cell/IoWords.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/ros/counter_topics.h"
-#include "plc_cell/ros/extension_diagnostics.h"
 #include "plc_cell/ros/frame_id.h"
-#include "plc_cell/ros/motion_topics.h"
 #include "plc_cell/ros/param_path.h"
 #include "plc_cell/ros/node_parameters.h"
-#include "plc_cell/ros/pulse_topics.h"
 #include "plc_cell/ros/register_topics.h"
 #include "plc_cell/ros/server_params.h"
-#include "plc_cell/ros/temperature_ros.h"
-#include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
 
@@ -83,17 +76,13 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   services_.push_back(pnh.advertiseService("load_program", &PlcNode::on_load, this));
   services_.push_back(pnh.advertiseService("reset", &PlcNode::on_reset, this));
   services_.push_back(pnh.advertiseService("simulate", &PlcNode::on_simulate, this));
-  double counter_rate = 0;  // 0: the cell's counters.publish_rate
-  pnh.param("counter_rate", counter_rate, counter_rate);
-  topic_groups_.add(std::make_unique<CounterTopics>(pnh, cell_->soft(), counter_rate));
-  topic_groups_.add(std::make_unique<PulseTopics>(pnh, cell_->soft(), counter_rate));
-  topic_groups_.add(std::make_unique<MotionTopics>(nh, pnh, cell_->soft(), pnh.param("motion_rate", 50.0)));
 
   // Two nodes may run the same cell YAML (cells.launch): the node name tells them apart.
   updater_.setHardwareID("plc_cell/" + cfg.name + "@" + ros::this_node::getName());
   updater_.add("scan", this, &PlcNode::diagnose);
   updater_.add("forced points", this, &PlcNode::diagnose_forced);
-  extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());
+  RosSideContext sides{nh, pnh, cell_->soft(), updater_, *this};  // each extension's topics and status
+  extension_diagnostics_ = add_extension_sides(sides, &topic_groups_);
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   pnh.param("virtual_time", virtual_time_, false);
   add_register_topics(pnh, cell_->soft(), &topic_groups_);
@@ -127,16 +116,6 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : started_(ros::Wall
   });
 
   if (cell_->persister()) updater_.add("persistence", this, &PlcNode::diagnose_persist);
-  if (temp::TemperatureCell* tc = cell_->soft().temperature()) {
-    topic_groups_.add(std::make_unique<TemperatureRos>(pnh, cell_->soft(), updater_));
-    for (size_t ch = 0; ch < tc->channels().size(); ++ch) {
-      if (tc->channels()[ch].name.empty()) continue;
-      temperature_input_subs_.push_back(pnh.subscribe<sensor_msgs::Temperature>(
-          "temperature_inputs/" + tc->channels()[ch].name, 100, [this, ch](const sensor_msgs::Temperature::ConstPtr& m) {
-            on_temperature_input(ch, m->header.stamp.toNSec() / 1000, m->temperature);
-          }));
-    }
-  }
   // Operands the PLC will refuse with ERR at run time, known from the constants at load.
   for (const auto& w : cell_->soft().warnings()) ROS_WARN("plc_node: %s", w.to_string().c_str());
   cell_->start_servers([](const Server& s) { ROS_INFO("plc_node: serving %s", s.describe().c_str()); });

@@ -20,11 +20,8 @@
 
 #include "plc_cell/ScanProgress.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/hsc/hsc_unit.h"
-#include "plc_cell/motion/motion_unit.h"
 #include "plc_cell/ros/extension_diagnostics.h"
 #include "plc_cell/ros/plc_node.h"
-#include "plc_cell/temp/temperature_cell.h"
 
 namespace plc_cell {
 
@@ -63,13 +60,14 @@ void PlcNode::on_stamped_input(uint32_t x, uint64_t stamp_us, bool v) {
   }
   std::lock_guard<std::mutex> lk(virtual_mu_);
   if (next_scan_us_ > period_us_ && stamp_us <= next_scan_us_ - period_us_) ++late_inputs_;  // its scan has run
-  pending_.push_back({stamp_us, input_seq_++, x, v, -1, 0});
+  pending_.push_back({stamp_us, input_seq_++, x, v});
   ++inputs_received_;
   publish_progress();  // a driver knows the input is in before it sends the clock
 }
 
-void PlcNode::on_temperature_input(size_t channel, uint64_t stamp_us, double celsius) {
-  PendingInput in{stamp_us, 0, 0, false, int(channel), celsius};
+void PlcNode::apply_at(uint64_t stamp_us, std::function<void(ScanEngine&)> change) {
+  PendingInput in{stamp_us, 0, 0, false};
+  in.change = std::move(change);
   if (!virtual_time_) {
     cell_->plc().locked([&](ScanEngine& e, Memory&) {
       apply(e, in);
@@ -90,14 +88,12 @@ void PlcNode::apply(ScanEngine& e, const PendingInput& in) {
     cell_->soft().simulation().resume(in.x);
     return;
   }
-  if (in.channel < 0) {
-    cell_->soft().simulation().override_input(in.x);  // the topic now plays this sensor
-    e.set_input(in.x, in.v);
+  if (in.change) {
+    in.change(e);
     return;
   }
-  std::string why;  // a temperature in C suits every sensor
-  if (!cell_->soft().temperature()->drive_channel(size_t(in.channel), temp::Quantity{in.celsius, temp::Unit::Celsius}, &why))
-    ROS_WARN("plc_node: ~temperature_inputs: %s", why.c_str());
+  cell_->soft().simulation().override_input(in.x);  // the topic now plays this sensor
+  e.set_input(in.x, in.v);
 }
 
 void PlcNode::on_clock(uint64_t now_us) {
@@ -174,31 +170,15 @@ void PlcNode::publish_progress() {
 
 namespace {
 
-// What a cell's topics are made from: its signals, register groups, counters, axes and
-// temperature channels. ~reset keeps the node's topics, so the fresh cell must give the same.
-std::string topic_layout(Cell& cell) {
+// What a cell's topics are made from: its signals, register groups and what each topic
+// group of its extensions publishes. ~reset keeps the node's topics, so the fresh cell must
+// give the same.
+std::string topic_layout(Cell& cell, const TopicGroups& groups) {
   std::ostringstream out;
   const CellConfig& cfg = cell.config();
   for (const auto& s : cfg.signals) out << "signal " << s.first << '=' << format_address(s.second) << '\n';
   for (const auto& g : cfg.registers) out << "registers " << g.name << ' ' << g.text << ' ' << g.rate_hz << '\n';
-  cell.plc().locked([&](ScanEngine&, Memory&) {
-    const hsc::HscConfig& hc = cell.soft().counters().config();
-    for (int n = 0; n < 8; ++n)
-      if (hc.counters[n].used) out << "counter " << n << ' ' << hc.counters[n].name << '\n';
-    out << "counter rate " << hc.publish_rate_hz << '\n';
-    for (int x : hc.pulse.inputs) out << "pulse X" << x << ' ' << hc.pulse.unit() << '\n';
-    const motion::AxesConfig& ac = cell.soft().motion().config();
-    for (int n = 0; n < motion::kAxes; ++n)
-      if (ac.axes[n].used)
-        out << "axis " << n << ' ' << ac.axes[n].name << ' ' << ac.axes[n].units_per_pulse << ' '
-            << ac.axes[n].joint_scale() << '\n';
-    return 0;
-  });
-  if (const temp::TemperatureCell* tc = cell.soft().temperature()) {
-    for (const auto& ch : tc->channels()) out << "channel " << ch.name << '\n';
-    out << "modules " << tc->config().modules.size() << '\n';
-  }
-  return out.str();
+  return out.str() + groups.layout(cell.soft());
 }
 
 }  // namespace
@@ -227,7 +207,7 @@ bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
     res.message = std::string("~reset: ") + e.what() + " (the running cell is kept)";
     return true;
   }
-  if (topic_layout(*fresh) != topic_layout(*cell_)) {
+  if (topic_layout(*fresh, topic_groups_) != topic_layout(*cell_, topic_groups_)) {
     res.message = "~reset: the cell's files now give other topics (signals, register groups, counters, axes or "
                   "temperature channels); restart plc_node (the running cell is kept)";
     return true;

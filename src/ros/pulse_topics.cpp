@@ -9,7 +9,7 @@ namespace plc_cell {
 
 PulseTopics::PulseTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
     : cell_(&cell), frame_id_(frame_id_param(pnh)) {
-  const hsc::HscConfig cfg = cell_->plc().locked([&](ScanEngine&, Memory&) { return cell_->counters().config(); });
+  const hsc::HscConfig cfg = cell_->plc().locked([&](ScanEngine&, Memory&) { return cell_->get<hsc::HscUnit>()->config(); });
   if (rate_hz <= 0) rate_hz = cfg.publish_rate_hz;
   if (!(rate_hz > 0 && rate_hz <= 1000)) throw Error("~counter_rate must be in (0, 1000] Hz");
   rate_hz_ = rate_hz;
@@ -18,6 +18,16 @@ PulseTopics::PulseTopics(ros::NodeHandle& pnh, SoftCell& cell, double rate_hz)
   unit_ = cfg.pulse.unit();
   tenths_ = cfg.pulse.tenths;
   for (int x : inputs_) pubs_.push_back(pnh.advertise<PulseMeasurement>("pulses/X" + std::to_string(x), 10));
+}
+
+std::string PulseTopics::layout(SoftCell& cell) const {
+  std::string out;
+  cell.plc().locked([&](ScanEngine&, Memory&) {
+    const hsc::HscConfig& hc = cell.get<hsc::HscUnit>()->config();
+    for (int x : hc.pulse.inputs) out += "pulse X" + std::to_string(x) + ' ' + hc.pulse.unit() + '\n';
+    return 0;
+  });
+  return out;
 }
 
 std::vector<std::string> PulseTopics::topics() const {
@@ -30,7 +40,7 @@ void PulseTopics::publish(const ros::Time& stamp) {
   if (inputs_.empty()) return;
   std::vector<hsc::PulseReading> values(inputs_.size());
   cell_->plc().locked([&](ScanEngine&, Memory&) {
-    for (size_t i = 0; i < inputs_.size(); ++i) values[i] = cell_->counters().pulse(inputs_[i]);
+    for (size_t i = 0; i < inputs_.size(); ++i) values[i] = cell_->get<hsc::HscUnit>()->pulse(inputs_[i]);
     return 0;
   });
   const double scale = tenths_ ? 100.0 : 1000.0;  // ns per unit

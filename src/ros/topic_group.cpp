@@ -44,6 +44,12 @@ void TopicGroups::count_published(std::vector<std::string>* topics, std::vector<
     }
 }
 
+std::string TopicGroups::layout(SoftCell& cell) const {
+  std::string out;
+  for (const auto& e : entries_) out += e.group->layout(cell);
+  return out;
+}
+
 void TopicGroups::restart(SoftCell& cell) {
   for (auto& e : entries_) {
     e.group->rebind(cell);

@@ -4,6 +4,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <mutex>
+#include <set>
 
 #include "plc_cell/core/error.h"
 
@@ -19,7 +21,62 @@ bool is_name(const std::string& s) {
   return true;
 }
 
+struct Families {
+  std::mutex mu;
+  std::multiset<std::string> names;
+};
+
+Families& families() {
+  static Families f;
+  return f;
+}
+
+bool registered_family(const std::string& name) {
+  Families& f = families();
+  std::lock_guard<std::mutex> lk(f.mu);
+  return f.names.count(name) > 0;
+}
+
+std::string listed_families() {
+  std::vector<std::string> all = {"counter", "axis", "temperature", "analog", "pulse"};
+  {
+    Families& f = families();
+    std::lock_guard<std::mutex> lk(f.mu);
+    for (const auto& n : f.names) all.push_back(n);
+  }
+  std::string out;
+  for (size_t i = 0; i < all.size(); ++i) out += (i == 0 ? "" : i + 1 == all.size() ? " or " : ", ") + all[i] + ".";
+  return out;
+}
+
+// FAMILY.NAME or FAMILY.NAME.FIELD of a registered family.
+Probe extension_probe(const std::string& text, const std::string& family, const std::string& rest) {
+  Probe p;
+  p.text = text;
+  p.kind = Probe::Kind::Extension;
+  p.family = family;
+  const auto dot = rest.find('.');
+  p.name = rest.substr(0, dot);
+  p.field = dot == std::string::npos ? "" : rest.substr(dot + 1);
+  if (!is_name(p.name)) throw Error("'" + text + "': '" + p.name + "' is not a " + family + " name");
+  if (dot != std::string::npos && !is_name(p.field)) throw Error("'" + text + "': '" + p.field + "' is not a field name");
+  return p;
+}
+
 }  // namespace
+
+ProbeFamilyRegistration::ProbeFamilyRegistration(std::string family) : family_(std::move(family)) {
+  Families& f = families();
+  std::lock_guard<std::mutex> lk(f.mu);
+  f.names.insert(family_);
+}
+
+ProbeFamilyRegistration::~ProbeFamilyRegistration() {
+  Families& f = families();
+  std::lock_guard<std::mutex> lk(f.mu);
+  const auto it = f.names.find(family_);
+  if (it != f.names.end()) f.names.erase(it);
+}
 
 std::string probe_label(const Probe& p, const CellConfig& cell) {
   if (p.kind != Probe::Kind::Address) return p.text;
@@ -75,6 +132,7 @@ Probe parse_probe(const std::string& text) {
              : kind == "temperature" ? Probe::Kind::Temperature
                                      : Probe::Kind::Analog;
     p.name = rest;
+    p.family = kind;
     return p;
   }
   if (kind == "axis") {
@@ -86,6 +144,8 @@ Probe parse_probe(const std::string& text) {
     else if (what == "frequency") p.kind = Probe::Kind::AxisFrequency;
     else throw Error("'" + text + "': an axis is read as axis.NAME.position, .state or .frequency");
     p.name = axis;
+    p.family = kind;
+    p.field = what;
     return p;
   }
   if (kind == "pulse") {
@@ -100,9 +160,12 @@ Probe parse_probe(const std::string& text) {
     else if (what == "frequency") p.kind = Probe::Kind::PulseFrequency;
     else throw Error("'" + text + "': a pulse measurement is read as pulse.Xn.width, .period or .frequency");
     p.name = input;
+    p.family = kind;
+    p.field = what;
     return p;
   }
-  throw Error("'" + text + "': unknown kind '" + kind + ".' (counter., axis., temperature., analog. or pulse.)");
+  if (registered_family(kind)) return extension_probe(text, kind, rest);
+  throw Error("'" + text + "': unknown kind '" + kind + ".' (" + listed_families() + ")");
 }
 
 }  // namespace scenario

@@ -1,5 +1,6 @@
 #include "plc_cell/sim/soft_cell.h"
 
+#include "plc_cell/config/extension_registry.h"
 #include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/unreadable.h"
@@ -49,6 +50,7 @@ CellExtensions SoftCell::with_builtins(CellExtensions more) {
   all.push_back(std::make_unique<hsc::CountersExtension>());
   all.push_back(std::make_unique<motion::AxesExtension>());
   for (auto& x : more) all.push_back(std::move(x));
+  for (auto& x : registered_extensions()) all.push_back(std::move(x));
   return all;
 }
 
@@ -70,9 +72,7 @@ FunctionTable SoftCell::install() {
 SoftCell::SoftCell(const std::string& config_path, const std::string& program_path, CellExtensions more)
     : extensions_(with_builtins(std::move(more))),
       config_(load(config_path)),
-      modules_(static_cast<temp::ModulesExtension*>(extensions_[0].get())),
       counters_(static_cast<hsc::CountersExtension*>(extensions_[1].get())),
-      axes_(static_cast<motion::AxesExtension*>(extensions_[2].get())),
       plc_(install()) {
   try {
     build(program_path);
@@ -94,7 +94,7 @@ void SoftCell::build(const std::string& program_path) {
     return 0;
   });
   for (auto& x : extensions_) x->attach(config_, plc_, errors);
-  hsc::HscUnit& hsc = counters();
+  hsc::HscUnit& hsc = counters_->unit();
   // Pulse and step signals on the high-speed inputs X0-X15 become exact-time edges,
   // so counters and edge interrupts see every pulse, not the scan's samples.
   plc_.locked([&](ScanEngine&, Memory&) {
@@ -151,11 +151,5 @@ void SoftCell::release() {
 }
 
 SoftCell::~SoftCell() { release(); }
-
-hsc::HscUnit& SoftCell::counters() { return counters_->unit(); }
-motion::MotionUnit& SoftCell::motion() { return axes_->unit(); }
-temp::TemperatureCell* SoftCell::temperature() { return modules_->temperature(); }
-temp::Rtc* SoftCell::rtc() { return modules_->rtc(); }
-temp::PwmdaOutputs* SoftCell::pwmda() { return modules_->pwmda(); }
 
 }  // namespace plc_cell

@@ -23,6 +23,11 @@ void ModulesExtension::attach(const CellConfig& cfg, Plc& plc, ErrorList& errors
     if (pwmda_) e.add_hook(pwmda_.get());
     return 0;
   });
+  probes_ = std::make_unique<ModuleProbes>(temperature_.get());
+  provide<ProbeFacet>(probes_.get());
+  if (temperature_) provide<TemperatureCell>(temperature_.get());
+  if (rtc_) provide<Rtc>(rtc_.get());
+  if (pwmda_) provide<PwmdaOutputs>(pwmda_.get());
 }
 
 void ModulesExtension::detach(Plc& plc) {
@@ -33,6 +38,10 @@ void ModulesExtension::detach(Plc& plc) {
     hspwm_reset(e);  // FUN139's generators belong to this PLC: off with its cell
     return 0;
   });
+  withdraw<ProbeFacet>(probes_.get());
+  withdraw<TemperatureCell>(temperature_.get());
+  withdraw<Rtc>(rtc_.get());
+  withdraw<PwmdaOutputs>(pwmda_.get());
 }
 
 }  // namespace temp

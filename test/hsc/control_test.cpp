@@ -110,7 +110,7 @@ TEST(Control, CellYamlPulseSignalsAreExactEdges) {
   ASSERT_TRUE(cell.plc().set_mode(RunMode::Run));
   for (uint64_t t = 0; t <= 70000; t += 1000) cell.plc().scan(t);
   // Rising edges at 0.1 + 0.7k ms <= 70 ms: k = 0..99.
-  EXPECT_EQ(cell.plc().locked([&](ScanEngine&, Memory&) { return cell.counters().count(4); }), 100);
+  EXPECT_EQ(cell.plc().locked([&](ScanEngine&, Memory&) { return cell.get<hsc::HscUnit>()->count(4); }), 100);
 }
 
 TEST(Control, DoubleEdgeModesAndCountingInputInversion) {

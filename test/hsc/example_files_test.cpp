@@ -26,9 +26,9 @@ class Example {
   explicit Example(const std::string& name)
       : cell(std::string(PLC_CELL_SOURCE_DIR) + "/examples/hsc/" + name + ".yaml", "") {
     cell.plc().locked([this](ScanEngine& e, Memory&) {
-      cell.counters().on_output([this](uint64_t t, uint32_t y, bool v) { outputs.push_back({t, y, v}); });
-      timeline::Scheduler::of(e).on_isr([this](uint64_t t, int s) { isrs.push_back({t, s, cell.counters().count(0),
-                                                                        cell.counters().count(1)}); });
+      cell.get<hsc::HscUnit>()->on_output([this](uint64_t t, uint32_t y, bool v) { outputs.push_back({t, y, v}); });
+      timeline::Scheduler::of(e).on_isr([this](uint64_t t, int s) { isrs.push_back({t, s, cell.get<hsc::HscUnit>()->count(0),
+                                                                        cell.get<hsc::HscUnit>()->count(1)}); });
       return 0;
     });
     EXPECT_TRUE(cell.plc().set_mode(RunMode::Run));

@@ -117,7 +117,7 @@ TEST(Filter, TwoMsFilterOnScanSampledInput) {
   SoftCell cell(dir + "/filter16.yaml", "");
   std::vector<std::pair<uint64_t, bool>> y0;
   cell.plc().locked([&](ScanEngine&, Memory&) {
-    cell.counters().on_output([&](uint64_t t, uint32_t y, bool v) {
+    cell.get<hsc::HscUnit>()->on_output([&](uint64_t t, uint32_t y, bool v) {
       if (y == 0) y0.push_back({t, v});
     });
     return 0;

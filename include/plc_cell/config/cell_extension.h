@@ -8,9 +8,15 @@
 //            handlers reach in O(1));
 //   status   what it reports (/diagnostics);
 //   detach   off the PLC before the PLC goes, its threads stopped.
+// What it shows to the outside it declares once, as facets: small interfaces looked up by
+// type (get<ProbeFacet>(), get<hsc::HscUnit>()), so that the scenario targets, plc_node and
+// the tool reach a subsystem without naming it. Its ROS topic groups are registered on the
+// ROS side under its name (ros/extension_ros.h).
 // A new subsystem is a class implementing this and one registration where the cell is
 // assembled (docs/architecture.md, "Extensions").
 #include <string>
+#include <typeindex>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -52,6 +58,34 @@ class CellExtension {
   }
   // Off plc: hooks removed, threads and ports stopped. Called once, in reverse order.
   virtual void detach(Plc& plc) = 0;
+
+  // The facet of type F it declared, or nullptr. Facets are declared in attach (the
+  // objects they point to are made there) and stay until detach. Found by type_index,
+  // which compares equal across the shared libraries of the layers.
+  template <class F>
+  F* get() const {
+    for (const auto& f : facets_)
+      if (f.first == std::type_index(typeid(F))) return static_cast<F*>(f.second);
+    return nullptr;
+  }
+
+ protected:
+  template <class F>
+  void provide(F* facet) {
+    withdraw<F>(get<F>());
+    if (facet) facets_.emplace_back(std::type_index(typeid(F)), facet);
+  }
+  template <class F>
+  void withdraw(const F* facet) {
+    for (auto it = facets_.begin(); it != facets_.end(); ++it)
+      if (it->first == std::type_index(typeid(F)) && it->second == facet) {
+        facets_.erase(it);
+        return;
+      }
+  }
+
+ private:
+  std::vector<std::pair<std::type_index, void*>> facets_;
 };
 
 }  // namespace plc_cell

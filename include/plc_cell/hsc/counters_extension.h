@@ -1,9 +1,11 @@
 #pragma once
 // The counters subsystem as a cell extension: the `counters:` section, FUN92/93/145/146/74,
 // and the HscUnit (counters, timers, interrupts and the exact-time edges of X0-X15).
+// Facets: the HscUnit, and the probes counter.NAME and pulse.Xn (CounterProbes).
 #include <memory>
 
 #include "plc_cell/config/cell_extension.h"
+#include "plc_cell/hsc/counter_probes.h"
 #include "plc_cell/hsc/hsc_unit.h"
 
 namespace plc_cell {
@@ -25,6 +27,7 @@ class CountersExtension : public CellExtension {
 
  private:
   std::unique_ptr<HscUnit> unit_;
+  std::unique_ptr<CounterProbes> probes_;
 };
 
 }  // namespace hsc

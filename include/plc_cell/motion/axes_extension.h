@@ -2,9 +2,11 @@
 // The positioning subsystem as a cell extension: the `axes:` section, FUN140-143 and the
 // MPG and interpolation FUNs, and the MotionUnit driving PSO0-PSO3 (its pins and encoders
 // are the counters' edge sources, so it attaches after the counters extension).
+// Facets: the MotionUnit, and the probes axis.NAME.position, .frequency, .state (AxisProbes).
 #include <memory>
 
 #include "plc_cell/config/cell_extension.h"
+#include "plc_cell/motion/axis_probes.h"
 #include "plc_cell/motion/motion_unit.h"
 
 namespace plc_cell {
@@ -25,6 +27,7 @@ class AxesExtension : public CellExtension {
 
  private:
   std::unique_ptr<MotionUnit> unit_;
+  std::unique_ptr<AxisProbes> probes_;
 };
 
 }  // namespace motion

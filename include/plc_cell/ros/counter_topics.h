@@ -2,7 +2,8 @@
 // The cell's high-speed counters on ROS: ~counters (CounterArray, all counters),
 // ~counters/<name> (Counter, one per configured counter), ~counters/<name>/preset
 // (PresetCounter), ~counters/<name>/clear (std_srvs/Trigger) and, per simulated
-// pulse source, ~sources/<name>/rate (std_msgs/Float64, periods per second).
+// pulse source, ~sources/<name>/rate (std_msgs/Float64, periods per second). With the
+// pulse measurement's PulseTopics, the ROS side of the counters extension.
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ class CounterTopics : public TopicGroup {
   void publish(const ros::Time& stamp) override;
   std::vector<std::string> topics() const override;
   void rebind(SoftCell& cell) override { cell_ = &cell; }
+  std::string layout(SoftCell& cell) const override;
 
  private:
   SoftCell* cell_;

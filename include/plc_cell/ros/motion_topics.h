@@ -9,6 +9,10 @@
 
 #include <ros/ros.h>
 
+#include "plc_cell/MotionCommand.h"
+#include "plc_cell/RunMotionTableAction.h"
+#include "plc_cell/SetMotionParams.h"
+#include "plc_cell/motion/axis_config.h"
 #include "plc_cell/ros/topic_group.h"
 #include "plc_cell/sim/soft_cell.h"
 
@@ -23,9 +27,19 @@ class MotionTopics : public TopicGroup {
   void publish(const ros::Time& stamp) override;
   std::vector<std::string> topics() const override;
   void rebind(SoftCell& cell) override { cell_ = &cell; }
+  std::string layout(SoftCell& cell) const override;
 
  private:
   struct AxisRos;
+
+  // f(MotionUnit&) under the PLC lock.
+  template <class F>
+  auto locked(F&& f);
+  std::unique_ptr<AxisRos> make_axis(ros::NodeHandle& pnh, int n, const motion::AxisDef& d);
+  bool set_params(int n, SetMotionParams::Request& req, SetMotionParams::Response& res);
+  bool command(int n, MotionCommand::Request& req, MotionCommand::Response& res);
+  void run_goal(AxisRos* ar, const RunMotionTableGoalConstPtr& goal);
+  void follow_goal(AxisRos* ar, RunMotionTableResult* result);
 
   SoftCell* cell_;
   std::string frame_id_;

@@ -17,13 +17,14 @@
 
 #include "plc_cell/LoadProgram.h"
 #include "plc_cell/SimulateInputs.h"
+#include "plc_cell/ros/extension_ros.h"
 #include "plc_cell/ros/memory_services.h"
 #include "plc_cell/ros/topic_group.h"
 #include "plc_cell/runtime/cell.h"
 
 namespace plc_cell {
 
-class PlcNode : private MemoryAccess {
+class PlcNode : private MemoryAccess, private StampedInputs {
  public:
   // Reads ~cell, the cell's overrides (ros/server_params.h), ~io_rate, ~autostart and the
   // topics' parameters; throws on bad input.
@@ -92,7 +93,6 @@ class PlcNode : private MemoryAccess {
   std::vector<ros::Publisher> signal_pubs_;
   std::vector<ros::Subscriber> input_subs_;
   std::vector<ros::Publisher> stamped_pubs_;  // plc_cell/Signal, beside signal_pubs_
-  std::vector<ros::Subscriber> temperature_input_subs_;
 
   // Virtual time: inputs wait in pending_ until the scan at or after their stamp.
   struct PendingInput {
@@ -100,12 +100,11 @@ class PlcNode : private MemoryAccess {
     uint64_t seq;  // arrival order breaks ties
     uint32_t x;
     bool v;
-    int channel = -1;  // >= 0: a temperature channel driven to celsius, not an X
-    double celsius = 0;
+    std::function<void(ScanEngine&)> change;  // set: an extension's topic input, not an X
     bool resume = false;  // ~simulate: x goes back to the cell's simulation
   };
-  // ~temperature_inputs/<channel>: what the channel's sensor measures from the stamp on.
-  void on_temperature_input(size_t channel, uint64_t stamp_us, double celsius);
+  // An extension's topic input (ros/extension_ros.h), as the stamped inputs.
+  void apply_at(uint64_t stamp_us, std::function<void(ScanEngine&)> change) override;
   void apply(ScanEngine& e, const PendingInput& in);  // PLC lock held
   bool virtual_time_ = false;
   bool every_scan_ = false;  // ~publish_every_scan: the rate topics at every scan

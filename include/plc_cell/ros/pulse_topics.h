@@ -20,6 +20,7 @@ class PulseTopics : public TopicGroup {
   void publish(const ros::Time& stamp) override;
   std::vector<std::string> topics() const override;
   void rebind(SoftCell& cell) override { cell_ = &cell; }
+  std::string layout(SoftCell& cell) const override;
 
  private:
   SoftCell* cell_;

@@ -98,6 +98,18 @@ class NodeLink {
   std::unique_ptr<Latest> latest_;
 };
 
+// The last message of each topic this case.
+struct NodeLink::Latest {
+  IoState io;
+  bool have_io = false;
+  std::map<std::string, bool> signals;  // by topic
+  std::map<std::string, RegisterBlock> registers;
+  std::map<std::string, Counter> counters;
+  std::map<std::string, PulseMeasurement> pulses;
+  std::map<std::string, AxisStatus> axes;
+  std::map<std::string, double> temperatures;
+};
+
 // One case: a fresh cell on plc_node (its constructor calls ~reset).
 class RosTarget : public Target {
  public:

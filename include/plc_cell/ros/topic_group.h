@@ -29,6 +29,12 @@ class TopicGroup {
   // From now on, the group reads this cell (plc_node's ~reset): one built from the same
   // files, so with the same counters, axes, channels and groups.
   virtual void rebind(SoftCell& cell) = 0;
+  // What the group's topics are made from in cell (names, numbers, units, rates), one line
+  // each: a fresh cell must give the same for ~reset to keep the topics.
+  virtual std::string layout(SoftCell& cell) const {
+    (void)cell;
+    return "";
+  }
 };
 
 // When a group publishes in virtual time: at the first scan, then at the first scan at or
@@ -58,6 +64,8 @@ class TopicGroups {
   // Virtual time, for a fresh cell (plc_node's ~reset): the groups read cell, publish at
   // its first scan as on start, and their counts start again from 0.
   void restart(SoftCell& cell);
+  // Every group's layout() in cell.
+  std::string layout(SoftCell& cell) const;
 
  private:
   struct Entry {

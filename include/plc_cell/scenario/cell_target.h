@@ -33,6 +33,7 @@ class CellTarget : public Target {
 
  private:
   Plc& plc() { return cell_->plc(); }
+  const ProbeFacet* facet(const Probe& p) const;
   // Names resolve once: a condition is read at every scan.
   const Address& address(const std::string& name);
   std::unique_ptr<Cell> cell_;

@@ -6,10 +6,15 @@
 // or the pulse measurement of a counter input ("pulse.X0.period", .width in the configured
 // unit, .frequency in Hz).
 // The same names mean the same things to every target: the cell in process and plc_node
-// through its topics (docs/testing-your-cell.md, "What a condition reads").
+// through its topics (docs/testing-your-cell.md, "What a condition reads"). Every name but
+// an address is a family of a cell extension (config/probe_facet.h): the targets find the
+// extension that answers for the family, so a new extension's probes need no change here
+// beyond registering the family (ProbeFamilyRegistration).
 #include <string>
+#include <vector>
 
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/config/probe_facet.h"
 #include "plc_cell/sim/virtual_run.h"
 
 namespace plc_cell {
@@ -17,12 +22,17 @@ namespace scenario {
 
 struct Probe {
   enum class Kind { Address, Counter, AxisPosition, AxisState, AxisFrequency, Temperature, Analog,
-                    PulseWidth, PulsePeriod, PulseFrequency };
+                    PulseWidth, PulsePeriod, PulseFrequency,
+                    Extension };  // a registered family of another extension
   Kind kind = Kind::Address;
   std::string text;  // as written, the key of every report ("R0:u", "axis.slide.state")
   std::string name;  // Address: the address or signal without its format; else the counter,
                      // axis or channel name, or the measured input (X0)
   ValueFormat format = ValueFormat::Default;  // Address only (:s, :u, :hex, :f32)
+  std::string family;  // all but Address: "counter", "axis", "pulse", ...
+  std::string field;   // "position", "width", ...; empty when the family has none
+
+  ProbeRef ref() const { return ProbeRef{family, name, field, text}; }
 
   bool operator<(const Probe& o) const { return text < o.text; }
   bool operator==(const Probe& o) const { return text == o.text; }
@@ -33,11 +43,21 @@ struct Probe {
 Probe parse_probe(const std::string& text);
 
 // What a target read: a number, and for the axis state also its word.
-struct Reading {
-  double number = 0;
-  std::string word;  // "idle", "moving", "error" for an axis state; else empty
-  bool valid = true; // false: NaN temperature (line broken), counter or axis unknown
-  std::string text;  // how a report prints it ("ON", "-3", "199.8 C", "moving")
+using Reading = ProbeReading;
+
+// A probe family beyond the built-in ones (counter, axis, temperature, analog, pulse),
+// written FAMILY.NAME or FAMILY.NAME.FIELD: registered while the object lives, so that a
+// scenario file naming it parses; what it reads is the extension's (its ProbeFacet, and on
+// plc_node its ROS side's TopicProbes).
+class ProbeFamilyRegistration {
+ public:
+  explicit ProbeFamilyRegistration(std::string family);
+  ~ProbeFamilyRegistration();
+  ProbeFamilyRegistration(const ProbeFamilyRegistration&) = delete;
+  ProbeFamilyRegistration& operator=(const ProbeFamilyRegistration&) = delete;
+
+ private:
+  std::string family_;
 };
 
 // How reports name p: a bit that is one of the cell's signals shows both, "stop_pb (X1)",

@@ -3,7 +3,8 @@
 // assembled (the Cell of runtime/cell.h builds one for check, sim, run and plc_node). The
 // subsystems are cell extensions (config/cell_extension.h), each taken through the same
 // steps: the counters, the axes and the temperature modules always, and the extensions
-// the caller adds (FUN150/151 and their ports, the servers' settings). Building starts
+// the caller adds (FUN150/151 and their ports, the servers' settings), then those registered
+// (config/extension_registry.h). Building starts
 // nothing: no thread, no port, no server (the extensions decide about their own).
 #include <memory>
 #include <set>
@@ -15,23 +16,11 @@
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/sim/simulated_cell.h"
-#include "plc_cell/temp/pwmda.h"
-#include "plc_cell/temp/rtc.h"
-#include "plc_cell/temp/temperature_cell.h"
-#include "plc_cell/temp/temperature_config.h"
 
 namespace plc_cell {
 
 namespace hsc {
-class HscUnit;
 class CountersExtension;
-}
-namespace motion {
-class MotionUnit;
-class AxesExtension;
-}
-namespace temp {
-class ModulesExtension;
 }
 
 using CellExtensions = std::vector<std::unique_ptr<CellExtension>>;
@@ -59,19 +48,19 @@ class SoftCell {
   const CellConfig& config() const { return config_; }
   // Every extension, built-in first, in the order they were attached.
   const CellExtensions& extensions() const { return extensions_; }
-  // High-speed counters, timers and interrupts (the config's counters: section).
-  // Only touch it under plc().locked().
-  hsc::HscUnit& counters();
-  // Pulse-output axes PSO0-PSO3 and FUN140 programs. Only touch it under plc().locked().
-  motion::MotionUnit& motion();
+  // The first facet of type F an extension declared (config/cell_extension.h), or nullptr:
+  // get<ProbeFacet>() for a probe family, get<hsc::HscUnit>() in a subsystem's own code
+  // and tests. Only touch a subsystem object under plc().locked(): the scan calls into it.
+  template <class F>
+  F* get() const {
+    for (const auto& x : extensions_)
+      if (F* f = x->template get<F>()) return f;
+    return nullptr;
+  }
   const std::string& program_path() const { return program_path_; }
   // What the program's FUNs will refuse at run time although the PLC accepts them
   // (core/operand_rules.h): a warning with file:line:column each, for `check` and `sim`.
   std::vector<Diagnostic> warnings();
-  // The temperature modules and thermal plants of `modules:`, or nullptr.
-  temp::TemperatureCell* temperature();
-  temp::Rtc* rtc();
-  temp::PwmdaOutputs* pwmda();
 
  private:
   static CellExtensions with_builtins(CellExtensions more);
@@ -84,9 +73,7 @@ class SoftCell {
   bool functions_complete_ = true;  // every extension installed its FUNs
   CellExtensions extensions_;       // before config_ (their sections) and plc_ (their FUNs)
   CellConfig config_;
-  temp::ModulesExtension* modules_ = nullptr;
-  hsc::CountersExtension* counters_ = nullptr;
-  motion::AxesExtension* axes_ = nullptr;
+  hsc::CountersExtension* counters_ = nullptr;  // the exact-time edges of the simulated inputs
   std::string program_path_;
   Plc plc_;
   std::unique_ptr<SimulatedCell> sim_;  // its hook runs before the extensions': they see the simulated inputs

@@ -2,9 +2,12 @@
 // The analog and temperature subsystem as a cell extension: the `modules:` section (its
 // generation decides FUN86's form and the FB-only FUNs), the temperature modules with
 // their thermal plants, the RTC board and the PWM-DA outputs.
+// Facets: the TemperatureCell, Rtc and PwmdaOutputs the cell has, and the probes
+// temperature.CHANNEL and analog.CHANNEL (ModuleProbes).
 #include <memory>
 
 #include "plc_cell/config/cell_extension.h"
+#include "plc_cell/temp/module_probes.h"
 #include "plc_cell/temp/pwmda.h"
 #include "plc_cell/temp/rtc.h"
 #include "plc_cell/temp/temperature_cell.h"
@@ -31,6 +34,7 @@ class ModulesExtension : public CellExtension {
   std::unique_ptr<TemperatureCell> temperature_;
   std::unique_ptr<Rtc> rtc_;
   std::unique_ptr<PwmdaOutputs> pwmda_;
+  std::unique_ptr<ModuleProbes> probes_;
 };
 
 }  // namespace temp

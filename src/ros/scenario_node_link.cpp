@@ -1,0 +1,272 @@
+// plc_node's connection for the scenario target (scenario_ros_target.h): its clock,
+// ~reset, ~read and the count of every topic's messages per scan (see
+// scenario_runner_target.cpp for how a scan is known to be complete).
+#include <algorithm>
+#include <sstream>
+
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/Temperature.h>
+#include <std_srvs/Trigger.h>
+
+#include "plc_cell/ReadMemory.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/ros/scenario_ros_target.h"
+#include "plc_cell/scenario/runner.h"
+
+namespace plc_cell {
+namespace scenario {
+
+namespace {
+
+bool starts_with(const std::string& s, const std::string& p) { return s.compare(0, p.size(), p) == 0; }
+bool ends_with(const std::string& s, const std::string& p) {
+  return s.size() >= p.size() && s.compare(s.size() - p.size(), p.size(), p) == 0;
+}
+
+uint64_t round_up(uint64_t v, uint64_t m) { return (v + m - 1) / m * m; }
+
+std::string seconds(double s) {
+  std::ostringstream o;
+  o << s << " s";
+  return o.str();
+}
+
+}  // namespace
+
+NodeLink::NodeLink(const std::string& node, const CellConfig& config, uint64_t period_us, uint64_t lag_us,
+                   double timeout_s, bool read_fallback)
+    : node_(node), config_(config), period_us_(period_us), lag_us_(lag_us), timeout_s_(timeout_s),
+      read_fallback_(read_fallback), latest_(std::make_unique<Latest>()) {
+  nh_.setCallbackQueue(&queue_);
+  spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
+  spinner_->start();
+}
+
+NodeLink::~NodeLink() {
+  spinner_->stop();
+  subs_.clear();
+  progress_sub_.shutdown();
+}
+
+template <class Pred>
+bool NodeLink::wait(Pred pred, double timeout_s) {
+  std::unique_lock<std::mutex> lk(mu_);
+  return cv_.wait_for(lk, std::chrono::duration<double>(timeout_s), pred);
+}
+
+// A publisher is used once plc_node has subscribed: a message sent before is lost.
+void NodeLink::connect_publisher(ros::Publisher* pub, const std::string& what) {
+  if (!wait([&] { return pub->getNumSubscribers() > 0; }, timeout_s_))
+    throw Error("plc_node " + node_ + " did not subscribe to " + pub->getTopic() + " within " + seconds(timeout_s_) +
+                " (" + what + "): is it running in virtual time (~virtual_time: true)?");
+}
+
+// Keeps the latest message of topic stamped at or after the case's time 0 (one of an
+// earlier case may still be on its way) with store(latest, msg), and counts it.
+template <class M, class Store>
+ros::Subscriber NodeLink::keep(const std::string& topic, Store store) {
+  return nh_.subscribe<M>(topic, 1000, [this, topic, store](const typename M::ConstPtr& m) {
+    std::lock_guard<std::mutex> lk(mu_);
+    if (m->header.stamp.toNSec() < t0_us_ * 1000) return;
+    ++received_[topic];
+    store(*latest_, *m);
+    cv_.notify_all();
+  });
+}
+
+// A publisher whose subscribers' arrival wakes connect_publisher().
+template <class M>
+ros::Publisher NodeLink::advertise(const std::string& topic) {
+  ros::AdvertiseOptions ao = ros::AdvertiseOptions::create<M>(
+      topic, 1000, [this](const ros::SingleSubscriberPublisher&) { cv_.notify_all(); }, ros::SubscriberStatusCallback(),
+      ros::VoidConstPtr(), &queue_);
+  return nh_.advertise(ao);
+}
+
+void NodeLink::subscribe(const std::string& topic) {
+  const std::string rel = topic.substr(node_.size() + 1);
+  ros::Subscriber s;
+  if (rel == "io") {
+    s = keep<IoState>(topic, [](Latest& l, const IoState& m) {
+      l.io = m;
+      l.have_io = true;
+    });
+  } else if (starts_with(rel, "signals_stamped/")) {
+    s = keep<Signal>(topic, [topic](Latest& l, const Signal& m) { l.signals[topic] = m.data; });
+  } else if (starts_with(rel, "registers/")) {
+    s = keep<RegisterBlock>(topic, [topic](Latest& l, const RegisterBlock& m) { l.registers[topic] = m; });
+  } else if (starts_with(rel, "pulses/")) {
+    s = keep<PulseMeasurement>(topic, [topic](Latest& l, const PulseMeasurement& m) { l.pulses[topic] = m; });
+  } else if (starts_with(rel, "counters/")) {
+    s = keep<Counter>(topic, [topic](Latest& l, const Counter& m) { l.counters[topic] = m; });
+  } else if (starts_with(rel, "motion/") && ends_with(rel, "/status")) {
+    s = keep<AxisStatus>(topic, [topic](Latest& l, const AxisStatus& m) { l.axes[topic] = m; });
+  } else if (starts_with(rel, "temperature/")) {
+    const std::string channel = rel.substr(std::string("temperature/").size());
+    temperature_pubs_[channel] = advertise<sensor_msgs::Temperature>(node_ + "/temperature_inputs/" + channel);
+    s = keep<sensor_msgs::Temperature>(
+        topic, [topic](Latest& l, const sensor_msgs::Temperature& m) { l.temperatures[topic] = m.temperature; });
+  } else {
+    return;  // not read by any probe: ~forced, ~signals/<name> (no stamp), ~counters, joint_states
+  }
+  subs_.push_back(s);
+  topics_.push_back(topic);
+}
+
+void NodeLink::call_reset() {
+  std_srvs::Trigger srv;
+  if (!ros::service::call(node_ + "/reset", srv))
+    throw Error("plc_node " + node_ + ": ~reset could not be called (is the node running?)");
+  if (!srv.response.success) throw Error("plc_node " + node_ + ": " + srv.response.message);
+}
+
+void NodeLink::publish_clock(uint64_t t_us) {
+  rosgraph_msgs::Clock c;
+  c.clock.fromNSec((t0_us_ + t_us + lag_us_) * 1000);
+  clock_pub_.publish(c);
+}
+
+bool NodeLink::scan_complete(uint64_t t_us) const {
+  if (!have_progress_ || progress_.header.stamp.toNSec() < (t0_us_ + t_us) * 1000 || progress_.scans == 0) return false;
+  for (size_t i = 0; i < progress_.topics.size() && i < progress_.published.size(); ++i) {
+    const auto r = received_.find(progress_.topics[i]);
+    if (std::find(topics_.begin(), topics_.end(), progress_.topics[i]) == topics_.end()) continue;
+    if ((r == received_.end() ? 0 : r->second) < progress_.published[i]) return false;
+  }
+  return true;
+}
+
+void NodeLink::connect() {
+  if (connected_) return;
+  std::string clock_topic = "/clock";
+  ros::param::get(node_ + "/clock_topic", clock_topic);
+  if (clock_topic.empty() || clock_topic[0] != '/') clock_topic = node_ + "/" + clock_topic;  // plc_node's private name
+  clock_pub_ = advertise<rosgraph_msgs::Clock>(clock_topic);
+  for (const auto& s : config_.signals)
+    if (s.second.area == Area::X) input_pubs_[s.second.index] = advertise<Signal>(node_ + "/inputs_stamped/" + s.first);
+  progress_sub_ = nh_.subscribe<ScanProgress>(node_ + "/virtual_time/scanned", 1000,
+                                              [this](const ScanProgress::ConstPtr& m) {
+                                                std::lock_guard<std::mutex> lk(mu_);
+                                                if (resets_known_ && m->resets != resets_) return;  // another case's
+                                                progress_ = *m;
+                                                have_progress_ = true;
+                                                cv_.notify_all();
+                                              });
+  if (!ros::service::waitForService(node_ + "/reset", ros::Duration(timeout_s_)))
+    throw Error("plc_node " + node_ + " has no ~reset service within " + seconds(timeout_s_) + ": is it running?");
+  connect_publisher(&clock_pub_, "its ~clock_topic");
+  for (auto& p : input_pubs_) connect_publisher(&p.second, "a named input");
+  // Subscriptions connect in the background: a message published before one is up is lost
+  // to it. So: reset, scan once and see every topic's messages arrive; else again.
+  const double attempt_s = std::min(timeout_s_, 3.0);
+  std::string missing = "no ~virtual_time/scanned message";
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      t0_us_ = round_up(next_t0_us_, period_us_);
+      next_t0_us_ = t0_us_ + 1000000;
+      received_.clear();
+      *latest_ = Latest();
+      have_progress_ = false;
+    }
+    call_reset();
+    if (topics_.empty()) {  // the topic list comes with the message ~reset publishes
+      if (!wait([&] { return have_progress_; }, attempt_s)) continue;
+      std::vector<std::string> topics;
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        topics = progress_.topics;
+        if (progress_.scan_period.toNSec() != int64_t(period_us_) * 1000 || progress_.lag.toNSec() != int64_t(lag_us_) * 1000)
+          throw Error("plc_node " + node_ + " scans every " + std::to_string(progress_.scan_period.toNSec() / 1000) +
+                      " us with a lag of " + std::to_string(progress_.lag.toNSec() / 1000) + " us; expected " +
+                      std::to_string(period_us_) + " and " + std::to_string(lag_us_));
+      }
+      for (const auto& t : topics)
+        if (starts_with(t, node_ + "/")) subscribe(t);
+      for (auto& p : temperature_pubs_) connect_publisher(&p.second, "a temperature channel's input");
+      continue;
+    }
+    publish_clock(0);
+    if (wait([&] { return scan_complete(0); }, attempt_s)) {
+      std::lock_guard<std::mutex> lk(mu_);
+      resets_ = progress_.resets;
+      resets_known_ = true;
+      connected_ = true;
+      return;
+    }
+    std::lock_guard<std::mutex> lk(mu_);
+    missing.clear();
+    if (!have_progress_) missing = "no ~virtual_time/scanned message";
+    for (size_t i = 0; i < progress_.topics.size() && i < progress_.published.size(); ++i) {
+      const uint64_t got = received_[progress_.topics[i]];
+      if (std::find(topics_.begin(), topics_.end(), progress_.topics[i]) != topics_.end() && got < progress_.published[i])
+        missing += (missing.empty() ? "" : ", ") + progress_.topics[i] + " " + std::to_string(got) + " of " +
+                   std::to_string(progress_.published[i]);
+    }
+  }
+  throw Error("plc_node " + node_ + ": a scan's messages did not all arrive (" + missing + ")");
+}
+
+void NodeLink::begin_case() {
+  connect();
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    t0_us_ = round_up(next_t0_us_, period_us_);
+    next_t0_us_ = t0_us_ + 1000000;
+    received_.clear();
+    *latest_ = Latest();
+    have_progress_ = false;
+    inputs_sent_ = 0;
+    scanned_ = false;
+    last_t_us_ = 0;
+    ++resets_;  // the progress of this reset on
+  }
+  read_cache_.clear();
+  call_reset();
+}
+
+// An address on no topic, with ~read: exact in virtual time, where plc_node serves it
+// between two clock messages. Once per scan and address.
+uint32_t NodeLink::read_memory(const std::string& name) {
+  const auto cached = read_cache_.find(name);
+  if (cached != read_cache_.end()) return cached->second;
+  if (!read_client_.isValid()) read_client_ = ros::NodeHandle().serviceClient<ReadMemory>(node_ + "/read", true);
+  ReadMemory srv;
+  srv.request.address = name;
+  srv.request.count = 1;
+  if (!read_client_.call(srv)) {
+    read_client_ = ros::NodeHandle().serviceClient<ReadMemory>(node_ + "/read", true);
+    if (!read_client_.call(srv)) throw Error("plc_node " + node_ + ": ~read " + name + " failed");
+  }
+  if (!srv.response.success || srv.response.values.empty()) throw Error("~read " + name + ": " + srv.response.message);
+  return read_cache_[name] = uint32_t(srv.response.values[0]);
+}
+
+void NodeLink::scan(uint64_t t_us) {
+  uint64_t sent;
+  read_cache_.clear();
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    sent = inputs_sent_;
+  }
+  if (sent && !wait([&] { return have_progress_ && progress_.inputs >= sent; }, timeout_s_))
+    throw Error("plc_node " + node_ + " did not acknowledge " + std::to_string(sent) + " stamped inputs within " +
+                seconds(timeout_s_));
+  publish_clock(t_us);
+  if (!wait([&] { return scan_complete(t_us); }, timeout_s_)) {
+    std::lock_guard<std::mutex> lk(mu_);
+    std::string why = have_progress_ ? "it reported the scan at " +
+                                           format_time(progress_.header.stamp.toNSec() / 1000 - std::min<uint64_t>(
+                                               t0_us_, progress_.header.stamp.toNSec() / 1000))
+                                     : "no ~virtual_time/scanned message";
+    throw Error("plc_node " + node_ + ": the scan at " + format_time(t_us) + " did not complete within " +
+                seconds(timeout_s_) + " (" + why + ")");
+  }
+  std::lock_guard<std::mutex> lk(mu_);
+  scanned_ = true;
+  last_t_us_ = t_us;
+  next_t0_us_ = std::max(next_t0_us_, t0_us_ + t_us + 1000000);
+}
+
+}  // namespace scenario
+}  // namespace plc_cell
