@@ -4,6 +4,7 @@
 # test tooling, built with the tests (catkin's default), as gtest is a test dependency.
 if(CATKIN_ENABLE_TESTING)
   add_executable(scenario_runner src/ros/scenario_runner_main.cpp src/ros/scenario_runner_target.cpp src/ros/scenario_node_link.cpp
+    src/ros/topic_probes.cpp src/ros/counter_topic_probes.cpp src/ros/axis_topic_probes.cpp src/ros/temperature_topic_probes.cpp
     src/ros/server_params.cpp)
   target_include_directories(scenario_runner PRIVATE ${catkin_INCLUDE_DIRS} ${GTEST_INCLUDE_DIRS})
   target_link_libraries(scenario_runner plc_cell_scenario plc_cell_runtime ${catkin_LIBRARIES} ${GTEST_LIBRARIES})

@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include <rosgraph_msgs/Clock.h>
-#include <sensor_msgs/Temperature.h>
 #include <std_srvs/Trigger.h>
 
 #include "plc_cell/ReadMemory.h"
@@ -19,10 +18,6 @@ namespace scenario {
 namespace {
 
 bool starts_with(const std::string& s, const std::string& p) { return s.compare(0, p.size(), p) == 0; }
-bool ends_with(const std::string& s, const std::string& p) {
-  return s.size() >= p.size() && s.compare(s.size() - p.size(), p.size(), p) == 0;
-}
-
 uint64_t round_up(uint64_t v, uint64_t m) { return (v + m - 1) / m * m; }
 
 std::string seconds(double s) {
@@ -36,7 +31,7 @@ std::string seconds(double s) {
 NodeLink::NodeLink(const std::string& node, const CellConfig& config, uint64_t period_us, uint64_t lag_us,
                    double timeout_s, bool read_fallback)
     : node_(node), config_(config), period_us_(period_us), lag_us_(lag_us), timeout_s_(timeout_s),
-      read_fallback_(read_fallback), latest_(std::make_unique<Latest>()) {
+      read_fallback_(read_fallback), probes_(registered_topic_probes()), latest_(std::make_unique<Latest>()) {
   nh_.setCallbackQueue(&queue_);
   spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
   spinner_->start();
@@ -77,10 +72,46 @@ ros::Subscriber NodeLink::keep(const std::string& topic, Store store) {
 // A publisher whose subscribers' arrival wakes connect_publisher().
 template <class M>
 ros::Publisher NodeLink::advertise(const std::string& topic) {
-  ros::AdvertiseOptions ao = ros::AdvertiseOptions::create<M>(
-      topic, 1000, [this](const ros::SingleSubscriberPublisher&) { cv_.notify_all(); }, ros::SubscriberStatusCallback(),
-      ros::VoidConstPtr(), &queue_);
+  return advertise(ros::AdvertiseOptions::create<M>(topic, 1000, ros::SubscriberStatusCallback(),
+                                                    ros::SubscriberStatusCallback(), ros::VoidConstPtr(), nullptr));
+}
+
+ros::Publisher NodeLink::advertise(ros::AdvertiseOptions ao) {
+  ao.connect_cb = [this](const ros::SingleSubscriberPublisher&) { cv_.notify_all(); };
+  ao.callback_queue = &queue_;
   return nh_.advertise(ao);
+}
+
+void NodeLink::received(const std::string& topic, uint64_t stamp_ns, const std::function<void()>& store) {
+  std::lock_guard<std::mutex> lk(mu_);
+  if (stamp_ns < t0_us_ * 1000) return;
+  ++received_[topic];
+  store();
+  cv_.notify_all();
+}
+
+ros::Time NodeLink::next_input_stamp() {
+  std::lock_guard<std::mutex> lk(mu_);
+  const uint64_t next = scanned_ ? last_t_us_ + period_us_ : 0;
+  ++inputs_sent_;
+  ros::Time t;
+  t.fromNSec((t0_us_ + next) * 1000);
+  return t;
+}
+
+void NodeLink::clear_case() {
+  received_.clear();
+  *latest_ = Latest();
+  for (auto& p : probes_) p->clear();
+  have_progress_ = false;
+}
+
+TopicProbes* NodeLink::probes_of(const Probe& p) const {
+  for (const auto& side : probes_) {
+    const auto fs = side->families();
+    if (std::find(fs.begin(), fs.end(), p.family) != fs.end()) return side.get();
+  }
+  return nullptr;
 }
 
 void NodeLink::subscribe(const std::string& topic) {
@@ -95,19 +126,11 @@ void NodeLink::subscribe(const std::string& topic) {
     s = keep<Signal>(topic, [topic](Latest& l, const Signal& m) { l.signals[topic] = m.data; });
   } else if (starts_with(rel, "registers/")) {
     s = keep<RegisterBlock>(topic, [topic](Latest& l, const RegisterBlock& m) { l.registers[topic] = m; });
-  } else if (starts_with(rel, "pulses/")) {
-    s = keep<PulseMeasurement>(topic, [topic](Latest& l, const PulseMeasurement& m) { l.pulses[topic] = m; });
-  } else if (starts_with(rel, "counters/")) {
-    s = keep<Counter>(topic, [topic](Latest& l, const Counter& m) { l.counters[topic] = m; });
-  } else if (starts_with(rel, "motion/") && ends_with(rel, "/status")) {
-    s = keep<AxisStatus>(topic, [topic](Latest& l, const AxisStatus& m) { l.axes[topic] = m; });
-  } else if (starts_with(rel, "temperature/")) {
-    const std::string channel = rel.substr(std::string("temperature/").size());
-    temperature_pubs_[channel] = advertise<sensor_msgs::Temperature>(node_ + "/temperature_inputs/" + channel);
-    s = keep<sensor_msgs::Temperature>(
-        topic, [topic](Latest& l, const sensor_msgs::Temperature& m) { l.temperatures[topic] = m.temperature; });
   } else {
-    return;  // not read by any probe: ~forced, ~signals/<name> (no stamp), ~counters, joint_states
+    bool read = false;
+    for (auto& side : probes_)
+      if ((read = side->subscribe(*this, topic, &s))) break;
+    if (!read) return;  // not read by any probe: ~forced, ~signals/<name> (no stamp), ~counters, joint_states
   }
   subs_.push_back(s);
   topics_.push_back(topic);
@@ -165,9 +188,7 @@ void NodeLink::connect() {
       std::lock_guard<std::mutex> lk(mu_);
       t0_us_ = round_up(next_t0_us_, period_us_);
       next_t0_us_ = t0_us_ + 1000000;
-      received_.clear();
-      *latest_ = Latest();
-      have_progress_ = false;
+      clear_case();
     }
     call_reset();
     if (topics_.empty()) {  // the topic list comes with the message ~reset publishes
@@ -183,7 +204,7 @@ void NodeLink::connect() {
       }
       for (const auto& t : topics)
         if (starts_with(t, node_ + "/")) subscribe(t);
-      for (auto& p : temperature_pubs_) connect_publisher(&p.second, "a temperature channel's input");
+      for (auto& side : probes_) side->connect(*this);
       continue;
     }
     publish_clock(0);
@@ -213,9 +234,7 @@ void NodeLink::begin_case() {
     std::lock_guard<std::mutex> lk(mu_);
     t0_us_ = round_up(next_t0_us_, period_us_);
     next_t0_us_ = t0_us_ + 1000000;
-    received_.clear();
-    *latest_ = Latest();
-    have_progress_ = false;
+    clear_case();
     inputs_sent_ = 0;
     scanned_ = false;
     last_t_us_ = 0;

@@ -15,22 +15,21 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 
-#include "plc_cell/AxisStatus.h"
 #include "plc_cell/IoState.h"
 #include "plc_cell/RegisterBlock.h"
 #include "plc_cell/ScanProgress.h"
 #include "plc_cell/Signal.h"
-#include "plc_cell/Counter.h"
-#include "plc_cell/PulseMeasurement.h"
 #include "plc_cell/config/cell_config.h"
+#include "plc_cell/ros/topic_probes.h"
 #include "plc_cell/scenario/target.h"
 
 namespace plc_cell {
 namespace scenario {
 
 // The connection to one plc_node, shared by every case of a run: its subscriptions stay
-// connected from case to case (each case starts with ~reset).
-class NodeLink {
+// connected from case to case (each case starts with ~reset). What an extension's probes
+// read, its registered TopicProbes subscribe through it (ros/topic_probes.h).
+class NodeLink : public TopicFeed {
  public:
   // node: plc_node's resolved name ("/plc_node", "/cell_a/plc_node"); config: the cell it
   // runs (read by the caller from the same files); period_us, lag_us: its scan period and
@@ -43,6 +42,14 @@ class NodeLink {
   // Once, before the first case: waits until plc_node hears the clock and the inputs and
   // until every topic of a scan reaches this node. Throws Error saying what did not come.
   void connect();
+
+  // TopicFeed, for the extensions' TopicProbes.
+  const std::string& node() const override { return node_; }
+  ros::NodeHandle& handle() override { return nh_; }
+  void received(const std::string& topic, uint64_t stamp_ns, const std::function<void()>& store) override;
+  ros::Publisher advertise(ros::AdvertiseOptions options) override;
+  void connect_publisher(ros::Publisher* pub, const std::string& what) override;
+  ros::Time next_input_stamp() override;
 
  private:
   friend class RosTarget;
@@ -62,7 +69,9 @@ class NodeLink {
   void publish_clock(uint64_t t_us);
   bool scan_complete(uint64_t t_us) const;  // mu_ held
   void call_reset();
-  void connect_publisher(ros::Publisher* pub, const std::string& what);
+  void clear_case();  // mu_ held: no message of the new case yet
+  // The registered side that reads p's family, or nullptr.
+  TopicProbes* probes_of(const Probe& p) const;
   uint32_t read_memory(const std::string& name);  // ~read, once per scan
 
   std::string node_;
@@ -77,7 +86,7 @@ class NodeLink {
   std::unique_ptr<ros::AsyncSpinner> spinner_;
   ros::Publisher clock_pub_;
   std::map<uint32_t, ros::Publisher> input_pubs_;  // X index -> ~inputs_stamped/<name>
-  std::map<std::string, ros::Publisher> temperature_pubs_;  // channel -> ~temperature_inputs/<channel>
+  std::vector<std::unique_ptr<TopicProbes>> probes_;  // every registered extension's
   std::vector<ros::Subscriber> subs_;
   ros::Subscriber progress_sub_;
   std::vector<std::string> topics_;  // every topic subscribed (resolved)
@@ -104,10 +113,6 @@ struct NodeLink::Latest {
   bool have_io = false;
   std::map<std::string, bool> signals;  // by topic
   std::map<std::string, RegisterBlock> registers;
-  std::map<std::string, Counter> counters;
-  std::map<std::string, PulseMeasurement> pulses;
-  std::map<std::string, AxisStatus> axes;
-  std::map<std::string, double> temperatures;
 };
 
 // One case: a fresh cell on plc_node (its constructor calls ~reset).
