@@ -1,7 +1,7 @@
 #pragma once
 // A made-up subsystem, written as a new subsystem is (docs/architecture.md, "How to add an
 // extension"): a `ticker: {start: N}` section, FUN 901 TICKS that counts its enabled scans,
-// the probe ticker.count (its facet), and registered for every cell built while a
+// the probe ticker.count (its facet), its status, and registered for every cell built while a
 // TickerRegistration lives. Its ROS side (a topic) is test/extension/ticker_ros.h.
 #include <memory>
 #include <string>
@@ -64,6 +64,12 @@ class Extension : public CellExtension {
     });
     provide<State>(&state_);
     provide<ProbeFacet>(&probes_);
+  }
+  std::vector<ExtensionStatus> status(Plc& plc) const override {
+    ExtensionStatus s;
+    s.name = "ticker";
+    s.message = std::to_string(plc.locked([&](ScanEngine&, Memory&) { return state_.ticks; })) + " ticks";
+    return {s};
   }
   void detach(Plc& plc) override {
     withdraw<ProbeFacet>(&probes_);
