@@ -19,7 +19,7 @@ namespace {
 
 WiredAxisCheck::WiredAxisCheck(plc_cell::SoftCell& cell, const std::vector<WiredAxis>& axes) : cell_(cell), axes_(axes) {
   cell_.plc().locked([&](plc_cell::ScanEngine&, plc_cell::Memory&) {
-    cell_.get<motion::MotionUnit>()->on_step_done([this](int ps, int step, uint64_t t_ns) { step_done(ps, step, t_ns); });
+    cell_.get<plc_cell::motion::MotionUnit>()->on_step_done([this](int ps, int step, uint64_t t_ns) { step_done(ps, step, t_ns); });
     return 0;
   });
 }
@@ -29,7 +29,7 @@ WiredAxisCheck::WiredAxisCheck(plc_cell::SoftCell& cell, const std::vector<Wired
 void WiredAxisCheck::step_done(int ps, int step, uint64_t t_ns) {
   for (const WiredAxis& w : axes_) {
     if (w.ps != ps) continue;
-    const int64_t pos = cell_.get<motion::MotionUnit>()->axis(ps).position(t_ns);
+    const int64_t pos = cell_.get<plc_cell::motion::MotionUnit>()->axis(ps).position(t_ns);
     if (step > 0 && static_cast<size_t>(step) < w.stroke.size() && w.checked[step]) {
       ++steps_checked_;
       if (w.absolute[step]) {
@@ -46,13 +46,13 @@ void WiredAxisCheck::check_at_rest() {
   cell_.plc().locked([&](plc_cell::ScanEngine&, plc_cell::Memory& m) {
     for (const WiredAxis& w : axes_) {
       const int ps = w.ps;
-      auto& mu = *cell_.get<motion::MotionUnit>();
+      auto& mu = *cell_.get<plc_cell::motion::MotionUnit>();
       if (mu.busy(ps) || mu.frequency(ps) != 0.0) continue;
       const int64_t pos = mu.position(ps);
       const uint32_t dr = m.reg(plc_cell::Area::R, 4088 + 2 * ps) | static_cast<uint32_t>(m.reg(plc_cell::Area::R, 4089 + 2 * ps)) << 16;
       if (static_cast<int32_t>(dr) != pos) violated("DR4088+2Ps holds the position at rest", ps, 0, pos, static_cast<int32_t>(dr));
       if (w.homes) continue;
-      const uint32_t cv = static_cast<uint32_t>(cell_.get<hsc::HscUnit>()->count(ps));
+      const uint32_t cv = static_cast<uint32_t>(cell_.get<plc_cell::hsc::HscUnit>()->count(ps));
       if (cv != static_cast<uint32_t>(pos)) violated("the HSC on the pins counts every pulse", ps, 0, pos, static_cast<int32_t>(cv));
     }
     return 0;
