@@ -20,3 +20,7 @@ install(TARGETS plc_cell_nodelets LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTI
 # The workspace's copy of the package links its files (Makefile, ws-src): install the file the link names.
 get_filename_component(PLC_CELL_NODELET_XML ${PROJECT_SOURCE_DIR}/nodelet_plugins.xml REALPATH)
 install(FILES ${PLC_CELL_NODELET_XML} DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/nodelets.test DEPENDENCIES plc_cell_nodelets)
+endif()

@@ -14,14 +14,29 @@
 
 namespace plc_cell {
 
+// Whether the node needs its callbacks one at a time: plc_node in virtual time, whose
+// ~reset replaces the cell with no other callback using it (its executable spins one thread).
+template <class Node>
+bool one_thread(ros::NodeHandle&) {
+  return false;
+}
+template <>
+bool one_thread<PlcNode>(ros::NodeHandle& pnh) {
+  return pnh.param("virtual_time", false);
+}
+
 // A node class built on the manager's multi-threaded queue, as the executables spin it
-// (an AsyncSpinner): its scans post their publishing there, its services run there.
+// (an AsyncSpinner): its scans post their publishing there, its services run there. Or on
+// the nodelet's single-threaded queue, when it needs one thread.
 template <class Node>
 class NodeNodelet : public nodelet::Nodelet {
  private:
   void onInit() override {
     try {
-      node_ = std::make_unique<Node>(getMTNodeHandle(), getMTPrivateNodeHandle());
+      if (one_thread<Node>(getPrivateNodeHandle()))
+        node_ = std::make_unique<Node>(getNodeHandle(), getPrivateNodeHandle());
+      else
+        node_ = std::make_unique<Node>(getMTNodeHandle(), getMTPrivateNodeHandle());
     } catch (const std::exception& e) {
       NODELET_FATAL("%s", e.what());
       throw;  // the manager refuses to load it, and says so to the loader
