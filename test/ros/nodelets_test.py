@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Cells as nodelets of one manager: each its own cell, topics, services and /diagnostics."""
 import os
 import sys
