@@ -66,6 +66,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
 
 PlcNode::~PlcNode() {
   services_.clear();  // no request writes into a stopping cell
+  driver_->stop();
   cell_->stop();      // servers, scans, then the store's last image
   driver_.reset();    // and what it had still to publish
 }

@@ -4,6 +4,7 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/runtime/cell.h"
 
 namespace plc_cell {
@@ -26,6 +27,7 @@ RealTimeDriver::RealTimeDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Host& 
     : host_(host), queue_(nh.getCallbackQueue()) {
   double clock_rate = 10.0;
   pnh.param("clock_rate", clock_rate, clock_rate);
+  pnh.param("shared_scan", shared_, shared_);
   if (!(clock_rate >= 0 && clock_rate <= 1000)) throw Error("~clock_rate must be in [0, 1000] Hz (0: no ~clock)");
   if (clock_rate == 0) return;
   clock_rate_ = std::make_unique<VirtualRate>(clock_rate);
@@ -42,7 +44,17 @@ RealTimeDriver::RealTimeDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Host& 
 
 RealTimeDriver::~RealTimeDriver() { queue_->removeByID(uint64_t(reinterpret_cast<uintptr_t>(this))); }
 
-void RealTimeDriver::start() { host_.cell().start_scanning([this] { after_scan(); }); }
+void RealTimeDriver::start() {
+  Cell& cell = host_.cell();
+  if (!shared_) return cell.start_scanning([this] { after_scan(); });
+  shared_id_ = SharedScanThread::process().add(cell.plc(), std::chrono::microseconds(cell.scan_period_us()),
+                                               [this] { after_scan(); });
+}
+
+void RealTimeDriver::stop() {
+  if (shared_id_) SharedScanThread::process().remove(shared_id_);
+  shared_id_ = 0;
+}
 
 void RealTimeDriver::input(TimedInput in) {
   host_.cell().plc().locked([&](ScanEngine& e, Memory&) {

@@ -134,4 +134,5 @@ def test_many_cells_loads_each_cell_into_one_manager():
     assert loads == [("/cell_%d/plc_node" % i, ["load", "plc_cell/PlcNodelet", "/cells"]) for i in range(5)]
     for i in range(5):
         assert cfg.params["/cell_%d/plc_node/scan_period" % i].value == 0.001
+        assert cfg.params["/cell_%d/plc_node/shared_scan" % i].value is True
     assert "/cell_5/plc_node/cell" not in cfg.params

@@ -3,6 +3,8 @@
 // the steady clock, inputs applied as they come, topics published from the node's callback
 // queue (the scan thread only reads what changed), and ~clock: the ROS time of the cell's
 // time 0, then of its scans at ~clock_rate, so that a recording replays in virtual time.
+// With ~shared_scan the cell is scanned by the process's one SharedScanThread instead, at
+// its own period: many cells in one process (nodelets) then wake once per period.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -17,11 +19,12 @@ namespace plc_cell {
 
 class RealTimeDriver : public ScanDriver {
  public:
-  // Reads ~clock_rate; throws Error on a bad one.
+  // Reads ~clock_rate and ~shared_scan; throws Error on a bad rate.
   RealTimeDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Host& host);
   ~RealTimeDriver() override;  // drops the callbacks it posted that have not run
 
   void start() override;
+  void stop() override;
   void input(TimedInput in) override;
   ros::Time stamp(uint64_t cell_us) const override;
   void post(std::function<void()> fn) override;
@@ -34,6 +37,8 @@ class RealTimeDriver : public ScanDriver {
   void publish_clock(uint64_t cell_us);
 
   Host& host_;
+  bool shared_ = false;      // ~shared_scan
+  uint64_t shared_id_ = 0;   // its handle in the SharedScanThread, 0: none
   ros::CallbackQueueInterface* queue_;
   ros::Publisher clock_pub_;
   std::unique_ptr<VirtualRate> clock_rate_;  // null: no ~clock

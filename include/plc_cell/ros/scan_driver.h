@@ -44,6 +44,8 @@ class ScanDriver {
   virtual ~ScanDriver() = default;
   // The cell is built (and in RUN if asked): scans begin.
   virtual void start() = 0;
+  // No scan after it returns (before the cell stops).
+  virtual void stop() {}
   virtual void input(TimedInput in) = 0;
   // The ROS time of the cell's time cell_us: the stamp of everything read at that scan.
   virtual ros::Time stamp(uint64_t cell_us) const = 0;
