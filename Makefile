@@ -19,6 +19,7 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-p
   libroscpp-dev python3-rospy ros-std-msgs libstd-msgs-dev python3-std-msgs \
   ros-std-srvs libstd-srvs-dev python3-std-srvs ros-sensor-msgs libsensor-msgs-dev python3-sensor-msgs \
   ros-diagnostic-msgs libdiagnostic-msgs-dev python3-diagnostic-msgs libdiagnostic-updater-dev \
+  libnodeletlib-dev libnodeletlib-tools python3-nodelet pluginlib-dev \
   libactionlib-dev python3-actionlib ros-actionlib-msgs libactionlib-msgs-dev python3-actionlib-msgs \
   ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rosmaster rosout python3-roslaunch librostest-dev python3-rostest python3-rosbag \

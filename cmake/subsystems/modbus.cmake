@@ -35,7 +35,7 @@ if(CATKIN_ENABLE_TESTING)
 endif()
 
 # ---- modbus_bridge: ROS node over the bus-side Bridge ------------------------
-add_executable(modbus_bridge src/ros/modbus_bridge_main.cpp src/ros/modbus_bridge_node.cpp)
+add_executable(modbus_bridge src/ros/modbus_bridge_main.cpp src/ros/modbus_bridge_node.cpp src/ros/bridge_topics.cpp)
 target_include_directories(modbus_bridge PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(modbus_bridge plc_cell_modbus ${catkin_LIBRARIES})
 add_dependencies(modbus_bridge ${PROJECT_NAME}_generate_messages_cpp)

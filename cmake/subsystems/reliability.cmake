@@ -52,7 +52,6 @@ if(CATKIN_ENABLE_TESTING)
 endif()
 
 # plc_node's virtual-time mode (deterministic replay of bags).
-list(APPEND PLC_CELL_NODE_SOURCES ${PROJECT_SOURCE_DIR}/src/ros/plc_node_virtual_time.cpp)
 if(CATKIN_ENABLE_TESTING)
   add_rostest(test/reliability/replay.test DEPENDENCIES plc_node)
   add_rostest(test/reliability/node_restart.test DEPENDENCIES plc_node)

@@ -4,6 +4,7 @@
 #include <sys/prctl.h>
 #include <time.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace plc_cell {
@@ -20,6 +21,27 @@ void sleep_until_ns(uint64_t t) {
   ts.tv_nsec = static_cast<long>(t % 1000000000ull);
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) != 0) {
   }
+}
+
+// One scan at the engine time of woke, due at *next: accounted, *next moved past it (periods
+// missed skipped, not caught up). Returns the wake latency.
+uint64_t scan_once(Plc& plc, uint64_t base_us, uint64_t epoch, uint64_t period, uint64_t* next) {
+  const uint64_t woke = mono_ns();
+  const uint64_t latency = woke > *next ? woke - *next : 0;
+  const uint64_t now_us = base_us + (woke - epoch) / 1000;
+  plc.locked([&](ScanEngine& e, Memory&) {
+    e.scan(now_us);
+    const uint64_t exec = mono_ns() - woke;
+    *next += period;
+    const uint64_t done = mono_ns();
+    uint64_t missed = 0;
+    if (done > *next) {
+      missed = (done - *next) / period + 1;
+      *next += missed * period;
+    }
+    e.report_cycle(exec, latency, missed);
+  });
+  return latency;
 }
 }  // namespace
 
@@ -54,23 +76,60 @@ void RealTimeLoop::run() {
   uint64_t next = epoch + period;
   while (running_) {
     sleep_until_ns(next);
-    const uint64_t woke = mono_ns();
-    const uint64_t latency = woke > next ? woke - next : 0;
-    const uint64_t now_us = base_us + (woke - epoch) / 1000;
-    uint64_t exec = 0, missed = 0;
-    plc_.locked([&](ScanEngine& e, Memory&) {
-      e.scan(now_us);
-      exec = mono_ns() - woke;
-      next += period;
-      const uint64_t done = mono_ns();
-      if (done > next) {
-        missed = (done - next) / period + 1;
-        next += missed * period;
-      }
-      e.report_cycle(exec, latency, missed);
-    });
+    const uint64_t latency = scan_once(plc_, base_us, epoch, period, &next);
     if (record_) latencies_.push_back(latency);
     if (after_scan_) after_scan_();
+  }
+}
+
+SharedScanThread& SharedScanThread::process() {
+  static SharedScanThread thread;
+  return thread;
+}
+
+SharedScanThread::~SharedScanThread() {
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    stopping_ = true;
+  }
+  cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+uint64_t SharedScanThread::add(Plc& plc, std::chrono::nanoseconds period, std::function<void()> after_scan) {
+  const uint64_t base_us = plc.locked([](ScanEngine& e, Memory&) { return e.now_us(); });
+  std::lock_guard<std::mutex> lk(mu_);
+  const uint64_t p = std::max<uint64_t>(1, uint64_t(period.count())), epoch = mono_ns();
+  entries_.push_back(Entry{next_id_, &plc, p, base_us, epoch, epoch + p, std::move(after_scan)});
+  if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
+  cv_.notify_all();
+  return next_id_++;
+}
+
+void SharedScanThread::remove(uint64_t id) {
+  std::lock_guard<std::mutex> lk(mu_);
+  entries_.erase(std::remove_if(entries_.begin(), entries_.end(), [id](const Entry& e) { return e.id == id; }),
+                 entries_.end());
+}
+
+void SharedScanThread::run() {
+  prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
+  std::unique_lock<std::mutex> lk(mu_);
+  while (!stopping_) {
+    if (entries_.empty()) {
+      cv_.wait(lk);
+      continue;
+    }
+    uint64_t due = entries_.front().next_ns;
+    for (const Entry& e : entries_) due = std::min(due, e.next_ns);
+    lk.unlock();  // a cell added meanwhile waits at most this sleep
+    sleep_until_ns(due);
+    lk.lock();
+    for (Entry& e : entries_) {
+      if (e.next_ns > mono_ns()) continue;
+      scan_once(*e.plc, e.base_us, e.epoch_ns, e.period_ns, &e.next_ns);
+      if (e.after_scan) e.after_scan();
+    }
   }
 }
 

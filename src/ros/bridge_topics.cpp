@@ -5,7 +5,6 @@
 #include <std_srvs/Trigger.h>
 
 #include "plc_cell/IoState.h"
-#include "plc_cell/RegisterBlock.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/ros/frame_id.h"
@@ -55,13 +54,7 @@ void BridgeTopics::publish_signal(size_t i, bool on, const ros::Time& stamp) {
 void BridgeTopics::on_group(const GroupResult& r) {
   if (!r.ok || r.group >= groups_.size()) return;
   const RegisterGroup& g = groups_[r.group];
-  RegisterBlock msg;
-  msg.header.stamp = ros::Time::now();
-  msg.header.frame_id = frame_id_;
-  msg.name = g.name;
-  msg.address = g.text;
-  msg.values.assign(r.values.begin(), r.values.end());
-  group_pubs_[r.group].publish(msg);
+  group_pubs_[r.group].publish(register_block(ros::Time::now(), frame_id_, g.name, g.text, r.values));
 }
 
 LinkParams read_link_params(ros::NodeHandle& pnh, int default_baud, const std::string& default_format) {
@@ -102,14 +95,26 @@ std::vector<ros::ServiceServer> advertise_link_services(ros::NodeHandle& pnh, Po
         }
         return true;
       }));
-  out.push_back(pnh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
-      "recover", [l](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-        l->recover();
-        res.success = true;
-        res.message = "reconnecting to " + l->describe();
-        return true;
-      }));
+  out.push_back(advertise_recover(pnh, [l] {
+    l->recover();
+    return "reconnecting to " + l->describe();
+  }));
   return out;
+}
+
+ros::ServiceServer advertise_recover(ros::NodeHandle& pnh, std::function<std::string()> recover) {
+  return pnh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
+      "recover", [recover](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+        res.message = recover();
+        res.success = true;
+        return true;
+      });
+}
+
+ros::Timer start_diagnostics(ros::NodeHandle& nh, diagnostic_updater::Updater& updater, const std::string& hardware_id) {
+  updater.setHardwareID(hardware_id);
+  diagnostic_updater::Updater* u = &updater;
+  return nh.createTimer(ros::Duration(1.0), [u](const ros::TimerEvent&) { u->update(); });
 }
 
 void diagnose_link(diagnostic_updater::DiagnosticStatusWrapper& stat, const PolledLink& link) {

@@ -4,7 +4,7 @@
 
 namespace plc_cell {
 
-FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) {
+FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh, pnh.getNamespace()) {
   const LinkParams lp = read_link_params(pnh, 9600, "7E1");
   int station = 1;
   pnh.param("station", station, station);
@@ -18,9 +18,8 @@ FatekBridge::FatekBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(n
   services_ = advertise_memory_services(pnh, *this);
   for (auto& s : advertise_link_services(pnh, *bridge_, [this](bool run) { bridge_->set_run(run); }))
     services_.push_back(s);
-  updater_.setHardwareID("fatek/" + bridge_->describe());
   updater_.add("link", this, &FatekBridge::diagnose);
-  diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
+  diag_timer_ = start_diagnostics(nh, updater_, "fatek/" + bridge_->describe());
   bridge_->start();
   ROS_INFO("fatek_bridge: %s, %zu group(s), %zu signal(s), I/O image %zu frame(s) per poll",
            bridge_->describe().c_str(), bridge_->config().groups.size(), bridge_->config().signals.size(),

@@ -10,8 +10,8 @@
 #include <std_msgs/UInt32.h>
 #include <std_msgs/UInt64.h>
 
-#include "plc_cell/RegisterBlock.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/ros/bridge_topics.h"
 #include "plc_cell/ros/frame_id.h"
 
 namespace plc_cell {
@@ -50,7 +50,7 @@ void send(ros::Publisher& pub, V v) {
 
 }  // namespace
 
-ModbusBridgeNode::ModbusBridgeNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) {
+ModbusBridgeNode::ModbusBridgeNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh, pnh.getNamespace()) {
   std::string path;
   if (!pnh.getParam("config", path)) throw Error("~config (the bridge YAML) is required");
   modbus::BridgeConfig cfg = modbus::load_bridge_config(path);
@@ -68,15 +68,17 @@ ModbusBridgeNode::ModbusBridgeNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : 
       }
     }
   }
-  updater_.setHardwareID("modbus_bridge");
   for (size_t d = 0; d < cfg.devices.size(); ++d)
     updater_.add(cfg.devices[d].name, [this, d](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnose(d, s); });
   bridge_ = std::make_unique<modbus::Bridge>(std::move(cfg), [this](const modbus::GroupResult& r) { on_result(r); });
   // Not ~write: that name is plc_cell/WriteMemory (raw elements at an address) on plc_node
   // and fatek_bridge, while this one takes an engineering value for a named point.
   services_.push_back(pnh.advertiseService("write_point", &ModbusBridgeNode::on_write, this));
-  services_.push_back(pnh.advertiseService("recover", &ModbusBridgeNode::on_recover, this));
-  diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
+  services_.push_back(advertise_recover(pnh, [this] {
+    bridge_->recover();
+    return std::string("reconnecting every line now");
+  }));
+  diag_timer_ = start_diagnostics(nh, updater_, "modbus_bridge");
   bridge_->start();
 }
 
@@ -115,15 +117,10 @@ void ModbusBridgeNode::on_result(const modbus::GroupResult& r) {
     st.raw = r.values[i].raw;
     publish_point(g.points[i], st, r.values[i], r.engineering[i]);
   }
-  for (size_t k = 0; k < r.reads.size(); ++k) {
-    RegisterBlock b;
-    b.header.stamp = now;
-    b.header.frame_id = frame_id_;
-    b.name = g.name;
-    b.address = std::string(modbus::table_name(r.reads[k].table)) + ":" + std::to_string(r.reads[k].address);
-    b.values.assign(r.blocks[k].begin(), r.blocks[k].end());
-    block_pubs_[r.device].publish(b);
-  }
+  for (size_t k = 0; k < r.reads.size(); ++k)
+    block_pubs_[r.device].publish(register_block(
+        now, frame_id_, g.name, std::string(modbus::table_name(r.reads[k].table)) + ":" + std::to_string(r.reads[k].address),
+        r.blocks[k]));
 }
 
 bool ModbusBridgeNode::on_write(WritePoint::Request& req, WritePoint::Response& res) {
@@ -134,13 +131,6 @@ bool ModbusBridgeNode::on_write(WritePoint::Request& req, WritePoint::Response& 
     res.success = false;
     res.message = e.what();
   }
-  return true;
-}
-
-bool ModbusBridgeNode::on_recover(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  bridge_->recover();
-  res.success = true;
-  res.message = "reconnecting every line now";
   return true;
 }
 

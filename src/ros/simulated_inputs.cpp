@@ -25,34 +25,28 @@ bool PlcNode::on_simulate(SimulateInputs::Request& req, SimulateInputs::Response
     }
     xs.push_back(a.index);
   }
-  // In virtual time the cell is replaced by ~reset under virtual_mu_, and the hand-back
-  // waits for the next scan, after the stamped inputs queued before it.
-  std::unique_lock<std::mutex> vlk(virtual_mu_, std::defer_lock);
-  if (virtual_time_) vlk.lock();
   const std::string refused = cell_->plc().locked([&](ScanEngine&, Memory&) -> std::string {
     SimulatedCell& sim = cell_->soft().simulation();
     if (req.inputs.empty()) xs = sim.simulated_inputs();
     for (size_t i = 0; i < xs.size(); ++i)
       if (!sim.simulates(xs[i]))
         return req.inputs[i] + ": the cell's simulation has no signal on X" + std::to_string(xs[i]);
-    if (!virtual_time_)
-      for (uint32_t x : xs) sim.resume(x);
     return "";
   });
   if (!refused.empty()) {
     res.message = "~simulate: " + refused + " (nothing handed back)";
     return true;
   }
-  if (virtual_time_)
-    for (uint32_t x : xs) {
-      PendingInput in{next_scan_us_, input_seq_++, x, false};
-      in.resume = true;
-      pending_.push_back(in);
-    }
+  // From the next scan (the driver's), after the stamped inputs it has queued before.
+  for (uint32_t x : xs) {
+    TimedInput in;
+    in.x = x;
+    in.resume = true;
+    input(in);
+  }
   for (uint32_t x : xs) res.simulated.push_back("X" + std::to_string(x));
   res.success = true;
-  res.message = std::to_string(xs.size()) + (xs.size() == 1 ? " input" : " inputs") + " simulated again" +
-                (virtual_time_ ? " from the next scan" : "");
+  res.message = std::to_string(xs.size()) + (xs.size() == 1 ? " input" : " inputs") + " simulated again";
   return true;
 }
 

@@ -27,12 +27,18 @@ void TopicGroups::start_timers(ros::NodeHandle& nh) {
 }
 
 void TopicGroups::after_virtual_scan(uint64_t now_us, bool every_scan) {
+  ros::Time stamp;
+  stamp.fromNSec(now_us * 1000);
+  after_scan(now_us, every_scan, stamp, [](std::function<void()> fn) { fn(); });
+}
+
+void TopicGroups::after_scan(uint64_t now_us, bool every_scan, const ros::Time& stamp,
+                             const std::function<void(std::function<void()>)>& run) {
   for (auto& e : entries_) {
     if (!e.rate.due(now_us) && !every_scan) continue;
-    ros::Time stamp;
-    stamp.fromNSec(now_us * 1000);
-    e.group->publish(stamp);
     ++e.published;
+    TopicGroup* g = e.group.get();
+    run([g, stamp] { g->publish(stamp); });
   }
 }
 

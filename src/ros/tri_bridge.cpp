@@ -4,7 +4,7 @@
 
 namespace plc_cell {
 
-TriBridge::TriBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh) {
+TriBridge::TriBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh, pnh.getNamespace()) {
   const LinkParams lp = read_link_params(pnh, tri::kDefaultBaud, "8N1");
   int id = 1;
   pnh.param("id", id, id);
@@ -18,9 +18,8 @@ TriBridge::TriBridge(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, p
   services_ = advertise_memory_services(pnh, *this);
   for (auto& s : advertise_link_services(pnh, *bridge_, [this](bool run) { bridge_->set_run(run); }))
     services_.push_back(s);
-  updater_.setHardwareID("tri/" + bridge_->describe());
   updater_.add("link", this, &TriBridge::diagnose);
-  diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
+  diag_timer_ = start_diagnostics(nh, updater_, "tri/" + bridge_->describe());
   bridge_->start();
   ROS_INFO("tri_bridge: %s, %zu group(s), %zu signal(s), I/O image %zu frame(s) per poll",
            bridge_->describe().c_str(), bridge_->config().groups.size(), bridge_->config().signals.size(),

@@ -124,3 +124,15 @@ def test_cell_sim_passes_only_what_is_given():
     assert "/plc_node/program" not in cfg.params
     given = load("cell_sim.launch", "program:=/tmp/p.il")
     assert given.params["/plc_node/program"].value == "/tmp/p.il"
+
+
+def test_many_cells_loads_each_cell_into_one_manager():
+    cfg = load("many_cells.launch", "cells:=5", "scan_period:=0.001")
+    managers = [n for n in cfg.nodes if n.args.strip() == "manager"]
+    assert [m.name for m in managers] == ["cells"]
+    loads = sorted((n.namespace + n.name, n.args.split()) for n in cfg.nodes if n.args.startswith("load"))
+    assert loads == [("/cell_%d/plc_node" % i, ["load", "plc_cell/PlcNodelet", "/cells"]) for i in range(5)]
+    for i in range(5):
+        assert cfg.params["/cell_%d/plc_node/scan_period" % i].value == 0.001
+        assert cfg.params["/cell_%d/plc_node/shared_scan" % i].value is True
+    assert "/cell_5/plc_node/cell" not in cfg.params

@@ -3,8 +3,10 @@
 // accounting. Missed periods are skipped, not caught up, as a PLC would.
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -45,6 +47,39 @@ class RealTimeLoop {
   int priority_ = 0;
   std::string priority_error_;
   std::vector<uint64_t> latencies_;
+};
+
+// Many PLCs scanned by one thread, each at its own period, with the same accounting as
+// RealTimeLoop: cells in one process (plc_node nodelets) then pay one wake-up per period
+// instead of one per cell. The scans of one instant run one after the other, so a cell
+// scanned after others sees their scan time as its wake latency.
+class SharedScanThread {
+ public:
+  // The process's one thread, started at the first add().
+  static SharedScanThread& process();
+  ~SharedScanThread();
+
+  // plc scanned every period from one period from now on, continuing its engine's clock;
+  // after_scan after each of its scans, outside the PLC lock. Returns the handle of remove().
+  uint64_t add(Plc& plc, std::chrono::nanoseconds period, std::function<void()> after_scan);
+  // Returns once the PLC is no longer scanned (not from an after_scan).
+  void remove(uint64_t id);
+
+ private:
+  struct Entry {
+    uint64_t id;
+    Plc* plc;
+    uint64_t period_ns, base_us, epoch_ns, next_ns;
+    std::function<void()> after_scan;
+  };
+  void run();
+
+  std::mutex mu_;  // held while scanning: remove() waits for the scan in progress
+  std::condition_variable cv_;
+  std::vector<Entry> entries_;
+  uint64_t next_id_ = 1;
+  bool stopping_ = false;
+  std::thread thread_;
 };
 
 }  // namespace plc_cell

@@ -1,8 +1,8 @@
 #pragma once
-// The topics every bridge to a real PLC publishes with plc_node's names and types
-// (fatek_bridge, tri_bridge): ~io, ~signals/<name>, ~signals_stamped/<name> (latched, on
-// change) and ~registers/<group>, fed by the bus side's sinks (io/polled_link.h), and the
-// link's entries on /diagnostics.
+// The ROS side every bridge to real devices shares (fatek_bridge, tri_bridge, modbus_bridge):
+// the topics with plc_node's names and types, ~io, ~signals/<name>, ~signals_stamped/<name>
+// (latched, on change) and ~registers/<group>, fed by the bus side's sinks
+// (io/polled_link.h); the register blocks; ~recover; and the link's entries on /diagnostics.
 #include <functional>
 #include <string>
 #include <utility>
@@ -11,6 +11,7 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
+#include "plc_cell/RegisterBlock.h"
 #include "plc_cell/config/register_groups.h"
 #include "plc_cell/io/polled_link.h"
 
@@ -69,6 +70,26 @@ Cfg bridge_config(const LinkParams& lp, Cfg (*load)(const std::string&)) {
   cfg.backoff_max_s = lp.max_backoff_s;
   return cfg;
 }
+
+// A block of registers as read at stamp: plc_cell/RegisterBlock, header.frame_id ~frame_id.
+template <class Values>
+RegisterBlock register_block(const ros::Time& stamp, const std::string& frame_id, const std::string& name,
+                             const std::string& address, const Values& values) {
+  RegisterBlock b;
+  b.header.stamp = stamp;
+  b.header.frame_id = frame_id;
+  b.name = name;
+  b.address = address;
+  b.values.assign(values.begin(), values.end());
+  return b;
+}
+
+// ~recover (std_srvs/Trigger): drop the link(s) and reconnect now; recover says to what.
+ros::ServiceServer advertise_recover(ros::NodeHandle& pnh, std::function<std::string()> recover);
+
+// A bridge's /diagnostics: hardware id, its entries added by the caller, updated every
+// second by the returned timer (keep it as long as the updater).
+ros::Timer start_diagnostics(ros::NodeHandle& nh, diagnostic_updater::Updater& updater, const std::string& hardware_id);
 
 // ~set_run_mode (std_srvs/SetBool: RUN true, STOP false, through set_run) and ~recover
 // (std_srvs/Trigger: drop the link and reconnect now). link must outlive the servers.

@@ -30,7 +30,6 @@ class ModbusBridgeNode {
   void on_result(const modbus::GroupResult& r);
   void publish_point(const modbus::Point& p, PointState& st, const modbus::Value& v, double eng);
   bool on_write(WritePoint::Request& req, WritePoint::Response& res);
-  bool on_recover(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   void diagnose(size_t device, diagnostic_updater::DiagnosticStatusWrapper& stat);
 
   std::unique_ptr<modbus::Bridge> bridge_;

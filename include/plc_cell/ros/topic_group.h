@@ -5,6 +5,7 @@
 // at scans of virtual time stamped with the scan, so a bag of every topic replays bit for
 // bit (docs/plc-node.md "Stamps and virtual time").
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,11 @@ class TopicGroups {
   // Virtual time: called after the scan at now_us, PLC lock not held. every_scan: each
   // group at every scan, not at its rate.
   void after_virtual_scan(uint64_t now_us, bool every_scan = false);
+  // After the scan at now_us, whatever the driver (PLC lock not held): each group due then
+  // (every_scan: every group) is counted and handed to run, which publishes it with stamp
+  // now or on another thread.
+  void after_scan(uint64_t now_us, bool every_scan, const ros::Time& stamp,
+                  const std::function<void(std::function<void()>)>& run);
   // Virtual time: every group's topics, each with the messages published on it since the
   // start or the last restart().
   void count_published(std::vector<std::string>* topics, std::vector<uint64_t>* counts) const;

@@ -1,0 +1,177 @@
+#!/usr/bin/python3
+"""CPU and memory per cell: N demo cells (examples/conveyor, 1 ms scan) as N plc_node
+processes, then as N plc_cell/PlcNodelet in one nodelet manager (each its own scan thread,
+then all on one shared scan thread, ~shared_scan), side by side in one run.
+
+For each count and way, the cells are started on a master of their own (loopback, a free
+port), left to settle, then measured over a window: CPU as the processes' user + system
+time over the window's wall time (100 % = one core), RSS as VmRSS at the window's end,
+threads from /proc, and overruns as each cell's "scan" entry on /diagnostics counts them
+(its overruns at the window's end less those at its start), with the cells' average scan
+time. The machine's load average is printed with each row: the other processes on the
+machine share the cores, and a scan thread they preempt overruns; --rt-priority N runs the
+scan threads under SCHED_FIFO (where allowed) so that only the cells themselves can.
+
+    bench/many_cells.py --workspace .build/ws --cells 1,20,100 --seconds 10
+
+prints a Markdown table (docs/performance.md, "Many cells")."""
+import argparse
+import os
+import socket
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
+sys.path.insert(0, os.path.join(HERE, "scripts"))
+from ros_loopback import loopback_env  # noqa: E402
+
+TICKS = os.sysconf("SC_CLK_TCK")
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def cpu_seconds(pid):
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / TICKS  # utime, stime
+
+
+def status(pid, key):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith(key + ":"):
+                return int(line.split()[1])
+    return 0
+
+
+class Overruns:
+    """Each cell's overruns, from the "scan" entries on /diagnostics."""
+
+    def __init__(self):
+        import rospy
+        from diagnostic_msgs.msg import DiagnosticArray
+        self.last = {}
+        self.cycle = {}  # each cell's average scan time, us
+        rospy.Subscriber("/diagnostics", DiagnosticArray, self.on_diag, queue_size=1000)
+
+    def on_diag(self, msg):
+        for st in msg.status:
+            if st.name.endswith(": scan"):
+                values = {kv.key: kv.value for kv in st.values}
+                if "overruns" in values:
+                    self.last[st.name] = int(values["overruns"])
+                    self.cycle[st.name] = float(values["cycle avg (us)"])
+
+
+def start_nodes(ws, cell, n, scan, prio, env):
+    exe = os.path.join(ws, "devel/lib/plc_cell/plc_node")
+    procs = []
+    for i in range(n):
+        procs.append(subprocess.Popen(
+            [exe, "__name:=plc_node", "__ns:=/cell_%d" % i, "_cell:=" + cell, "_scan_period:=%g" % scan,
+             "_rt_priority:=%d" % prio],
+            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+    return procs, procs
+
+
+def start_nodelets(ws, cell, n, scan, prio, env, shared=False):
+    import rospy
+    from nodelet.srv import NodeletLoad
+    manager = subprocess.Popen(["/usr/lib/nodelet/nodelet", "manager", "__name:=cells"], env=env,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    rospy.wait_for_service("/cells/load_nodelet", timeout=30)
+    load = rospy.ServiceProxy("/cells/load_nodelet", NodeletLoad)
+    for i in range(n):
+        name = "/cell_%d/plc_node" % i
+        rospy.set_param(name + "/cell", cell)
+        rospy.set_param(name + "/scan_period", scan)
+        rospy.set_param(name + "/rt_priority", prio)
+        rospy.set_param(name + "/shared_scan", shared)
+        if not load(name, "plc_cell/PlcNodelet", [], [], [], "").success:
+            raise SystemExit("the manager did not load %s" % name)
+    return [manager], [manager]
+
+
+def measure(way, ws, cell, n, scan, prio, settle, seconds, env, overruns):
+    if way == "nodes":
+        procs, measured = start_nodes(ws, cell, n, scan, prio, env)
+    else:
+        procs, measured = start_nodelets(ws, cell, n, scan, prio, env, shared=way == "shared")
+    try:
+        deadline = time.time() + 60 + n
+        while len(overruns.last) < n and time.time() < deadline:
+            time.sleep(0.5)
+        if len(overruns.last) < n:
+            raise SystemExit("%s: %d of %d cells on /diagnostics" % (way, len(overruns.last), n))
+        time.sleep(settle)
+        before = dict(overruns.last)
+        cpu0, t0 = sum(cpu_seconds(p.pid) for p in measured), time.time()
+        time.sleep(seconds)
+        cpu1, t1 = sum(cpu_seconds(p.pid) for p in measured), time.time()
+        after = dict(overruns.last)
+        rss = sum(status(p.pid, "VmRSS") for p in measured)
+        threads = sum(status(p.pid, "Threads") for p in measured)
+        cpu = 100.0 * (cpu1 - cpu0) / (t1 - t0)
+        over = sum(after[k] - before.get(k, after[k]) for k in after)
+        cycle = sum(overruns.cycle.values()) / max(1, len(overruns.cycle))
+        return {"cpu": cpu, "rss_kb": rss, "threads": threads, "overruns": over, "load": os.getloadavg()[0],
+                "cycle": cycle}
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait()
+        overruns.last.clear()
+        time.sleep(2)  # the last /diagnostics of the stopped cells
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--workspace", default=os.path.join(HERE, ".build/ws"))
+    ap.add_argument("--cells", default="1,20,100", help="comma-separated counts")
+    ap.add_argument("--ways", default="nodes,nodelets,shared",
+                    help="nodes: a process per cell; nodelets: one manager, a scan thread per cell; "
+                         "shared: one manager, one scan thread (~shared_scan)")
+    ap.add_argument("--scan", type=float, default=0.001, help="scan period, s")
+    ap.add_argument("--rt-priority", type=int, default=0,
+                    help="the scan threads' SCHED_FIFO priority (~rt_priority; 0: the normal scheduler)")
+    ap.add_argument("--settle", type=float, default=5, help="s after the last cell is up")
+    ap.add_argument("--seconds", type=float, default=10, help="s of the measuring window")
+    ap.add_argument("--cell", default=os.path.join(HERE, "examples/conveyor/conveyor.yaml"))
+    a = ap.parse_args()
+    port = free_port()
+    env = loopback_env(os.environ)
+    env["ROS_MASTER_URI"] = "http://localhost:%d" % port
+    os.environ.update(env)
+    master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        import rospy
+        time.sleep(1)
+        rospy.init_node("many_cells_bench", anonymous=True, disable_signals=True)
+        overruns = Overruns()
+        print("| cells | way | CPU per cell (%% of a core) | RSS per cell (MB) | threads | scan (us) "
+              "| overruns in %g s | load |" % a.seconds)
+        print("|---|---|---|---|---|---|---|---|")
+        for n in [int(x) for x in a.cells.split(",")]:
+            for way in a.ways.split(","):
+                r = measure(way, a.workspace, a.cell, n, a.scan, a.rt_priority, a.settle, a.seconds, env, overruns)
+                print("| %d | %s | %.2f | %.1f | %d | %.1f | %d | %.1f |" % (
+                    n, way, r["cpu"] / n, r["rss_kb"] / 1024.0 / n, r["threads"], r["cycle"], r["overruns"],
+                    r["load"]), flush=True)
+    finally:
+        master.terminate()
+        master.wait()
+
+
+if __name__ == "__main__":
+    main()
