@@ -8,19 +8,13 @@
 namespace plc_cell {
 namespace hsc {
 
-void HsTimer::start(uint64_t t) {
-  pv_ = 0;
-  cv0_ = 0;
-  base_ = t;
-}
-
 uint64_t HsTimer::next_event_ns() {
   match_ = kNever;
   const int s = irq::kHsc0I + n_;
   if (!ctx_.irq().present(s) || !ctx_.irq().enabled(s)) return match_;
-  uint64_t ticks = static_cast<uint32_t>(pv_ - cv0_);
+  uint64_t ticks = static_cast<uint32_t>(s_.pv - s_.cv0);
   if (ticks == 0) ticks = 1ull << 32;
-  match_ = base_ + ticks * kTimerTick;
+  match_ = s_.base + ticks * kTimerTick;
   while (match_ <= ctx_.now()) match_ += (1ull << 32) * kTimerTick;
   return match_;
 }
@@ -30,28 +24,22 @@ void HsTimer::at(uint64_t t) {
 }
 
 void HsTimer::preset(uint32_t v) {
-  cv0_ = v;
-  base_ = ctx_.now();
+  s_.cv0 = v;
+  s_.base = ctx_.now();
 }
 
 void HsTimer::read_chip() { ctx_.set_reg32(cv_register(n_), cv(ctx_.now())); }
 
 void HsTimer::write_chip(bool pv) {
-  if (pv) pv_ = ctx_.reg32(pv_register(n_));
+  if (pv) s_.pv = ctx_.reg32(pv_register(n_));
   else preset(ctx_.reg32(cv_register(n_)));
-}
-
-void HstaTimer::start(uint64_t t) {
-  pv_ = 0;
-  cv0_ = 0;
-  t0_ = t;
 }
 
 uint64_t HstaTimer::next_event_ns() {
   next_ = kNever;
-  if (pv_ == 0 || !ctx_.irq().present(irq::kHstaI) || !ctx_.irq().enabled(irq::kHstaI)) return next_;
-  const uint64_t period = std::max<uint64_t>(pv_, 2) * kTimerTick;  // PV = 1 acts as 2 (AMBIG-12)
-  next_ = t0_ + ((ctx_.now() - t0_) / period + 1) * period;
+  if (s_.pv == 0 || !ctx_.irq().present(irq::kHstaI) || !ctx_.irq().enabled(irq::kHstaI)) return next_;
+  const uint64_t period = std::max<uint64_t>(s_.pv, 2) * kTimerTick;  // PV = 1 acts as 2 (AMBIG-12)
+  next_ = s_.base + ((ctx_.now() - s_.base) / period + 1) * period;
   return next_;
 }
 
@@ -60,16 +48,16 @@ void HstaTimer::at(uint64_t t) {
 }
 
 void HstaTimer::read_chip() {
-  const uint64_t ticks = (ctx_.now() - t0_) / kTimerTick;
-  const uint32_t v = pv_ == 0 ? cv0_ + static_cast<uint32_t>(ticks)
-                              : static_cast<uint32_t>(ticks % std::max<uint64_t>(pv_, 2));
+  const uint64_t ticks = (ctx_.now() - s_.base) / kTimerTick;
+  const uint32_t v = s_.pv == 0 ? s_.cv0 + static_cast<uint32_t>(ticks)
+                                : static_cast<uint32_t>(ticks % std::max<uint64_t>(s_.pv, 2));
   ctx_.set_reg32(kHstaCv, v);
 }
 
 void HstaTimer::write_chip(bool pv) {
-  if (pv) pv_ = ctx_.mem.reg(Area::R, kHstaPv);
-  else cv0_ = ctx_.reg32(kHstaCv);
-  t0_ = ctx_.now();  // the timer starts over from the write
+  if (pv) s_.pv = ctx_.mem.reg(Area::R, kHstaPv);
+  else s_.cv0 = ctx_.reg32(kHstaCv);
+  s_.base = ctx_.now();  // the timer starts over from the write
 }
 
 int TimeBaseInterrupt::active() const {

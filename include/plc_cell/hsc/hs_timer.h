@@ -13,15 +13,23 @@ namespace hsc {
 
 constexpr uint64_t kTimerTick = 100000;  // 0.1 ms in ns
 
+// What a timer keeps between writes: its CV is cv0 plus the ticks since base.
+struct TimerState {
+  uint32_t pv = 0;
+  uint32_t cv0 = 0;
+  uint64_t base = 0;
+  void restart(uint64_t t_ns) { *this = TimerState{0, 0, t_ns}; }
+};
+
 class HsTimer : public Component {
  public:
   HsTimer(UnitContext& ctx, int n) : ctx_(ctx), n_(n) {}
 
-  void start(uint64_t t_ns) override;
+  void start(uint64_t t_ns) override { s_.restart(t_ns); }
   uint64_t next_event_ns() override;
   void at(uint64_t t_ns) override;
 
-  uint32_t cv(uint64_t t_ns) const { return cv0_ + static_cast<uint32_t>((t_ns - base_) / kTimerTick); }
+  uint32_t cv(uint64_t t_ns) const { return s_.cv0 + static_cast<uint32_t>((t_ns - s_.base) / kTimerTick); }
   void preset(uint32_t v);          // counts on from v now
   void read_chip();                 // FUN92
   void write_chip(bool pv);         // FUN93
@@ -29,9 +37,7 @@ class HsTimer : public Component {
  private:
   UnitContext& ctx_;
   int n_;
-  uint32_t pv_ = 0;
-  uint32_t cv0_ = 0;                // CV at base_
-  uint64_t base_ = 0;
+  TimerState s_;
   uint64_t match_ = kNever;
 };
 
@@ -39,7 +45,7 @@ class HstaTimer : public Component {
  public:
   explicit HstaTimer(UnitContext& ctx) : ctx_(ctx) {}
 
-  void start(uint64_t t_ns) override;
+  void start(uint64_t t_ns) override { s_.restart(t_ns); }
   uint64_t next_event_ns() override;
   void at(uint64_t t_ns) override;
 
@@ -48,9 +54,7 @@ class HstaTimer : public Component {
 
  private:
   UnitContext& ctx_;
-  uint16_t pv_ = 0;
-  uint32_t cv0_ = 0;
-  uint64_t t0_ = 0;
+  TimerState s_;                    // pv: R4154, 0 for a free-running timer
   uint64_t next_ = kNever;
 };
 
