@@ -9,6 +9,15 @@ plc_cell_layer(plc_cell_hsc LINKS plc_cell_config plc_cell_timeline SOURCES
   src/hsc/pulse_measurement.cpp
   src/hsc/hsc_config.cpp
   src/hsc/hsc_unit.cpp
+  src/hsc/input_pins.cpp
+  src/hsc/terminal_edges.cpp
+  src/hsc/pulse_train.cpp
+  src/hsc/count_decoder.cpp
+  src/hsc/hsc_counter.cpp
+  src/hsc/hs_timer.cpp
+  src/hsc/edge_interrupts.cpp
+  src/hsc/measured_input.cpp
+  src/hsc/output_image.cpp
   src/hsc/hsc_functions.cpp
   src/hsc/input_filter.cpp
   src/hsc/scan_debounce.cpp

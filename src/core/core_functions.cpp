@@ -57,13 +57,9 @@ std::vector<OperandSpec> abd_flags() {
           {"ZR", R::BitOut, true}, {"CY", R::BitOut, true}, {"BR", R::BitOut, true}};
 }
 
-}  // namespace
-
-FunctionTable FunctionTable::with_core_functions() {
-  FunctionTable t;
+// FUN8/9: the moves.
+void add_moves(FunctionTable& t) {
   FunctionSpec s;
-
-  s = {};
   s.number = 8; s.mnemonic = "MOV";
   s.operands = {{"S", R::Source}, {"D", R::Dest}};
   s.handler = [](ExecContext& c, const BoundOperand* o) { c.put(o[1], c.get(o[0])); };
@@ -74,8 +70,11 @@ FunctionTable FunctionTable::with_core_functions() {
   s.operands = {{"S", R::Source}, {"D", R::Dest}};
   s.handler = [](ExecContext& c, const BoundOperand* o) { c.put(o[1], ~c.get_raw(o[0])); };
   t.add(s);
+}
 
-  s = {};
+// FUN11-16: the arithmetic, in 16 or 32 bits (.D).
+void add_arithmetic(FunctionTable& t) {
+  FunctionSpec s;
   s.number = 11; s.mnemonic = "ADD";
   s.operands = abd_flags();
   s.handler = [](ExecContext& c, const BoundOperand* o) { arith_result(c, o, c.get(o[0]) + c.get(o[1])); };
@@ -136,8 +135,11 @@ FunctionTable FunctionTable::with_core_functions() {
     c.flag(o[1], v < lo(c));
   };
   t.add(s);
+}
 
-  s = {};
+// FUN17 CMP and the word logic FUN18/19/35.
+void add_compare_logic(FunctionTable& t) {
+  FunctionSpec s;
   s.number = 17; s.mnemonic = "CMP";
   s.operands = {{"Sa", R::Source}, {"Sb", R::Source},
                 {"EQ", R::BitOut, true}, {"GT", R::BitOut, true}, {"LT", R::BitOut, true}};
@@ -167,8 +169,11 @@ FunctionTable FunctionTable::with_core_functions() {
     };
     t.add(s);
   }
+}
 
-  s = {};
+// FUN20/21: the BCD conversions.
+void add_conversions(FunctionTable& t) {
+  FunctionSpec s;
   s.number = 20; s.mnemonic = "BCD";  // FBs "->BCD"
   s.operands = {{"S", R::Source}, {"D", R::Dest}, {"ERR", R::BitOut, true}};
   s.handler = [](ExecContext& c, const BoundOperand* o) {
@@ -196,7 +201,11 @@ FunctionTable FunctionTable::with_core_functions() {
     c.put(o[1], static_cast<int64_t>(v));
   };
   t.add(s);
+}
 
+// FUN51/52: the shifts.
+void add_shifts(FunctionTable& t) {
+  FunctionSpec s;
   for (int dir = 0; dir < 2; ++dir) {
     s = {};
     s.number = dir == 0 ? 51 : 52;
@@ -224,6 +233,17 @@ FunctionTable FunctionTable::with_core_functions() {
     };
     t.add(s);
   }
+}
+
+}  // namespace
+
+FunctionTable FunctionTable::with_core_functions() {
+  FunctionTable t;
+  add_moves(t);
+  add_arithmetic(t);
+  add_compare_logic(t);
+  add_conversions(t);
+  add_shifts(t);
   return t;
 }
 

@@ -97,6 +97,32 @@ Decoding parse_decoding(const Parse& p, const YAML::Node& n, const std::string& 
   return d;
 }
 
+// The A pin: fixed (with alternatives) on HHSC, free on SHSC.
+int parse_pin_a(Parse& p, int n, const YAML::Node& c, const std::string& key, Mode mode, const char* a_name) {
+  if (n >= 4) {
+    if (!c["a"]) p.fail(c, key, "a software counter needs its " + std::string(a_name) + " input, e.g. a: X4");
+    return p.pin(c["a"], key + ".a");
+  }
+  const HhscPins& hp = hhsc_pins(n);
+  if (!c["a"] || c["a"].IsNull() || p.str(c["a"], key + ".a") == "true") return hp.a[0];
+  const int x = p.pin(c["a"], key + ".a");
+  if (std::find(hp.a.begin(), hp.a.end(), x) == hp.a.end() || (is_ab(mode) && x != hp.a[0]))
+    p.fail(c["a"], key + ".a", "HSC" + std::to_string(n) + " cannot take its " + a_name + " input on X" + std::to_string(x));
+  return x;
+}
+
+void parse_invert(Parse& p, const YAML::Node& inv, const std::string& key, bool hard, CounterDef& d) {
+  if (!hard) p.fail(inv, key + ".invert", "polarity inversion is a hardware-counter (HSC0-HSC3) setting");
+  if (!inv.IsSequence()) p.fail(inv, key + ".invert", "expected a list of count, mask, clear");
+  for (const auto& e : inv) {
+    const std::string s = p.str(e, key + ".invert");
+    if (s == "count") d.inv_count = true;
+    else if (s == "mask") d.inv_mask = true;
+    else if (s == "clear") d.inv_clear = true;
+    else p.fail(e, key + ".invert", "'" + s + "': expected count, mask or clear");
+  }
+}
+
 void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
   const std::string key = "counters.hsc" + std::to_string(n);
   const std::string who = "HSC" + std::to_string(n);
@@ -124,21 +150,7 @@ void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
   if (c["decoding"]) d.decoding = parse_decoding(p, c["decoding"], key + ".decoding", d.mode);
   const char* a_name = is_ab(d.mode) ? "A" : (d.mode <= Mode::UDx2 ? "U" : "P");
   const char* b_name = is_ab(d.mode) ? "B" : (d.mode <= Mode::UDx2 ? "D" : "R");
-
-  // A pin: fixed (with alternatives) on HHSC, free on SHSC.
-  if (hard) {
-    const HhscPins& hp = hhsc_pins(n);
-    d.pin_a = hp.a[0];
-    if (c["a"] && !c["a"].IsNull() && p.str(c["a"], key + ".a") != "true") {
-      const int x = p.pin(c["a"], key + ".a");
-      if (std::find(hp.a.begin(), hp.a.end(), x) == hp.a.end() || (is_ab(d.mode) && x != hp.a[0]))
-        p.fail(c["a"], key + ".a", who + " cannot take its " + a_name + " input on X" + std::to_string(x));
-      d.pin_a = x;
-    }
-  } else {
-    if (!c["a"]) p.fail(c, key, "a software counter needs its " + std::string(a_name) + " input, e.g. a: X4");
-    d.pin_a = p.pin(c["a"], key + ".a");
-  }
+  d.pin_a = parse_pin_a(p, n, c, key, d.mode, a_name);
   // B pin: required in A/B modes, optional otherwise (absent R: the direction relay).
   auto optional_pin = [&](const char* k, int fixed) {
     const YAML::Node v = c[k];
@@ -163,18 +175,7 @@ void parse_counter(Parse& p, int n, const YAML::Node& c, CounterDef& d) {
   }
   d.pin_mask = optional_pin("mask", hard ? hhsc_pins(n).mask : -1);
   d.pin_clear = optional_pin("clear", hard ? hhsc_pins(n).clear : -1);
-  if (c["invert"]) {
-    const YAML::Node inv = c["invert"];
-    if (!hard) p.fail(inv, key + ".invert", "polarity inversion is a hardware-counter (HSC0-HSC3) setting");
-    if (!inv.IsSequence()) p.fail(inv, key + ".invert", "expected a list of count, mask, clear");
-    for (const auto& e : inv) {
-      const std::string s = p.str(e, key + ".invert");
-      if (s == "count") d.inv_count = true;
-      else if (s == "mask") d.inv_mask = true;
-      else if (s == "clear") d.inv_clear = true;
-      else p.fail(e, key + ".invert", "'" + s + "': expected count, mask or clear");
-    }
-  }
+  if (c["invert"]) parse_invert(p, c["invert"], key, hard, d);
   auto at = [&](const char* k) { return c[k] ? c[k] : c; };
   p.use(d.pin_a, at("a"), key + ".a", "the " + std::string(a_name) + " input of " + who);
   if (d.pin_b != kNoPin) p.use(d.pin_b, at("b"), key + ".b", "the " + std::string(b_name) + " input of " + who);
@@ -205,6 +206,90 @@ uint64_t parse_filter(const Parse& p, const YAML::Node& v, const std::string& ke
   return us * 1000;
 }
 
+void parse_interrupts(Parse& p, const YAML::Node& l, HscConfig& cfg) {
+  if (!l.IsSequence()) p.fail(l, "counters.interrupts", "expected a list such as [X3+, X0-]");
+  std::set<int> pins;
+  for (const auto& e : l) {
+    std::string s = p.str(e, "counters.interrupts");
+    if (s.size() < 3 || (s.back() != '+' && s.back() != '-'))
+      p.fail(e, "counters.interrupts", "'" + s + "': expected an input and an edge, e.g. X3+ or X3-");
+    const bool falling = s.back() == '-';
+    const int x = p.pin(YAML::Node(s.substr(0, s.size() - 1)), "counters.interrupts");
+    if (!pins.count(x)) p.use(x, e, "counters.interrupts", "an external interrupt input");
+    pins.insert(x);
+    cfg.edge_interrupts.push_back(2 * x + (falling ? 1 : 0));
+  }
+}
+
+void parse_capture(Parse& p, const YAML::Node& l, HscConfig& cfg) {
+  if (!l.IsSequence()) p.fail(l, "counters.capture", "expected a list of inputs such as [X3, X17]");
+  for (const auto& e : l) {
+    const int x = p.main_input(e, "counters.capture");
+    if (cfg.capture[x]) p.fail(e, "counters.capture", "X" + std::to_string(x) + " is listed twice");
+    cfg.capture[x] = true;
+  }
+}
+
+void parse_filters(Parse& p, const YAML::Node& m, HscConfig& cfg) {
+  if (!m.IsMap()) p.fail(m, "counters.filters", "expected a mapping such as {X0-X3: 28kHz, X16-X23: 2ms}");
+  for (const auto& kv : m) {
+    const std::string name = Parse::upper(p.str(kv.first, "counters.filters"));
+    const FilterGroup* g = nullptr;
+    std::string groups;
+    for (const auto& fg : filter_groups()) {
+      if (name == fg.name) g = &fg;
+      groups += std::string(groups.empty() ? "" : ", ") + fg.name;
+    }
+    if (!g) p.fail(kv.first, "counters.filters", "'" + name + "' is not a filter group; the groups are " + groups);
+    const std::string key = "counters.filters." + std::string(g->name);
+    const uint64_t ns = parse_filter(p, kv.second, key, *g);
+    for (int x = g->first; x <= g->last; ++x) cfg.filter_ns[x] = ns;
+  }
+}
+
+SourceDef parse_source(Parse& p, const YAML::Node& s, size_t index) {
+  const std::string key = "counters.sources";
+  p.only(s, key, {"name", "type", "a", "b", "hz", "rpm", "per_rev", "follow"});
+  SourceDef d;
+  d.name = s["name"] ? p.topic_name(s["name"], key + ".name", "pulse source") : "source" + std::to_string(index);
+  const std::string type = s["type"] ? p.str(s["type"], key + ".type") : "pulses";
+  if (type != "encoder" && type != "pulses") p.fail(s["type"], key + ".type", "expected encoder or pulses");
+  if (!s["a"]) p.fail(s, key, "needs a: the input its (A) phase drives");
+  d.pin_a = p.pin(s["a"], key + ".a");
+  if (type == "encoder") {
+    d.pin_b = s["b"] ? p.pin(s["b"], key + ".b") : d.pin_a + 1;
+    if (d.pin_b > 15) p.fail(s, key, "an encoder needs two inputs");
+  } else if (s["b"]) {
+    p.fail(s["b"], key + ".b", "a pulse generator drives one input");
+  }
+  if (s["hz"]) d.hz = p.number(s["hz"], key + ".hz", -1e7, 1e7);
+  else if (s["rpm"]) d.hz = p.number(s["rpm"], key + ".rpm", -1e9, 1e9) / 60.0 *
+                            (s["per_rev"] ? p.number(s["per_rev"], key + ".per_rev", 1, 1e6) : 1.0);
+  else p.fail(s, key, "needs hz: (periods per second) or rpm: (with per_rev:)");
+  if (s["follow"]) {
+    d.has_follow = true;
+    d.follow = p.address(s["follow"], key + ".follow");
+    if (d.follow.width != Width::Bit) p.fail(s["follow"], key + ".follow", "expected a discrete such as Y0");
+  }
+  return d;
+}
+
+void parse_edges(Parse& p, const YAML::Node& l, HscConfig& cfg) {
+  if (!l.IsSequence()) p.fail(l, "counters.edges", "expected a list");
+  for (const auto& s : l) {
+    p.only(s, "counters.edges", {"x", "steps"});
+    if (!s["x"] || !s["steps"] || !s["steps"].IsSequence()) p.fail(s, "counters.edges", "needs x: and steps:");
+    const int x = p.pin(s["x"], "counters.edges.x");
+    for (const auto& st : s["steps"]) {
+      if (!st.IsSequence() || st.size() != 2) p.fail(st, "counters.edges.steps", "each step is [time, level]");
+      cfg.edges.push_back({p.duration_us(st[0], "counters.edges.steps") * 1000, x,
+                           p.boolean(st[1], "counters.edges.steps")});
+    }
+  }
+  std::stable_sort(cfg.edges.begin(), cfg.edges.end(),
+                   [](const ScheduledEdge& a, const ScheduledEdge& b) { return a.t_ns < b.t_ns; });
+}
+
 }  // namespace
 
 HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
@@ -218,47 +303,9 @@ HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
     const YAML::Node c = node["hsc" + std::to_string(n)];
     if (c && !c.IsNull()) parse_counter(p, n, c, cfg.counters[n]);
   }
-  if (node["interrupts"]) {
-    const YAML::Node l = node["interrupts"];
-    if (!l.IsSequence()) p.fail(l, "counters.interrupts", "expected a list such as [X3+, X0-]");
-    std::set<int> pins;
-    for (const auto& e : l) {
-      std::string s = p.str(e, "counters.interrupts");
-      if (s.size() < 3 || (s.back() != '+' && s.back() != '-'))
-        p.fail(e, "counters.interrupts", "'" + s + "': expected an input and an edge, e.g. X3+ or X3-");
-      const bool falling = s.back() == '-';
-      const int x = p.pin(YAML::Node(s.substr(0, s.size() - 1)), "counters.interrupts");
-      if (!pins.count(x)) p.use(x, e, "counters.interrupts", "an external interrupt input");
-      pins.insert(x);
-      cfg.edge_interrupts.push_back(2 * x + (falling ? 1 : 0));
-    }
-  }
-  if (node["capture"]) {
-    const YAML::Node l = node["capture"];
-    if (!l.IsSequence()) p.fail(l, "counters.capture", "expected a list of inputs such as [X3, X17]");
-    for (const auto& e : l) {
-      const int x = p.main_input(e, "counters.capture");
-      if (cfg.capture[x]) p.fail(e, "counters.capture", "X" + std::to_string(x) + " is listed twice");
-      cfg.capture[x] = true;
-    }
-  }
-  if (node["filters"]) {
-    const YAML::Node m = node["filters"];
-    if (!m.IsMap()) p.fail(m, "counters.filters", "expected a mapping such as {X0-X3: 28kHz, X16-X23: 2ms}");
-    for (const auto& kv : m) {
-      const std::string name = Parse::upper(p.str(kv.first, "counters.filters"));
-      const FilterGroup* g = nullptr;
-      std::string groups;
-      for (const auto& fg : filter_groups()) {
-        if (name == fg.name) g = &fg;
-        groups += std::string(groups.empty() ? "" : ", ") + fg.name;
-      }
-      if (!g) p.fail(kv.first, "counters.filters", "'" + name + "' is not a filter group; the groups are " + groups);
-      const std::string key = "counters.filters." + std::string(g->name);
-      const uint64_t ns = parse_filter(p, kv.second, key, *g);
-      for (int x = g->first; x <= g->last; ++x) cfg.filter_ns[x] = ns;
-    }
-  }
+  if (node["interrupts"]) parse_interrupts(p, node["interrupts"], cfg);
+  if (node["capture"]) parse_capture(p, node["capture"], cfg);
+  if (node["filters"]) parse_filters(p, node["filters"], cfg);
   if (node["frequency_window"]) {
     cfg.frequency_window_us = p.duration_us(node["frequency_window"], "counters.frequency_window");
     if (cfg.frequency_window_us < 1000) p.fail(node["frequency_window"], "counters.frequency_window", "at least 1ms");
@@ -267,49 +314,9 @@ HscConfig parse_hsc_config(const YAML::Node& node, const std::string& file) {
   if (node["sources"]) {
     const YAML::Node l = node["sources"];
     if (!l.IsSequence()) p.fail(l, "counters.sources", "expected a list");
-    for (const auto& s : l) {
-      const std::string key = "counters.sources";
-      p.only(s, key, {"name", "type", "a", "b", "hz", "rpm", "per_rev", "follow"});
-      SourceDef d;
-      d.name = s["name"] ? p.topic_name(s["name"], key + ".name", "pulse source") : "source" + std::to_string(cfg.sources.size());
-      const std::string type = s["type"] ? p.str(s["type"], key + ".type") : "pulses";
-      if (type != "encoder" && type != "pulses") p.fail(s["type"], key + ".type", "expected encoder or pulses");
-      if (!s["a"]) p.fail(s, key, "needs a: the input its (A) phase drives");
-      d.pin_a = p.pin(s["a"], key + ".a");
-      if (type == "encoder") {
-        d.pin_b = s["b"] ? p.pin(s["b"], key + ".b") : d.pin_a + 1;
-        if (d.pin_b > 15) p.fail(s, key, "an encoder needs two inputs");
-      } else if (s["b"]) {
-        p.fail(s["b"], key + ".b", "a pulse generator drives one input");
-      }
-      if (s["hz"]) d.hz = p.number(s["hz"], key + ".hz", -1e7, 1e7);
-      else if (s["rpm"]) d.hz = p.number(s["rpm"], key + ".rpm", -1e9, 1e9) / 60.0 *
-                                (s["per_rev"] ? p.number(s["per_rev"], key + ".per_rev", 1, 1e6) : 1.0);
-      else p.fail(s, key, "needs hz: (periods per second) or rpm: (with per_rev:)");
-      if (s["follow"]) {
-        d.has_follow = true;
-        d.follow = p.address(s["follow"], key + ".follow");
-        if (d.follow.width != Width::Bit) p.fail(s["follow"], key + ".follow", "expected a discrete such as Y0");
-      }
-      cfg.sources.push_back(d);
-    }
+    for (const auto& s : l) cfg.sources.push_back(parse_source(p, s, cfg.sources.size()));
   }
-  if (node["edges"]) {
-    const YAML::Node l = node["edges"];
-    if (!l.IsSequence()) p.fail(l, "counters.edges", "expected a list");
-    for (const auto& s : l) {
-      p.only(s, "counters.edges", {"x", "steps"});
-      if (!s["x"] || !s["steps"] || !s["steps"].IsSequence()) p.fail(s, "counters.edges", "needs x: and steps:");
-      const int x = p.pin(s["x"], "counters.edges.x");
-      for (const auto& st : s["steps"]) {
-        if (!st.IsSequence() || st.size() != 2) p.fail(st, "counters.edges.steps", "each step is [time, level]");
-        cfg.edges.push_back({p.duration_us(st[0], "counters.edges.steps") * 1000, x,
-                             p.boolean(st[1], "counters.edges.steps")});
-      }
-    }
-    std::stable_sort(cfg.edges.begin(), cfg.edges.end(),
-                     [](const ScheduledEdge& a, const ScheduledEdge& b) { return a.t_ns < b.t_ns; });
-  }
+  if (node["edges"]) parse_edges(p, node["edges"], cfg);
   cfg.pulse = parse_pulse_measurement(node["pulse_measurement"], file, cfg.counters);
   return cfg;
 }

@@ -207,6 +207,112 @@ int TemperatureConfig::total_channels() const {
   return n;
 }
 
+namespace {
+
+void parse_loops(const YamlReader& r, const YAML::Node& ls, const std::string& k, TemperatureConfig& c) {
+  if (!ls.IsSequence()) r.fail(ls, k + ".loops", "expected a list");
+  for (size_t i = 0; i < ls.size(); ++i) {
+    const std::string lk = k + ".loops[" + std::to_string(i) + "]";
+    r.only(ls[i], lk, {"name", "sv", "kc", "ki", "td"});
+    LoopDef l;
+    if (!ls[i]["name"] || !ls[i]["sv"]) r.fail(ls[i], lk, "a loop needs name and sv");
+    l.name = r.str(ls[i]["name"], lk + ".name");
+    l.sv = r.data_register(ls[i]["sv"], lk + ".sv");
+    if (ls[i]["kc"]) l.kc = r.data_register(ls[i]["kc"], lk + ".kc"), l.has_kc = true;
+    if (ls[i]["ki"]) l.ki = r.data_register(ls[i]["ki"], lk + ".ki"), l.has_ki = true;
+    if (ls[i]["td"]) l.td = r.data_register(ls[i]["td"], lk + ".td"), l.has_td = true;
+    c.loops.push_back(l);
+  }
+}
+
+// modules.temperature; each module entry is read even after an error in another.
+void parse_temperature(const YamlReader& r, const YAML::Node& t, const std::string& file, ErrorList& errors,
+                       TemperatureConfig& c) {
+  const std::string k = "modules.temperature";
+  r.only(t, k, {"scan", "unit", "averaging", "readings", "working", "table", "first_ir", "modules", "loops"});
+  if (const YAML::Node ls = t["loops"]) parse_loops(r, ls, k, c);
+  if (t["scan"]) {
+    const std::string s = r.str(t["scan"], k + ".scan");
+    if (s != "normal" && s != "fast") r.fail(t["scan"], k + ".scan", "normal or fast");
+    c.fast = s == "fast";
+  }
+  if (t["unit"]) {
+    const std::string u = r.str(t["unit"], k + ".unit");
+    if (u != "C" && u != "F") r.fail(t["unit"], k + ".unit", "C or F");
+    c.fahrenheit = u == "F";
+  }
+  if (t["readings"]) c.readings = r.data_register(t["readings"], k + ".readings");
+  if (t["working"]) c.working = r.data_register(t["working"], k + ".working");
+  if (t["table"]) c.table = r.data_register(t["table"], k + ".table"), c.has_table = true;
+  if (t["first_ir"]) c.first_ir = static_cast<uint32_t>(r.number(t["first_ir"], k + ".first_ir", 0, 63));
+  if (t["modules"]) {
+    const YAML::Node& ms = t["modules"];
+    if (!ms.IsSequence() || ms.size() == 0 || ms.size() > 8) r.fail(ms, k + ".modules", "a list of 1 to 8 modules");
+    for (size_t i = 0; i < ms.size(); ++i)
+      errors.collect([&] { c.modules.push_back(parse_module(r, ms[i], k + ".modules[" + std::to_string(i) + "]")); },
+                     file, ms[i]);
+  }
+  if (c.total_channels() > 32)
+    r.fail(t["modules"], k + ".modules", "more than 32 temperature points (the FBs limit)");
+  if (t["averaging"]) {
+    const int a = static_cast<int>(r.number(t["averaging"], k + ".averaging", 1, 16));
+    bool ntc_only = true;
+    for (const auto& m : c.modules) ntc_only &= m.kind == ModuleKind::NTC6;
+    if (a != 1 && a != 2 && a != 4 && a != 8 && !(a == 16 && ntc_only))
+      r.fail(t["averaging"], k + ".averaging", "1, 2, 4 or 8 (16 with NTC modules only)");
+    c.averaging = a;
+  }
+  // Everything must fit in its area.
+  r.checked(t, k, [&] {
+    check_span(c.readings, std::max(1, c.total_channels()));
+    check_span(c.working, 4 + 4 * uint32_t(c.modules.size()));
+    if (c.has_table) check_span(c.table, 4 + uint32_t(c.modules.size()));
+  });
+}
+
+bool has_plant(const TemperatureConfig& c, const std::string& name) {
+  return std::any_of(c.plants.begin(), c.plants.end(), [&](const PlantDef& p) { return p.name == name; });
+}
+
+// Every plant an analog input, an FB channel or a temperature channel names exists.
+void check_plant_names(const YamlReader& r, const YAML::Node& node, const TemperatureConfig& c) {
+  std::vector<const std::vector<AnalogInputDef>*> analog_inputs{&c.analog.board.inputs};
+  for (const auto& m : c.analog.modules) analog_inputs.push_back(&m.inputs);
+  for (const auto* ins : analog_inputs)
+    for (const auto& in : *ins)
+      if (!in.plant.empty() && !has_plant(c, in.plant))
+        r.fail(node["analog"], "modules.analog", "input '" + in.name + "' names an unknown plant '" + in.plant + "'");
+  if (c.fb)
+    for (const auto& m : c.fb->modules)
+      for (const auto& ch : m.channels)
+        if (!ch.plant.empty() && !has_plant(c, ch.plant))
+          r.fail(node["fb_temperature"], "modules.fb_temperature", "channel '" + ch.name + "' names an unknown plant '" + ch.plant + "'");
+}
+
+void check_temperature_plants(const YamlReader& r, const YAML::Node& node, const TemperatureConfig& c) {
+  for (const auto& m : c.modules)
+    for (const auto& ch : m.channels)
+      if (!ch.plant.empty() && !has_plant(c, ch.plant))
+        r.fail(node["temperature"], "modules.temperature", "channel '" + ch.name + "' names an unknown plant '" + ch.plant + "'");
+}
+
+// A 2A4TC/2A4RTD in modules.analog is the AI half of one in modules.temperature.
+void check_combo_modules(const YamlReader& r, const YAML::Node& node, const TemperatureConfig& c) {
+  for (const char* combo : {"2A4TC", "2A4RTD"}) {
+    const auto ai = std::count_if(c.analog.modules.begin(), c.analog.modules.end(),
+                                  [&](const AnalogModuleDef& m) { return m.type == combo; });
+    const auto tm = std::count_if(c.modules.begin(), c.modules.end(), [&](const ModuleDef& m) {
+      return std::string(module_info(m.kind).name) == combo;
+    });
+    if (ai > tm)
+      r.fail(node["analog"], "modules.analog",
+             std::to_string(ai) + " " + combo + " analog part(s) but " + std::to_string(tm) + " " + combo +
+                 " in modules.temperature (the AI part belongs to a temperature module)");
+  }
+}
+
+}  // namespace
+
 TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::string& file) {
   const YamlReader r(file);
   TemperatureConfig c;
@@ -229,62 +335,7 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
   // modules.temperature and modules.plants, and every module and plant entry in them, are
   // read even after an error in another, so each is reported in the same run.
   ErrorList errors;
-  if (const YAML::Node t = node["temperature"]) errors.collect([&] {
-    const std::string k = "modules.temperature";
-    r.only(t, k, {"scan", "unit", "averaging", "readings", "working", "table", "first_ir", "modules", "loops"});
-    if (const YAML::Node ls = t["loops"]) {
-      if (!ls.IsSequence()) r.fail(ls, k + ".loops", "expected a list");
-      for (size_t i = 0; i < ls.size(); ++i) {
-        const std::string lk = k + ".loops[" + std::to_string(i) + "]";
-        r.only(ls[i], lk, {"name", "sv", "kc", "ki", "td"});
-        LoopDef l;
-        if (!ls[i]["name"] || !ls[i]["sv"]) r.fail(ls[i], lk, "a loop needs name and sv");
-        l.name = r.str(ls[i]["name"], lk + ".name");
-        l.sv = r.data_register(ls[i]["sv"], lk + ".sv");
-        if (ls[i]["kc"]) l.kc = r.data_register(ls[i]["kc"], lk + ".kc"), l.has_kc = true;
-        if (ls[i]["ki"]) l.ki = r.data_register(ls[i]["ki"], lk + ".ki"), l.has_ki = true;
-        if (ls[i]["td"]) l.td = r.data_register(ls[i]["td"], lk + ".td"), l.has_td = true;
-        c.loops.push_back(l);
-      }
-    }
-    if (t["scan"]) {
-      const std::string s = r.str(t["scan"], k + ".scan");
-      if (s != "normal" && s != "fast") r.fail(t["scan"], k + ".scan", "normal or fast");
-      c.fast = s == "fast";
-    }
-    if (t["unit"]) {
-      const std::string u = r.str(t["unit"], k + ".unit");
-      if (u != "C" && u != "F") r.fail(t["unit"], k + ".unit", "C or F");
-      c.fahrenheit = u == "F";
-    }
-    if (t["readings"]) c.readings = r.data_register(t["readings"], k + ".readings");
-    if (t["working"]) c.working = r.data_register(t["working"], k + ".working");
-    if (t["table"]) c.table = r.data_register(t["table"], k + ".table"), c.has_table = true;
-    if (t["first_ir"]) c.first_ir = static_cast<uint32_t>(r.number(t["first_ir"], k + ".first_ir", 0, 63));
-    if (t["modules"]) {
-      const YAML::Node& ms = t["modules"];
-      if (!ms.IsSequence() || ms.size() == 0 || ms.size() > 8) r.fail(ms, k + ".modules", "a list of 1 to 8 modules");
-      for (size_t i = 0; i < ms.size(); ++i)
-        errors.collect([&] { c.modules.push_back(parse_module(r, ms[i], k + ".modules[" + std::to_string(i) + "]")); },
-                       file, ms[i]);
-    }
-    if (c.total_channels() > 32)
-      r.fail(t["modules"], k + ".modules", "more than 32 temperature points (the FBs limit)");
-    if (t["averaging"]) {
-      const int a = static_cast<int>(r.number(t["averaging"], k + ".averaging", 1, 16));
-      bool ntc_only = true;
-      for (const auto& m : c.modules) ntc_only &= m.kind == ModuleKind::NTC6;
-      if (a != 1 && a != 2 && a != 4 && a != 8 && !(a == 16 && ntc_only))
-        r.fail(t["averaging"], k + ".averaging", "1, 2, 4 or 8 (16 with NTC modules only)");
-      c.averaging = a;
-    }
-    // Everything must fit in its area.
-    r.checked(t, k, [&] {
-      check_span(c.readings, std::max(1, c.total_channels()));
-      check_span(c.working, 4 + 4 * uint32_t(c.modules.size()));
-      if (c.has_table) check_span(c.table, 4 + uint32_t(c.modules.size()));
-    });
-  }, file, t);
+  if (const YAML::Node t = node["temperature"]) errors.collect([&] { parse_temperature(r, t, file, errors, c); }, file, t);
   if (const YAML::Node ps = node["plants"]) errors.collect([&] {
     if (!ps.IsSequence()) r.fail(ps, "modules.plants", "expected a list");
     for (size_t i = 0; i < ps.size(); ++i)
@@ -292,39 +343,9 @@ TemperatureConfig parse_temperature_config(const YAML::Node& node, const std::st
                      file, ps[i]);
   }, file, ps);
   errors.throw_if_any();  // the checks across sections below need them whole
-  std::vector<const std::vector<AnalogInputDef>*> analog_inputs{&c.analog.board.inputs};
-  for (const auto& m : c.analog.modules) analog_inputs.push_back(&m.inputs);
-  for (const auto* ins : analog_inputs)
-    for (const auto& in : *ins) {
-      if (in.plant.empty()) continue;
-      bool ok = false;
-      for (const auto& p : c.plants) ok |= p.name == in.plant;
-      if (!ok) r.fail(node["analog"], "modules.analog", "input '" + in.name + "' names an unknown plant '" + in.plant + "'");
-    }
-  if (c.fb)
-    for (const auto& m : c.fb->modules)
-      for (const auto& ch : m.channels)
-        if (!ch.plant.empty() && std::none_of(c.plants.begin(), c.plants.end(), [&](const PlantDef& p) { return p.name == ch.plant; }))
-          r.fail(node["fb_temperature"], "modules.fb_temperature", "channel '" + ch.name + "' names an unknown plant '" + ch.plant + "'");
-  // A 2A4TC/2A4RTD in modules.analog is the AI half of one in modules.temperature.
-  for (const char* combo : {"2A4TC", "2A4RTD"}) {
-    const auto ai = std::count_if(c.analog.modules.begin(), c.analog.modules.end(),
-                                  [&](const AnalogModuleDef& m) { return m.type == combo; });
-    const auto tm = std::count_if(c.modules.begin(), c.modules.end(), [&](const ModuleDef& m) {
-      return std::string(module_info(m.kind).name) == combo;
-    });
-    if (ai > tm)
-      r.fail(node["analog"], "modules.analog",
-             std::to_string(ai) + " " + combo + " analog part(s) but " + std::to_string(tm) + " " + combo +
-                 " in modules.temperature (the AI part belongs to a temperature module)");
-  }
-  for (const auto& m : c.modules)
-    for (const auto& ch : m.channels) {
-      if (ch.plant.empty()) continue;
-      bool ok = false;
-      for (const auto& p : c.plants) ok |= p.name == ch.plant;
-      if (!ok) r.fail(node["temperature"], "modules.temperature", "channel '" + ch.name + "' names an unknown plant '" + ch.plant + "'");
-    }
+  check_plant_names(r, node, c);
+  check_combo_modules(r, node, c);
+  check_temperature_plants(r, node, c);
   return c;
 }
 

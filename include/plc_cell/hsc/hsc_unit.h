@@ -11,22 +11,35 @@
 // in time order, and the interrupt routines at their instants.
 // The unit also applies the capture inputs and the digital input filter (§9.6-9.7):
 // on the exact edges of X0-X15 and on the scan's samples of X16-X35.
+//
+// The unit composes parts (component.h), each its own file: the inputs X0-X15
+// (input_pins.h) and their explicit edges (terminal_edges.h), a counter (hsc_counter.h)
+// or timer (hs_timer.h) per configured number, the edge interrupts (edge_interrupts.h),
+// a pulse measurement per measured input (measured_input.h) and the output image
+// (output_image.h). Only configured parts are called per scan and per event.
 #include <array>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
-#include <queue>
 #include <string>
 #include <vector>
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/scan_engine.h"
+#include "plc_cell/hsc/component.h"
+#include "plc_cell/hsc/edge_interrupts.h"
 #include "plc_cell/hsc/edge_source.h"
+#include "plc_cell/hsc/hs_timer.h"
 #include "plc_cell/hsc/hsc_config.h"
+#include "plc_cell/hsc/hsc_counter.h"
+#include "plc_cell/hsc/input_pins.h"
+#include "plc_cell/hsc/measured_input.h"
+#include "plc_cell/hsc/output_image.h"
 #include "plc_cell/hsc/pulse_meter.h"
 #include "plc_cell/hsc/pulse_source.h"
 #include "plc_cell/hsc/scan_debounce.h"
+#include "plc_cell/hsc/terminal_edges.h"
+#include "plc_cell/hsc/unit_context.h"
 #include "plc_cell/timeline/event_source.h"
 #include "plc_cell/timeline/scheduler.h"
 
@@ -77,7 +90,7 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   // and not yet scanned is dropped).
   void mute_simulation(int x, bool muted);
   // Scheduled edges or a pulse train play input x.
-  bool simulates(int x) const { return x >= 0 && x < 16 && simulated_[x]; }
+  bool simulates(int x) const { return terminal_.simulates(x); }
   PulseSource* source(const std::string& name);
   // Another analytic source (owned by the caller, e.g. a pulse-output axis wired to
   // inputs) on X pin_a (phase 0) and pin_b (phase 1, -1: none). Throws Error if a pin
@@ -86,8 +99,8 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   void detach_source(EdgeSource* s);
   // Output y belongs to a pulse generator: the Y relay does not reach the terminal
   // (the I/O refresh and its observers skip it).
-  void own_output(uint32_t y, bool owned = true) { if (y < owned_y_.size()) owned_y_[y] = owned; }
-  bool source_on(int x) const { return x >= 0 && x < 16 && pin_src_[x] != nullptr; }
+  void own_output(uint32_t y, bool owned = true) { outputs_.own(y, owned); }
+  bool source_on(int x) const { return x >= 0 && x < 16 && pins_.driven(x); }
   void set_source_rate(const std::string& name, double hz);  // from the last processed instant
   void preset(int n, int64_t value);  // sets the CV now (chip, register or timer); 0 clears
   int64_t count(int n) const;       // CV now: chip (HHSC), register (SHSC), timer value (HST)
@@ -97,12 +110,12 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   PulseReading pulse(int x) const;
   const HscConfig& config() const { return cfg_; }
 
-  using OutputObserver = std::function<void(uint64_t t_ns, uint32_t y, bool level)>;
-  void on_output(OutputObserver f) { output_obs_.push_back(std::move(f)); }
+  using OutputObserver = OutputImage::Observer;
+  void on_output(OutputObserver f) { outputs_.observe(std::move(f)); }
   // Every CV=PV match of counter n (HSC0-7; timer: HST0-3) at its instant, whether
   // or not an interrupt routine runs (`plc_cell sim --trace`).
-  using MatchObserver = std::function<void(uint64_t t_ns, int n, bool timer)>;
-  void on_match(MatchObserver f) { match_obs_.push_back(std::move(f)); }
+  using MatchObserver = hsc::MatchObserver;
+  void on_match(MatchObserver f) { ctx_.match_obs.push_back(std::move(f)); }
 
   // ---- in the scheduler's loop ----
   void start(uint64_t t_ns) override;
@@ -113,124 +126,29 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   void at(uint64_t t_ns) override;
 
  private:
-  static constexpr uint64_t kTick = 100000;  // 0.1 ms in ns
-
-  struct Counter {
-    int n = 0;
-    CounterDef def;
-    uint32_t cv = 0, pv = 0;  // chip registers (HHSC); SHSC keeps them in R memory
-    bool sw_mask = false, sw_clear = false, sw_dir = false;
-    EdgeSource* src = nullptr;   // drives one or both counting inputs
-    int phase[2] = {-1, -1};     // which phase of src drives a, b (0 = A, 1 = B)
-    int64_t q = 0;               // src quarter at cur_ns_
-    Pins last;                   // counting-input levels at q (a source change is one transition)
-    DecodeState dec;             // the TRi enhanced decoder's memory, at q
-    uint64_t epoch = 0;          // src->epoch() when q was taken
-    int64_t total = 0;           // net counts, for the frequency
-    std::deque<std::pair<uint64_t, int64_t>> hist;
-    uint32_t t_cv0 = 0;          // HST: CV at t_base
-    uint64_t t_base = 0;
-  };
-  struct Edge {
-    uint64_t t;
-    uint64_t seq;
-    int x;
-    bool level;
-    bool commit = false;  // the filter's output: valid only if gen is still the pin's
-    uint64_t gen = 0;
-    bool simulated = false;  // from schedule_edge: muted with the pin
-    bool operator>(const Edge& o) const { return t != o.t ? t > o.t : seq > o.seq; }
-  };
-
-  uint64_t now() const { return sched_.now_ns(); }
-  bool running() const { return sched_.running(); }
-  timeline::InterruptController& irq() const { return sched_.interrupts(); }
-  void advance_counters(uint64_t t);
-  void refresh_outputs(uint32_t first, uint32_t n);
-
-  bool term(int x, uint64_t t) const;     // terminal level of X0-X15
-  bool counting(const Counter& c) const;  // not masked, not cleared, enabled
-  bool cleared(const Counter& c) const;
-  Pins pins_at(const Counter& c, int64_t q) const;
-  // CV changes at the next boundaries the source crosses: first[i] at boundary i+1,
-  // seq[i] at boundaries 4k+i+1 for every k >= 1 (they repeat from the fifth on).
-  void weights(const Counter& c, std::array<int, 4>* first, std::array<int, 4>* seq) const;
-  DecodeState decoder_after(const Counter& c, int64_t k) const;  // after k boundaries from c.q
-  int delta(Counter& c, Pins before, Pins after);  // by the counter's rule; steps c.dec
-  uint64_t next_match(const Counter& c) const;
-  uint32_t get_cv(const Counter& c) const;
-  uint32_t get_pv(const Counter& c) const;
-  void set_cv(Counter& c, uint32_t v);
-  void add_count(Counter& c, int64_t d, bool check);
-  uint32_t hst_cv(const Counter& c, uint64_t t) const;
-  uint64_t hst_match(const Counter& c) const;
-  uint64_t hsta_next() const;
-  int active_time_base() const;
-  uint64_t next_pin_edge(int x, bool rising) const;
-  bool blocked(int x) const;                 // an analytic source too fast for x's filter
-  bool blocked(const Counter& c) const;      // one of its counting inputs is
-  void raw_edge(const Edge& e, std::vector<std::pair<int, bool>>* group);
-  bool source_was_on(int x) const;           // capture of an analytic pin since the last image
-  void bind_pins(EdgeSource* s, int pin_a, int pin_b);
+  uint64_t now() const { return ctx_.now(); }
+  bool running() const { return ctx_.running(); }
   void bind_counters();
-  void take_quarter(Counter& c);             // c.q, c.last, c.epoch from the source at cur_ns_
-  void resync(Counter& c);                   // the source changed: count the jump as one transition
-  void advance_meters(uint64_t t);           // analytic edges of measured pins up to t
+  void compose();
+  void act(uint64_t t, const std::vector<std::pair<int, bool>>& group);  // explicit edges at t
+  void refresh_outputs(uint32_t first, uint32_t n) { outputs_.refresh(first, n, now()); }
 
-  ScanEngine& engine_;
-  Memory& mem_;
   Plc& plc_;
-  timeline::Scheduler& sched_;
+  UnitContext ctx_;
   HscConfig cfg_;
+  InputPins pins_;
+  TerminalEdges terminal_;
+  OutputImage outputs_;
   std::vector<std::unique_ptr<PulseSource>> sources_;
-  std::array<EdgeSource*, 16> pin_src_{};   // analytic driver of each X0-X15
-  std::array<int, 16> pin_phase_{};
-  std::array<bool, 16> term_{};              // explicit terminal levels after the filter
-  std::array<bool, 16> raw_{};               // ... before the filter (what the terminal shows)
-  std::array<uint64_t, 16> gen_{};           // filter: a raw change cancels the pending output
-  std::array<bool, 16> latch_{};             // capture: ON at some instant since the last image
-  std::array<int64_t, 16> cap_q_{};          // capture of an analytic pin: quarter at the last image
-  std::array<bool, 16> simulated_{};         // scheduled edges or a pulse train play the pin
-  std::array<bool, 16> muted_{};             // ... but something outside plays it now
-  std::array<bool, 16> sim_raw_{};           // the raw level the scheduled edges gave, muted or not
-  std::array<ScanDebounce, kFilteredInputs - 16> scan_filter_;  // X16-X35
-  std::array<Counter, 8> counters_;
-  // Pulse measurement of X0-X15. Explicit edges reach a meter as they act; an analytic
-  // pin's edges are found from the quarters crossed (at most the last two cycles of a
-  // span matter, so the cost does not depend on the frequency).
-  struct Meter {
-    bool on = false;
-    PulseMeter m;
-    EdgeSource* src = nullptr;  // the analytic driver the quarter q belongs to
-    int64_t q = 0;
-    bool level = false;         // at q
-    uint64_t epoch = 0;
-  };
-  std::array<Meter, 16> meters_;
-  struct Train {
-    int x;
-    uint64_t period, width, delay;
-    uint64_t next_after(uint64_t t, bool* rising) const;
-    bool level_at(uint64_t t) const { return t >= delay && (t - delay) % period < width; }
-  };
-  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> edges_;
-  std::vector<Train> trains_;
-  uint64_t edge_seq_ = 0;
-  // What next_event_ns() found, for at() of the chosen instant.
-  std::array<uint64_t, 8> match_{};
-  uint64_t hsta_next_ = kNever, tb_next_ = kNever;
-  int tb_ = -1;
-  std::array<uint64_t, 32> pin_edge_{};
-  uint64_t prev_ns_ = 0;     // the instant before the present one (pulse trains)
-  uint64_t run_ns_ = 0;      // when RUN started: the time bases count from here
-  uint16_t hsta_pv_ = 0;
-  uint32_t hsta_cv0_ = 0;
-  uint64_t hsta_t0_ = 0;
-  // Plain arrays, not vector<bool>: every scan compares all 256 outputs.
-  std::array<bool, 256> phys_y_{};
-  std::array<bool, 256> owned_y_{};
-  std::vector<OutputObserver> output_obs_;
-  std::vector<MatchObserver> match_obs_;
+  std::vector<HscCounter> counters_;  // HSC0-HSC7, configured or not (FUN92/93 reach all)
+  std::vector<HsTimer> timers_;       // HST0-HST3
+  HstaTimer hsta_;
+  TimeBaseInterrupt time_base_;
+  EdgeInterrupts edge_irq_;
+  std::vector<MeasuredInput> meters_;
+  std::array<int, 16> meter_of_{};    // index in meters_ of input x, -1: not measured
+  std::vector<std::pair<int, ScanDebounce>> scan_filters_;  // the filtered ones of X16-X35
+  std::vector<Component*> parts_;     // the configured parts, in the order they act
 };
 
 }  // namespace hsc

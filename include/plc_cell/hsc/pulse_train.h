@@ -1,0 +1,20 @@
+#pragma once
+// A periodic switch on one of X0-X15 (the cell YAML's simulation pulse): on for width of
+// every period from delay. Its edges are computed, never queued, so a train costs one
+// event per edge and no memory.
+#include <cstdint>
+
+namespace plc_cell {
+namespace hsc {
+
+struct PulseTrain {
+  int x;
+  uint64_t period, width, delay;
+
+  // First edge strictly after t; *rising tells which.
+  uint64_t next_after(uint64_t t, bool* rising) const;
+  bool level_at(uint64_t t) const { return t >= delay && (t - delay) % period < width; }
+};
+
+}  // namespace hsc
+}  // namespace plc_cell
