@@ -12,9 +12,19 @@ plc_cell_layer(plc_cell_motion LINKS plc_cell_hsc SOURCES
   src/motion/mpg.cpp
   src/motion/profile.cpp
   src/motion/step_speed.cpp
+  src/motion/ramps.cpp
+  src/motion/move_plan.cpp
   src/motion/axis.cpp
   src/motion/pulse_pins.cpp
+  src/motion/axis_wiring.cpp
+  src/motion/switches.cpp
   src/motion/axis_config.cpp
+  src/motion/status_registers.cpp
+  src/motion/preload.cpp
+  src/motion/homing.cpp
+  src/motion/positioning.cpp
+  src/motion/fun140.cpp
+  src/motion/unit_programs.cpp
   src/motion/motion_unit.cpp
   src/motion/motion_functions.cpp
   src/motion/axis_probes.cpp

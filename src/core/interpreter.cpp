@@ -111,48 +111,7 @@ void Interpreter::load(const Program& program) {
     x.pulse = in.pulse;
     x.n_inputs = 1;
     x.first_op = static_cast<uint32_t>(ops.size());
-    bool needs_extra = true;
-    switch (in.op) {
-      case Op::Jmp:
-      case Op::Call:
-        b.arg = program.labels.at(in.label);
-        needs_extra = false;
-        break;
-      case Op::RstReg:
-      case Op::For:
-        x.number = in.target;
-        ops.push_back(bind_operand(mem_, in.operands.at(0)));
-        break;
-      case Op::Tmr:
-      case Op::Ctr:
-        x.number = in.addr.index;
-        ops.push_back(bind_operand(mem_, in.operands.at(0)));
-        break;
-      case Op::Fun:
-        x.fn = functions_.find(in.fun);
-        if (!x.fn) throw Error("FUN " + std::to_string(in.fun) + " is not available");
-        x.n_inputs = static_cast<uint8_t>(x.fn->inputs.size());
-        x.n_ops = static_cast<uint16_t>(in.operands.size());
-        for (const auto& o : in.operands) ops.push_back(bind_operand(mem_, o));
-        break;
-      case Op::Rst:
-        if (in.addr.area == Area::T || in.addr.area == Area::C) {
-          x.clears = in.addr.area == Area::T ? 1 : 2;
-          x.number = in.addr.index;
-          op = Op::RstReg;  // a timer/counter reset runs the register path
-          ops.push_back(BoundOperand{});
-          ops.back().b = mem_.bits(in.addr.area) + in.addr.index;
-          break;
-        }
-        [[fallthrough]];
-      default:
-        needs_extra = false;
-        b.arg = edge;
-        if (in.op <= Op::Rst && in.op != Op::AndLd && in.op != Op::OrLd)
-          b.bit = mem_.bits(in.addr.area) + in.addr.index;
-        break;
-    }
-    if (needs_extra) {
+    if (bind(program, in, edge, &b, &x, &op, &ops)) {
       extra_of[i] = static_cast<int>(extras.size());
       extras.push_back(x);
     }
@@ -175,6 +134,48 @@ void Interpreter::load(const Program& program) {
   record_into(nullptr);  // a recording belongs to the program it was started on
   bind_native();
   reset_state();
+}
+
+bool Interpreter::bind(const Program& program, const Instruction& in, uint32_t edge, Bound* b, Extra* x, Op* op,
+                       std::vector<BoundOperand>* ops) const {
+  switch (in.op) {
+    case Op::Jmp:
+    case Op::Call:
+      b->arg = program.labels.at(in.label);
+      return false;
+    case Op::RstReg:
+    case Op::For:
+      x->number = in.target;
+      ops->push_back(bind_operand(mem_, in.operands.at(0)));
+      return true;
+    case Op::Tmr:
+    case Op::Ctr:
+      x->number = in.addr.index;
+      ops->push_back(bind_operand(mem_, in.operands.at(0)));
+      return true;
+    case Op::Fun:
+      x->fn = functions_.find(in.fun);
+      if (!x->fn) throw Error("FUN " + std::to_string(in.fun) + " is not available");
+      x->n_inputs = static_cast<uint8_t>(x->fn->inputs.size());
+      x->n_ops = static_cast<uint16_t>(in.operands.size());
+      for (const auto& o : in.operands) ops->push_back(bind_operand(mem_, o));
+      return true;
+    case Op::Rst:
+      if (in.addr.area == Area::T || in.addr.area == Area::C) {
+        x->clears = in.addr.area == Area::T ? 1 : 2;
+        x->number = in.addr.index;
+        *op = Op::RstReg;  // a timer/counter reset runs the register path
+        ops->push_back(BoundOperand{});
+        ops->back().b = mem_.bits(in.addr.area) + in.addr.index;
+        return true;
+      }
+      [[fallthrough]];
+    default:
+      b->arg = edge;
+      if (in.op <= Op::Rst && in.op != Op::AndLd && in.op != Op::OrLd)
+        b->bit = mem_.bits(in.addr.area) + in.addr.index;
+      return false;
+  }
 }
 
 void Interpreter::use_native(bool on) {

@@ -56,13 +56,9 @@ std::string check_program(const std::vector<plc_cell::Operand>& o, std::string e
   if (e.empty()) e = check_area(o[2], "WR");
   return e;
 }
-}  // namespace
 
-void add_functions(FunctionTable& t) {
-  using R = OperandRole;
-  FunctionSpec s;
-
-  s = program_spec(140, "HSPSO", "Ps");  // run a positioning program on axis Ps
+FunctionSpec fun140() {
+  FunctionSpec s = program_spec(140, "HSPSO", "Ps");  // run a positioning program on axis Ps
   s.handler = [](ExecContext& c, const BoundOperand* o) {
     auto* u = MotionUnit::of(c.engine);
     if (!u) return;
@@ -71,9 +67,12 @@ void add_functions(FunctionTable& t) {
     program_flags(c, o, u->fun140(call, c.now_us));
   };
   s.check = [](const std::vector<plc_cell::Operand>& o) { return check_program(o, check_ps(o)); };
-  t.add(s);
+  return s;
+}
 
-  s = {};
+FunctionSpec fun141() {
+  using R = OperandRole;
+  FunctionSpec s;
   s.number = 141; s.mnemonic = "MPARA";  // the axis's parameter table (runs whether EN is 0 or 1)
   s.operands = {{"Ps", R::Const}, {"SR", R::Register}, {"ERR", R::BitOut, true}};
   s.allow_32 = false;
@@ -88,9 +87,12 @@ void add_functions(FunctionTable& t) {
     std::string e = check_ps(o);
     return e.empty() ? check_area(o[1], "SR") : e;
   };
-  t.add(s);
+  return s;
+}
 
-  s = {};
+FunctionSpec fun142() {
+  using R = OperandRole;
+  FunctionSpec s;
   s.number = 142; s.mnemonic = "PSOFF";  // force the pulse output of axis N to stop
   s.operands = {{"N", R::Const}};
   s.allow_32 = false;
@@ -98,9 +100,12 @@ void add_functions(FunctionTable& t) {
     if (auto* u = MotionUnit::of(c.engine)) u->fun142(static_cast<int>(o[0].k), c.now_us);
   };
   s.check = check_ps;
-  t.add(s);
+  return s;
+}
 
-  s = {};
+FunctionSpec fun143() {
+  using R = OperandRole;
+  FunctionSpec s;
   s.number = 143; s.mnemonic = "PSCNV";  // current position -> Ut, 32-bit D
   s.operands = {{"Ps", R::Const}, {"D", R::Register}};
   s.allow_32 = false;
@@ -115,9 +120,11 @@ void add_functions(FunctionTable& t) {
     std::string e = check_ps(o);
     return e.empty() ? check_area(o[1], "D") : e;
   };
-  t.add(s);
+  return s;
+}
 
-  s = program_spec(147, "MHSP0", "Gp");  // linear interpolation program of group Gp
+FunctionSpec fun147() {
+  FunctionSpec s = program_spec(147, "MHSP0", "Gp");  // linear interpolation program of group Gp
   s.handler = [](ExecContext& c, const BoundOperand* o) {
     auto* u = MotionUnit::of(c.engine);
     if (!u) return;
@@ -128,9 +135,12 @@ void add_functions(FunctionTable& t) {
   s.check = [](const std::vector<plc_cell::Operand>& o) {
     return check_program(o, o[0].k >= 0 && o[0].k <= 1 ? "" : "Gp must be 0 (Ps0&Ps1, or 3-4 axes) or 1 (Ps2&Ps3)");
   };
-  t.add(s);
+  return s;
+}
 
-  s = {};
+FunctionSpec fun148() {
+  using R = OperandRole;
+  FunctionSpec s;
   s.number = 148; s.mnemonic = "MPG";  // handwheel on HSC Sc drives axis Ps (run it in a 50 ms ISR)
   s.operands = {{"Sc", R::Source}, {"Ps", R::Source}, {"Fo", R::Register}, {"Mr", R::Register},
                 {"WR", R::Register}, {"ACT", R::BitOut, true}};
@@ -161,7 +171,13 @@ void add_functions(FunctionTable& t) {
     if (e.empty()) e = check_area(o[4], "WR");
     return e;
   };
-  t.add(s);
+  return s;
+}
+
+}  // namespace
+
+void add_functions(FunctionTable& t) {
+  for (const auto& spec : {fun140(), fun141(), fun142(), fun143(), fun147(), fun148()}) t.add(spec);
 }
 
 }  // namespace motion

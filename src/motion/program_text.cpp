@@ -116,106 +116,108 @@ const char* contact_prefix(ContactArea a) { return a == ContactArea::X ? "X" : a
 
 }  // namespace
 
-bool parse_program(const std::string& text, const Syntax& syn, std::vector<Step>* steps,
-                   std::vector<int>* step_lines, TableError* err) {
-  std::vector<Step>& t = *steps;
-  enum { Start, HaveSpd, HaveMotion, HaveTransfer, Ended } state = Start;
-  std::istringstream in(text);
-  std::string raw;
-  int line = 0;
+namespace {
+
+enum class State { Start, HaveSpd, HaveMotion, HaveTransfer, Ended };
+
+// The steps of a program text, command by command.
+struct StepReader {
+  const Syntax& syn;
+  std::vector<Step>& t;
+  std::vector<int>* step_lines;
   std::vector<int> goto_lines;
-  try {
-    while (std::getline(in, raw)) {
-      ++line;
-      auto c = raw.find(';');
-      if (c != std::string::npos) raw.resize(c);
-      c = raw.find("//");
-      if (c != std::string::npos) raw.resize(c);
-      std::string s = upper(trim(raw));
-      if (s.empty()) continue;
-      if (state == Ended) throw Fail{34, "text after MEND"};
-      // Optional step number (001) before the command.
-      size_t i = 0;
-      while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
-      if (i > 0) {
-        const int n = std::stoi(s.substr(0, std::min<size_t>(i, 6)));
-        s = trim(s.substr(i));
-        if (!s.empty() && s[0] == ':') s = trim(s.substr(1));
-        const int expect = static_cast<int>(t.size()) + (s.rfind("SPD", 0) == 0 ? 1 : 0);
-        if (n != expect) throw Fail{34, "step number " + std::to_string(n) + " where step " + std::to_string(expect) + " is"};
-        if (s.empty()) continue;
-      }
-      const auto sp = s.find_first_of(" \t");
-      const std::string kw = s.substr(0, sp);
-      const std::string rest = sp == std::string::npos ? "" : trim(s.substr(sp));
-      if (const int code = syn.reject ? syn.reject(kw) : 0) throw Fail{code, kw + " is not allowed in this program"};
-      if (kw == "MEND") {
-        if (state != Start) throw Fail{34, "MEND inside a step (a step ends with GOTO)"};
-        if (!rest.empty()) throw Fail{34, "MEND takes no operand"};
-        state = Ended;
-      } else if (kw == "SPD") {
-        if (state != Start) throw Fail{34, "SPD before the previous step's GOTO"};
-        if (static_cast<int>(t.size()) == kMaxSteps) throw Fail{36, "more than 250 steps"};
-        t.emplace_back();
-        step_lines->push_back(line);
-        t.back().speed = value_operand(rest, 2, 1, kMaxHz, 30, 31, "speed");
-        state = HaveSpd;
-      } else if (kw == "WAIT" || kw == "ACT" || kw == "EXT") {
-        if (state != HaveMotion) throw Fail{34, kw + " must follow the step's " + syn.motion_names};
-        Step& st = t.back();
-        if (kw == "EXT") {
-          st.transfer = Transfer::Ext;
-          contact_operand(rest, &st);
-        } else if (kw == "ACT") {
-          st.transfer = Transfer::Act;
-          st.time = time_operand(rest);
-        } else if (rest.rfind("TIME", 0) == 0) {
-          st.transfer = Transfer::WaitTime;
-          st.time = time_operand(rest);
-        } else {
-          st.transfer = Transfer::WaitContact;
-          contact_operand(rest, &st);
-        }
-        state = HaveTransfer;
-      } else if (kw == "GOTO") {
-        if (state != HaveMotion && state != HaveTransfer) throw Fail{34, "GOTO must follow the step's motion or transfer"};
-        Step& st = t.back();
-        int64_t n;
-        Operand op;
-        std::string why;
-        if (rest == "NEXT") {
-          st.goto_kind = Step::Next;
-        } else if (reg_operand(rest, 1, &op, &why)) {
-          if (op.value < 0) throw Fail{34, "GOTO " + why};
-          st.goto_kind = op.kind == Operand::R ? Step::R : Step::D;
-          st.goto_value = op.value;
-        } else if (parse_int(rest, &n) && n >= 1 && n <= kMaxSteps) {
-          st.goto_kind = Step::Number;
-          st.goto_value = static_cast<int>(n);
-          goto_lines.push_back(line);
-        } else {
-          throw Fail{34, "GOTO needs NEXT, a step number 1~N, Rn or Dn"};
-        }
-        state = Start;
-      } else if (state == HaveSpd && syn.motion(kw, rest, t.size() - 1)) {
-        state = HaveMotion;
-      } else if (syn.motion(kw, "", SIZE_MAX)) {  // a motion command out of place
-        throw Fail{34, kw + " must follow SPD"};
-      } else {
-        throw Fail{34, "unknown command '" + kw + "'"};
-      }
-    }
-    if (state != Ended) throw Fail{34, state == Start ? "missing MEND" : "step not ended by GOTO"};
-    if (t.empty()) {
-      line = 0;
-      throw Fail{35, "no steps"};
-    }
-  } catch (const Fail& f) {
-    *err = {f.code, line, f.msg};
-    if (f.msg == "missing MEND" || f.msg == "step not ended by GOTO") err->line = line + 1;
-    return false;
+  int line = 0;
+  State state = State::Start;
+
+  void command(const std::string& kw, const std::string& rest);
+  void transfer(const std::string& kw, const std::string& rest);
+  void go_to(const std::string& rest);
+};
+
+void StepReader::command(const std::string& kw, const std::string& rest) {
+  if (const int code = syn.reject ? syn.reject(kw) : 0) throw Fail{code, kw + " is not allowed in this program"};
+  if (kw == "MEND") {
+    if (state != State::Start) throw Fail{34, "MEND inside a step (a step ends with GOTO)"};
+    if (!rest.empty()) throw Fail{34, "MEND takes no operand"};
+    state = State::Ended;
+  } else if (kw == "SPD") {
+    if (state != State::Start) throw Fail{34, "SPD before the previous step's GOTO"};
+    if (static_cast<int>(t.size()) == kMaxSteps) throw Fail{36, "more than 250 steps"};
+    t.emplace_back();
+    step_lines->push_back(line);
+    t.back().speed = value_operand(rest, 2, 1, kMaxHz, 30, 31, "speed");
+    state = State::HaveSpd;
+  } else if (kw == "WAIT" || kw == "ACT" || kw == "EXT") {
+    transfer(kw, rest);
+  } else if (kw == "GOTO") {
+    go_to(rest);
+  } else if (state == State::HaveSpd && syn.motion(kw, rest, t.size() - 1)) {
+    state = State::HaveMotion;
+  } else if (syn.motion(kw, "", SIZE_MAX)) {  // a motion command out of place
+    throw Fail{34, kw + " must follow SPD"};
+  } else {
+    throw Fail{34, "unknown command '" + kw + "'"};
   }
-  // GOTO constants must name an existing step.
+}
+
+void StepReader::transfer(const std::string& kw, const std::string& rest) {
+  if (state != State::HaveMotion) throw Fail{34, kw + " must follow the step's " + syn.motion_names};
+  Step& st = t.back();
+  if (kw == "EXT") {
+    st.transfer = Transfer::Ext;
+    contact_operand(rest, &st);
+  } else if (kw == "ACT") {
+    st.transfer = Transfer::Act;
+    st.time = time_operand(rest);
+  } else if (rest.rfind("TIME", 0) == 0) {
+    st.transfer = Transfer::WaitTime;
+    st.time = time_operand(rest);
+  } else {
+    st.transfer = Transfer::WaitContact;
+    contact_operand(rest, &st);
+  }
+  state = State::HaveTransfer;
+}
+
+void StepReader::go_to(const std::string& rest) {
+  if (state != State::HaveMotion && state != State::HaveTransfer)
+    throw Fail{34, "GOTO must follow the step's motion or transfer"};
+  Step& st = t.back();
+  int64_t n;
+  Operand op;
+  std::string why;
+  if (rest == "NEXT") {
+    st.goto_kind = Step::Next;
+  } else if (reg_operand(rest, 1, &op, &why)) {
+    if (op.value < 0) throw Fail{34, "GOTO " + why};
+    st.goto_kind = op.kind == Operand::R ? Step::R : Step::D;
+    st.goto_value = op.value;
+  } else if (parse_int(rest, &n) && n >= 1 && n <= kMaxSteps) {
+    st.goto_kind = Step::Number;
+    st.goto_value = static_cast<int>(n);
+    goto_lines.push_back(line);
+  } else {
+    throw Fail{34, "GOTO needs NEXT, a step number 1~N, Rn or Dn"};
+  }
+  state = State::Start;
+}
+
+// Takes an optional step number (001, 001:) off the front of s and checks it against
+// the steps read so far; false when nothing follows it.
+bool strip_step_number(std::string* s, size_t steps) {
+  size_t i = 0;
+  while (i < s->size() && std::isdigit(static_cast<unsigned char>((*s)[i]))) ++i;
+  if (i == 0) return true;
+  const int n = std::stoi(s->substr(0, std::min<size_t>(i, 6)));
+  *s = trim(s->substr(i));
+  if (!s->empty() && (*s)[0] == ':') *s = trim(s->substr(1));
+  const int expect = static_cast<int>(steps) + (s->rfind("SPD", 0) == 0 ? 1 : 0);
+  if (n != expect) throw Fail{34, "step number " + std::to_string(n) + " where step " + std::to_string(expect) + " is"};
+  return !s->empty();
+}
+
+// GOTO constants must name an existing step.
+bool check_gotos(const std::vector<Step>& t, const std::vector<int>& goto_lines, TableError* err) {
   size_t gi = 0;
   for (const auto& st : t)
     if (st.goto_kind == Step::Number) {
@@ -227,6 +229,40 @@ bool parse_program(const std::string& text, const Syntax& syn, std::vector<Step>
       ++gi;
     }
   return true;
+}
+
+}  // namespace
+
+bool parse_program(const std::string& text, const Syntax& syn, std::vector<Step>* steps,
+                   std::vector<int>* step_lines, TableError* err) {
+  StepReader r{syn, *steps, step_lines, {}};
+  std::istringstream in(text);
+  std::string raw;
+  try {
+    while (std::getline(in, raw)) {
+      ++r.line;
+      auto c = raw.find(';');
+      if (c != std::string::npos) raw.resize(c);
+      c = raw.find("//");
+      if (c != std::string::npos) raw.resize(c);
+      std::string s = upper(trim(raw));
+      if (s.empty()) continue;
+      if (r.state == State::Ended) throw Fail{34, "text after MEND"};
+      if (!strip_step_number(&s, steps->size())) continue;
+      const auto sp = s.find_first_of(" \t");
+      r.command(s.substr(0, sp), sp == std::string::npos ? "" : trim(s.substr(sp)));
+    }
+    if (r.state != State::Ended) throw Fail{34, r.state == State::Start ? "missing MEND" : "step not ended by GOTO"};
+    if (steps->empty()) {
+      r.line = 0;
+      throw Fail{35, "no steps"};
+    }
+  } catch (const Fail& f) {
+    *err = {f.code, r.line, f.msg};
+    if (f.msg == "missing MEND" || f.msg == "step not ended by GOTO") err->line = r.line + 1;
+    return false;
+  }
+  return check_gotos(*steps, r.goto_lines, err);
 }
 
 std::string format_head(size_t index, const Step& s) {

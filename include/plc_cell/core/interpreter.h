@@ -116,6 +116,10 @@ class Interpreter {
   bool run_recording(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   bool run_native(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   void bind_native();
+  // load(): binds instruction in (its edge slot `edge`) into b and x, its operands onto
+  // ops; op becomes the opcode it runs as. False: it needs no Extra.
+  bool bind(const Program& program, const Instruction& in, uint32_t edge, Bound* b, Extra* x, Op* op,
+            std::vector<BoundOperand>* ops) const;
   void set_fault(size_t pc, const std::string& why);
 
   Memory& mem_;

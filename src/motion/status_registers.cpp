@@ -1,0 +1,39 @@
+// The axes' status registers and relays, written at every scan and event instant.
+#include "plc_cell/motion/status_registers.h"
+
+#include <cmath>
+
+#include "plc_cell/core/memory.h"
+#include "plc_cell/motion/axis_wiring.h"
+
+namespace plc_cell {
+namespace motion {
+
+void StatusRegisters::write(uint64_t t) {
+  wiring_.write_pins(t);
+  for (int n = 0; n < kAxes; ++n) {
+    AxisState& a = axes_[n];
+    const auto put32 = [&](uint32_t reg, int64_t v) {
+      mem_.set_reg(Area::R, reg, static_cast<uint16_t>(uint64_t(v) & 0xFFFF));
+      mem_.set_reg(Area::R, reg + 1, static_cast<uint16_t>((uint64_t(v) >> 16) & 0xFFFF));
+    };
+    a.written_pos = static_cast<int32_t>(a.axis.position(t));
+    put32(kPosReg + 2 * n, a.written_pos);
+    put32(kFreqReg + 2 * n, std::llround(a.axis.frequency(t)));
+    put32(kRemainReg + 2 * n, a.axis.moving() ? a.axis.remaining(t) : a.rest);
+    mem_.set_bit(Area::M, kReadyRelay + n, a.owner == kFree);
+    mem_.set_bit(Area::M, kLastStepRelay + n, a.finished);
+  }
+}
+
+void StatusRegisters::adopt_ladder_positions() {
+  for (int n = 0; n < kAxes; ++n) {
+    AxisState& a = axes_[n];
+    const int64_t reg = static_cast<int32_t>(uint32_t(mem_.reg(Area::R, kPosReg + 2 * n)) |
+                                             (uint32_t(mem_.reg(Area::R, kPosReg + 2 * n + 1)) << 16));
+    if (reg != a.written_pos && !a.axis.moving()) a.axis.set_position(reg);
+  }
+}
+
+}  // namespace motion
+}  // namespace plc_cell
