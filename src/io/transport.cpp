@@ -25,6 +25,7 @@ class FdTransport : public Transport {
     fd_ = -1;
   }
   bool is_open() const override { return fd_ >= 0; }
+  int fd() const override { return fd_; }
   void send(const std::string& b, int timeout_ms) override {
     if (fd_ < 0) open();
     if (!write_all(fd_, b.data(), b.size(), timeout_ms)) {

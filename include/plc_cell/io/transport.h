@@ -33,6 +33,9 @@ class Transport {
   virtual void send(const std::string& bytes, int timeout_ms) = 0;
   virtual size_t recv(char* buf, size_t n, int timeout_ms) = 0;
   virtual std::string describe() const = 0;
+  // The open stream's descriptor, for a framing library that reads and writes it itself
+  // (the Modbus bridge's libmodbus context); -1 when closed or when there is none.
+  virtual int fd() const { return -1; }
   // After a request got no answer, or one that could not be read: its answer, or the rest
   // of it, may still come, and a reply does not always name the request it answers (a
   // TRi reply repeats no address), so no byte of it may be taken for a later request.
