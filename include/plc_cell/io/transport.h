@@ -80,6 +80,10 @@ auto with_retries(Transport& t, int retries, int timeout_ms, uint64_t* retries_u
     }
   }
 }
+// A TCP connection to host:port (127.0.0.1 when host is empty), made within timeout_ms: a
+// host that does not answer holds its caller (and a stop() waiting for it) that long, not for
+// the system's minutes. Returns a non-blocking socket with TCP_NODELAY, or -1 and *error.
+int connect_tcp(const std::string& host, int port, int timeout_ms, std::string* error);
 // Reads and drops what arrives on fd until nothing has come for quiet_ms, for at most
 // limit_ms overall: true once quiet, false when the line kept talking (or failed).
 bool drain_until_quiet(int fd, int quiet_ms, int limit_ms);
