@@ -4,7 +4,9 @@
 //  2. The bridge's poll cycle over RTU (a pty pair, 115200 8E1 configured) against
 //     the line-rate bound of a real 115200 baud line.
 // usage: bench_modbus [loops [rounds]]   (bandwidth-client loops, default 100000 as shipped; 3 rounds)
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 #include <regex>
 
 #include "../test/modbus/helpers.h"

@@ -9,7 +9,8 @@ add_library(plc_cell_fatek STATIC
   src/fatek/poll_plan.cpp
   src/fatek/bridge_config.cpp
   src/fatek/bridge.cpp
-  src/fatek/clink.cpp)
+  src/fatek/clink.cpp
+  src/fatek/clink_function.cpp)
 target_link_libraries(plc_cell_fatek PUBLIC plc_cell_config)
 set_target_properties(plc_cell_fatek PROPERTIES POSITION_INDEPENDENT_CODE ON)
 

@@ -7,6 +7,7 @@ add_library(plc_cell_modbus STATIC
   src/modbus/slave_map.cpp
   src/modbus/slave_handler.cpp
   src/modbus/tri_map.cpp
+  src/modbus/map_profile.cpp
   src/modbus/rtu_frame.cpp
   src/modbus/tcp_server.cpp
   src/modbus/rtu_server.cpp

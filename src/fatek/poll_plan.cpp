@@ -21,59 +21,63 @@ uint32_t step(const Address& a) {
 uint32_t ordinal(const Address& a) { return a.index / step(a); }
 uint32_t phase(const Address& a) { return a.index % step(a); }
 
-}  // namespace
+// Every requested element, grouped into runs of one (area, width, phase), ordered.
+using ByType = std::map<std::tuple<int, int, uint32_t, bool>, std::map<uint32_t, Address>>;
 
-PollPlan plan_poll(const std::vector<PollItem>& items) {
-  // Every requested element, grouped into runs of one (area, width, phase), ordered.
-  std::map<std::tuple<int, int, uint32_t, bool>, std::map<uint32_t, Address>> by_type;
-  for (const auto& it : items)
-    for (uint32_t i = 0; i < it.count; ++i) {
-      const Address a = offset_address(it.start, i);
-      const bool counter32 = a.area == Area::RC && a.index >= kFirst32BitCounter;
-      by_type[{int(a.area), int(a.width), phase(a), counter32}][ordinal(a)] = a;
+// What is left of a run once its full block frames are planned, to be packed.
+struct Piece {
+  Address start;
+  uint32_t count;
+  uint32_t weight;
+};
+
+// The end of the run that starts at it: consecutive ordinals, reading through gaps of up
+// to kMaxGap elements; last_ord is the run's last ordinal.
+std::map<uint32_t, Address>::const_iterator run_end(const std::map<uint32_t, Address>& elems,
+                                                    std::map<uint32_t, Address>::const_iterator it, uint32_t* last_ord) {
+  const Address first = it->second;
+  *last_ord = it->first;
+  auto next = std::next(it);
+  while (next != elems.end() && next->first - *last_ord <= kMaxGap + 1) {
+    try {
+      check_span(first, next->first - it->first + 1);
+    } catch (const Error&) {
+      break;  // e.g. RC199 -> RC200 crosses into the 32-bit counters
     }
-  PollPlan plan;
-  struct Piece {
-    Address start;
-    uint32_t count;
-    uint32_t weight;
-  };
-  std::vector<Piece> pieces;
-  for (auto& t : by_type) {
-    auto& elems = t.second;
+    *last_ord = next->first;
+    ++next;
+  }
+  return next;
+}
+
+// Each run: its full block frames into plan, its remainder into pieces.
+void cut_runs(const ByType& by_type, PollPlan* plan, std::vector<Piece>* pieces) {
+  for (const auto& t : by_type) {
+    const auto& elems = t.second;
     auto it = elems.begin();
     while (it != elems.end()) {
-      // A run: consecutive ordinals, reading through gaps of up to kMaxGap elements.
       const Address first = it->second;
-      uint32_t last_ord = it->first;
-      auto next = std::next(it);
-      while (next != elems.end() && next->first - last_ord <= kMaxGap + 1) {
-        try {
-          check_span(first, next->first - it->first + 1);
-        } catch (const Error&) {
-          break;  // e.g. RC199 -> RC200 crosses into the 32-bit counters
-        }
-        last_ord = next->first;
-        ++next;
-      }
+      uint32_t last_ord = 0;
+      const auto next = run_end(elems, it, &last_ord);
       const uint32_t span = last_ord - it->first + 1;
-      // Full block frames first; the remainder becomes a piece for packing.
       uint32_t done = 0;
       while (span - done > max_block(first)) {
         Request r;
         r.start = offset_address(first, done);
         r.cmd = first.width == Width::Bit ? Cmd::ReadDiscretes : Cmd::ReadRegisters;
         r.count = max_block(first);
-        plan.requests.push_back(r);
+        plan->requests.push_back(r);
         done += r.count;
       }
       const uint32_t n = span - done;
-      pieces.push_back({offset_address(first, done), n, n * weight(first)});
+      pieces->push_back({offset_address(first, done), n, n * weight(first)});
       it = next;
     }
   }
-  // First-fit decreasing into frames of weight 64. A frame holding one piece is a block
-  // read (44/46); several pieces share one mixed read (48).
+}
+
+// First-fit decreasing into frames of weight 64.
+std::vector<std::vector<Piece>> pack(std::vector<Piece> pieces) {
   std::stable_sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.weight > b.weight; });
   std::vector<std::vector<Piece>> bins;
   std::vector<uint32_t> load;
@@ -92,7 +96,25 @@ PollPlan plan_poll(const std::vector<PollItem>& items) {
       load.push_back(p.weight > kMaxMixedReadWeight ? kMaxMixedReadWeight + 1 : p.weight);
     }
   }
-  for (const auto& bin : bins) {
+  return bins;
+}
+
+}  // namespace
+
+PollPlan plan_poll(const std::vector<PollItem>& items) {
+  ByType by_type;
+  for (const auto& it : items)
+    for (uint32_t i = 0; i < it.count; ++i) {
+      const Address a = offset_address(it.start, i);
+      const bool counter32 = a.area == Area::RC && a.index >= kFirst32BitCounter;
+      by_type[{int(a.area), int(a.width), phase(a), counter32}][ordinal(a)] = a;
+    }
+  PollPlan plan;
+  std::vector<Piece> pieces;
+  cut_runs(by_type, &plan, &pieces);
+  // A frame holding one piece is a block read (44/46); several pieces share one mixed
+  // read (48).
+  for (const auto& bin : pack(std::move(pieces))) {
     Request r;
     if (bin.size() == 1) {
       r.start = bin[0].start;

@@ -293,6 +293,75 @@ bool parse_response(const Request& req, const Frame& f, Response* out, std::stri
 
 // ---- slave side --------------------------------------------------------------
 
+namespace {
+
+// The parts of a request's data, consumed from the front of d.
+ErrorCode parse_start_and_count(std::string_view& d, bool want_bit, Request* r) {
+  uint32_t n;
+  if (!parse_hex(d, 2, &n)) return ErrorCode::Format;
+  size_t used = 0;
+  const ErrorCode e = parse_wire_address(d.substr(2), &r->start, &used);
+  if (e != ErrorCode::Ok) return e;
+  d.remove_prefix(2 + used);
+  if (want_bit != (r->start.width == Width::Bit)) return ErrorCode::Format;
+  if (want_bit && n == 0) n = 256;
+  if (n == 0 || n > max_items(r->start)) return ErrorCode::IllegalValue;
+  r->count = n;
+  if (!span_fits(r->start, n)) return ErrorCode::IllegalAddress;
+  return ErrorCode::Ok;
+}
+
+ErrorCode parse_values(std::string_view d, Request* r) {
+  const size_t w = size_t(value_chars(r->start));
+  if (d.size() != w * r->count) return ErrorCode::Format;
+  for (uint32_t i = 0; i < r->count; ++i) {
+    uint32_t v;
+    const ErrorCode e = parse_value(d.substr(i * w), r->start, &v);
+    if (e != ErrorCode::Ok) return e;
+    r->values.push_back(v);
+  }
+  return ErrorCode::Ok;
+}
+
+ErrorCode parse_control(std::string_view d, Request* r) {
+  if (d.size() != 6) return ErrorCode::Format;
+  if (d[0] < '1' || d[0] > '4') return ErrorCode::IllegalValue;
+  r->action = Action(d[0] - '0');
+  size_t used = 0;
+  const ErrorCode e = parse_wire_address(d.substr(1), &r->start, &used);
+  if (e != ErrorCode::Ok) return e;
+  return r->start.width == Width::Bit ? ErrorCode::Ok : ErrorCode::Format;
+}
+
+// Commands 48 and 49: a count, then that many addresses (each with its value for 49).
+ErrorCode parse_mixed(std::string_view d, bool write, Request* r) {
+  uint32_t n;
+  if (!parse_hex(d, 2, &n)) return ErrorCode::Format;
+  d.remove_prefix(2);
+  if (n == 0 || n > (write ? kMaxMixedWriteWeight : kMaxMixedReadWeight)) return ErrorCode::IllegalValue;
+  uint32_t w = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    Address a;
+    size_t used = 0;
+    const ErrorCode e = parse_wire_address(d, &a, &used);
+    if (e != ErrorCode::Ok) return e;
+    d.remove_prefix(used);
+    r->points.push_back(a);
+    w += weight(a);
+    if (write) {
+      uint32_t v;
+      const ErrorCode ev = parse_value(d, a, &v);
+      if (ev != ErrorCode::Ok) return ev;
+      d.remove_prefix(size_t(value_chars(a)));
+      r->values.push_back(v);
+    }
+  }
+  if (w > (write ? kMaxMixedWriteWeight : kMaxMixedReadWeight)) return ErrorCode::IllegalValue;
+  return d.empty() ? ErrorCode::Ok : ErrorCode::Format;
+}
+
+}  // namespace
+
 ErrorCode parse_request(const Frame& f, Request* r) {
   r->station = f.station;
   r->cmd = Cmd(f.command);
@@ -301,31 +370,6 @@ ErrorCode parse_request(const Frame& f, Request* r) {
   r->text.clear();
   r->count = 0;
   std::string_view d(f.data);
-  auto start_and_count = [&](bool want_bit) -> ErrorCode {
-    uint32_t n;
-    if (!parse_hex(d, 2, &n)) return ErrorCode::Format;
-    size_t used = 0;
-    const ErrorCode e = parse_wire_address(d.substr(2), &r->start, &used);
-    if (e != ErrorCode::Ok) return e;
-    d.remove_prefix(2 + used);
-    if (want_bit != (r->start.width == Width::Bit)) return ErrorCode::Format;
-    if (want_bit && n == 0) n = 256;
-    if (n == 0 || n > max_items(r->start)) return ErrorCode::IllegalValue;
-    r->count = n;
-    if (!span_fits(r->start, n)) return ErrorCode::IllegalAddress;
-    return ErrorCode::Ok;
-  };
-  auto values = [&]() -> ErrorCode {
-    const size_t w = size_t(value_chars(r->start));
-    if (d.size() != w * r->count) return ErrorCode::Format;
-    for (uint32_t i = 0; i < r->count; ++i) {
-      uint32_t v;
-      const ErrorCode e = parse_value(d.substr(i * w), r->start, &v);
-      if (e != ErrorCode::Ok) return e;
-      r->values.push_back(v);
-    }
-    return ErrorCode::Ok;
-  };
   switch (r->cmd) {
     case Cmd::GistStatus:
     case Cmd::DetailedStatus: return d.empty() ? ErrorCode::Ok : ErrorCode::Format;
@@ -334,54 +378,21 @@ ErrorCode parse_request(const Frame& f, Request* r) {
       if (d[0] != '0' && d[0] != '1') return ErrorCode::IllegalValue;
       r->run = d[0] == '1';
       return ErrorCode::Ok;
-    case Cmd::Control: {
-      if (d.size() != 6) return ErrorCode::Format;
-      if (d[0] < '1' || d[0] > '4') return ErrorCode::IllegalValue;
-      r->action = Action(d[0] - '0');
-      size_t used = 0;
-      const ErrorCode e = parse_wire_address(d.substr(1), &r->start, &used);
-      if (e != ErrorCode::Ok) return e;
-      return r->start.width == Width::Bit ? ErrorCode::Ok : ErrorCode::Format;
-    }
+    case Cmd::Control: return parse_control(d, r);
     case Cmd::ReadEnable:
     case Cmd::ReadDiscretes:
     case Cmd::ReadRegisters: {
-      const ErrorCode e = start_and_count(r->cmd != Cmd::ReadRegisters);
+      const ErrorCode e = parse_start_and_count(d, r->cmd != Cmd::ReadRegisters, r);
       if (e != ErrorCode::Ok) return e;
       return d.empty() ? ErrorCode::Ok : ErrorCode::Format;
     }
     case Cmd::WriteDiscretes:
     case Cmd::WriteRegisters: {
-      const ErrorCode e = start_and_count(r->cmd == Cmd::WriteDiscretes);
-      return e != ErrorCode::Ok ? e : values();
+      const ErrorCode e = parse_start_and_count(d, r->cmd == Cmd::WriteDiscretes, r);
+      return e != ErrorCode::Ok ? e : parse_values(d, r);
     }
     case Cmd::MixedRead:
-    case Cmd::MixedWrite: {
-      const bool write = r->cmd == Cmd::MixedWrite;
-      uint32_t n;
-      if (!parse_hex(d, 2, &n)) return ErrorCode::Format;
-      d.remove_prefix(2);
-      if (n == 0 || n > (write ? kMaxMixedWriteWeight : kMaxMixedReadWeight)) return ErrorCode::IllegalValue;
-      uint32_t w = 0;
-      for (uint32_t i = 0; i < n; ++i) {
-        Address a;
-        size_t used = 0;
-        const ErrorCode e = parse_wire_address(d, &a, &used);
-        if (e != ErrorCode::Ok) return e;
-        d.remove_prefix(used);
-        r->points.push_back(a);
-        w += weight(a);
-        if (write) {
-          uint32_t v;
-          const ErrorCode ev = parse_value(d, a, &v);
-          if (ev != ErrorCode::Ok) return ev;
-          d.remove_prefix(size_t(value_chars(a)));
-          r->values.push_back(v);
-        }
-      }
-      if (w > (write ? kMaxMixedWriteWeight : kMaxMixedReadWeight)) return ErrorCode::IllegalValue;
-      return d.empty() ? ErrorCode::Ok : ErrorCode::Format;
-    }
+    case Cmd::MixedWrite: return parse_mixed(d, r->cmd == Cmd::MixedWrite, r);
     case Cmd::Loopback:
       if (d.size() > kMaxLoopback) return ErrorCode::Format;
       r->text.assign(d.data(), d.size());

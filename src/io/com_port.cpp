@@ -74,39 +74,12 @@ int ComPort::open_tcp() {
     error_ = e.what();
     return -1;
   }
-  if (host.empty()) host = "127.0.0.1";
-  addrinfo hints{}, *res = nullptr;
-  hints.ai_family = AF_INET;
-  hints.ai_socktype = SOCK_STREAM;
-  if (getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &res) != 0 || !res) {
+  std::string why;
+  const int fd = connect_tcp(host, port, kConnectMs, &why);
+  if (fd < 0) {
     std::lock_guard<std::mutex> lk(mu_);
-    error_ = "tcp " + line_.tcp + ": cannot resolve";
-    return -1;
+    error_ = "tcp " + line_.tcp + ": " + why;
   }
-  // Non-blocking from the start, and a connect bounded in time: a host that does not
-  // answer holds up the port (and the cell being built) for kConnectMs, not for the
-  // system's minutes.
-  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
-  int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);
-  int err = errno;
-  freeaddrinfo(res);
-  if (rc != 0 && err == EINPROGRESS) {
-    pollfd p{fd, POLLOUT, 0};
-    int r;
-    while ((r = ::poll(&p, 1, kConnectMs)) < 0 && errno == EINTR) {
-    }
-    socklen_t len = sizeof err;
-    if (r == 1 && ::getsockopt(fd, SOL_SOCKET, SO_ERROR, &err, &len) == 0 && err == 0) rc = 0;
-    else if (r == 0) err = ETIMEDOUT;
-  }
-  if (rc != 0) {
-    ::close(fd);
-    std::lock_guard<std::mutex> lk(mu_);
-    error_ = "tcp " + line_.tcp + ": cannot connect: " + std::strerror(err);
-    return -1;
-  }
-  int one = 1;
-  setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
   return fd;
 }
 

@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -80,8 +81,14 @@ void SerialListener::lost(const std::string& why) {
   note(line_.last_error());
 }
 
-void SerialListener::loop() {
+void SerialListener::deliver(int fd, const uint8_t* data, size_t n) {
   std::string out, fault;
+  protocol_.feed(data, n, out, fault);
+  if (!fault.empty()) note(fault);
+  if (!out.empty() && !write_all(fd, out.data(), out.size(), kReplyTimeoutMs)) note("serial write failed");
+}
+
+void SerialListener::loop() {
   char buf[1024];
   auto last_rx = Clock::now();
   while (running_) {
@@ -89,10 +96,14 @@ void SerialListener::loop() {
     const int fd = line_.fd();
     pollfd p[2] = {{wake_[0], POLLIN, 0}, {fd, POLLIN, 0}};
     const bool in_frame = protocol_.in_frame();
-    const int r = ::poll(p, 2, in_frame ? frame_timeout_ms_ : kIdlePollMs);
+    const int wake = protocol_.wake_in_ms();
+    int timeout = in_frame ? frame_timeout_ms_ : kIdlePollMs;
+    if (wake >= 0) timeout = std::min(timeout, wake);
+    const int r = ::poll(p, 2, timeout);
     if (!running_) break;
+    if (r == 0 && wake >= 0) deliver(fd, nullptr, 0);  // the silence the protocol waited for
     const auto quiet_ms = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - last_rx).count();
-    if (r == 0 && in_frame && quiet_ms >= frame_timeout_ms_) {
+    if (r == 0 && protocol_.in_frame() && quiet_ms >= frame_timeout_ms_) {
       protocol_.drop_frame();
       ++frame_timeouts_;
       note("framing: frame cut short by timeout");
@@ -114,11 +125,7 @@ void SerialListener::loop() {
     }
     if (n <= 0) continue;
     last_rx = Clock::now();
-    out.clear();
-    fault.clear();
-    protocol_.feed(reinterpret_cast<const uint8_t*>(buf), size_t(n), out, fault);
-    if (!fault.empty()) note(fault);
-    if (!out.empty() && !write_all(fd, out.data(), out.size(), kReplyTimeoutMs)) note("serial write failed");
+    deliver(fd, reinterpret_cast<const uint8_t*>(buf), size_t(n));
   }
 }
 

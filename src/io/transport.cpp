@@ -18,6 +18,8 @@
 namespace plc_cell {
 namespace {
 
+constexpr int kConnectMs = 3000;  // a master's connection attempt
+
 class FdTransport : public Transport {
  public:
   void close() override {
@@ -25,6 +27,7 @@ class FdTransport : public Transport {
     fd_ = -1;
   }
   bool is_open() const override { return fd_ >= 0; }
+  int fd() const override { return fd_; }
   void send(const std::string& b, int timeout_ms) override {
     if (fd_ < 0) open();
     if (!write_all(fd_, b.data(), b.size(), timeout_ms)) {
@@ -63,22 +66,9 @@ class TcpTransport : public FdTransport {
   ~TcpTransport() override { close(); }
   void open() override {
     close();
-    addrinfo hints{}, *res = nullptr;
-    hints.ai_family = AF_INET;
-    hints.ai_socktype = SOCK_STREAM;
-    if (getaddrinfo(host_.c_str(), std::to_string(port_).c_str(), &hints, &res) != 0 || !res)
-      throw CommError(describe() + ": cannot resolve");
-    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    const int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);  // blocking connect, then non-blocking I/O
-    const int err = errno;
-    freeaddrinfo(res);
-    if (rc != 0) {
-      ::close(fd);
-      throw CommError(describe() + ": cannot connect: " + std::strerror(err));
-    }
-    int one = 1;
-    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
+    std::string why;
+    const int fd = connect_tcp(host_, port_, kConnectMs, &why);
+    if (fd < 0) throw CommError(describe() + ": " + why);
     fd_ = fd;
   }
   std::string describe() const override { return "tcp " + host_ + ":" + std::to_string(port_); }
@@ -122,6 +112,38 @@ std::unique_ptr<Transport> tcp_transport(const std::string& host_port) {
 }
 std::unique_ptr<Transport> serial_transport(const SerialSettings& line) {
   return std::make_unique<SerialTransport>(line);
+}
+
+int connect_tcp(const std::string& host_in, int port, int timeout_ms, std::string* error) {
+  const std::string host = host_in.empty() ? "127.0.0.1" : host_in;
+  addrinfo hints{}, *res = nullptr;
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_STREAM;
+  if (getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &res) != 0 || !res) {
+    *error = "cannot resolve";
+    return -1;
+  }
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+  int rc = ::connect(fd, res->ai_addr, res->ai_addrlen);
+  int err = errno;
+  freeaddrinfo(res);
+  if (rc != 0 && err == EINPROGRESS) {
+    pollfd p{fd, POLLOUT, 0};
+    int r;
+    while ((r = ::poll(&p, 1, timeout_ms)) < 0 && errno == EINTR) {
+    }
+    socklen_t len = sizeof err;
+    if (r == 1 && ::getsockopt(fd, SOL_SOCKET, SO_ERROR, &err, &len) == 0 && err == 0) rc = 0;
+    else if (r == 0) err = ETIMEDOUT;
+  }
+  if (rc != 0) {
+    ::close(fd);
+    *error = std::string("cannot connect: ") + std::strerror(err);
+    return -1;
+  }
+  int one = 1;
+  setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  return fd;
 }
 
 bool drain_until_quiet(int fd, int quiet_ms, int limit_ms) {

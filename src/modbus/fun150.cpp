@@ -245,6 +245,21 @@ int check(const Tx& t, int* fc) {
 
 }  // namespace
 
+// One execution of FUN150: its operands, its instance's state and the WR registers.
+struct MbusCall {
+  ExecContext& c;
+  const BoundOperand* o;
+  Instance& s;
+  uint16_t* wr;
+  Address sr;
+  uint32_t sr_room;
+  void result(int code, uint32_t tx, int station, int fc) const {
+    wr[0] = uint16_t(code << 8 | (tx & 0xFF));
+    wr[1] = uint16_t((station & 0xFF) << 8 | (fc & 0xFF));
+  }
+  uint16_t table(uint32_t k) const { return k < sr_room ? c.mem.reg(sr.area, sr.index + k) : uint16_t(0); }
+};
+
 class MbusEngine {
  public:
   explicit MbusEngine(const ComPorts& ports) {
@@ -253,20 +268,97 @@ class MbusEngine {
   void exec(ExecContext& c, const BoundOperand* o);
 
  private:
-  void finish(ExecContext& c, const BoundOperand* o, Instance& s, uint16_t* wr, bool error);
+  void finish(ExecContext& c, Instance& s);
+  void start_pass(MbusCall& k, PortWorker* w, int port, bool ascii);
+  void apply(MbusCall& k, PortWorker& w);
+  void submit_next(MbusCall& k, PortWorker& w, int port);
   std::map<int, std::unique_ptr<PortWorker>> workers_;
   std::map<uint32_t, Instance> inst_;
 };
 
-void MbusEngine::finish(ExecContext& c, const BoundOperand* o, Instance& s, uint16_t* wr, bool error) {
+void MbusEngine::finish(ExecContext& c, Instance& s) {
   s.running = s.in_flight = false;
   s.done = true;
-  s.error = s.error || error;
   const auto w = workers_.find(s.port);
   if (w != workers_.end() && w->second->port().holder() == int(c.instance)) w->second->port().release();
   if (s.port >= 1 && s.port <= 4) c.mem.set_bit(Area::M, kFinishedRelay[s.port], true);
-  (void)wr;
-  (void)o;
+}
+
+// EN rose: a pass over the table starts if the port is there, free and the table sound.
+void MbusEngine::start_pass(MbusCall& k, PortWorker* w, int port, bool ascii) {
+  Instance& s = k.s;
+  s.port = port;
+  s.error = s.done = false;
+  if (!w || ascii) {  // no such port configured, or Modbus ASCII (no libmodbus backend)
+    k.result(kPort, 0, 0, 0);
+    s.error = s.done = true;
+  } else if (w->port().holder() >= 0) {  // FUN151 or another FUN150 holds it
+    k.wr[4] |= 0x0001;  // waiting for the port
+    s.last_en = false;  // try again next scan, as if EN rose then
+  } else if (k.table(0) != 0xA550 || (k.table(1) >> 8) != 0x07 || (k.table(1) & 0xFF) == 0 ||
+             2 + 7 * uint32_t(k.table(1) & 0xFF) > k.sr_room) {
+    k.result(kTable, 0, 0, 0);
+    s.error = s.done = true;
+  } else {
+    w->port().hold(int(k.c.instance));
+    s.running = true;
+    s.tx = 0;
+    s.n_tx = k.table(1) & 0xFF;
+    k.wr[4] &= uint16_t(~0x0001);
+  }
+}
+
+// The finished transaction, if any, into the PLC.
+void MbusEngine::apply(MbusCall& k, PortWorker& w) {
+  Job j;
+  if (!k.s.in_flight || !w.take(&j)) return;
+  k.s.in_flight = false;
+  const Area a = j.master_area;
+  if (j.result == kOk && (j.fc >= 1 && j.fc <= 4)) {
+    for (uint32_t i = 0; i < j.count; ++i) {
+      if (is_discrete(a)) k.c.mem.set_bit(a, j.master_start + i, j.data[i] != 0);
+      else k.c.mem.set_reg(a, j.master_start + i, j.data[i]);
+    }
+  }
+  k.result(j.result, k.s.tx, j.station, j.fc);
+  if (j.result != kOk) k.s.error = true;
+  if (++k.s.tx >= k.s.n_tx) finish(k.c, k.s);
+}
+
+// The next transaction of the table, checked, handed to the port.
+void MbusEngine::submit_next(MbusCall& k, PortWorker& w, int port) {
+  Instance& s = k.s;
+  const uint32_t b = 2 + 7 * s.tx;
+  const Tx t{int(k.table(b) & 0xFF), int(k.table(b + 1)), int(k.table(b + 2)), int(k.table(b + 3)),
+             int(k.table(b + 4)), int(k.table(b + 5)), k.table(b + 6)};
+  int fc = 0;
+  const int code = check(t, &fc);
+  if (code != kOk) {
+    k.result(code, s.tx, t.station, 0);
+    s.error = true;
+    if (++s.tx >= s.n_tx) finish(k.c, s);
+    return;
+  }
+  Area a = Area::R;  // check() above accepted t.mtype
+  uint32_t max = 0;
+  master_range(t.mtype, &a, &max);
+  Job nj;
+  nj.station = t.station;
+  nj.fc = fc;
+  nj.address = t.sref - 1;  // references are 1-based (spec §5 item 11)
+  nj.count = (fc == 5 || fc == 6) ? 1 : uint32_t(t.len);
+  nj.master_area = a;
+  nj.master_start = uint32_t(t.mstart);
+  nj.data.resize(nj.count);
+  Memory& m = k.c.mem;
+  if (fc == 5 || fc == 6 || fc == 15 || fc == 16)  // write data taken now, in this scan
+    for (uint32_t i = 0; i < nj.count; ++i)
+      nj.data[i] = is_discrete(a) ? uint16_t(m.bit(a, uint32_t(t.mstart) + i)) : m.reg(a, uint32_t(t.mstart) + i);
+  const uint16_t to = m.reg(Area::R, kTimeoutReg[port]) & 0xFF;  // low byte, 0.01 s
+  nj.timeout_ms = to ? to * 10 : 500;
+  k.result(kOk, s.tx, t.station, fc);
+  w.submit(std::move(nj));
+  s.in_flight = true;
 }
 
 void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
@@ -276,96 +368,25 @@ void MbusEngine::exec(ExecContext& c, const BoundOperand* o) {
   s.last_en = en;
   const int port = int(c.get(o[0]));
   const Address sr = o[1].addr, wra = o[2].addr;
-  const uint32_t sr_room = area_size(sr.area) - sr.index, wr_room = area_size(wra.area) - wra.index;
+  const uint32_t wr_room = area_size(wra.area) - wra.index;
   if (wr_room < 8) return;  // the parser checked the register; WR needs 8 of them
-  uint16_t* wr = c.mem.words(wra.area) + wra.index;
-  const auto result = [&](int code, uint32_t tx, int station, int fc) {
-    wr[0] = uint16_t(code << 8 | (tx & 0xFF));
-    wr[1] = uint16_t((station & 0xFF) << 8 | (fc & 0xFF));
-  };
-  const auto table = [&](uint32_t k) { return k < sr_room ? c.mem.reg(sr.area, sr.index + k) : uint16_t(0); };
+  MbusCall k{c, o, s, c.mem.words(wra.area) + wra.index, sr, area_size(sr.area) - sr.index};
+  uint16_t* wr = k.wr;
 
   PortWorker* w = workers_.count(port) ? workers_[port].get() : nullptr;
   if (port >= 1 && port <= 4) {
     c.mem.set_bit(Area::M, kFinishedRelay[port], false);  // on for one scan after a pass
     c.mem.set_bit(Area::M, kReadyRelay[port], !w || w->port().holder() < 0);
   }
-
   if (abort && s.running) {  // release the port at once; a reply still to come is dropped
     if (w) w->discard();
     s.running = s.in_flight = false;
     if (w && w->port().holder() == int(c.instance)) w->port().release();
   }
-  if (rising && !abort && !s.running) {
-    s.port = port;
-    s.error = s.done = false;
-    if (!w || ascii) {  // no such port configured, or Modbus ASCII (no libmodbus backend)
-      result(kPort, 0, 0, 0);
-      s.error = s.done = true;
-    } else if (w->port().holder() >= 0) {  // FUN151 or another FUN150 holds it
-      wr[4] |= 0x0001;  // waiting for the port
-      s.last_en = false;  // try again next scan, as if EN rose then
-    } else if (table(0) != 0xA550 || (table(1) >> 8) != 0x07 || (table(1) & 0xFF) == 0 ||
-               2 + 7 * uint32_t(table(1) & 0xFF) > sr_room) {
-      result(kTable, 0, 0, 0);
-      s.error = s.done = true;
-    } else {
-      w->port().hold(int(c.instance));
-      s.running = true;
-      s.tx = 0;
-      s.n_tx = table(1) & 0xFF;
-      wr[4] &= uint16_t(~0x0001);
-    }
-  }
-
+  if (rising && !abort && !s.running) start_pass(k, w, port, ascii);
   if (s.running && w) {
-    Job j;
-    if (s.in_flight && w->take(&j)) {  // apply the finished transaction
-      s.in_flight = false;
-      const Area a = j.master_area;
-      const uint32_t mstart = j.master_start;
-      if (j.result == kOk && (j.fc >= 1 && j.fc <= 4)) {
-        for (uint32_t i = 0; i < j.count; ++i) {
-          if (is_discrete(a)) c.mem.set_bit(a, mstart + i, j.data[i] != 0);
-          else c.mem.set_reg(a, mstart + i, j.data[i]);
-        }
-      }
-      result(j.result, s.tx, j.station, j.fc);
-      if (j.result != kOk) s.error = true;
-      if (++s.tx >= s.n_tx) finish(c, o, s, wr, false);
-    }
-    if (s.running && !s.in_flight) {  // next transaction
-      const uint32_t b = 2 + 7 * s.tx;
-      const Tx t{int(table(b) & 0xFF), int(table(b + 1)), int(table(b + 2)), int(table(b + 3)), int(table(b + 4)),
-                 int(table(b + 5)), table(b + 6)};
-      int fc = 0;
-      const int code = check(t, &fc);
-      if (code != kOk) {
-        result(code, s.tx, t.station, 0);
-        s.error = true;
-        if (++s.tx >= s.n_tx) finish(c, o, s, wr, true);
-      } else {
-        Area a = Area::R;  // check() above accepted t.mtype
-        uint32_t max = 0;
-        master_range(t.mtype, &a, &max);
-        Job nj;
-        nj.station = t.station;
-        nj.fc = fc;
-        nj.address = t.sref - 1;  // references are 1-based (spec §5 item 11)
-        nj.count = (fc == 5 || fc == 6) ? 1 : uint32_t(t.len);
-        nj.master_area = a;
-        nj.master_start = uint32_t(t.mstart);
-        nj.data.resize(nj.count);
-        if (fc == 5 || fc == 6 || fc == 15 || fc == 16)  // write data taken now, in this scan
-          for (uint32_t i = 0; i < nj.count; ++i)
-            nj.data[i] = is_discrete(a) ? uint16_t(c.mem.bit(a, uint32_t(t.mstart) + i)) : c.mem.reg(a, uint32_t(t.mstart) + i);
-        const uint16_t to = c.mem.reg(Area::R, kTimeoutReg[port]) & 0xFF;  // low byte, 0.01 s
-        nj.timeout_ms = to ? to * 10 : 500;
-        result(kOk, s.tx, t.station, fc);
-        w->submit(std::move(nj));
-        s.in_flight = true;
-      }
-    }
+    apply(k, *w);
+    if (s.running && !s.in_flight) submit_next(k, *w, port);
   }
 
   const bool act = s.running;

@@ -24,7 +24,7 @@ ServerKind server_kind() {
                                "the map served: fbs (the FBs manual's) or tri (the TRi FMD's Table 14.1, docs/tri.md)", "fbs"));
   k.make = [](Plc& plc, const Settings& v) {
     SlaveOptions o;
-    o.map = parse_map_profile(v.text("map"));
+    o.map = &map_profile(v.text("map"));  // the strategy, chosen once
     o.tcp = v.text("tcp");
     o.rtu = v.text("rtu");
     o.id = int(v.integer("id"));

@@ -17,16 +17,6 @@ namespace {
 
 uint16_t be16(const uint8_t* p) { return uint16_t(p[0] << 8 | p[1]); }
 
-// Word-store index of RC back to the counter it belongs to (C200.. take two words).
-uint32_t rc_counter(uint32_t w) { return w < kFirst32BitCounter ? w : kFirst32BitCounter + (w - kFirst32BitCounter) / 2; }
-
-bool may_write(const WritableRanges* w, const Run& run, uint32_t count) {
-  if (!w || w->everything()) return true;
-  if (run.area != Area::RC) return w->allows(run.area, run.index, count);
-  const uint32_t first = rc_counter(run.index), last = rc_counter(run.index + count - 1);
-  return w->allows(Area::RC, first, last - first + 1);
-}
-
 PduAnswer exception(const uint8_t* pdu, uint8_t code, uint8_t* rsp) {
   rsp[0] = uint8_t(pdu[0] | 0x80);
   rsp[1] = code;
@@ -114,8 +104,6 @@ uint8_t decode(const uint8_t* p, int len, Decoded* d) {
   return MODBUS_EXCEPTION_ILLEGAL_FUNCTION;
 }
 
-bool is_bits(Table t) { return t == Table::Coils || t == Table::DiscreteInputs; }
-
 }  // namespace
 
 bool supported_function(uint8_t fc) {
@@ -126,7 +114,7 @@ bool supported_function(uint8_t fc) {
 }
 
 PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const WritableRanges* writable,
-                     MapProfile map) {
+                     const MapProfile& map) {
   if (len < 1) return PduAnswer{};
   Decoded d;
   if (const uint8_t code = decode(pdu, len, &d)) return exception(pdu, code, rsp);
@@ -148,36 +136,22 @@ PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const 
   uint8_t rbits[kMaxReadBits];
   uint16_t rwords[kMaxReadRegisters];
 
-  // The lock: the user map (R3968..) is read, the write stored, the read copied. One
-  // scan's state; a refused request stores nothing. Nothing here waits on a client.
-  const bool bits = is_bits(d.table);
-  const bool mapped = plc.locked([&](ScanEngine& e, Memory& m) {
-    if (map == MapProfile::Tri)
-      return tri_transfer(e, m, bits, d.rd_addr, d.read ? d.rd_count : 0, d.wr_addr, d.write ? d.wr_count : 0, wbits,
-                          wwords, rbits, rwords, writable);
-    Run rr, wr;
-    if (d.read && !resolve(m, d.table, d.rd_addr, d.rd_count, &rr)) return false;
-    if (d.write && !(resolve(m, d.table, d.wr_addr, d.wr_count, &wr) && may_write(writable, wr, d.wr_count)))
-      return false;
-    if (d.write) {  // before the read: FC 23 reads what it wrote (protocol order)
-      if (bits) {
-        for (uint32_t i = 0; i < d.wr_count; ++i)
-          if (bool(wbits[i]) != m.bit(wr.area, wr.index + i)) m.set_bit(wr.area, wr.index + i, wbits[i] != 0);
-      } else {
-        uint16_t* w = m.words(wr.area) + wr.index;
-        for (uint32_t i = 0; i < d.wr_count; ++i) w[i] = wwords[i];
-      }
-    }
-    if (d.read) {
-      if (bits) {
-        const uint8_t* src = m.bits(rr.area) + rr.index;
-        for (uint32_t i = 0; i < d.rd_count; ++i) rbits[i] = src[i] & kBitState;
-      } else {
-        std::memcpy(rwords, m.words(rr.area) + rr.index, sizeof(uint16_t) * d.rd_count);
-      }
-    }
-    return true;
-  });
+  // The lock: the map resolves the request (the FBs user map lives in PLC memory), stores
+  // the write and copies the read. One scan's state; a refused request stores nothing.
+  // Nothing here waits on a client.
+  Transfer t;
+  t.table = d.table;
+  t.rd_addr = d.rd_addr;
+  t.rd_count = d.read ? d.rd_count : 0;
+  t.wr_addr = d.wr_addr;
+  t.wr_count = d.write ? d.wr_count : 0;
+  t.wbits = wbits;
+  t.wwords = wwords;
+  t.rbits = rbits;
+  t.rwords = rwords;
+  const bool bits = t.bits();
+  const bool mapped =
+      plc.locked([&](ScanEngine& e, Memory& m) { return map.transfer(e, m, t, writable); });
   if (!mapped) return exception(pdu, MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS, rsp);
   if (d.write) plc.commit();  // durable before it is acknowledged
 
@@ -207,7 +181,7 @@ PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const 
 }
 
 int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable,
-                   MapProfile map) {
+                   const MapProfile& map) {
   const int h = modbus_get_header_length(ctx);
   const bool rtu = h == 1;
   const int tail = rtu ? 2 : 0;

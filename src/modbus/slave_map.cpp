@@ -1,8 +1,10 @@
 #include "plc_cell/modbus/slave_map.h"
 
+#include <cstring>
 #include <iterator>
 
 #include "plc_cell/core/memory.h"
+#include "plc_cell/modbus/map_profile.h"
 
 namespace plc_cell {
 namespace modbus {
@@ -50,7 +52,54 @@ bool user_group(const Memory& m, uint32_t reg, Area area, uint32_t max_start, ui
   return in(Segment{mb, n, area, first}, addr, count, out);
 }
 
+// Word-store index of RC back to the counter it belongs to (C200.. take two words).
+uint32_t rc_counter(uint32_t w) { return w < kFirst32BitCounter ? w : kFirst32BitCounter + (w - kFirst32BitCounter) / 2; }
+
+bool may_write(const WritableRanges* w, const Run& run, uint32_t count) {
+  if (!w || w->everything()) return true;
+  if (run.area != Area::RC) return w->allows(run.area, run.index, count);
+  const uint32_t first = rc_counter(run.index), last = rc_counter(run.index + count - 1);
+  return w->allows(Area::RC, first, last - first + 1);
+}
+
+// The FBs manual's map: the default tables, or the user map of R3968.. (read from PLC
+// memory at each request). A request never spans two FBs areas, so it is one run.
+class FbsMap : public MapProfile {
+ public:
+  const char* name() const override { return "fbs"; }
+  bool transfer(ScanEngine&, Memory& m, const Transfer& t, const WritableRanges* writable) const override {
+    Run rr, wr;
+    if (t.rd_count && !resolve(m, t.table, t.rd_addr, t.rd_count, &rr)) return false;
+    if (t.wr_count && !(resolve(m, t.table, t.wr_addr, t.wr_count, &wr) && may_write(writable, wr, t.wr_count)))
+      return false;
+    const bool bits = t.bits();
+    if (t.wr_count) {
+      if (bits) {
+        for (uint32_t i = 0; i < t.wr_count; ++i)
+          if (bool(t.wbits[i]) != m.bit(wr.area, wr.index + i)) m.set_bit(wr.area, wr.index + i, t.wbits[i] != 0);
+      } else {
+        uint16_t* w = m.words(wr.area) + wr.index;
+        for (uint32_t i = 0; i < t.wr_count; ++i) w[i] = t.wwords[i];
+      }
+    }
+    if (t.rd_count) {
+      if (bits) {
+        const uint8_t* src = m.bits(rr.area) + rr.index;
+        for (uint32_t i = 0; i < t.rd_count; ++i) t.rbits[i] = src[i] & kBitState;
+      } else {
+        std::memcpy(t.rwords, m.words(rr.area) + rr.index, sizeof(uint16_t) * t.rd_count);
+      }
+    }
+    return true;
+  }
+};
+
 }  // namespace
+
+const MapProfile& fbs_map_profile() {
+  static const FbsMap map;
+  return map;
+}
 
 bool user_map_enabled(const Memory& m) { return m.reg(Area::R, kUserMapRegister) == kUserMapMagic; }
 

@@ -35,7 +35,7 @@ std::vector<std::unique_ptr<Server>> make_slave_servers(Plc& plc, const SlaveOpt
     throw Error("Modbus gateway " + o.gateway + ": needs a Modbus/TCP endpoint too");
   }
   if (!o.rtu.empty())
-    out.push_back(std::make_unique<RtuServer>(plc, parse_serial_settings(o.rtu, "8E1"), o.id, o.writable, o.map));
+    out.push_back(std::make_unique<RtuServer>(plc, parse_serial_settings(o.rtu, "8E1"), o.id, o.writable, *o.map));
   return out;
 }
 

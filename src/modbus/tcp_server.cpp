@@ -104,7 +104,7 @@ TcpProtocol::Taken TcpServer::take(uint64_t conn, Session*, std::string& in, std
       // MBAP delimits the frame, so a bad PDU is consumed whole and answered with an
       // exception; the connection stays in step. The PDU is decoded with no lock held.
       uint8_t rsp[MODBUS_TCP_MAX_ADU_LENGTH];
-      const PduAnswer a = answer_pdu(plc_, f + 7, flen - 7, rsp + 7, &opt_.writable, opt_.map);
+      const PduAnswer a = answer_pdu(plc_, f + 7, flen - 7, rsp + 7, &opt_.writable, *opt_.map);
       std::memcpy(rsp, f, 7);
       rsp[2] = rsp[3] = 0;
       rsp[4] = uint8_t((a.length + 1) >> 8);

@@ -3,7 +3,6 @@
 #include <string>
 #include <vector>
 
-#include "plc_cell/core/error.h"
 #include "plc_cell/tri/memory_map.h"
 
 namespace plc_cell {
@@ -129,30 +128,32 @@ void write(ScanEngine& eng, Memory& m, const Element& e, uint16_t v) {
   }
 }
 
+class TriMap : public MapProfile {
+ public:
+  const char* name() const override { return "tri"; }
+  bool transfer(ScanEngine& eng, Memory& m, const Transfer& t, const WritableRanges* writable) const override {
+    const bool bits = t.bits();
+    auto resolve = [bits](uint32_t addr, Element* e) { return bits ? resolve_bit(addr, e) : resolve_word(addr, e); };
+    std::vector<Element> wr(t.wr_count), rd(t.rd_count);
+    for (uint32_t i = 0; i < t.wr_count; ++i)
+      if (!resolve(t.wr_addr + i, &wr[i]) || !may_write(writable, wr[i])) return false;
+    for (uint32_t i = 0; i < t.rd_count; ++i)
+      if (!resolve(t.rd_addr + i, &rd[i])) return false;
+    for (uint32_t i = 0; i < t.wr_count; ++i) write(eng, m, wr[i], bits ? t.wbits[i] : t.wwords[i]);
+    for (uint32_t i = 0; i < t.rd_count; ++i) {
+      const uint16_t v = read(m, rd[i]);
+      if (bits) t.rbits[i] = uint8_t(v);
+      else t.rwords[i] = v;
+    }
+    return true;
+  }
+};
+
 }  // namespace
 
-MapProfile parse_map_profile(const std::string& text) {
-  if (text == "fbs") return MapProfile::Fbs;
-  if (text == "tri") return MapProfile::Tri;
-  throw Error("Modbus map '" + text + "': expected fbs (the FBs manual's) or tri (the TRi's Table 14.1)");
-}
-
-bool tri_transfer(ScanEngine& eng, Memory& m, bool bits, uint32_t rd_addr, uint32_t rd_count, uint32_t wr_addr,
-                  uint32_t wr_count, const uint8_t* wbits, const uint16_t* wwords, uint8_t* rbits, uint16_t* rwords,
-                  const WritableRanges* writable) {
-  auto resolve = [bits](uint32_t addr, Element* e) { return bits ? resolve_bit(addr, e) : resolve_word(addr, e); };
-  std::vector<Element> wr(wr_count), rd(rd_count);
-  for (uint32_t i = 0; i < wr_count; ++i)
-    if (!resolve(wr_addr + i, &wr[i]) || !may_write(writable, wr[i])) return false;
-  for (uint32_t i = 0; i < rd_count; ++i)
-    if (!resolve(rd_addr + i, &rd[i])) return false;
-  for (uint32_t i = 0; i < wr_count; ++i) write(eng, m, wr[i], bits ? wbits[i] : wwords[i]);
-  for (uint32_t i = 0; i < rd_count; ++i) {
-    const uint16_t v = read(m, rd[i]);
-    if (bits) rbits[i] = uint8_t(v);
-    else rwords[i] = v;
-  }
-  return true;
+const MapProfile& tri_map_profile() {
+  static const TriMap map;
+  return map;
 }
 
 }  // namespace modbus

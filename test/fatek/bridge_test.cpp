@@ -235,11 +235,7 @@ TEST(FatekBridge, PollsAStationOnASerialLine) {
 // have replies alike but for their value: a late reply must never pass for the other
 // group's, and once the station answers in time the same link delivers the true values.
 TEST(FatekBridge, ALateReplyIsNeverTakenForTheNextRequest) {
-  fatek_test::TempDir dir;
-  PtyProxy proxy(dir.path, 1);
-  PtyProxy::Faults f;
-  f.delay_ms = 60;
-  proxy.set_faults(f);
+  LateDeviceLine proxy(60);
   Plc plc;
   plc.write(parse_address("R0"), {111});
   plc.write(parse_address("R1000"), {222});
@@ -265,8 +261,7 @@ TEST(FatekBridge, ALateReplyIsNeverTakenForTheNextRequest) {
   ASSERT_TRUE(c.wait([&] { return c.errors.size() >= 10; }, 30));
   only_true_values();
   for (const auto& g : c.groups) EXPECT_FALSE(g.ok);
-  f.delay_ms = 0;
-  proxy.set_faults(f);
+  proxy.set_delay_ms(0);
   c.clear();
   ASSERT_TRUE(c.wait([&] {
     bool a = false, bb = false;

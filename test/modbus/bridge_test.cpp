@@ -403,14 +403,8 @@ devices:
 // have replies alike but for their value: a late reply must never pass for the other
 // group's; once the slave answers in time the line delivers the true values.
 TEST(Bridge, ALateRtuReplyIsNeverTakenForTheNextRequest) {
-  char tmpl[] = "/tmp/plc_cell_late_rtu_XXXXXX";
-  ASSERT_NE(::mkdtemp(tmpl), nullptr);
-  const std::string dir = tmpl;
   {
-    PtyProxy proxy(dir, 1);
-    PtyProxy::Faults f;
-    f.delay_ms = 60;
-    proxy.set_faults(f);
+    LateDeviceLine proxy(60);
     Plc plc;
     plc.locked([](ScanEngine&, Memory& m) {
       m.set_reg(Area::R, 0, 111);
@@ -439,15 +433,13 @@ devices:
     c.wait([&](const GroupResult&) { return b.status(0).timeouts >= 10; }, 30);
     only_true_values();
     for (const auto& r : c.all()) EXPECT_FALSE(r.ok);
-    f.delay_ms = 0;
-    proxy.set_faults(f);
+    proxy.set_delay_ms(0);
     c.wait([](const GroupResult& x) { return x.ok && x.group == 0; }, 30);
     c.wait([](const GroupResult& x) { return x.ok && x.group == 1; }, 30);
     b.stop();
     slave.stop();
     only_true_values();
   }
-  (void)!std::system(("rm -rf '" + dir + "'").c_str());
 }
 
 }  // namespace

@@ -132,14 +132,8 @@ TEST_F(Fun150, ResultCodes) {
 // transactions read one register each: their replies are alike but for the value, and a
 // late one must never land in the other's master register.
 TEST(Fun150Late, ALateReplyIsNeverTakenForTheNextTransaction) {
-  char tmpl[] = "/tmp/plc_cell_late_fun150_XXXXXX";
-  ASSERT_NE(::mkdtemp(tmpl), nullptr);
-  const std::string dir = tmpl;
   {
-    PtyProxy proxy(dir, 1);
-    PtyProxy::Faults f;
-    f.delay_ms = 60;
-    proxy.set_faults(f);
+    LateDeviceLine proxy(60);
     Plc slave;
     slave.locked([](ScanEngine&, Memory& m) {
       m.set_reg(Area::R, 0, 111);
@@ -192,8 +186,7 @@ TEST(Fun150Late, ALateReplyIsNeverTakenForTheNextTransaction) {
     }
     EXPECT_EQ(reg(10), 0u);  // every transaction timed out
     EXPECT_EQ(reg(11), 0u);
-    f.delay_ms = 0;
-    proxy.set_faults(f);
+    proxy.set_delay_ms(0);
     for (int round = 0; round < 3 && !(reg(10) == 111 && reg(11) == 222); ++round) {
       ASSERT_TRUE(scan_until(done));
       en(false);
@@ -208,7 +201,6 @@ TEST(Fun150Late, ALateReplyIsNeverTakenForTheNextTransaction) {
     master.scan(now += 1000);
     rtu.stop();
   }
-  (void)!std::system(("rm -rf '" + dir + "'").c_str());
 }
 
 TEST(Fun150Ports, UnconfiguredPortAndYaml) {

@@ -11,6 +11,7 @@
 #include <modbus/modbus.h>
 
 #include "helpers.h"
+#include "../reliability/pty_proxy.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/modbus/gateway.h"
 #include "plc_cell/modbus/rtu_server.h"
@@ -65,6 +66,37 @@ TEST(Gateway, RoutesByUnitId) {
   // The slave's own exception comes back through the gateway unchanged.
   EXPECT_EQ(modbus_read_registers(c, 4168, 1, r), -1);
   EXPECT_EQ(errno, EMBXILADD);
+  done(c);
+  gw.stop();
+}
+
+// The gateway's line is held by its path: an adapter pulled out and plugged back in is
+// found again. Meanwhile the forwarded requests get 0B; afterwards they are answered.
+TEST(Gateway, ALineThatWentAwayIsOpenedAgain) {
+  TempDir dir;
+  PtyProxy proxy(dir.path(), 1);
+  Plc own, remote;
+  remote.locked([](ScanEngine&, Memory& m) { m.set_reg(Area::R, 0, 555); return 0; });
+  RtuServer slave(remote, parse_serial_settings(proxy.device_link() + ":115200:8E1"), 5);
+  slave.start();
+  GatewayOptions o = options(proxy.client_link());
+  o.wait_ms = 100;
+  o.retries = 0;
+  GatewayServer gw(own, o);
+  gw.start();
+  modbus_t* c = client(gw.bound_port(), 5);
+  uint16_t r[1] = {0};
+  ASSERT_EQ(modbus_read_registers(c, 0, 1, r), 1);
+  EXPECT_EQ(r[0], 555);
+  proxy.unplug_client();
+  EXPECT_EQ(modbus_read_registers(c, 0, 1, r), -1);
+  EXPECT_EQ(errno, EMBXGTAR);
+  proxy.replug_client();
+  r[0] = 0;
+  bool back = false;
+  for (int i = 0; i < 50 && !back; ++i) back = modbus_read_registers(c, 0, 1, r) == 1;  // each bounded by wait
+  EXPECT_TRUE(back);
+  EXPECT_EQ(r[0], 555);
   done(c);
   gw.stop();
 }

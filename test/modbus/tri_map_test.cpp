@@ -23,7 +23,7 @@ struct Reply {
 Reply call(Plc& plc, std::vector<uint8_t> pdu, const WritableRanges* w = nullptr) {
   Reply r;
   r.bytes.resize(kMaxPdu);
-  r.a = answer_pdu(plc, pdu.data(), int(pdu.size()), r.bytes.data(), w, MapProfile::Tri);
+  r.a = answer_pdu(plc, pdu.data(), int(pdu.size()), r.bytes.data(), w, tri_map_profile());
   r.bytes.resize(size_t(r.a.length));
   return r;
 }
@@ -158,7 +158,7 @@ TEST(TriMap, MbpollReadsDm1AtRegister1000) {
   plc.write(parse_address("D0"), {1234});
   TcpServerOptions o;
   o.port = 0;
-  o.map = MapProfile::Tri;
+  o.map = &tri_map_profile();
   TcpServer s(plc, o);
   s.start();
   const std::string base = "mbpoll -m tcp -p " + std::to_string(s.bound_port()) + " -a 1 -1 -o 5 ";
@@ -183,9 +183,9 @@ TEST(TriMap, MbpollReadsDm1AtRegister1000) {
 }
 
 TEST(TriMap, ProfileNames) {
-  EXPECT_EQ(parse_map_profile("tri"), MapProfile::Tri);
-  EXPECT_EQ(parse_map_profile("fbs"), MapProfile::Fbs);
-  EXPECT_THROW(parse_map_profile("omron"), std::exception);
+  EXPECT_EQ(&map_profile("tri"), &tri_map_profile());
+  EXPECT_EQ(&map_profile("fbs"), &fbs_map_profile());
+  EXPECT_THROW(map_profile("omron"), std::exception);
 }
 
 }  // namespace modbus

@@ -22,6 +22,8 @@
 #include <string>
 #include <thread>
 
+#include "temp_dir.h"
+
 class PtyProxy {
  public:
   struct Faults {
@@ -189,4 +191,25 @@ class PtyProxy {
   std::atomic<bool> stop_{false};
   std::atomic<uint64_t> injected_{0};
   std::thread thread_;
+};
+
+// A device that answers late but in order, for the tests that a late reply is never taken
+// for the next request (the FATEK, TRi and Modbus bridges, FUN150): a PtyProxy in a fresh
+// folder that holds each of the device's replies back delay_ms. The device (a server)
+// opens device_link(), the master client_link().
+class LateDeviceLine {
+ public:
+  explicit LateDeviceLine(int delay_ms) : proxy_(dir_.path(), 1) { set_delay_ms(delay_ms); }
+  std::string device_link() const { return proxy_.device_link(); }
+  std::string client_link() const { return proxy_.client_link(); }
+  // 0: the device answers in time again.
+  void set_delay_ms(int ms) {
+    PtyProxy::Faults f;
+    f.delay_ms = ms;
+    proxy_.set_faults(f);
+  }
+
+ private:
+  TempDir dir_;
+  PtyProxy proxy_;  // after dir_: gone before its folder is removed
 };

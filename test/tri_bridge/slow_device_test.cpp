@@ -150,11 +150,7 @@ TEST(TriSlowDevice, ALateReplyIsNeverTakenForTheNextRequestOverTcp) {
 // The same over a serial line: the slow device is the soft PLC's serial server behind a
 // proxy that delays each reply; a line cannot be reconnected, it is drained until quiet.
 TEST(TriSlowDevice, ALateReplyIsNeverTakenForTheNextRequestOverASerialLine) {
-  fatek_test::TempDir dir;
-  PtyProxy proxy(dir.path, 1);
-  PtyProxy::Faults f;
-  f.delay_ms = 60;
-  proxy.set_faults(f);
+  LateDeviceLine proxy(60);
   Plc plc;
   plc.write(parse_address("D0"), {111, 222, 333});
   SerialServer server(plc, parse_serial_settings(proxy.device_link() + ":38400:8N1", "8N1"), ServerOptions{});
@@ -173,8 +169,7 @@ TEST(TriSlowDevice, ALateReplyIsNeverTakenForTheNextRequestOverASerialLine) {
   expect_only_true_values(c);
   for (const auto& g : c.groups) EXPECT_FALSE(g.ok);
   // In time again: the same link delivers the true values.
-  f.delay_ms = 0;
-  proxy.set_faults(f);
+  proxy.set_delay_ms(0);
   c.clear();
   ASSERT_TRUE(c.wait([&] { return !c.groups.empty() && c.groups.back().ok; }, 30)) << b.status().last_error;
   b.stop();

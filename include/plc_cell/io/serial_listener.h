@@ -27,6 +27,10 @@ class SerialProtocol {
   // The unfinished request is dropped: it was not whole within the frame timeout, or the
   // line died under it.
   virtual void drop_frame() = 0;
+  // A protocol whose frames end at a silence (Modbus RTU's 3.5 characters, shorter than any
+  // frame timeout) says in how many ms it has something to do without new bytes; the
+  // listener then calls feed() with none. -1: nothing until bytes come.
+  virtual int wake_in_ms() const { return -1; }
 };
 
 class SerialListener {
@@ -49,6 +53,7 @@ class SerialListener {
 
  private:
   void loop();
+  void deliver(int fd, const uint8_t* data, size_t n);
   bool wait_for_device();  // false once stopping
   void lost(const std::string& why);
   void note(const std::string& e);

@@ -33,6 +33,9 @@ class Transport {
   virtual void send(const std::string& bytes, int timeout_ms) = 0;
   virtual size_t recv(char* buf, size_t n, int timeout_ms) = 0;
   virtual std::string describe() const = 0;
+  // The open stream's descriptor, for a framing library that reads and writes it itself
+  // (the Modbus bridge's libmodbus context); -1 when closed or when there is none.
+  virtual int fd() const { return -1; }
   // After a request got no answer, or one that could not be read: its answer, or the rest
   // of it, may still come, and a reply does not always name the request it answers (a
   // TRi reply repeats no address), so no byte of it may be taken for a later request.
@@ -77,6 +80,10 @@ auto with_retries(Transport& t, int retries, int timeout_ms, uint64_t* retries_u
     }
   }
 }
+// A TCP connection to host:port (127.0.0.1 when host is empty), made within timeout_ms: a
+// host that does not answer holds its caller (and a stop() waiting for it) that long, not for
+// the system's minutes. Returns a non-blocking socket with TCP_NODELAY, or -1 and *error.
+int connect_tcp(const std::string& host, int port, int timeout_ms, std::string* error);
 // Reads and drops what arrives on fd until nothing has come for quiet_ms, for at most
 // limit_ms overall: true once quiet, false when the line kept talking (or failed).
 bool drain_until_quiet(int fd, int quiet_ms, int limit_ms);

@@ -1,21 +1,15 @@
 #pragma once
-// The bridge's bus side (no ROS): one thread per line (a TCP connection, or a
-// serial port shared by several devices), polling each group at its rate with
-// the planned reads, reconnecting with exponential back-off.
-#include <atomic>
-#include <chrono>
-#include <condition_variable>
+// The bridge's bus side (no ROS): one io layer PolledLink per line (a TCP connection, or
+// a serial port shared by several devices; io/polled_link.h: its thread polls each group
+// at its rate with the planned reads, reconnects with exponential back-off and lets the
+// writes in between two polls). libmodbus frames the requests on the line's fd.
 #include <functional>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "plc_cell/modbus/bridge_config.h"
-
-typedef struct _modbus modbus_t;
 
 namespace plc_cell {
 namespace modbus {
@@ -56,11 +50,12 @@ class Bridge {
   const BridgeConfig& config() const { return cfg_; }
 
  private:
-  struct Line;
-  void run(Line& line);
-  bool ensure_connected(Line& line);
-  void poll_group(Line& line, size_t dev, size_t group);
+  class Line;
+  bool poll_group(Line& line, size_t dev, size_t group);
+  bool read_blocks(Line& line, size_t dev, GroupResult& r);
+  void decode_group(size_t dev, GroupResult& r) const;
   void note_error(Line& line, size_t dev, int err);
+  void link_failed(const Line& line, const std::string& why);
 
   BridgeConfig cfg_;
   Sink sink_;

@@ -4,14 +4,15 @@
 // serial line, one transaction at a time. No reply within `wait`: resend, up to
 // `retries` times, then exception 0B. A request that cannot get the line (queue
 // full, or queued longer than busy_ms) gets exception 06. TCP clients are served
-// meanwhile: the line has its own thread.
-#include <condition_variable>
+// meanwhile: the line is an io layer ComPort (io/com_port.h: one thread, one transaction
+// at a time, the device reopened by its path), and libmodbus frames on its fd.
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 
+#include "plc_cell/io/com_port.h"
 #include "plc_cell/io/serial_settings.h"
 #include "plc_cell/io/server.h"
 #include "plc_cell/modbus/forwarder.h"
@@ -50,17 +51,17 @@ class RtuForwarder : public Forwarder {
     Done done;
     std::chrono::steady_clock::time_point queued;
   };
-  void run();
+  void run_next();
   std::vector<uint8_t> transact(const std::vector<uint8_t>& frame);
+  bool attempt(int fd, const std::vector<uint8_t>& f, std::vector<uint8_t>* reply);
 
   GatewayOptions opt_;
-  modbus_t* ctx_ = nullptr;
+  modbus_t* ctx_ = nullptr;  // framing only, on the port's fd (libmodbus never opens or closes it)
   mutable std::mutex mu_;
-  std::condition_variable cv_;
   std::deque<Job> jobs_;
-  bool busy_ = false, stop_ = false;
+  bool busy_ = false, stop_ = true;
   uint64_t no_response_ = 0;
-  std::thread thread_;
+  std::unique_ptr<ComPort> port_;  // its thread runs run_next()
 };
 
 class GatewayServer : public Server {

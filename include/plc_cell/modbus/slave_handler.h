@@ -13,7 +13,7 @@
 #include <cstdint>
 
 #include "plc_cell/core/writable_ranges.h"
-#include "plc_cell/modbus/tri_map.h"
+#include "plc_cell/modbus/map_profile.h"
 
 #include <modbus/modbus.h>
 
@@ -43,9 +43,9 @@ struct PduAnswer {
 // Answers one request PDU (function code + data, no MBAP header, no CRC) into
 // rsp[kMaxPdu]. A rejected request changes nothing. A write is committed (see
 // Plc::commit) before this returns, so the reply may go out at once.
-// map: the FBs map (slave_map.h) or the TRi profile (tri_map.h).
+// map: the profile served (map_profile.h).
 PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const WritableRanges* writable = nullptr,
-                     MapProfile map = MapProfile::Fbs);
+                     const MapProfile& map = fbs_map_profile());
 
 // req/len: a whole ADU as the context's transport frames it (MBAP + PDU for TCP,
 // slave id + PDU + CRC for RTU; the CRC is not checked here). Answers on the
@@ -54,7 +54,7 @@ PduAnswer answer_pdu(Plc& plc, const uint8_t* pdu, int len, uint8_t* rsp, const 
 // A write outside `writable` (null: everything writable) is answered with exception 02,
 // as an unmapped address, and changes nothing.
 int handle_request(modbus_t* ctx, Plc& plc, const uint8_t* req, int len, const WritableRanges* writable = nullptr,
-                   MapProfile map = MapProfile::Fbs);
+                   const MapProfile& map = fbs_map_profile());
 
 }  // namespace modbus
 }  // namespace plc_cell

@@ -6,7 +6,7 @@
 
 #include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/io/server.h"
-#include "plc_cell/modbus/tri_map.h"
+#include "plc_cell/modbus/map_profile.h"
 
 namespace plc_cell {
 
@@ -26,7 +26,7 @@ struct SlaveOptions {
   int gateway_wait_ms = 150;
   int gateway_retries = 2;
   WritableRanges writable;  // what clients may write, TCP and RTU alike (docs/security.md)
-  MapProfile map = MapProfile::Fbs;  // the FBs map, or the TRi profile (docs/tri.md)
+  const MapProfile* map = &fbs_map_profile();  // the map served (map_profile.h, docs/tri.md)
 };
 
 // Throws plc_cell::Error on a bad option.

@@ -9,7 +9,7 @@
 
 #include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/io/server.h"
-#include "plc_cell/modbus/tri_map.h"
+#include "plc_cell/modbus/map_profile.h"
 #include "plc_cell/io/tcp_listener.h"
 
 namespace plc_cell {
@@ -31,7 +31,7 @@ struct TcpServerOptions {
   int own_unit = 1;
   Forwarder* forwarder = nullptr;
   WritableRanges writable;  // what clients may write (default everything); else exception 02
-  MapProfile map = MapProfile::Fbs;  // the FBs map or the TRi profile (docs/tri.md)
+  const MapProfile* map = &fbs_map_profile();  // the map served (map_profile.h, docs/tri.md)
 };
 
 // The transport is io/tcp_listener.h's; this class is the Modbus side of it.
