@@ -8,6 +8,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "scenario_files.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/coverage/recorders.h"
@@ -28,6 +29,34 @@ bool selected(const std::vector<std::string>& filters, const std::string& name) 
   return false;
 }
 
+// One line per case, and a failure's report below it.
+void print_result(const scenario::Scenario& sc, const scenario::CaseResult& r) {
+  std::cout << (r.passed ? "PASS  " : "FAIL  ") << sc.file << ": " << r.name << "  ("
+            << scenario::format_time(r.virtual_us) << ")\n";
+  if (r.passed) return;
+  std::cout << "    " << r.failure << "\n";
+  std::istringstream details(r.details);
+  for (std::string line; std::getline(details, line);) std::cout << "    " << line << "\n";
+}
+
+void write_outputs(const Args& args, const std::vector<scenario::CaseResult>& results,
+                   const coverage::Recorders& recorders, bool coverage) {
+  if (args.has("junit")) {
+    std::ofstream out(args.get("junit"));
+    if (!out) throw Error("cannot write the JUnit file " + args.get("junit"));
+    scenario::write_junit(results, out);
+  }
+  if (!coverage) return;
+  const std::vector<coverage::Report> reports = recorders.reports();
+  if (args.has("coverage")) coverage::write_text(reports, std::cout);
+  if (args.has("coverage-json")) {
+    std::ofstream out(args.get("coverage-json"));
+    if (!out) throw Error("cannot write the coverage file " + args.get("coverage-json"));
+    coverage::write_json(reports, out);
+  }
+  if (args.has("coverage-html")) coverage::write_html(reports, args.get("coverage-html"));
+}
+
 }  // namespace
 
 int cmd_test(const std::vector<std::string>& argv_in) {
@@ -36,36 +65,11 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a);
   Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine"}, {"coverage"});
   if (args.positional().empty()) throw UsageError("no scenario file given");
-  // Each cell's own plc.engine unless --engine says otherwise.
-  EngineChoice engine{};
-  const bool engine_given = args.has("engine");
-  if (engine_given && !parse_engine_choice(args.get("engine"), &engine))
-    throw UsageError("--engine " + args.get("engine") + ": expected native, interpreter or lockstep");
+  const std::optional<EngineChoice> engine = engine_option(args);  // else each cell's plc.engine
   const auto filters = args.all("case");
-
-  // Every file read, and the names of every step that reads well checked against its cell,
-  // before any case runs: a user sees all the errors of all the files at once.
+  // Every file read and checked before any case runs: all the errors of all the files at once.
   std::vector<scenario::Scenario> files;
-  ErrorList errors;
-  for (const auto& path : args.positional()) {
-    files.push_back(scenario::read_scenario(path, errors));
-    const scenario::Scenario& sc = files.back();
-    if (sc.cell.empty()) continue;
-    errors.collect([&] {
-      scenario::CellTarget target(sc.cell, sc.program);
-      for (const auto& c : sc.cases)
-        for (const auto& e : scenario::check_case(c, target)) errors.add(e);
-    }, path);
-  }
-  if (!errors.empty()) {
-    try {
-      errors.throw_if_any();  // sorted: file by file, by line
-    } catch (const SourceError& e) {
-      for (const auto& d : e.diagnostics()) std::cerr << d.to_string() << "\n";
-    }
-    std::cerr << "plc_cell test: " << errors.size() << " error(s) in the scenario files; no case ran\n";
-    return 1;
-  }
+  if (!load_scenarios(args.positional(), "plc_cell test", &files)) return 1;
 
   // Rung coverage, summed over every case of the run, per program.
   const bool coverage = args.has("coverage") || args.has("coverage-json") || args.has("coverage-html");
@@ -75,23 +79,12 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   for (const auto& sc : files)
     for (const auto& c : sc.cases) {
       if (!selected(filters, c.name)) continue;
-      scenario::CellTarget target(sc.cell, sc.program);  // a fresh cell for every case
-      if (engine_given) target.cell().plc().locked([&](ScanEngine& e, Memory&) {
-        e.set_engine(engine);
-        return 0;
-      });
-      if (coverage) recorders.attach(target.cell().plc(), target.cell().config().signals);
-      results.push_back(scenario::run_case(c, target));
-      if (coverage) recorders.detach(target.cell().plc());
-      const auto& r = results.back();
-      virtual_us += r.virtual_us;
-      std::cout << (r.passed ? "PASS  " : "FAIL  ") << sc.file << ": " << r.name << "  ("
-                << scenario::format_time(r.virtual_us) << ")\n";
-      if (!r.passed) {
-        std::cout << "    " << r.failure << "\n";
-        std::istringstream details(r.details);
-        for (std::string line; std::getline(details, line);) std::cout << "    " << line << "\n";
-      }
+      const auto target = fresh_target(sc, engine);  // a fresh cell for every case
+      if (coverage) recorders.attach(target->cell().plc(), target->cell().config().signals);
+      results.push_back(scenario::run_case(c, *target));
+      if (coverage) recorders.detach(target->cell().plc());
+      virtual_us += results.back().virtual_us;
+      print_result(sc, results.back());
     }
   if (results.empty()) {
     std::cerr << "plc_cell test: no case matches -k";
@@ -103,22 +96,7 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   for (const auto& r : results) failed += !r.passed;
   std::cout << "== " << results.size() - failed << " passed, " << failed << " failed ("
             << scenario::format_time(virtual_us) << " of virtual time)\n";
-
-  if (args.has("junit")) {
-    std::ofstream out(args.get("junit"));
-    if (!out) throw Error("cannot write the JUnit file " + args.get("junit"));
-    scenario::write_junit(results, out);
-  }
-  if (coverage) {
-    const std::vector<coverage::Report> reports = recorders.reports();
-    if (args.has("coverage")) coverage::write_text(reports, std::cout);
-    if (args.has("coverage-json")) {
-      std::ofstream out(args.get("coverage-json"));
-      if (!out) throw Error("cannot write the coverage file " + args.get("coverage-json"));
-      coverage::write_json(reports, out);
-    }
-    if (args.has("coverage-html")) coverage::write_html(reports, args.get("coverage-html"));
-  }
+  write_outputs(args, results, recorders, coverage);
   return failed ? 1 : 0;
 }
 
