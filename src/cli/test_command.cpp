@@ -8,6 +8,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "mutate_option.h"
 #include "scenario_files.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
@@ -40,7 +41,7 @@ void print_result(const scenario::Scenario& sc, const scenario::CaseResult& r) {
 }
 
 void write_outputs(const Args& args, const std::vector<scenario::CaseResult>& results,
-                   const coverage::Recorders& recorders, bool coverage) {
+                   const coverage::Recorders& recorders, bool coverage, const std::string& extra_html) {
   if (args.has("junit")) {
     std::ofstream out(args.get("junit"));
     if (!out) throw Error("cannot write the JUnit file " + args.get("junit"));
@@ -54,7 +55,7 @@ void write_outputs(const Args& args, const std::vector<scenario::CaseResult>& re
     if (!out) throw Error("cannot write the coverage file " + args.get("coverage-json"));
     coverage::write_json(reports, out);
   }
-  if (args.has("coverage-html")) coverage::write_html(reports, args.get("coverage-html"));
+  if (args.has("coverage-html")) coverage::write_html(reports, args.get("coverage-html"), extra_html);
 }
 
 }  // namespace
@@ -62,8 +63,9 @@ void write_outputs(const Args& args, const std::vector<scenario::CaseResult>& re
 int cmd_test(const std::vector<std::string>& argv_in) {
   // -k NAME, as pytest spells it, is --case NAME.
   std::vector<std::string> argv;
-  for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a);
-  Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine"}, {"coverage"});
+  for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a == "-j" ? "--jobs" : a);
+  Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine", "mutate-budget", "mutate-json", "jobs"},
+            {"coverage", "mutate"});
   if (args.positional().empty()) throw UsageError("no scenario file given");
   const std::optional<EngineChoice> engine = engine_option(args);  // else each cell's plc.engine
   const auto filters = args.all("case");
@@ -96,7 +98,11 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   for (const auto& r : results) failed += !r.passed;
   std::cout << "== " << results.size() - failed << " passed, " << failed << " failed ("
             << scenario::format_time(virtual_us) << " of virtual time)\n";
-  write_outputs(args, results, recorders, coverage);
+  // Mutants only of programs whose cases all pass: a failing case would kill every one.
+  std::string mutation_html;
+  if (args.has("mutate") && !failed) run_mutate(args, files, engine, &mutation_html);
+  if (args.has("mutate") && failed) std::cout << "no mutation testing: a case fails on the program itself\n";
+  write_outputs(args, results, recorders, coverage, mutation_html);
   return failed ? 1 : 0;
 }
 
@@ -104,8 +110,9 @@ Command test_command() {
   return {"test",
           "FILE.scenario.yaml... [-k NAME] [--junit OUT.xml] [--coverage]\n"
           "         [--coverage-json OUT.json] [--coverage-html DIR] [--engine E]\n"
+          "         [--mutate [--mutate-budget N] [--mutate-json OUT.json] [-j N]]\n"
           "         run the scenarios' test cases in virtual time, each on a fresh cell;\n"
-          "         rung coverage summed over the cases\n",
+          "         rung coverage summed over the cases; mutation testing of the programs\n",
           cmd_test};
 }
 

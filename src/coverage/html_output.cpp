@@ -153,7 +153,7 @@ void program_html(const Report& r, size_t p, std::ostream& out) {
 
 }  // namespace
 
-void write_html(const std::vector<Report>& reports, const std::string& dir) {
+void write_html(const std::vector<Report>& reports, const std::string& dir, const std::string& extra) {
   std::ostringstream page;
   page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        << "<title>Rung coverage</title>\n<style>\n" << kStyle << "</style>\n</head>\n<body>\n"
@@ -165,7 +165,7 @@ void write_html(const std::vector<Report>& reports, const std::string& dir) {
        << "<span class=\"line bad\">never energised, changed, switched or enabled</span>"
        << "<span class=\"line off\">not evaluated</span></p>\n";
   for (size_t p = 0; p < reports.size(); ++p) program_html(reports[p], p + 1, page);
-  page << "</body>\n</html>\n";
+  page << extra << "</body>\n</html>\n";
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -7,27 +7,21 @@
 #include <sstream>
 
 #include "../core/run_tool.h"
+#include "../core/tool_text.h"
 #include "plc_cell/explore/case_writer.h"
 #include "plc_cell/explore/explorer.h"
 #include "plc_cell/scenario/scenario_file.h"
 
 using namespace plc_cell;
 using namespace plc_cell::explore;
+using plc_cell::testing::has;
 using plc_cell::testing::run_tool;
+using plc_cell::testing::slurp;
 using plc_cell::testing::ToolResult;
 
 namespace {
 
 const std::string kSrc = PLC_CELL_SOURCE_DIR;
-
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 scenario::ExploreSpec spec() {
   const scenario::Scenario sc = scenario::parse_scenario(
