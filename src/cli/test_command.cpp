@@ -1,6 +1,7 @@
 // plc_cell test: scenario files run in virtual time, each case on a fresh cell; one line
 // per case, the failures in full, JUnit XML for CI, rung coverage summed over the cases
 // (docs/testing-your-cell.md, docs/coverage.md).
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -100,7 +101,14 @@ int cmd_test(const std::vector<std::string>& argv_in) {
             << scenario::format_time(virtual_us) << " of virtual time)\n";
   // Mutants only of programs whose cases all pass: a failing case would kill every one.
   std::string mutation_html;
-  if (args.has("mutate") && !failed) run_mutate(args, files, engine, &mutation_html);
+  if (args.has("mutate") && !failed) {
+    std::vector<scenario::Scenario> chosen = files;  // the cases -k selects
+    for (auto& sc : chosen)
+      sc.cases.erase(std::remove_if(sc.cases.begin(), sc.cases.end(),
+                                    [&](const scenario::Case& c) { return !selected(filters, c.name); }),
+                     sc.cases.end());
+    run_mutate(args, chosen, engine, &mutation_html);
+  }
   if (args.has("mutate") && failed) std::cout << "no mutation testing: a case fails on the program itself\n";
   write_outputs(args, results, recorders, coverage, mutation_html);
   return failed ? 1 : 0;

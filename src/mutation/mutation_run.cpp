@@ -51,6 +51,7 @@ std::vector<std::string> lines_of(const std::string& path) {
 std::vector<Program> programs(const std::vector<scenario::Scenario>& files, const TargetFactory& make) {
   std::vector<Program> out;
   for (const auto& sc : files) {
+    if (sc.cases.empty()) continue;  // none selected: nothing could kill a mutant
     const std::string file = sc.program.empty() ? make(sc, "")->cell().config().program : sc.program;
     auto it = out.begin();
     while (it != out.end() && it->file != file) ++it;

@@ -103,6 +103,11 @@ TEST(Mutation, KilledSurvivedAndEquivalentOnASmallCell) {
   // A budget: evenly spaced mutants, the count said.
   const ToolResult b = run_tool("test " + dir + "/s.scenario.yaml --mutate --mutate-budget 5");
   EXPECT_TRUE(has(b.out, ": 5 mutants (of 16), 2 cases each\n")) << b.out;
+  // -k: the selected cases only. Without "start", X0 and X1 stay OFF: the two mutants that
+  // turn Y0 on survive, the four that leave it OFF are equivalent-suspects.
+  const ToolResult k = run_tool("test " + dir + "/s.scenario.yaml --mutate -k timer");
+  EXPECT_TRUE(has(k.out, ": 16 mutants, 1 case each\n  killed 9, survived 2, equivalent-suspect 5")) << k.out;
+  EXPECT_TRUE(has(k.out, "  network 1 (line 1): 0/2 killed, 4 equivalent-suspect\n")) << k.out;
 }
 
 TEST(Mutation, TheDemoReportsAScoreAndItsSurvivors) {
