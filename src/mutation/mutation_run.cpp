@@ -134,9 +134,14 @@ void run_all(const Program& p, const std::vector<std::string>& lines, const Opti
     if (pid == 0) {
       close(fd[0]);
       const std::string path = std::string(dir) + "/mutant" + std::to_string(w) + ".il";
-      for (size_t i = size_t(w); i < results.size(); i += size_t(jobs)) {
-        const std::string line = encode(i, run_mutant(p, lines, results[i].mutant, path, make));
-        if (write(fd[1], line.data(), line.size()) < 0) _exit(2);
+      try {
+        for (size_t i = size_t(w); i < results.size(); i += size_t(jobs)) {
+          const std::string line = encode(i, run_mutant(p, lines, results[i].mutant, path, make));
+          if (write(fd[1], line.data(), line.size()) < 0) _exit(2);
+        }
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "mutation: %s\n", e.what());
+        _exit(3);
       }
       _exit(0);
     }
