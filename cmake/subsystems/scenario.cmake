@@ -5,7 +5,7 @@ file(GLOB SCENARIO_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/scenario/
 add_library(plc_cell_scenario STATIC ${SCENARIO_SOURCES})
 target_link_libraries(plc_cell_scenario PUBLIC plc_cell_runtime)
 
-list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/test_command.cpp)
+list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/test_command.cpp ${PROJECT_SOURCE_DIR}/src/cli/scenario_files.cpp)
 list(APPEND PLC_CELL_TOOL_LIBS plc_cell_scenario plc_cell_coverage)
 
 if(CATKIN_ENABLE_TESTING)

@@ -18,7 +18,8 @@ Command sim_command();
 Command run_command();
 Command check_command();
 Command fatek_command();
-Command test_command();  // scenario files (src/cli/test_command.cpp)  // a FATEK master for commissioning (src/cli/fatek_command.cpp)
+Command test_command();     // scenario files (src/cli/test_command.cpp)
+Command explore_command();  // random runs against properties (src/cli/explore_command.cpp)
 
 // Every subcommand, in the order --help lists them.
 const std::vector<Command>& commands();

@@ -1,6 +1,7 @@
 // plc_cell test: scenario files run in virtual time, each case on a fresh cell; one line
 // per case, the failures in full, JUnit XML for CI, rung coverage summed over the cases
 // (docs/testing-your-cell.md, docs/coverage.md).
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -8,6 +9,8 @@
 
 #include "args.h"
 #include "commands.h"
+#include "mutate_option.h"
+#include "scenario_files.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/coverage/recorders.h"
@@ -28,44 +31,48 @@ bool selected(const std::vector<std::string>& filters, const std::string& name) 
   return false;
 }
 
+// One line per case, and a failure's report below it.
+void print_result(const scenario::Scenario& sc, const scenario::CaseResult& r) {
+  std::cout << (r.passed ? "PASS  " : "FAIL  ") << sc.file << ": " << r.name << "  ("
+            << scenario::format_time(r.virtual_us) << ")\n";
+  if (r.passed) return;
+  std::cout << "    " << r.failure << "\n";
+  std::istringstream details(r.details);
+  for (std::string line; std::getline(details, line);) std::cout << "    " << line << "\n";
+}
+
+void write_outputs(const Args& args, const std::vector<scenario::CaseResult>& results,
+                   const coverage::Recorders& recorders, bool coverage, const std::string& extra_html) {
+  if (args.has("junit")) {
+    std::ofstream out(args.get("junit"));
+    if (!out) throw Error("cannot write the JUnit file " + args.get("junit"));
+    scenario::write_junit(results, out);
+  }
+  if (!coverage) return;
+  const std::vector<coverage::Report> reports = recorders.reports();
+  if (args.has("coverage")) coverage::write_text(reports, std::cout);
+  if (args.has("coverage-json")) {
+    std::ofstream out(args.get("coverage-json"));
+    if (!out) throw Error("cannot write the coverage file " + args.get("coverage-json"));
+    coverage::write_json(reports, out);
+  }
+  if (args.has("coverage-html")) coverage::write_html(reports, args.get("coverage-html"), extra_html);
+}
+
 }  // namespace
 
 int cmd_test(const std::vector<std::string>& argv_in) {
   // -k NAME, as pytest spells it, is --case NAME.
   std::vector<std::string> argv;
-  for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a);
-  Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine"}, {"coverage"});
+  for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a == "-j" ? "--jobs" : a);
+  Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine", "mutate-budget", "mutate-json", "jobs"},
+            {"coverage", "mutate"});
   if (args.positional().empty()) throw UsageError("no scenario file given");
-  // Each cell's own plc.engine unless --engine says otherwise.
-  EngineChoice engine{};
-  const bool engine_given = args.has("engine");
-  if (engine_given && !parse_engine_choice(args.get("engine"), &engine))
-    throw UsageError("--engine " + args.get("engine") + ": expected native, interpreter or lockstep");
+  const std::optional<EngineChoice> engine = engine_option(args);  // else each cell's plc.engine
   const auto filters = args.all("case");
-
-  // Every file read, and the names of every step that reads well checked against its cell,
-  // before any case runs: a user sees all the errors of all the files at once.
+  // Every file read and checked before any case runs: all the errors of all the files at once.
   std::vector<scenario::Scenario> files;
-  ErrorList errors;
-  for (const auto& path : args.positional()) {
-    files.push_back(scenario::read_scenario(path, errors));
-    const scenario::Scenario& sc = files.back();
-    if (sc.cell.empty()) continue;
-    errors.collect([&] {
-      scenario::CellTarget target(sc.cell, sc.program);
-      for (const auto& c : sc.cases)
-        for (const auto& e : scenario::check_case(c, target)) errors.add(e);
-    }, path);
-  }
-  if (!errors.empty()) {
-    try {
-      errors.throw_if_any();  // sorted: file by file, by line
-    } catch (const SourceError& e) {
-      for (const auto& d : e.diagnostics()) std::cerr << d.to_string() << "\n";
-    }
-    std::cerr << "plc_cell test: " << errors.size() << " error(s) in the scenario files; no case ran\n";
-    return 1;
-  }
+  if (!load_scenarios(args.positional(), "plc_cell test", &files)) return 1;
 
   // Rung coverage, summed over every case of the run, per program.
   const bool coverage = args.has("coverage") || args.has("coverage-json") || args.has("coverage-html");
@@ -75,23 +82,12 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   for (const auto& sc : files)
     for (const auto& c : sc.cases) {
       if (!selected(filters, c.name)) continue;
-      scenario::CellTarget target(sc.cell, sc.program);  // a fresh cell for every case
-      if (engine_given) target.cell().plc().locked([&](ScanEngine& e, Memory&) {
-        e.set_engine(engine);
-        return 0;
-      });
-      if (coverage) recorders.attach(target.cell().plc(), target.cell().config().signals);
-      results.push_back(scenario::run_case(c, target));
-      if (coverage) recorders.detach(target.cell().plc());
-      const auto& r = results.back();
-      virtual_us += r.virtual_us;
-      std::cout << (r.passed ? "PASS  " : "FAIL  ") << sc.file << ": " << r.name << "  ("
-                << scenario::format_time(r.virtual_us) << ")\n";
-      if (!r.passed) {
-        std::cout << "    " << r.failure << "\n";
-        std::istringstream details(r.details);
-        for (std::string line; std::getline(details, line);) std::cout << "    " << line << "\n";
-      }
+      const auto target = fresh_target(sc, engine);  // a fresh cell for every case
+      if (coverage) recorders.attach(target->cell().plc(), target->cell().config().signals);
+      results.push_back(scenario::run_case(c, *target));
+      if (coverage) recorders.detach(target->cell().plc());
+      virtual_us += results.back().virtual_us;
+      print_result(sc, results.back());
     }
   if (results.empty()) {
     std::cerr << "plc_cell test: no case matches -k";
@@ -103,22 +99,18 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   for (const auto& r : results) failed += !r.passed;
   std::cout << "== " << results.size() - failed << " passed, " << failed << " failed ("
             << scenario::format_time(virtual_us) << " of virtual time)\n";
-
-  if (args.has("junit")) {
-    std::ofstream out(args.get("junit"));
-    if (!out) throw Error("cannot write the JUnit file " + args.get("junit"));
-    scenario::write_junit(results, out);
+  // Mutants only of programs whose cases all pass: a failing case would kill every one.
+  std::string mutation_html;
+  if (args.has("mutate") && !failed) {
+    std::vector<scenario::Scenario> chosen = files;  // the cases -k selects
+    for (auto& sc : chosen)
+      sc.cases.erase(std::remove_if(sc.cases.begin(), sc.cases.end(),
+                                    [&](const scenario::Case& c) { return !selected(filters, c.name); }),
+                     sc.cases.end());
+    run_mutate(args, chosen, engine, &mutation_html);
   }
-  if (coverage) {
-    const std::vector<coverage::Report> reports = recorders.reports();
-    if (args.has("coverage")) coverage::write_text(reports, std::cout);
-    if (args.has("coverage-json")) {
-      std::ofstream out(args.get("coverage-json"));
-      if (!out) throw Error("cannot write the coverage file " + args.get("coverage-json"));
-      coverage::write_json(reports, out);
-    }
-    if (args.has("coverage-html")) coverage::write_html(reports, args.get("coverage-html"));
-  }
+  if (args.has("mutate") && failed) std::cout << "no mutation testing: a case fails on the program itself\n";
+  write_outputs(args, results, recorders, coverage, mutation_html);
   return failed ? 1 : 0;
 }
 
@@ -126,8 +118,9 @@ Command test_command() {
   return {"test",
           "FILE.scenario.yaml... [-k NAME] [--junit OUT.xml] [--coverage]\n"
           "         [--coverage-json OUT.json] [--coverage-html DIR] [--engine E]\n"
+          "         [--mutate [--mutate-budget N] [--mutate-json OUT.json] [-j N]]\n"
           "         run the scenarios' test cases in virtual time, each on a fresh cell;\n"
-          "         rung coverage summed over the cases\n",
+          "         rung coverage summed over the cases; mutation testing of the programs\n",
           cmd_test};
 }
 

@@ -74,7 +74,8 @@ std::string note(const Item& it) {
   const std::string level = it.seen_on ? "ON" : "OFF";
   switch (it.kind) {
     case ItemKind::Contact:
-      return it.exercised() ? label(it) + " seen OFF and ON" : "never changed: " + label(it) + " always " + level;
+      return it.exercised() ? label(it) + " seen OFF and ON" + (it.mcdc ? "; MC/DC shown" : "; MC/DC not shown")
+                            : "never changed: " + label(it) + " always " + level;
     case ItemKind::Coil:
       return it.exercised() ? "switched: rung OFF and ON" : "never switched: rung always " + level;
     case ItemKind::Fun:
@@ -89,7 +90,8 @@ void summary_row(const Report& r, size_t p, std::ostream& out) {
   const Totals& t = r.totals;
   out << "<tr><td><a href=\"#p" << p << "\">" << escape(r.file) << "</a></td><td>" << r.runs << "</td><td>"
       << ratio(t.networks_evaluated, t.networks) << "</td><td>" << ratio(t.networks_energised, t.networks)
-      << "</td><td>" << ratio(t.contacts_changed, t.contacts) << "</td><td>" << ratio(t.coils_switched, t.coils)
+      << "</td><td>" << ratio(t.contacts_changed, t.contacts) << "</td><td>" << ratio(t.contacts_mcdc, t.contacts)
+      << "</td><td>" << ratio(t.coils_switched, t.coils)
       << "</td><td>" << ratio(t.funs_enabled, t.funs) << "</td></tr>\n";
 }
 
@@ -153,19 +155,19 @@ void program_html(const Report& r, size_t p, std::ostream& out) {
 
 }  // namespace
 
-void write_html(const std::vector<Report>& reports, const std::string& dir) {
+void write_html(const std::vector<Report>& reports, const std::string& dir, const std::string& extra) {
   std::ostringstream page;
   page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        << "<title>Rung coverage</title>\n<style>\n" << kStyle << "</style>\n</head>\n<body>\n"
        << "<h1>Rung coverage</h1>\n<table class=\"summary\">\n"
        << "<tr><th>program</th><th>runs</th><th>networks evaluated</th><th>energised</th>"
-       << "<th>contacts changed</th><th>coils switched</th><th>FUNs enabled</th></tr>\n";
+       << "<th>contacts changed</th><th>MC/DC</th><th>coils switched</th><th>FUNs enabled</th></tr>\n";
   for (size_t p = 0; p < reports.size(); ++p) summary_row(reports[p], p + 1, page);
   page << "</table>\n<p class=\"legend\"><span class=\"line ok\">exercised: energised, changed, switched, enabled</span>"
        << "<span class=\"line bad\">never energised, changed, switched or enabled</span>"
        << "<span class=\"line off\">not evaluated</span></p>\n";
   for (size_t p = 0; p < reports.size(); ++p) program_html(reports[p], p + 1, page);
-  page << "</body>\n</html>\n";
+  page << extra << "</body>\n</html>\n";
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -52,7 +52,8 @@ std::string seen(const Item& it) {
 void totals(const Totals& t, std::ostream& out) {
   out << "{\"networks\": " << t.networks << ", \"networks_evaluated\": " << t.networks_evaluated
       << ", \"networks_energised\": " << t.networks_energised << ", \"contacts\": " << t.contacts
-      << ", \"contacts_changed\": " << t.contacts_changed << ", \"coils\": " << t.coils
+      << ", \"contacts_changed\": " << t.contacts_changed << ", \"contacts_mcdc\": " << t.contacts_mcdc
+      << ", \"coils\": " << t.coils
       << ", \"coils_switched\": " << t.coils_switched << ", \"funs\": " << t.funs
       << ", \"funs_enabled\": " << t.funs_enabled << "}";
 }
@@ -66,7 +67,8 @@ void network(const Network& n, std::ostream& out) {
     out << (i ? ",\n" : "\n") << "           {\"kind\": \"" << kind_name(it.kind) << "\", \"line\": " << it.line
         << ", \"name\": " << quoted(it.name) << (it.signal.empty() ? "" : ", \"signal\": " + quoted(it.signal))
         << ", \"seen\": " << seen(it)
-        << ", \"exercised\": " << boolean(it.exercised()) << "}";
+        << ", \"exercised\": " << boolean(it.exercised())
+        << (it.kind == ItemKind::Contact ? std::string(", \"mcdc\": ") + boolean(it.mcdc) : "") << "}";
   }
   out << (n.items.empty() ? "]}" : "\n         ]}");
 }

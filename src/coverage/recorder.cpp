@@ -18,6 +18,16 @@ std::vector<std::string> fun_names_of(const Program& p, const FunctionTable& fun
   return names;
 }
 
+std::vector<NetworkShape> shapes_of(const Program& p, const std::vector<std::string>& fun_names) {
+  std::vector<NetworkShape> shapes;
+  for (const Network& n : networks_of(p, std::vector<uint8_t>(p.code.size(), 0), fun_names, {})) {
+    shapes.emplace_back();
+    for (const Item& it : n.items)
+      (it.kind == ItemKind::Contact ? shapes.back().contacts : shapes.back().outcomes).push_back(it.index);
+  }
+  return shapes;
+}
+
 }  // namespace
 
 const std::string& Recorder::program_file() const {
@@ -34,6 +44,7 @@ void Recorder::attach(Plc& plc, const SignalNames& names) {
   for (const auto& a : attached_)
     if (a.plc == &plc) throw Error("coverage: this PLC is already being recorded");
   std::unique_ptr<uint8_t[]> seen;
+  std::unique_ptr<McdcSampler> sampler;
   plc.locked([&](ScanEngine& engine, Memory&) {
     Interpreter& interp = engine.interpreter();
     const Program& p = interp.program();
@@ -51,8 +62,10 @@ void Recorder::attach(Plc& plc, const SignalNames& names) {
     }
     seen.reset(new uint8_t[p.code.size()]());
     interp.record_into(seen.get());
+    sampler = std::make_unique<McdcSampler>(shapes_of(p, fun_names_), seen.get(), p.code.size());
+    engine.add_hook(sampler.get());
   });
-  attached_.push_back({&plc, std::move(seen)});
+  attached_.push_back({&plc, std::move(seen), std::move(sampler)});
   if (names_.empty()) names_ = names;
 }
 
@@ -62,8 +75,10 @@ void Recorder::detach(Plc& plc) {
   plc.locked([&](ScanEngine& engine, Memory&) {
     // A program loaded since attach already ended the recording; this stops nothing else's.
     if (engine.interpreter().recording() == it->seen.get()) engine.interpreter().record_into(nullptr);
+    engine.remove_hook(it->sampler.get());
   });
-  for (size_t i = 0; i < seen_.size(); ++i) seen_[i] |= it->seen[i];
+  it->sampler->drain(seen_);
+  vectors_.merge(it->sampler->vectors());
   ++runs_;
   attached_.erase(it);
 }

@@ -98,7 +98,7 @@ void count(const Network& n, Totals& t) {
   for (const Item& it : n.items) {
     const bool x = it.exercised();
     switch (it.kind) {
-      case ItemKind::Contact: ++t.contacts; t.contacts_changed += x; break;
+      case ItemKind::Contact: ++t.contacts; t.contacts_changed += x; t.contacts_mcdc += it.mcdc; break;
       case ItemKind::Coil: ++t.coils; t.coils_switched += x; break;
       case ItemKind::Fun: ++t.funs; t.funs_enabled += x; break;
     }
@@ -133,12 +133,9 @@ std::string label(const Item& it) {
   return (sp == std::string::npos ? "" : it.name.substr(0, sp + 1)) + it.signal + " (" + address + ")";
 }
 
-Report report(const Recorder& rec) {
-  const Program& p = rec.program();
-  const std::vector<uint8_t>& seen = rec.seen();
-  Report r;
-  r.file = p.file;
-  r.runs = rec.runs();
+std::vector<Network> networks_of(const Program& p, const std::vector<uint8_t>& seen,
+                                 const std::vector<std::string>& fun_names, const SignalNames& names) {
+  std::vector<Network> networks;
   std::string routine;
   Network* open = nullptr;
   for (size_t i = 0; i < p.code.size(); ++i) {
@@ -146,9 +143,9 @@ Report report(const Recorder& rec) {
     if (in.op == Op::Lbl && i > p.main_end) routine = in.label;
     if (closes_network(in.op)) open = nullptr;
     if (starts_network(in.op)) {
-      r.networks.emplace_back();
-      open = &r.networks.back();
-      open->number = static_cast<uint32_t>(r.networks.size());
+      networks.emplace_back();
+      open = &networks.back();
+      open->number = static_cast<uint32_t>(networks.size());
       open->line = in.line;
       open->routine = routine;
       open->evaluated = seen[i] != 0;
@@ -156,14 +153,28 @@ Report report(const Recorder& rec) {
     if (!open) continue;
     open->end_line = in.line;
     Item item;
-    if (!item_of(in, rec.fun_names()[i], &item)) continue;
-    item.signal = signal_of(in, rec.signal_names());
+    if (!item_of(in, fun_names[i], &item)) continue;
+    item.signal = signal_of(in, names);
     item.index = static_cast<uint32_t>(i);
     item.line = in.line;
     item.seen_off = seen[i] & Interpreter::kSeenOff;
     item.seen_on = seen[i] & Interpreter::kSeenOn;
     if (item.kind != ItemKind::Contact && item.seen_on) open->energised = true;
     open->items.push_back(item);
+  }
+  return networks;
+}
+
+Report report(const Recorder& rec) {
+  const Program& p = rec.program();
+  Report r;
+  r.file = p.file;
+  r.runs = rec.runs();
+  r.networks = networks_of(p, rec.seen(), rec.fun_names(), rec.signal_names());
+  for (size_t n = 0; n < r.networks.size(); ++n) {
+    size_t k = 0;
+    for (Item& it : r.networks[n].items)
+      if (it.kind == ItemKind::Contact) it.mcdc = rec.independent(n, k++);
   }
   for (const Network& n : r.networks) {
     count(n, r.totals);

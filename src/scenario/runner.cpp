@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/scenario/property.h"
 
 namespace plc_cell {
 namespace scenario {
@@ -32,6 +33,7 @@ struct Failure {
   std::string what;     // the expectation and why it failed
   uint64_t at_us;
   std::vector<const Condition*> involved;
+  std::string where;    // "file:line: " of a property; empty: the step's
 };
 
 // One case in progress: the timeline, what runs in the background (pulses, ramps), and
@@ -43,6 +45,11 @@ class CaseRun {
       add_probes(s.cond);
       for (const auto& e : s.sequence) add_probes(e.cond);
       for (const auto& a : s.assignments) add_probe(a.target);
+    }
+    for (const auto& p : c.properties) {
+      add_probes(p.when);
+      add_probes(p.cond);
+      watches_.emplace_back(p);
     }
   }
 
@@ -56,7 +63,7 @@ class CaseRun {
       try {
         step(s);
       } catch (const Failure& f) {
-        r.failure = where(s) + f.what;
+        r.failure = (f.where.empty() ? where(s) : f.where) + f.what;
         r.details = details(f);
         r.virtual_us = f.at_us;
         r.scans = scans_;
@@ -150,7 +157,24 @@ class CaseRun {
     next_scan_ += period_;
     record();
     const std::string fault = t_.fault();
-    if (!fault.empty()) throw Failure{"the PLC stopped on a fault: " + fault, now_, {}};
+    if (!fault.empty()) throw Failure{"the PLC stopped on a fault: " + fault, now_, {}, {}};
+    check_properties();
+  }
+
+  // Every property after every scan; a violation longer than its grace fails the case.
+  void check_properties() {
+    for (auto& w : watches_) {
+      const Property& p = w.property();
+      const bool violated = p.violated([&](const Condition& c) { return holds(c); });
+      if (!w.failed(violated, now_)) continue;
+      std::string what = "property " + p.text + " violated";
+      if (p.within_us) what += " for longer than " + format_time(p.within_us) + " (since " + format_time(w.since_us()) + ")";
+      what += ": " + actual(p.when.empty() ? p.cond : p.when);
+      if (!p.when.empty()) what += "; " + actual(p.cond);
+      std::vector<const Condition*> involved{&p.cond};
+      if (!p.when.empty()) involved.insert(involved.begin(), &p.when);
+      throw Failure{what, now_, involved, p.file + ":" + std::to_string(p.line) + ": "};
+    }
   }
 
   void advance_to(uint64_t t) {
@@ -198,7 +222,7 @@ class CaseRun {
   }
 
   [[noreturn]] void fail(const std::string& what, std::vector<const Condition*> involved) {
-    throw Failure{what, now_, std::move(involved)};
+    throw Failure{what, now_, std::move(involved), {}};
   }
 
   std::string details(const Failure& f) {
@@ -398,6 +422,7 @@ class CaseRun {
   std::map<std::string, std::deque<Change>> history_;
   std::map<std::string, std::string> labels_;  // by probe text
   std::vector<Background> background_;
+  std::vector<PropertyWatch> watches_;
 };
 
 }  // namespace
@@ -422,6 +447,14 @@ std::vector<Diagnostic> check_case(const Case& c, Target& target) {
     for (const auto& cmp : s.cond.all) check(s, s.line, cmp.probe, false);
     for (const auto& e : s.sequence)
       for (const auto& cmp : e.cond.all) check(s, e.line, cmp.probe, false);
+  }
+  for (const auto& p : c.properties) {
+    Step at;  // the property's line, under its key
+    at.file = p.file;
+    at.key = p.never ? "never" : "always";
+    at.line = p.line;
+    for (const Condition* cond : {&p.when, &p.cond})
+      for (const auto& cmp : cond->all) check(at, p.line, cmp.probe, false);
   }
   return errors;
 }

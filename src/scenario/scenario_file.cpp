@@ -10,6 +10,7 @@
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/unreadable.h"
+#include "sections.h"
 
 namespace plc_cell {
 namespace scenario {
@@ -291,18 +292,11 @@ class Reader {
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& text, const std::string& file, ErrorList& errors) {
-  const YamlReader r(file);
-  Scenario sc;
-  sc.file = file;
-  YAML::Node doc;
-  if (!errors.collect([&] { doc = r.load(text); }, file)) return sc;
-  if (!doc.IsMap()) {
-    errors.add(SourceError::at(file, 1, 1, "a scenario file is a mapping with 'cell' and 'cases'"));
-    return sc;
-  }
-  r.only(doc, "", {"cell", "program", "setup", "cases"}, &errors);
-  Reader rd(r, errors);
+namespace {
+
+// The files the scenario names: cell and program, resolved against its folder.
+void read_files(const YamlReader& r, const YAML::Node& doc, Scenario& sc, ErrorList& errors) {
+  const std::string& file = sc.file;
   errors.collect([&] {
     if (!doc["cell"]) r.fail(doc, "cell", "missing 'cell': the cell YAML this scenario runs");
     sc.cell = folder_of(file) + r.str(doc["cell"], "cell");
@@ -316,79 +310,109 @@ Scenario parse_scenario(const std::string& text, const std::string& file, ErrorL
       sc.program_at = {file, YamlReader::line(doc["program"]), doc["program"].Mark().column + 1};
     }
   }, file, doc);
+}
+
+// A case's rows of parameters, each a case of its own: the rows and their cases' names.
+// One row of none when the case has no parameters; false on an error.
+bool read_rows(const YamlReader& r, const YAML::Node& c, const std::string& key, const std::string& name,
+               std::vector<std::map<std::string, std::string>>* rows, std::vector<std::string>* row_names,
+               ErrorList& errors) {
+  if (!c["parameters"]) {
+    rows->emplace_back();
+    row_names->push_back(name);
+    return true;
+  }
+  const YAML::Node ps = c["parameters"];
+  return errors.collect([&] {
+    if (!ps.IsSequence() || ps.size() == 0)
+      r.fail(ps, key + ".parameters", "expected a list of rows, each a mapping ({n: 3, parts: 3})");
+    std::set<std::string> columns;
+    for (size_t j = 0; j < ps.size(); ++j) {
+      const std::string rk = key + ".parameters[" + std::to_string(j) + "]";
+      if (!ps[j].IsMap()) r.fail(ps[j], rk, "a row is a mapping of names to values");
+      std::map<std::string, std::string> row;
+      std::string rn;
+      for (const auto& kv : ps[j]) {
+        const std::string col = kv.first.Scalar();
+        if (!kv.second.IsScalar()) r.fail(kv.second, rk + "." + col, "a parameter is a single value");
+        row[col] = kv.second.Scalar();
+        rn += (rn.empty() ? "" : ",") + col + "=" + kv.second.Scalar();
+      }
+      std::set<std::string> cols;
+      for (const auto& kv : row) cols.insert(kv.first);
+      if (j == 0) columns = cols;
+      else if (cols != columns) r.fail(ps[j], rk, "every row needs the same names as the first");
+      rows->push_back(row);
+      row_names->push_back(name + "[" + rn + "]");
+    }
+  }, r.file(), ps);
+}
+
+// One case of the file, as one Case per row of its parameters.
+void read_case(const YamlReader& r, Reader& rd, const YAML::Node& c, const std::string& key,
+               const std::vector<Step>& common, std::set<std::string>& names, Scenario& sc, ErrorList& errors) {
+  const std::string& file = sc.file;
+  if (!c.IsMap()) {
+    errors.add(ErrorList::diagnostic(file, c, "key '" + key + "': a case is a mapping with name and steps"));
+    return;
+  }
+  r.only(c, key, {"name", "setup", "steps", "parameters"}, &errors);
+  std::string name;
+  if (!errors.collect([&] {
+        if (!c["name"]) r.fail(c, key, "missing 'name'");
+        name = r.str(c["name"], key + ".name");
+        if (!c["steps"]) r.fail(c, key, "missing 'steps'");
+      }, file, c))
+    return;
+  std::vector<std::map<std::string, std::string>> rows;
+  std::vector<std::string> row_names;
+  if (!read_rows(r, c, key, name, &rows, &row_names, errors)) return;
+  for (size_t j = 0; j < rows.size(); ++j) {
+    Case cs;
+    cs.name = row_names[j];
+    cs.file = file;
+    cs.line = YamlReader::line(c);
+    if (!names.insert(cs.name).second) {
+      errors.add(ErrorList::diagnostic(file, c["name"], "key '" + key + ".name': a second case named '" + cs.name + "'"));
+      continue;
+    }
+    rd.set_parameters(c["parameters"] ? &rows[j] : nullptr);
+    cs.steps = common;
+    rd.steps(c["setup"], key + ".setup", &cs.steps);
+    rd.steps(c["steps"], key + ".steps", &cs.steps);
+    sc.cases.push_back(std::move(cs));
+  }
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& file, ErrorList& errors) {
+  const YamlReader r(file);
+  Scenario sc;
+  sc.file = file;
+  YAML::Node doc;
+  if (!errors.collect([&] { doc = r.load(text); }, file)) return sc;
+  if (!doc.IsMap()) {
+    errors.add(SourceError::at(file, 1, 1, "a scenario file is a mapping with 'cell' and 'cases'"));
+    return sc;
+  }
+  r.only(doc, "", {"cell", "program", "setup", "cases", "properties", "explore"}, &errors);
+  read_files(r, doc, sc, errors);
+  sc.properties = read_properties(r, doc["properties"], errors);
+  sc.explore = read_explore(r, doc["explore"], errors);
+  Reader rd(r, errors);
   std::vector<Step> common;
   rd.steps(doc["setup"], "setup", &common);
   const YAML::Node cases = doc["cases"];
+  if (!cases && doc["explore"]) return sc;  // a file for plc_cell explore alone
   if (!cases || !cases.IsSequence() || cases.size() == 0) {
     errors.add(ErrorList::diagnostic(file, cases ? cases : doc, "key 'cases': expected a list of test cases"));
     return sc;
   }
   std::set<std::string> names;
-  for (size_t i = 0; i < cases.size(); ++i) {
-    const YAML::Node c = cases[i];
-    const std::string key = "cases[" + std::to_string(i) + "]";
-    if (!c.IsMap()) {
-      errors.add(ErrorList::diagnostic(file, c, "key '" + key + "': a case is a mapping with name and steps"));
-      continue;
-    }
-    r.only(c, key, {"name", "setup", "steps", "parameters"}, &errors);
-    std::string name;
-    if (!errors.collect([&] {
-          if (!c["name"]) r.fail(c, key, "missing 'name'");
-          name = r.str(c["name"], key + ".name");
-          if (!c["steps"]) r.fail(c, key, "missing 'steps'");
-        }, file, c))
-      continue;
-    // Rows of parameters: each row a case of its own.
-    std::vector<std::map<std::string, std::string>> rows;
-    std::vector<std::string> row_names;
-    if (c["parameters"]) {
-      const YAML::Node ps = c["parameters"];
-      const bool ok = errors.collect([&] {
-        if (!ps.IsSequence() || ps.size() == 0)
-          r.fail(ps, key + ".parameters", "expected a list of rows, each a mapping ({n: 3, parts: 3})");
-        std::vector<std::string> columns;
-        for (size_t j = 0; j < ps.size(); ++j) {
-          const std::string rk = key + ".parameters[" + std::to_string(j) + "]";
-          if (!ps[j].IsMap()) r.fail(ps[j], rk, "a row is a mapping of names to values");
-          std::map<std::string, std::string> row;
-          std::vector<std::string> cols;
-          std::string rn;
-          for (const auto& kv : ps[j]) {
-            const std::string col = kv.first.Scalar();
-            if (!kv.second.IsScalar()) r.fail(kv.second, rk + "." + col, "a parameter is a single value");
-            row[col] = kv.second.Scalar();
-            cols.push_back(col);
-            rn += (rn.empty() ? "" : ",") + col + "=" + kv.second.Scalar();
-          }
-          if (j == 0) columns = cols;
-          else if (std::set<std::string>(cols.begin(), cols.end()) != std::set<std::string>(columns.begin(), columns.end()))
-            r.fail(ps[j], rk, "every row needs the same names as the first");
-          rows.push_back(row);
-          row_names.push_back(name + "[" + rn + "]");
-        }
-      }, file, ps);
-      if (!ok) continue;
-    } else {
-      rows.emplace_back();
-      row_names.push_back(name);
-    }
-    for (size_t j = 0; j < rows.size(); ++j) {
-      Case cs;
-      cs.name = row_names[j];
-      cs.file = file;
-      cs.line = YamlReader::line(c);
-      if (!names.insert(cs.name).second) {
-        errors.add(ErrorList::diagnostic(file, c["name"], "key '" + key + ".name': a second case named '" + cs.name + "'"));
-        continue;
-      }
-      rd.set_parameters(c["parameters"] ? &rows[j] : nullptr);
-      cs.steps = common;
-      rd.steps(c["setup"], key + ".setup", &cs.steps);
-      rd.steps(c["steps"], key + ".steps", &cs.steps);
-      sc.cases.push_back(std::move(cs));
-    }
-  }
+  for (size_t i = 0; i < cases.size(); ++i)
+    read_case(r, rd, cases[i], "cases[" + std::to_string(i) + "]", common, names, sc, errors);
+  for (auto& c : sc.cases) c.properties = sc.properties;
   return sc;
 }
 

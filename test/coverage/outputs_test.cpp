@@ -26,7 +26,8 @@ TEST_F(Outputs, Text) {
   EXPECT_EQ(out.str(),
             "coverage of " + path + " (1 run)\n"
             "  networks evaluated 2/2, energised 1/2\n"
-            "  contacts changed 1/3, coils switched 1/2, FUNs enabled 0/0\n" +
+            "  contacts changed 1/3, coils switched 1/2, FUNs enabled 0/0\n"
+            "  contacts with MC/DC (unique cause) 1/3\n" +
             path + ":3 contact X1 never changed (always OFF)\n" +
             path + ":5 network 2 never energised\n" +
             path + ":5 contact X2 never changed (always OFF)\n" +
@@ -67,6 +68,7 @@ TEST_F(Outputs, TextOfSeveralPrograms) {
   const std::string one = "coverage of " + other + " (1 run)\n"
                           "  networks evaluated 1/1, energised 1/1\n"
                           "  contacts changed 1/1, coils switched 1/1, FUNs enabled 0/0\n"
+                          "  contacts with MC/DC (unique cause) 1/1\n"
                           "  every network, contact, coil and FUN exercised\n";
   EXPECT_EQ(out.str(), one + "\n" + one);
 }
@@ -83,16 +85,16 @@ TEST_F(Outputs, Json) {
             "      \"file\": \"" + path + "\",\n"
             "      \"runs\": 1,\n"
             "      \"totals\": {\"networks\": 2, \"networks_evaluated\": 2, \"networks_energised\": 1, "
-            "\"contacts\": 3, \"contacts_changed\": 1, \"coils\": 2, \"coils_switched\": 1, \"funs\": 0, "
+            "\"contacts\": 3, \"contacts_changed\": 1, \"contacts_mcdc\": 1, \"coils\": 2, \"coils_switched\": 1, \"funs\": 0, "
             "\"funs_enabled\": 0},\n"
             "      \"networks\": [\n"
             "        {\"number\": 1, \"line\": 2, \"end_line\": 4, \"routine\": \"\", \"evaluated\": true, "
             "\"energised\": true,\n"
             "         \"items\": [\n"
             "           {\"kind\": \"contact\", \"line\": 2, \"name\": \"X0\", \"seen\": [\"off\", \"on\"], "
-            "\"exercised\": true},\n"
+            "\"exercised\": true, \"mcdc\": true},\n"
             "           {\"kind\": \"contact\", \"line\": 3, \"name\": \"X1\", \"seen\": [\"off\"], "
-            "\"exercised\": false},\n"
+            "\"exercised\": false, \"mcdc\": false},\n"
             "           {\"kind\": \"coil\", \"line\": 4, \"name\": \"OUT Y0\", \"seen\": [\"off\", \"on\"], "
             "\"exercised\": true}\n"
             "         ]},\n"
@@ -100,7 +102,7 @@ TEST_F(Outputs, Json) {
             "\"energised\": false,\n"
             "         \"items\": [\n"
             "           {\"kind\": \"contact\", \"line\": 5, \"name\": \"X2\", \"seen\": [\"off\"], "
-            "\"exercised\": false},\n"
+            "\"exercised\": false, \"mcdc\": false},\n"
             "           {\"kind\": \"coil\", \"line\": 6, \"name\": \"OUT Y1\", \"seen\": [\"off\"], "
             "\"exercised\": false}\n"
             "         ]}\n"

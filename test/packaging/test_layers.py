@@ -35,6 +35,11 @@ BELOW = {
     # Scenario tests run cases on fresh cells: they sit on the composition root.
     "scenario": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus",
                  "tri", "comm", "runtime"},
+    # Exploration and mutation testing run scenario cases on fresh cells.
+    "explore": {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim", "persist", "fatek", "modbus",
+                "tri", "comm", "runtime", "scenario"},
+    "mutation": {"core", "io", "config", "timeline", "coverage", "hsc", "temp", "motion", "sim", "persist", "fatek",
+                 "modbus", "tri", "comm", "runtime", "scenario"},
     "cli": None,  # the tool and the nodes sit on top and may use any layer
     "ros": None,
 }

@@ -143,6 +143,7 @@ TEST(ScenarioCli, CoverageOfTheWholeRun) {
   EXPECT_TRUE(has(r.out, "coverage of " + kSrc + "/examples/conveyor/conveyor.il (7 runs)\n"
                          "  networks evaluated 8/8, energised 8/8\n"
                          "  contacts changed 15/15, coils switched 8/8, FUNs enabled 1/1\n"
+                         "  contacts with MC/DC (unique cause) 14/15\n"
                          "  every network, contact, coil and FUN exercised\n"))
       << r.out;
   // The count-up stop never runs the motor again after the stop: RST Y0's rung is always ON.

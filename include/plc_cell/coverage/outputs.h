@@ -13,8 +13,9 @@ namespace coverage {
 
 void write_text(const std::vector<Report>& reports, std::ostream& out);
 void write_json(const std::vector<Report>& reports, std::ostream& out);
-// Writes dir/index.html, creating dir (and its parents); throws Error on failure.
-void write_html(const std::vector<Report>& reports, const std::string& dir);
+// Writes dir/index.html, creating dir (and its parents); throws Error on failure. extra:
+// sections (HTML) other reports add after the programs (the mutation run's).
+void write_html(const std::vector<Report>& reports, const std::string& dir, const std::string& extra = "");
 
 }  // namespace coverage
 }  // namespace plc_cell

@@ -9,6 +9,7 @@
 
 #include "plc_cell/core/plc.h"
 #include "plc_cell/core/program.h"
+#include "plc_cell/coverage/mcdc.h"
 #include "plc_cell/coverage/outputs.h"
 #include "plc_cell/coverage/report.h"
 
@@ -48,11 +49,15 @@ class Recorder {
   const SignalNames& signal_names() const { return names_; }
   // Recordings detached so far (each Plc's run counts once).
   uint32_t runs() const { return runs_; }
+  // Contact k (in the order of its network's contacts) of network n was shown to decide
+  // it alone (MC/DC, mcdc.h), in some detached recording.
+  bool independent(size_t n, size_t k) const { return vectors_.independent(n, k); }
 
  private:
   struct Attachment {
     Plc* plc;
     std::unique_ptr<uint8_t[]> seen;  // the interpreter writes here while the Plc scans
+    std::unique_ptr<McdcSampler> sampler;  // hooked on the Plc's engine: reads and clears seen
   };
   std::unique_ptr<Program> program_;
   std::vector<std::string> fun_names_;
@@ -60,6 +65,7 @@ class Recorder {
   std::vector<uint8_t> seen_;
   std::vector<Attachment> attached_;
   uint32_t runs_ = 0;
+  McdcVectors vectors_;
 };
 
 }  // namespace coverage

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "plc_cell/core/address.h"
+#include "plc_cell/core/program.h"
 
 namespace plc_cell {
 namespace coverage {
@@ -30,6 +31,9 @@ struct Item {
   std::string signal;  // the cell's name of the point it reads or drives (stop_pb), if any
   bool seen_off = false;
   bool seen_on = false;
+  // A contact: some two scans differed in this contact alone, and in the network's
+  // outcome (the results its coils and FUNs received): MC/DC, unique-cause form.
+  bool mcdc = false;
   bool evaluated() const { return seen_off || seen_on; }
   // Contact changed, coil switched, FUN enabled: what the kind counts as exercised.
   bool exercised() const { return kind == ItemKind::Fun ? seen_on : seen_off && seen_on; }
@@ -47,7 +51,7 @@ struct Network {
 
 struct Totals {
   uint32_t networks = 0, networks_evaluated = 0, networks_energised = 0;
-  uint32_t contacts = 0, contacts_changed = 0;
+  uint32_t contacts = 0, contacts_changed = 0, contacts_mcdc = 0;
   uint32_t coils = 0, coils_switched = 0;
   uint32_t funs = 0, funs_enabled = 0;
 };
@@ -73,6 +77,11 @@ struct Report {
 
 // Throws plc_cell::Error if the recorder is empty.
 Report report(const Recorder& r);
+
+// The networks of p and their items, as report() divides them, with what seen says
+// (seen: per instruction, Interpreter::kSeenOff | kSeenOn).
+std::vector<Network> networks_of(const Program& p, const std::vector<uint8_t>& seen,
+                                 const std::vector<std::string>& fun_names, const SignalNames& names);
 
 // How the reports show an item: its name with the cell's signal name beside the address,
 // "stop_pb (X1)", "OUT conveyor_run (Y0)"; the name alone when the point has none.

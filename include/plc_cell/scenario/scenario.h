@@ -3,6 +3,7 @@
 // virtual timeline (docs/testing-your-cell.md). Parameterised cases are already expanded:
 // one Case per row, its name carrying the row ("count[n=3]").
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -72,11 +73,44 @@ struct Step {
   std::vector<SequenceEntry> sequence;
 };
 
+// A property of the file: checked after every scan of every case. "never: C" is violated
+// while C holds; "always: A -> B" while A holds and B does not ("always: B": while B does
+// not). A violation fails the case once it has lasted longer than within_us (0: at once).
+struct Property {
+  bool never = false;
+  Condition when;  // always: the antecedent (empty: every scan)
+  Condition cond;  // never: what must not hold; always: what must hold
+  uint64_t within_us = 0;
+  std::string text;  // "never: Y0 and Y1", as written
+  std::string file;
+  int line = 0;
+
+  bool violated(const std::function<bool(const Condition&)>& holds) const;
+};
+
+// What `plc_cell explore` may drive (docs/testing-your-cell.md): one input with its values
+// and how long each value is held, at least hold_min_us (the shortest pulse).
+struct InputDomain {
+  Probe probe;
+  double lo = 0, hi = 1;  // a bit: 0..1
+  uint64_t hold_min_us = 0, hold_max_us = 0;
+  int line = 0;
+};
+
+struct ExploreSpec {
+  std::vector<InputDomain> inputs;
+  uint64_t run_us = 0;     // the length of one random run
+  uint64_t budget_us = 0;  // virtual time over all runs
+  uint64_t seed = 1;
+  int line = 0;  // 0: the file has no explore section
+};
+
 struct Case {
   std::string name;
   std::string file;
   int line = 0;
   std::vector<Step> steps;  // the file's setup, the case's setup, then its steps
+  std::vector<Property> properties;  // the file's
 };
 
 struct Scenario {
@@ -85,6 +119,8 @@ struct Scenario {
   std::string program;  // overrides the cell's program; empty: the cell's
   SourceLocation cell_at, program_at;  // where the file names them
   std::vector<Case> cases;
+  std::vector<Property> properties;
+  ExploreSpec explore;
 };
 
 constexpr uint64_t kDefaultTimeoutUs = 10000000;  // wait_until and expect_sequence: 10 s

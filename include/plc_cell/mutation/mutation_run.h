@@ -1,0 +1,57 @@
+#pragma once
+// Mutation testing (docs/testing-your-cell.md, "Mutation testing"): every case of the
+// scenario files against every mutant of their programs, each on a fresh cell in virtual
+// time. A mutant is killed when a case fails (a fault fails it too), equivalent-suspect
+// when every case passes and every probed value is the same as on the original program at
+// every scan, else it survived.
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plc_cell/mutation/mutant.h"
+#include "plc_cell/scenario/cell_target.h"
+#include "plc_cell/scenario/scenario.h"
+
+namespace plc_cell {
+namespace mutation {
+
+enum class Verdict { Killed, Survived, Equivalent, NotLoaded };
+const char* verdict_name(Verdict v);  // "killed", "survived", "equivalent-suspect", "not loaded"
+
+struct MutantResult {
+  Mutant mutant;
+  Verdict verdict = Verdict::Survived;
+  std::string killed_by;  // the first case that failed
+};
+
+struct NetworkSpan {
+  uint32_t number = 0;
+  int line = 0, end_line = 0;
+};
+
+struct ProgramResult {
+  std::string program;  // the program file
+  size_t cases = 0;     // the cases run on each mutant
+  size_t generated = 0; // the mutants before the budget
+  std::vector<NetworkSpan> networks;
+  std::vector<MutantResult> results;                      // in line order
+  std::map<int, std::vector<std::string>> executed_by;  // line: the cases that evaluated it
+};
+
+struct Options {
+  size_t budget = 0;  // at most this many mutants per program (0: all), evenly spaced
+  int jobs = 1;       // worker processes
+};
+
+// A fresh cell for one case of sc, with program instead of the scenario's.
+using TargetFactory =
+    std::function<std::unique_ptr<scenario::CellTarget>(const scenario::Scenario& sc, const std::string& program)>;
+
+// Throws plc_cell::Error when a case fails on the original program (nothing to measure).
+std::vector<ProgramResult> run_mutation(const std::vector<scenario::Scenario>& files, const Options& options,
+                                        const TargetFactory& make);
+
+}  // namespace mutation
+}  // namespace plc_cell

@@ -1,0 +1,28 @@
+#pragma once
+// What plc_cell test, explore and the mutation run share: the scenario files read and their
+// names checked against their cells before anything runs, and the --engine option.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "args.h"
+#include "plc_cell/core/scan_engine.h"
+#include "plc_cell/scenario/cell_target.h"
+#include "plc_cell/scenario/scenario.h"
+
+namespace plc_cell {
+namespace cli {
+
+// Every file read, every name its steps, properties and explore inputs use checked on a
+// fresh cell; false (with every error printed, sorted, and "TOOL: N error(s)...") if any.
+bool load_scenarios(const std::vector<std::string>& paths, const std::string& tool,
+                    std::vector<scenario::Scenario>* files);
+
+// --engine, if given (UsageError when it names no engine).
+std::optional<EngineChoice> engine_option(const Args& args);
+// A fresh cell of sc for one case, on the engine asked for.
+std::unique_ptr<scenario::CellTarget> fresh_target(const scenario::Scenario& sc, std::optional<EngineChoice> engine,
+                                                   const std::string& program = "");
+
+}  // namespace cli
+}  // namespace plc_cell

@@ -1,0 +1,197 @@
+#include "plc_cell/mutation/mutation_run.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/coverage/recorders.h"
+#include "plc_cell/coverage/report.h"
+#include "plc_cell/scenario/runner.h"
+#include "tracing_target.h"
+
+namespace plc_cell {
+namespace mutation {
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::Killed: return "killed";
+    case Verdict::Survived: return "survived";
+    case Verdict::Equivalent: return "equivalent-suspect";
+    case Verdict::NotLoaded: return "not loaded";
+  }
+  return "?";
+}
+
+namespace {
+
+struct CaseRef {
+  const scenario::Scenario* sc;
+  const scenario::Case* c;
+  uint64_t hash = 0;  // the original program's trace
+};
+
+// The cases of one program, in the order of the files and their cases.
+struct Program {
+  std::string file;
+  std::vector<CaseRef> cases;
+};
+
+std::vector<std::string> lines_of(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error("mutation: cannot read the program " + path);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+std::vector<Program> programs(const std::vector<scenario::Scenario>& files, const TargetFactory& make) {
+  std::vector<Program> out;
+  for (const auto& sc : files) {
+    if (sc.cases.empty()) continue;  // none selected: nothing could kill a mutant
+    const std::string file = sc.program.empty() ? make(sc, "")->cell().config().program : sc.program;
+    auto it = out.begin();
+    while (it != out.end() && it->file != file) ++it;
+    if (it == out.end()) it = out.insert(out.end(), Program{file, {}});
+    for (const auto& c : sc.cases) it->cases.push_back({&sc, &c});
+  }
+  return out;
+}
+
+// The original program: every case must pass; its traces, the lines each case evaluated.
+void baseline(Program& p, const TargetFactory& make, ProgramResult* r) {
+  for (auto& cr : p.cases) {
+    const auto target = make(*cr.sc, p.file);
+    coverage::Recorders rec;
+    rec.attach(target->cell().plc(), target->cell().config().signals);
+    TracingTarget t(*target, *cr.c);
+    const scenario::CaseResult res = scenario::run_case(*cr.c, t);
+    rec.detach(target->cell().plc());
+    if (!res.passed)
+      throw Error("mutation testing needs every case to pass on the original program: " + cr.c->name + ": " +
+                  res.failure);
+    cr.hash = t.hash();
+    const coverage::Report rep = rec.reports().at(0);
+    if (r->networks.empty())
+      for (const auto& n : rep.networks) r->networks.push_back({n.number, n.line, n.end_line});
+    for (const auto& n : rep.networks)
+      for (const auto& it : n.items)
+        if (it.evaluated()) {
+          auto& by = r->executed_by[it.line];
+          if (by.empty() || by.back() != cr.c->name) by.push_back(cr.c->name);
+        }
+  }
+}
+
+MutantResult run_mutant(const Program& p, const std::vector<std::string>& lines, const Mutant& m,
+                        const std::string& path, const TargetFactory& make) {
+  MutantResult r;
+  r.mutant = m;
+  std::ofstream(path, std::ios::trunc) << apply(lines, m);
+  bool same = true;
+  for (const auto& cr : p.cases) {
+    std::unique_ptr<scenario::CellTarget> target;
+    try {
+      target = make(*cr.sc, path);
+    } catch (const std::exception& e) {
+      r.verdict = Verdict::NotLoaded;  // the parser refuses it: no program to test
+      return r;
+    }
+    TracingTarget t(*target, *cr.c);
+    if (!scenario::run_case(*cr.c, t).passed) {
+      r.verdict = Verdict::Killed;
+      r.killed_by = cr.c->name;
+      return r;
+    }
+    same = same && t.hash() == cr.hash;
+  }
+  r.verdict = same ? Verdict::Equivalent : Verdict::Survived;
+  return r;
+}
+
+// One line per result through a pipe: "index verdict killed_by".
+std::string encode(size_t i, const MutantResult& r) {
+  return std::to_string(i) + " " + std::to_string(int(r.verdict)) + " " + r.killed_by + "\n";
+}
+
+// The mutants split over jobs worker processes (mutant i to worker i % jobs); results in
+// mutant order, whichever worker finished first.
+void run_all(const Program& p, const std::vector<std::string>& lines, const Options& o, const TargetFactory& make,
+             std::vector<MutantResult>& results) {
+  char dir[] = "/tmp/plc_cell_mutants_XXXXXX";
+  if (!mkdtemp(dir)) throw Error("mutation: cannot make a temporary folder");
+  const int jobs = std::max(1, o.jobs);
+  std::vector<std::pair<pid_t, int>> workers;
+  std::fflush(nullptr);
+  for (int w = 0; w < jobs; ++w) {
+    int fd[2];
+    if (pipe(fd) != 0) throw Error("mutation: cannot make a pipe");
+    const pid_t pid = fork();
+    if (pid < 0) throw Error("mutation: cannot start a worker process");
+    if (pid == 0) {
+      close(fd[0]);
+      const std::string path = std::string(dir) + "/mutant" + std::to_string(w) + ".il";
+      try {
+        for (size_t i = size_t(w); i < results.size(); i += size_t(jobs)) {
+          const std::string line = encode(i, run_mutant(p, lines, results[i].mutant, path, make));
+          if (write(fd[1], line.data(), line.size()) < 0) _exit(2);
+        }
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "mutation: %s\n", e.what());
+        _exit(3);
+      }
+      _exit(0);
+    }
+    close(fd[1]);
+    workers.push_back({pid, fd[0]});
+  }
+  for (const auto& [pid, fd] : workers) {
+    std::string in;
+    char buf[4096];
+    for (ssize_t n; (n = read(fd, buf, sizeof buf)) > 0;) in.append(buf, size_t(n));
+    close(fd);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    std::istringstream lines_in(in);
+    for (std::string l; std::getline(lines_in, l);) {
+      std::istringstream f(l);
+      size_t i;
+      int v;
+      f >> i >> v;
+      std::string killer;
+      std::getline(f >> std::ws, killer);
+      results.at(i).verdict = Verdict(v);
+      results.at(i).killed_by = killer;
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error("mutation: a worker process failed");
+  }
+  for (int w = 0; w < jobs; ++w) std::remove((std::string(dir) + "/mutant" + std::to_string(w) + ".il").c_str());
+  rmdir(dir);
+}
+
+}  // namespace
+
+std::vector<ProgramResult> run_mutation(const std::vector<scenario::Scenario>& files, const Options& options,
+                                        const TargetFactory& make) {
+  std::vector<ProgramResult> out;
+  for (Program& p : programs(files, make)) {
+    ProgramResult r;
+    r.program = p.file;
+    r.cases = p.cases.size();
+    baseline(p, make, &r);
+    const std::vector<std::string> lines = lines_of(p.file);
+    const std::vector<Mutant> all = mutants(lines);
+    r.generated = all.size();
+    const size_t n = options.budget && options.budget < all.size() ? options.budget : all.size();
+    for (size_t i = 0; i < n; ++i) r.results.push_back({all[i * all.size() / n], Verdict::Survived, ""});
+    run_all(p, lines, options, make, r.results);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+}  // namespace mutation
+}  // namespace plc_cell

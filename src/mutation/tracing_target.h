@@ -1,0 +1,37 @@
+#pragma once
+// A target that passes everything through and keeps a hash of what the case could see
+// after every scan: the outputs Y0..Y255 and every probe the case reads. Two runs with the
+// same hash showed the same values at every scan.
+#include <cstdint>
+#include <vector>
+
+#include "plc_cell/scenario/target.h"
+
+namespace plc_cell {
+namespace mutation {
+
+class TracingTarget : public scenario::Target {
+ public:
+  TracingTarget(scenario::Target& inner, const scenario::Case& c);
+  uint64_t hash() const { return hash_; }
+
+  uint64_t period_us() const override { return inner_.period_us(); }
+  void scan(uint64_t t_us) override;
+  std::string check(const scenario::Probe& p, bool writing) override { return inner_.check(p, writing); }
+  scenario::Reading read(const scenario::Probe& p) override { return inner_.read(p); }
+  void set(const scenario::Probe& p, const scenario::Value& v) override { inner_.set(p, v); }
+  void write(const scenario::Probe& p, const scenario::Value& v) override { inner_.write(p, v); }
+  void force(const scenario::Probe& p, bool on) override { inner_.force(p, on); }
+  void release(const scenario::Probe* p) override { inner_.release(p); }
+  void simulate(const scenario::Probe* p) override { inner_.simulate(p); }
+  std::string label(const scenario::Probe& p) override { return inner_.label(p); }
+  std::string fault() override { return inner_.fault(); }
+
+ private:
+  scenario::Target& inner_;
+  std::vector<scenario::Probe> probes_;
+  uint64_t hash_ = 1469598103934665603ULL;  // FNV-1a
+};
+
+}  // namespace mutation
+}  // namespace plc_cell

@@ -1,0 +1,17 @@
+#pragma once
+// The scenario file's sections beside its cases: properties and explore
+// (docs/testing-your-cell.md). Every error into errors, at file:line with its key.
+#include <vector>
+
+#include "plc_cell/config/error_list.h"
+#include "plc_cell/config/yaml_reader.h"
+#include "plc_cell/scenario/scenario.h"
+
+namespace plc_cell {
+namespace scenario {
+
+std::vector<Property> read_properties(const YamlReader& r, const YAML::Node& list, ErrorList& errors);
+ExploreSpec read_explore(const YamlReader& r, const YAML::Node& map, ErrorList& errors);
+
+}  // namespace scenario
+}  // namespace plc_cell
