@@ -38,7 +38,7 @@ export PATH := /usr/bin:$(PATH)
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps deps-demo ws-src build demo-build test test-fresh demo bench clean fuzz soak
+.PHONY: all deps deps-demo ws-src build demo-build test test-fresh demo-fresh demo bench clean fuzz soak
 
 all: build
 
@@ -125,6 +125,10 @@ demo: deps-demo $(DEMO_BUILT)
 # installed by hand (scripts/test_fresh.sh; root only). CI runs this.
 test-fresh:
 	scripts/test_fresh.sh
+
+# The first `make demo` there, timed until the demo's topics are up (scripts/test_fresh.sh).
+demo-fresh:
+	scripts/test_fresh.sh demo
 
 bench: build
 	$(PY) scripts/run_bench.py --workspace $(WS)
