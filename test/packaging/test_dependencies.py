@@ -144,7 +144,7 @@ TOOLS = {"socat": "socat", "mbpoll": "mbpoll", "rosrun": "rosbash", "roscd": "ro
          "roscore": "roslaunch", "rosbag": "rosbag", "rosnode": "rosnode", "rosmsg": "rosmsg",
          "rostest": "rostest", "clang\\+\\+": "clang", "catkin_make": "catkin", "git": "git",
          "readelf": "build-essential",  # binutils (readelf, nm) comes with build-essential
-         "chromium-headless-shell": "chromium-headless-shell"}
+         "chromium-headless-shell": "chromium-headless-shell", "ctags": "universal-ctags"}
 
 
 def test_tools_are_declared():
