@@ -14,9 +14,11 @@ CMAKE_ARGS := -DPYTHON_EXECUTABLE=$(PY) -DCMAKE_BUILD_TYPE=Release
 # The Debian packages behind every key of package.xml, through rosdep/bookworm.yaml
 # (test/packaging/test_dependencies.py fails when they disagree). Written out here because a
 # fresh machine has no Python to resolve them before this list is installed. DEMO_PACKAGES
-# are the package's build and run keys, all `make demo` installs; TEST_PACKAGES its test keys
-# (compilers for the sanitizer and fuzz builds, a browser, test servers), which `make test`,
-# `make build`, `make bench` and `make fuzz` add.
+# are the package's build and run keys, all `make demo` installs; PLOT_PACKAGES the run key
+# of the plot scripts (scripts/plot_*.py: matplotlib brings scipy and a compiler of its own,
+# a minute of apt the demo does without); TEST_PACKAGES the test keys (compilers for the
+# sanitizer and fuzz builds, a browser, test servers). `make test`, `make build`,
+# `make bench` and `make fuzz` install all three.
 DEMO_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-pkg \
   ros-message-generation ros-message-runtime \
   libroscpp-dev python3-rospy ros-std-msgs libstd-msgs-dev python3-std-msgs \
@@ -26,12 +28,13 @@ DEMO_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-
   ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rosmaster rosout python3-roslaunch python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
-  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev python3-matplotlib
+  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev
+PLOT_PACKAGES := python3-matplotlib
 TEST_PACKAGES := librostest-dev python3-rostest \
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
   socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest git \
   chromium-headless-shell universal-ctags
-DEB_PACKAGES := $(DEMO_PACKAGES) $(TEST_PACKAGES)
+DEB_PACKAGES := $(DEMO_PACKAGES) $(PLOT_PACKAGES) $(TEST_PACKAGES)
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
 export PATH := /usr/bin:$(PATH)
