@@ -64,8 +64,11 @@ foreach(rule ${PLC_CELL_LAYER_RULES})
       list(APPEND outside ${s})
     endif()
   endforeach()
+  # The library's include directories (its root and those of what it links), without
+  # waiting for the library to be built.
   add_library(plc_cell_${layer}_layer_check OBJECT ${check_source} ${outside})
-  target_link_libraries(plc_cell_${layer}_layer_check PRIVATE plc_cell_${layer})
+  target_include_directories(plc_cell_${layer}_layer_check PRIVATE
+    $<TARGET_PROPERTY:plc_cell_${layer},INCLUDE_DIRECTORIES>)
 
   # What the test compiles with: the include directories the library's sources get.
   file(GENERATE OUTPUT ${root}.dirs
