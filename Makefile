@@ -1,5 +1,5 @@
 # plc_cell: two commands on a fresh Debian 12 machine.
-#   make demo   install what is missing, build, launch the simulated demo cell
+#   make demo   install and build what the demo runs, launch the simulated demo cell
 #   make test   install, build, run every test; ends with "N passed, N failed"
 #   make build  install and build only;  make bench  run the benchmarks
 SHELL := /bin/bash
@@ -92,12 +92,13 @@ build: deps ws-src
 $(BUILT): $(SOURCES)
 	$(MAKE) --no-print-directory build
 
-# What the demo runs and what a user types at it, nothing more: every message (C++ for the
-# nodes, Python for rostopic), plc_node and the plc_cell tool. The tests, benchmarks and the
+# What the demo runs and what a user types at it, nothing more: the messages in C++ (for the
+# nodes) and Python (for rostopic; not Lisp, EusLisp or JavaScript, a Python start-up per
+# message each), plc_node and the plc_cell tool. The tests, benchmarks and the
 # sanitizer and fuzz builds wait for `make test`, `make bench` and `make fuzz`. A tree never
 # configured is configured without the tests (their packages are not installed yet); one
 # configured with them keeps them, so switching between demo and test runs no second cmake.
-DEMO_TARGETS := plc_cell_generate_messages plc_node plc_cell_tool
+DEMO_TARGETS := plc_cell_generate_messages_cpp plc_cell_generate_messages_py plc_node plc_cell_tool
 demo-build: deps-demo ws-src
 	cd $(WS) && testing=OFF && if grep -qs '^CATKIN_ENABLE_TESTING:BOOL=ON' build/CMakeCache.txt; then testing=ON; fi && \
 	catkin_make -j$(JOBS) $(CMAKE_ARGS) -DCATKIN_ENABLE_TESTING=$$testing $(DEMO_TARGETS) 2>&1 | $(CATKIN_FILTER) ; exit $${PIPESTATUS[0]}

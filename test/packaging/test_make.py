@@ -35,9 +35,11 @@ def test_a_changed_source_rebuilds_the_demo_only_first():
         os.utime(stamp, (st.st_atime, st.st_mtime))
     catkin = [line for line in out.splitlines() if "catkin_make" in line]
     assert len(catkin) == 1 and out.index("catkin_make") < out.index("roslaunch plc_cell cell_sim.launch"), out
-    # Only the demo's targets: no `all` (benchmarks), no `tests` (gtests, fuzz builds).
+    # Only the demo's targets: no `all` (benchmarks), no `tests` (gtests, fuzz builds), and
+    # the messages in the two languages the demo uses.
     targets = catkin[0].split("-DCATKIN_ENABLE_TESTING=$testing")[1].split("2>&1")[0].split()
-    assert targets == ["plc_cell_generate_messages", "plc_node", "plc_cell_tool"], catkin[0]
+    assert targets == ["plc_cell_generate_messages_cpp", "plc_cell_generate_messages_py", "plc_node",
+                       "plc_cell_tool"], catkin[0]
 
 
 def test_demo_installs_no_test_package():
