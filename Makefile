@@ -1,5 +1,5 @@
 # plc_cell: two commands on a fresh Debian 12 machine.
-#   make demo   install what is missing, build, launch the simulated demo cell
+#   make demo   install and build what the demo runs, launch the simulated demo cell
 #   make test   install, build, run every test; ends with "N passed, N failed"
 #   make build  install and build only;  make bench  run the benchmarks
 SHELL := /bin/bash
@@ -9,12 +9,17 @@ BUILD   ?= .build
 WS      := $(BUILD)/ws
 JOBS    ?= 2
 PY      := /usr/bin/python3
-CMAKE_ARGS := -DPYTHON_EXECUTABLE=$(PY) -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON
+CMAKE_ARGS := -DPYTHON_EXECUTABLE=$(PY) -DCMAKE_BUILD_TYPE=Release
 
 # The Debian packages behind every key of package.xml, through rosdep/bookworm.yaml
-# (test/packaging/test_dependencies.py fails when the three disagree). Written out here
-# because a fresh machine has no Python to resolve them before this list is installed.
-DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-pkg \
+# (test/packaging/test_dependencies.py fails when they disagree). Written out here because a
+# fresh machine has no Python to resolve them before this list is installed. DEMO_PACKAGES
+# are the package's build and run keys, all `make demo` installs; PLOT_PACKAGES the run key
+# of the plot scripts (scripts/plot_*.py: matplotlib brings scipy and a compiler of its own,
+# a minute of apt the demo does without); TEST_PACKAGES the test keys (compilers for the
+# sanitizer and fuzz builds, a browser, test servers). `make test`, `make build`,
+# `make bench` and `make fuzz` install all three.
+DEMO_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-pkg \
   ros-message-generation ros-message-runtime \
   libroscpp-dev python3-rospy ros-std-msgs libstd-msgs-dev python3-std-msgs \
   ros-std-srvs libstd-srvs-dev python3-std-srvs ros-sensor-msgs libsensor-msgs-dev python3-sensor-msgs \
@@ -22,32 +27,42 @@ DEB_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-p
   libnodeletlib-dev libnodeletlib-tools python3-nodelet pluginlib-dev \
   libactionlib-dev python3-actionlib ros-actionlib-msgs libactionlib-msgs-dev python3-actionlib-msgs \
   ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
-  python3-rosmaster rosout python3-roslaunch librostest-dev python3-rostest python3-rosbag \
+  python3-rosmaster rosout python3-roslaunch python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
-  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev \
+  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev
+PLOT_PACKAGES := python3-matplotlib
+TEST_PACKAGES := librostest-dev python3-rostest \
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
-  socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest python3-matplotlib git \
-  chromium-headless-shell
+  socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest git \
+  chromium-headless-shell universal-ctags
+DEB_PACKAGES := $(DEMO_PACKAGES) $(PLOT_PACKAGES) $(TEST_PACKAGES)
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
 export PATH := /usr/bin:$(PATH)
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps ws-src build test test-fresh demo bench clean fuzz soak
+.PHONY: all deps deps-demo ws-src build demo-build test test-fresh demo-fresh demo bench clean fuzz soak
 
 all: build
 
 # One dpkg-query for the whole list: on a built machine this check takes well under a second.
+define install_missing
+@missing=$$( { dpkg-query -W -f='$${Package} $${Status}\n' $(1) 2>/dev/null || true; } \
+  | awk '$$NF == "installed" {ok[$$1] = 1} END {n = split("$(1)", p, " "); \
+         for (i = 1; i <= n; i++) if (!(p[i] in ok)) printf " %s", p[i]}'); \
+if [ -n "$$missing" ]; then \
+  echo "== installing Debian packages:$$missing"; \
+  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq; \
+  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing < /dev/null; \
+fi
+endef
+
 deps:
-	@missing=$$( { dpkg-query -W -f='$${Package} $${Status}\n' $(DEB_PACKAGES) 2>/dev/null || true; } \
-	  | awk '$$NF == "installed" {ok[$$1] = 1} END {n = split("$(DEB_PACKAGES)", p, " "); \
-	         for (i = 1; i <= n; i++) if (!(p[i] in ok)) printf " %s", p[i]}'); \
-	if [ -n "$$missing" ]; then \
-	  echo "== installing Debian packages:$$missing"; \
-	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq; \
-	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing < /dev/null; \
-	fi
+	$(call install_missing,$(DEB_PACKAGES))
+
+deps-demo:
+	$(call install_missing,$(DEMO_PACKAGES))
 
 # The workspace lives inside the package, in a hidden folder. Its src/plc_cell is a folder
 # of links to the package's visible entries, not one link to the package: a link back to
@@ -67,14 +82,31 @@ ws-src:
 # than the last build, so a built tree starts the demo in seconds.
 SOURCES := $(shell find CMakeLists.txt package.xml src include msg srv action cmake test bench scripts \
   -type f -not -name '*.pyc' 2>/dev/null)
-BUILT   := $(WS)/.built
+BUILT      := $(WS)/.built
+DEMO_BUILT := $(WS)/.built-demo
+CATKIN_FILTER := grep -v -E '^-- (Using|Found|Looking|Detecting|Check|Performing|Configuring done|Generating done)'
 
 build: deps ws-src
-	cd $(WS) && catkin_make -j$(JOBS) $(CMAKE_ARGS) all tests 2>&1 | grep -v -E '^-- (Using|Found|Looking|Detecting|Check|Performing|Configuring done|Generating done)' ; exit $${PIPESTATUS[0]}
-	touch $(BUILT)
+	cd $(WS) && catkin_make -j$(JOBS) $(CMAKE_ARGS) -DCATKIN_ENABLE_TESTING=ON all tests 2>&1 | $(CATKIN_FILTER) ; exit $${PIPESTATUS[0]}
+	touch $(BUILT) $(DEMO_BUILT)
 
 $(BUILT): $(SOURCES)
 	$(MAKE) --no-print-directory build
+
+# What the demo runs and what a user types at it, nothing more: the messages in C++ (for the
+# nodes) and Python (for rostopic; not Lisp, EusLisp or JavaScript, a Python start-up per
+# message each), plc_node and the plc_cell tool. The tests, benchmarks and the
+# sanitizer and fuzz builds wait for `make test`, `make bench` and `make fuzz`. A tree never
+# configured is configured without the tests (their packages are not installed yet); one
+# configured with them keeps them, so switching between demo and test runs no second cmake.
+DEMO_TARGETS := plc_cell_generate_messages_cpp plc_cell_generate_messages_py plc_node plc_cell_tool
+demo-build: deps-demo ws-src
+	cd $(WS) && testing=OFF && if grep -qs '^CATKIN_ENABLE_TESTING:BOOL=ON' build/CMakeCache.txt; then testing=ON; fi && \
+	catkin_make -j$(JOBS) $(CMAKE_ARGS) -DCATKIN_ENABLE_TESTING=$$testing $(DEMO_TARGETS) 2>&1 | $(CATKIN_FILTER) ; exit $${PIPESTATUS[0]}
+	touch $(DEMO_BUILT)
+
+$(DEMO_BUILT): $(SOURCES)
+	$(MAKE) --no-print-directory demo-build
 
 test: build
 	$(PY) scripts/run_tests.py --workspace $(WS) --jobs $(JOBS)
@@ -82,7 +114,7 @@ test: build
 # The demo runs on loopback: ROS_HOSTNAME=localhost unless ROS_HOSTNAME or ROS_IP is set,
 # and a hint instead of roslaunch's stack trace when the master could not reach itself
 # (scripts/ros_loopback.py).
-demo: deps $(BUILT)
+demo: deps-demo $(DEMO_BUILT)
 	@ros_env=$$($(PY) scripts/ros_loopback.py) && eval "$$ros_env" && \
 	echo "== starting the demo cell. In another shell:" && \
 	echo "     source $(WS)/devel/setup.bash" && \
@@ -98,6 +130,10 @@ demo: deps $(BUILT)
 # installed by hand (scripts/test_fresh.sh; root only). CI runs this.
 test-fresh:
 	scripts/test_fresh.sh
+
+# The first `make demo` there, timed until the demo's topics are up (scripts/test_fresh.sh).
+demo-fresh:
+	scripts/test_fresh.sh demo
 
 bench: build
 	$(PY) scripts/run_bench.py --workspace $(WS)

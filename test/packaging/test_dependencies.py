@@ -2,7 +2,8 @@
 
 package.xml names every dependency under its rosdep key; rosdep/bookworm.yaml maps each key
 to Debian packages; the Makefile's DEB_PACKAGES (written out because a fresh machine has no
-Python before it is installed) must be exactly the image of package.xml under that map.
+Python before it is installed) must be exactly the image of package.xml under that map,
+split as DEMO_PACKAGES (the build and run keys, what `make demo` installs) and TEST_PACKAGES.
 And package.xml must be complete: every ROS package, Python module, CMake package and tool
 that the code, tests, scripts, launch files and docs use is declared."""
 import glob
@@ -28,10 +29,12 @@ def files(*patterns):
     return sorted(f for f in out if "/.build/" not in f and os.path.isfile(f))
 
 
-def package_keys():
-    root = ET.fromstring(read("package.xml"))
-    tags = ("depend", "build_depend", "exec_depend", "test_depend", "buildtool_depend",
+ALL_TAGS = ("depend", "build_depend", "exec_depend", "test_depend", "buildtool_depend",
             "build_export_depend", "doc_depend")
+
+
+def package_keys(tags=ALL_TAGS):
+    root = ET.fromstring(read("package.xml"))
     return {e.text.strip() for t in tags for e in root.findall(t)}
 
 
@@ -39,11 +42,16 @@ def rules():
     return yaml.safe_load(read("rosdep/bookworm.yaml"))
 
 
-def makefile_packages():
+def makefile_list(name):
     text = read("Makefile").replace("\\\n", " ")
-    m = re.search(r"^DEB_PACKAGES\s*:=(.*)$", text, re.M)
-    assert m, "Makefile has no DEB_PACKAGES line"
-    return set(m.group(1).split())
+    m = re.search(r"^%s\s*:=(.*)$" % name, text, re.M)
+    assert m, "Makefile has no %s line" % name
+    return m.group(1).split()
+
+
+def image(keys):
+    r = rules()
+    return {p for k in keys if k in r for p in r[k]["debian"]["bookworm"]}
 
 
 def test_every_key_has_a_debian_rule():
@@ -61,11 +69,27 @@ def test_no_rule_is_unused():
 
 
 def test_makefile_installs_exactly_what_package_xml_declares():
-    r = rules()
-    wanted = {p for k in package_keys() if k in r for p in r[k]["debian"]["bookworm"]}
-    have = makefile_packages()
+    wanted = image(package_keys())
+    assert makefile_list("DEB_PACKAGES") == ["$(DEMO_PACKAGES)", "$(PLOT_PACKAGES)", "$(TEST_PACKAGES)"]
+    have = set(makefile_list("DEMO_PACKAGES")) | set(makefile_list("PLOT_PACKAGES")) | set(makefile_list("TEST_PACKAGES"))
     assert not (wanted - have), "package.xml needs, Makefile lacks: %s" % sorted(wanted - have)
     assert not (have - wanted), "Makefile installs, package.xml does not declare: %s" % sorted(have - wanted)
+
+
+# Run keys the demo does not use: the plot scripts' (scripts/plot_*.py), in PLOT_PACKAGES.
+PLOT_KEYS = {"python3-matplotlib"}
+
+
+def test_make_demo_installs_the_build_and_run_keys_only():
+    # make demo installs DEMO_PACKAGES: what builds and runs the package; the test keys
+    # (compilers for the fuzz builds, a browser, test servers) wait for make test.
+    run = image(package_keys() - package_keys(("test_depend",)) - PLOT_KEYS)
+    demo = set(makefile_list("DEMO_PACKAGES"))
+    assert not (run - demo), "make demo would lack: %s" % sorted(run - demo)
+    assert not (demo - run), "DEMO_PACKAGES has packages the demo does not use: %s" % sorted(demo - run)
+    assert set(makefile_list("PLOT_PACKAGES")) == image(PLOT_KEYS)
+    lists = [set(makefile_list(n)) for n in ("DEMO_PACKAGES", "PLOT_PACKAGES", "TEST_PACKAGES")]
+    assert sum(len(x) for x in lists) == len(set.union(*lists)), "a package in two lists"
 
 
 # ---- completeness: what the code uses is declared ------------------------------------
@@ -126,7 +150,7 @@ TOOLS = {"socat": "socat", "mbpoll": "mbpoll", "rosrun": "rosbash", "roscd": "ro
          "roscore": "roslaunch", "rosbag": "rosbag", "rosnode": "rosnode", "rosmsg": "rosmsg",
          "rostest": "rostest", "clang\\+\\+": "clang", "catkin_make": "catkin", "git": "git",
          "readelf": "build-essential",  # binutils (readelf, nm) comes with build-essential
-         "chromium-headless-shell": "chromium-headless-shell"}
+         "chromium-headless-shell": "chromium-headless-shell", "ctags": "universal-ctags"}
 
 
 def test_tools_are_declared():
