@@ -42,8 +42,6 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host {
   // What the topics of one cell showed: ~reset starts a fresh one with the fresh cell.
   struct Shown {
     explicit Shown(size_t topics) : counts(topics, 0) {}
-    Snapshot seen;                 // the last scan's, as handed to publishing
-    bool any = false;              // a scan was seen
     Snapshot pending;              // to publish; posted: a publish of it is on its way
     bool posted = false;
     Snapshot last;                 // as last published
@@ -62,7 +60,10 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host {
   uint64_t scanned() override;
   void count_published(std::vector<std::string>* topics, std::vector<uint64_t>* counts) override;
 
-  Snapshot take_snapshot();
+  // Under the PLC lock. unchanged(): whether the memory still shows `seen`, without a copy
+  // or an allocation, so that a scan that changed nothing costs a compare of the points.
+  Snapshot take_snapshot(const ScanEngine& e, const Memory& m) const;
+  bool unchanged(const ScanEngine& e, const Memory& m, const Snapshot& seen) const;
   void publish_io();  // the pending snapshot, on the driver's publishing thread
   void publish(const Snapshot& s, const Snapshot& prev, bool all_signals);
   void publish_forced(const ros::Time& stamp);
@@ -114,6 +115,10 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host {
 
   std::mutex shown_mu_;
   std::unique_ptr<Shown> shown_;
+  // The scan thread's own: the last scan's snapshot as handed to publishing (seen_any_: one
+  // was); ~reset clears it between scans.
+  Snapshot seen_;
+  bool seen_any_ = false;
   std::mutex io_mu_;  // one ~io publish at a time, in the order of the scans
   std::unique_ptr<ScanDriver> driver_;  // last: it scans, and is stopped, first
 };
