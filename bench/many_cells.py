@@ -27,6 +27,7 @@ sys.path.insert(0, os.path.join(HERE, "scripts"))
 from ros_loopback import loopback_env  # noqa: E402
 
 TICKS = os.sysconf("SC_CLK_TCK")
+SHARED_THREADS = {"shared": 1, "shared2": 2}  # way: ~shared_scan_threads
 
 
 def free_port():
@@ -79,7 +80,7 @@ def start_nodes(ws, cell, n, scan, prio, env):
     return procs, procs
 
 
-def start_nodelets(ws, cell, n, scan, prio, env, shared=False):
+def start_nodelets(ws, cell, n, scan, prio, env, shared=0):
     import rospy
     from nodelet.srv import NodeletLoad
     manager = subprocess.Popen(["/usr/lib/nodelet/nodelet", "manager", "__name:=cells"], env=env,
@@ -91,7 +92,8 @@ def start_nodelets(ws, cell, n, scan, prio, env, shared=False):
         rospy.set_param(name + "/cell", cell)
         rospy.set_param(name + "/scan_period", scan)
         rospy.set_param(name + "/rt_priority", prio)
-        rospy.set_param(name + "/shared_scan", shared)
+        rospy.set_param(name + "/shared_scan", shared > 0)
+        rospy.set_param(name + "/shared_scan_threads", max(1, shared))
         if not load(name, "plc_cell/PlcNodelet", [], [], [], "").success:
             raise SystemExit("the manager did not load %s" % name)
     return [manager], [manager]
@@ -101,7 +103,7 @@ def measure(way, ws, cell, n, scan, prio, settle, seconds, env, overruns):
     if way == "nodes":
         procs, measured = start_nodes(ws, cell, n, scan, prio, env)
     else:
-        procs, measured = start_nodelets(ws, cell, n, scan, prio, env, shared=way == "shared")
+        procs, measured = start_nodelets(ws, cell, n, scan, prio, env, shared=SHARED_THREADS.get(way, 0))
     try:
         deadline = time.time() + 60 + n
         while len(overruns.last) < n and time.time() < deadline:
@@ -140,7 +142,8 @@ def main():
     ap.add_argument("--cells", default="1,20,100", help="comma-separated counts")
     ap.add_argument("--ways", default="nodes,nodelets,shared",
                     help="nodes: a process per cell; nodelets: one manager, a scan thread per cell; "
-                         "shared: one manager, one scan thread (~shared_scan)")
+                         "shared: one manager, one scan thread (~shared_scan); "
+                         "shared2: the same over two scan threads (~shared_scan_threads: 2)")
     ap.add_argument("--scan", type=float, default=0.001, help="scan period, s")
     ap.add_argument("--rt-priority", type=int, default=0,
                     help="the scan threads' SCHED_FIFO priority (~rt_priority; 0: the normal scheduler)")

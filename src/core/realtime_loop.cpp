@@ -5,6 +5,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 
 namespace plc_cell {
@@ -82,9 +83,19 @@ void RealTimeLoop::run() {
   }
 }
 
-SharedScanThread& SharedScanThread::process() {
-  static SharedScanThread thread;
-  return thread;
+SharedScanThread& SharedScanThread::process(unsigned threads) {
+  static std::array<SharedScanThread, kMaxThreads> pool;
+  static std::mutex pick_mu;  // two cells added at once do not both pick the same thread
+  std::lock_guard<std::mutex> lk(pick_mu);
+  SharedScanThread* best = &pool[0];
+  for (unsigned i = 1; i < std::min(threads, kMaxThreads); ++i)
+    if (pool[i].scanned_plcs() < best->scanned_plcs()) best = &pool[i];
+  return *best;
+}
+
+size_t SharedScanThread::scanned_plcs() {
+  std::lock_guard<std::mutex> lk(mu_);
+  return entries_.size();
 }
 
 SharedScanThread::~SharedScanThread() {

@@ -20,41 +20,57 @@ void pack_words(const std::vector<uint8_t>& bits, IoWords::_x_type* words) {
 }
 }  // namespace
 
-PlcNode::Snapshot PlcNode::take_snapshot() {
-  return cell_->plc().locked([&](ScanEngine& e, Memory& m) {
-    Snapshot s;
-    s.scan_us = e.now_us();
-    s.run = e.mode() == RunMode::Run;
-    s.x.resize(256);
-    s.y.resize(256);
-    for (uint32_t i = 0; i < 256; ++i) {
-      s.x[i] = m.bit(Area::X, i);
-      s.y[i] = m.bit(Area::Y, i);
-    }
-    for (const auto& sig : cell_->config().signals) s.signals.push_back(m.bit(sig.second.area, sig.second.index));
-    s.forced_gen = m.disabled_generation();
-    return s;
-  });
+PlcNode::Snapshot PlcNode::take_snapshot(const ScanEngine& e, const Memory& m) const {
+  Snapshot s;
+  s.scan_us = e.now_us();
+  s.run = e.mode() == RunMode::Run;
+  s.x.resize(256);
+  s.y.resize(256);
+  for (uint32_t i = 0; i < 256; ++i) {
+    s.x[i] = m.bit(Area::X, i);
+    s.y[i] = m.bit(Area::Y, i);
+  }
+  for (const auto& sig : cell_->config().signals) s.signals.push_back(m.bit(sig.second.area, sig.second.index));
+  s.forced_gen = m.disabled_generation();
+  return s;
 }
 
-// On the driver's scan thread: compare, and hand what is due to the driver's post().
+bool PlcNode::unchanged(const ScanEngine& e, const Memory& m, const Snapshot& seen) const {
+  if ((e.mode() == RunMode::Run) != seen.run || m.disabled_generation() != seen.forced_gen) return false;
+  const uint8_t* x = m.bits(Area::X);
+  const uint8_t* y = m.bits(Area::Y);
+  uint8_t diff = 0;  // no early exit: a branch-free loop over both images
+  for (uint32_t i = 0; i < 256; ++i) diff |= static_cast<uint8_t>(((x[i] & kBitState) ^ seen.x[i]) | ((y[i] & kBitState) ^ seen.y[i]));
+  if (diff) return false;
+  size_t k = 0;
+  for (const auto& sig : cell_->config().signals)
+    if (m.bit(sig.second.area, sig.second.index) != static_cast<bool>(seen.signals[k++])) return false;
+  return true;
+}
+
+// On the driver's scan thread: compare, and hand what is due to the driver's post(). The
+// snapshot is copied only when it changed (or ~io is due again), not at every scan.
 uint64_t PlcNode::scanned() {
-  Snapshot s = take_snapshot();
-  const uint64_t cell_us = s.scan_us;
+  uint64_t cell_us = 0;
+  std::unique_ptr<Snapshot> s = cell_->plc().locked([&](ScanEngine& e, Memory& m) {
+    cell_us = e.now_us();
+    return seen_any_ && unchanged(e, m, seen_) ? nullptr : std::make_unique<Snapshot>(take_snapshot(e, m));
+  });
   const ros::Time stamp = driver_->stamp(cell_us);
   const uint64_t rate_us = stamp.toNSec() / 1000;  // the rates count in the stamps' time
+  const bool again = driver_->republishes() && io_rate_->due(rate_us);
+  if (!s && again) {
+    s = std::make_unique<Snapshot>(seen_);
+    s->scan_us = cell_us;
+  }
   bool post = false;
-  {
+  if (s) {
+    seen_ = *s;
+    seen_any_ = true;
     std::lock_guard<std::mutex> lk(shown_mu_);
-    Shown& sh = *shown_;
-    const bool again = driver_->republishes() && io_rate_->due(rate_us);
-    if (!sh.any || !(s == sh.seen) || again) {
-      sh.seen = s;
-      sh.any = true;
-      sh.pending = std::move(s);
-      post = !sh.posted;
-      sh.posted = true;
-    }
+    shown_->pending = std::move(*s);
+    post = !shown_->posted;
+    shown_->posted = true;
   }
   if (post) driver_->post([this] { publish_io(); });
   topic_groups_.after_scan(rate_us, every_scan_, stamp, [this](std::function<void()> fn) { driver_->post(std::move(fn)); });

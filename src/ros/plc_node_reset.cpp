@@ -68,6 +68,7 @@ bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
       std::lock_guard<std::mutex> lk(shown_mu_);
       shown_ = std::make_unique<Shown>(shown_->counts.size());
     }
+    seen_any_ = false;  // between scans: the fresh cell's first scan is published
     try {
       cell_->start_servers([](const Server&) {});
     } catch (const std::exception& e) {

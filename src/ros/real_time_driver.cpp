@@ -28,6 +28,9 @@ RealTimeDriver::RealTimeDriver(ros::NodeHandle& nh, ros::NodeHandle& pnh, Host& 
   double clock_rate = 10.0;
   pnh.param("clock_rate", clock_rate, clock_rate);
   pnh.param("shared_scan", shared_, shared_);
+  pnh.param("shared_scan_threads", shared_threads_, shared_threads_);
+  if (shared_threads_ < 1 || shared_threads_ > int(SharedScanThread::kMaxThreads))
+    throw Error("~shared_scan_threads must be in [1, " + std::to_string(SharedScanThread::kMaxThreads) + "]");
   if (!(clock_rate >= 0 && clock_rate <= 1000)) throw Error("~clock_rate must be in [0, 1000] Hz (0: no ~clock)");
   if (clock_rate == 0) return;
   clock_rate_ = std::make_unique<VirtualRate>(clock_rate);
@@ -47,12 +50,12 @@ RealTimeDriver::~RealTimeDriver() { queue_->removeByID(uint64_t(reinterpret_cast
 void RealTimeDriver::start() {
   Cell& cell = host_.cell();
   if (!shared_) return cell.start_scanning([this] { after_scan(); });
-  shared_id_ = SharedScanThread::process().add(cell.plc(), std::chrono::microseconds(cell.scan_period_us()),
-                                               [this] { after_scan(); });
+  shared_thread_ = &SharedScanThread::process(unsigned(shared_threads_));
+  shared_id_ = shared_thread_->add(cell.plc(), std::chrono::microseconds(cell.scan_period_us()), [this] { after_scan(); });
 }
 
 void RealTimeDriver::stop() {
-  if (shared_id_) SharedScanThread::process().remove(shared_id_);
+  if (shared_id_) shared_thread_->remove(shared_id_);
   shared_id_ = 0;
 }
 

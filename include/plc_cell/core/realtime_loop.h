@@ -55,8 +55,10 @@ class RealTimeLoop {
 // scanned after others sees their scan time as its wake latency.
 class SharedScanThread {
  public:
-  // The process's one thread, started at the first add().
-  static SharedScanThread& process();
+  // The process's threads (up to kMaxThreads, each started at its first add()): the one
+  // of the first `threads` with the fewest PLCs, so that cells spread over the cores.
+  static constexpr unsigned kMaxThreads = 8;
+  static SharedScanThread& process(unsigned threads = 1);
   ~SharedScanThread();
 
   // plc scanned every period from one period from now on, continuing its engine's clock;
@@ -64,6 +66,7 @@ class SharedScanThread {
   uint64_t add(Plc& plc, std::chrono::nanoseconds period, std::function<void()> after_scan);
   // Returns once the PLC is no longer scanned (not from an after_scan).
   void remove(uint64_t id);
+  size_t scanned_plcs();
 
  private:
   struct Entry {

@@ -43,8 +43,6 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   // What the topics of one cell showed: ~reset starts a fresh one with the fresh cell.
   struct Shown {
     explicit Shown(size_t topics) : counts(topics, 0) {}
-    Snapshot seen;                 // the last scan's, as handed to publishing
-    bool any = false;              // a scan was seen
     Snapshot pending;              // to publish; posted: a publish of it is on its way
     bool posted = false;
     Snapshot last;                 // as last published
@@ -65,7 +63,10 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   // An extension's topic input (ros/extension_ros.h), through the driver as the X inputs.
   void apply_at(uint64_t stamp_us, std::function<void(ScanEngine&)> change) override;
 
-  Snapshot take_snapshot();
+  // Under the PLC lock. unchanged(): whether the memory still shows `seen`, without a copy
+  // or an allocation, so that a scan that changed nothing costs a compare of the points.
+  Snapshot take_snapshot(const ScanEngine& e, const Memory& m) const;
+  bool unchanged(const ScanEngine& e, const Memory& m, const Snapshot& seen) const;
   void publish_io();  // the pending snapshot, on the driver's publishing thread
   void publish(const Snapshot& s, const Snapshot& prev, bool all_signals);
   void publish_forced(const ros::Time& stamp);
@@ -117,6 +118,10 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
 
   std::mutex shown_mu_;
   std::unique_ptr<Shown> shown_;
+  // The scan thread's own: the last scan's snapshot as handed to publishing (seen_any_: one
+  // was); ~reset clears it between scans.
+  Snapshot seen_;
+  bool seen_any_ = false;
   std::mutex io_mu_;  // one ~io publish at a time, in the order of the scans
   std::unique_ptr<ScanDriver> driver_;  // last: it scans, and is stopped, first
 };

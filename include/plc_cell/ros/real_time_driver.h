@@ -17,6 +17,8 @@
 
 namespace plc_cell {
 
+class SharedScanThread;
+
 class RealTimeDriver : public ScanDriver {
  public:
   // Reads ~clock_rate and ~shared_scan; throws Error on a bad rate.
@@ -38,6 +40,8 @@ class RealTimeDriver : public ScanDriver {
 
   Host& host_;
   bool shared_ = false;      // ~shared_scan
+  int shared_threads_ = 1;   // ~shared_scan_threads: the process's shared threads to spread over
+  SharedScanThread* shared_thread_ = nullptr;  // the one scanning this cell
   uint64_t shared_id_ = 0;   // its handle in the SharedScanThread, 0: none
   ros::CallbackQueueInterface* queue_;
   ros::Publisher clock_pub_;
