@@ -30,8 +30,10 @@ double poly(const std::vector<double>& c, double x) {
   return r;
 }
 
-const TcData& data(TcType t) {
-  static const TcData J{
+// One function per type keeps each table a lazily built local static: the tables are
+// safe to use from other translation units' static initialisers.
+const TcData& data_j() {
+  static const TcData d{
       {{-210.0, 760.0,
         {0.0, 0.503811878150E-01, 0.304758369300E-04, -0.856810657200E-07, 0.132281952950E-09,
          -0.170529583370E-12, 0.209480906970E-15, -0.125383953360E-18, 0.156317256970E-22}},
@@ -48,7 +50,11 @@ const TcData& data(TcType t) {
        {42.919, 69.553,
         {-3.11358187E+03, 3.00543684E+02, -9.94773230E+00, 1.70276630E-01, -1.43033468E-03,
          4.73886084E-06}}}};
-  static const TcData K{
+  return d;
+}
+
+const TcData& data_k() {
+  static const TcData d{
       {{-270.0, 0.0,
         {0.0, 0.394501280250E-01, 0.236223735980E-04, -0.328589067840E-06, -0.499048287770E-08,
          -0.675090591730E-10, -0.574103274280E-12, -0.310888728940E-14, -0.104516093650E-16,
@@ -67,7 +73,11 @@ const TcData& data(TcType t) {
        {20.644, 54.886,
         {-1.318058E+02, 4.830222E+01, -1.646031E+00, 5.464731E-02, -9.650715E-04, 8.802193E-06,
          -3.110810E-08}}}};
-  static const TcData E{
+  return d;
+}
+
+const TcData& data_e() {
+  static const TcData d{
       {{-270.0, 0.0,
         {0.0, 0.586655087080E-01, 0.454109771240E-04, -0.779980486860E-06, -0.258001608430E-07,
          -0.594525830570E-09, -0.932140586670E-11, -0.102876055340E-12, -0.803701236210E-15,
@@ -84,7 +94,11 @@ const TcData& data(TcType t) {
        {0.0, 76.373,
         {0.0, 1.7057035E+01, -2.3301759E-01, 6.5435585E-03, -7.3562749E-05, -1.7896001E-06,
          8.4036165E-08, -1.3735879E-09, 1.0629823E-11, -3.2447087E-14}}}};
-  static const TcData T{
+  return d;
+}
+
+const TcData& data_t() {
+  static const TcData d{
       {{-270.0, 0.0,
         {0.0, 0.387481063640E-01, 0.441944343470E-04, 0.118443231050E-06, 0.200329735540E-07,
          0.901380195590E-09, 0.226511565930E-10, 0.360711542050E-12, 0.384939398830E-14,
@@ -100,7 +114,11 @@ const TcData& data(TcType t) {
        {0.0, 20.872,
         {0.0, 2.592800E+01, -7.602961E-01, 4.637791E-02, -2.165394E-03, 6.048144E-05,
          -7.293422E-07}}}};
-  static const TcData R{
+  return d;
+}
+
+const TcData& data_r() {
+  static const TcData d{
       {{-50.0, 1064.18,
         {0.0, 0.528961729765E-02, 0.139166589782E-04, -0.238855693017E-07, 0.356916001063E-10,
          -0.462347666298E-13, 0.500777441034E-16, -0.373105886191E-19, 0.157716482367E-22,
@@ -124,7 +142,11 @@ const TcData& data(TcType t) {
          1.492290091E-04}},
        {19.739, 21.103,
         {3.406177836E+04, -7.023729171E+03, 5.582903813E+02, -1.952394635E+01, 2.560740231E-01}}}};
-  static const TcData S{
+  return d;
+}
+
+const TcData& data_s() {
+  static const TcData d{
       {{-50.0, 1064.18,
         {0.0, 0.540313308631E-02, 0.125934289740E-04, -0.232477968689E-07, 0.322028823036E-10,
          -0.331465196389E-13, 0.255744251786E-16, -0.125068871393E-19, 0.271443176145E-23}},
@@ -146,7 +168,11 @@ const TcData& data(TcType t) {
          2.081618890E-04}},
        {17.536, 18.693,
         {5.333875126E+04, -1.235892298E+04, 1.092657613E+03, -4.265693686E+01, 6.247205420E-01}}}};
-  static const TcData B{
+  return d;
+}
+
+const TcData& data_b() {
+  static const TcData d{
       {{0.0, 630.615,
         {0.0, -0.246508183460E-03, 0.590404211710E-05, -0.132579316360E-08, 0.156682919010E-11,
          -0.169445292400E-14, 0.629903470940E-18}},
@@ -161,7 +187,11 @@ const TcData& data(TcType t) {
        {2.431, 13.820,
         {2.1315071E+02, 2.8510504E+02, -5.2742887E+01, 9.9160804E+00, -1.2965303E+00, 1.1195870E-01,
          -6.0625199E-03, 1.8661696E-04, -2.4878585E-06}}}};
-  static const TcData N{
+  return d;
+}
+
+const TcData& data_n() {
+  static const TcData d{
       {{-270.0, 0.0,
         {0.0, 0.261591059620E-01, 0.109574842280E-04, -0.938411115540E-07, -0.464120397590E-10,
          -0.263033577160E-11, -0.226534380030E-13, -0.760893007910E-16, -0.934196678350E-19}},
@@ -178,17 +208,21 @@ const TcData& data(TcType t) {
          -7.98156E-08}},
        {20.613, 47.513,
         {1.972485E+01, 3.300943E+01, -3.915159E-01, 9.855391E-03, -1.274371E-04, 7.767022E-07}}}};
+  return d;
+}
+
+const TcData& data(TcType t) {
   switch (t) {
-    case TcType::J: return J;
-    case TcType::K: return K;
-    case TcType::E: return E;
-    case TcType::T: return T;
-    case TcType::R: return R;
-    case TcType::S: return S;
-    case TcType::B: return B;
-    case TcType::N: return N;
+    case TcType::J: return data_j();
+    case TcType::K: return data_k();
+    case TcType::E: return data_e();
+    case TcType::T: return data_t();
+    case TcType::R: return data_r();
+    case TcType::S: return data_s();
+    case TcType::B: return data_b();
+    case TcType::N: return data_n();
   }
-  return K;
+  return data_k();
 }
 
 // The piece whose range holds x; the first or last piece beyond the ends.
