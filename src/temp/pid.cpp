@@ -33,8 +33,34 @@ const OperandRules& rules() {
   return r;
 }
 
+// The settings blocks SR (A:7530-A:7560) and PR, and the D4004/D4005 options.
+struct Settings {
+  int32_t sp, hal, lal, her, ler, ram, opv, rmax;
+  int32_t pb, ki, td, bias, hiwl, liwl, method, gain;
+};
+
+Settings read_settings(Memory& mem, const uint16_t* sr, const uint16_t* pr) {
+  Settings s;
+  s.sp = s16(sr[1]), s.hal = s16(sr[2]), s.lal = s16(sr[3]);
+  s.her = s16(sr[4]), s.ler = s16(sr[5]);
+  s.ram = sr[6], s.opv = sr[7];
+  s.rmax = mem.reg(Area::D, 4004) == 1 ? 16383 : 16380;
+  s.pb = pr[0], s.ki = pr[1], s.td = pr[2], s.bias = pr[3], s.hiwl = pr[4], s.liwl = pr[5], s.method = pr[6];
+  // D4005, the gain constant (default 1000): a cleared register counts as the default.
+  s.gain = mem.reg(Area::D, 4005) == 0 ? 1000 : mem.reg(Area::D, 4005);
+  return s;
+}
+
+// Anything out of range: no PID, ERR on.
+bool settings_ok(const Settings& s) {
+  return s.her > -9999 && s.her <= 19999 && s.ler >= -9999 && s.ler <= s.lal && s.lal < s.hal &&
+         s.hal <= s.her && s.sp >= s.ler && s.sp <= s.her && s.ram >= 0 && s.ram <= s.rmax && s.opv >= 0 &&
+         s.opv < s.rmax && s.pb >= 1 && s.pb <= 5000 && s.ki >= 0 && s.ki <= 9999 && s.td >= 0 && s.td <= 9999 &&
+         s.bias >= 0 && s.bias <= 16383 && s.hiwl >= 1 && s.hiwl <= 16383 && s.liwl >= 0 && s.liwl <= 16383 &&
+         s.liwl < s.hiwl && (s.method == 0 || s.method == 1) && s.gain >= 1 && s.gain <= 5000;
+}
+
 void run(ExecContext& c, const BoundOperand* o) {
-  Memory& mem = c.mem;
   const bool autom = c.inputs[0], bum = c.inputs[1], direct = c.inputs[2];
   const int64_t ts = c.get(o[0]);
   uint16_t* sr = o[1].w;
@@ -43,19 +69,8 @@ void run(ExecContext& c, const BoundOperand* o) {
   uint16_t* wr = o[4].w;
   const BoundOperand &err = o[5], &hal = o[6], &lal = o[7];
 
-  // Settings (A:7530-A:7560); anything out of range: no PID, ERR on.
-  const int32_t sp = s16(sr[1]), hal_v = s16(sr[2]), lal_v = s16(sr[3]);
-  const int32_t her_u = s16(sr[4]), ler = s16(sr[5]);
-  const int32_t ram = sr[6], opv = sr[7];
-  const int32_t rmax = mem.reg(Area::D, 4004) == 1 ? 16383 : 16380;
-  const int32_t pb = pr[0], ki = pr[1], td = pr[2], bias = pr[3], hiwl = pr[4], liwl = pr[5], method = pr[6];
-  // D4005, the gain constant (default 1000): a cleared register counts as the default.
-  const int32_t gain = mem.reg(Area::D, 4005) == 0 ? 1000 : mem.reg(Area::D, 4005);
-  const bool ok = !broken_rule(rules(), OperandValues(c, o, kOperands)) && her_u > -9999 && her_u <= 19999 && ler >= -9999 && ler <= lal_v &&
-                  lal_v < hal_v && hal_v <= her_u && sp >= ler && sp <= her_u && ram >= 0 && ram <= rmax &&
-                  opv >= 0 && opv < rmax && pb >= 1 && pb <= 5000 && ki >= 0 && ki <= 9999 && td >= 0 &&
-                  td <= 9999 && bias >= 0 && bias <= 16383 && hiwl >= 1 && hiwl <= 16383 && liwl >= 0 &&
-                  liwl <= 16383 && liwl < hiwl && (method == 0 || method == 1) && gain >= 1 && gain <= 5000;
+  const Settings s = read_settings(c.mem, sr, pr);
+  const bool ok = !broken_rule(rules(), OperandValues(c, o, kOperands)) && settings_ok(s);
   uint16_t status = wr[0] & (kAuto | kBumpless);
   c.flag(err, !ok);
   if (!ok) {
@@ -65,11 +80,11 @@ void run(ExecContext& c, const BoundOperand* o) {
     return;
   }
   // Scaled PV (SR+0): LER + (RAM - OPV)(HER - LER)/(Rmax - OPV), RAM below OPV reads LER.
-  const double span = double(rmax - opv);
-  const double raw = std::max(0, ram - opv);
-  const int32_t pv_eng = int32_t(std::lround(ler + raw * (her_u - ler) / span));
+  const double span = double(s.rmax - s.opv);
+  const double raw = std::max(0, s.ram - s.opv);
+  const int32_t pv_eng = int32_t(std::lround(s.ler + raw * (s.her - s.ler) / span));
   sr[0] = uint16_t(int16_t(pv_eng));
-  const bool hi = pv_eng >= hal_v, lo = pv_eng <= lal_v;  // whatever A/M is
+  const bool hi = pv_eng >= s.hal, lo = pv_eng <= s.lal;  // whatever A/M is
   c.flag(hal, hi);
   c.flag(lal, lo);
   if (hi) status |= kHal;
@@ -80,7 +95,7 @@ void run(ExecContext& c, const BoundOperand* o) {
   if (!autom) {
     // Manual: the program writes OR; the loop tracks PV so that auto starts cleanly.
     wr[0] = uint16_t((status & ~(kAuto | kBumpless)) | (bum ? kBumpless : 0));
-    wr[4] = uint16_t(ram);
+    wr[4] = uint16_t(s.ram);
     return;
   }
   const bool entering = !(wr[0] & kAuto);
@@ -92,22 +107,22 @@ void run(ExecContext& c, const BoundOperand* o) {
   }
   // The error on the raw scale, normalised so that the span is full scale:
   // Pb 100 % (1000) with D4005 1000 (Kc 1) turns a full-span error into full output.
-  const double kc = double(gain) / pb;
-  const double sp_raw = (sp - ler) * span / double(her_u - ler);
+  const double kc = double(s.gain) / s.pb;
+  const double sp_raw = (s.sp - s.ler) * span / double(s.her - s.ler);
   const double sign = direct ? 1.0 : -1.0;  // D/R = 1: output rises with the error
   const double e = sign * (sp_raw - raw) * kFull / span;
-  const double dpv = entering ? 0.0 : sign * (raw - (double(wr[4]) - opv)) * kFull / span;
+  const double dpv = entering ? 0.0 : sign * (raw - (double(wr[4]) - s.opv)) * kFull / span;
   const double p = kc * e;
-  const double d = -kc * 60.0 * td * dpv / ts;  // Td/100 min over Ts/100 s
-  if (entering) isum = bum ? int32_t(std::lround((double(c.get(out)) - p - d - bias) * 100)) : 0;
-  const double di = kc * e * ki * ts / 600000.0;  // Ki/100 repeats/min over Ts/100 s
-  const double free = p + d + bias;
+  const double d = -kc * 60.0 * s.td * dpv / ts;  // Td/100 min over Ts/100 s
+  if (entering) isum = bum ? int32_t(std::lround((double(c.get(out)) - p - d - s.bias) * 100)) : 0;
+  const double di = kc * e * s.ki * ts / 600000.0;  // Ki/100 repeats/min over Ts/100 s
+  const double free = p + d + s.bias;
   const double m0 = free + isum / 100.0;
   // Wind-up limits (HIWL/LIWL): no integration that pushes the output past them.
   // Method 1 (minimum overshoot): integrate only inside the proportional band.
   const bool in_band = free > 0 && free < kFull;
-  const bool windup = (m0 >= hiwl && di > 0) || (m0 <= liwl && di < 0);
-  if (!entering && !windup && (method == 0 || in_band)) isum += int32_t(std::lround(di * 100));
+  const bool windup = (m0 >= s.hiwl && di > 0) || (m0 <= s.liwl && di < 0);
+  if (!entering && !windup && (s.method == 0 || in_band)) isum += int32_t(std::lround(di * 100));
   isum = std::clamp<int32_t>(isum, -int32_t(kFull) * 100, int32_t(kFull) * 100);
   const double m = std::clamp(free + isum / 100.0, 0.0, kFull);
   c.put(out, std::lround(m));
@@ -115,7 +130,7 @@ void run(ExecContext& c, const BoundOperand* o) {
   wr[1] = now_ms;
   wr[2] = uint16_t(uint32_t(isum));
   wr[3] = uint16_t(uint32_t(isum) >> 16);
-  wr[4] = uint16_t(ram);
+  wr[4] = uint16_t(s.ram);
 }
 
 }  // namespace
