@@ -20,6 +20,26 @@ static std::string seconds(uint64_t us) {
   return s.str();
 }
 
+// One --set ADDR=VALUE, written before the first scan.
+static void apply_set(Cell& cell, Plc& plc, const std::string& s) {
+  const auto eq = s.find('=');
+  if (eq == std::string::npos) throw UsageError("--set takes ADDR=VALUE, got '" + s + "'");
+  const Address a = cell.config().resolve(s.substr(0, eq));
+  int64_t v;
+  try {
+    size_t used = 0;
+    v = std::stoll(s.substr(eq + 1), &used, 0);
+    if (used != s.size() - eq - 1) throw std::invalid_argument("x");
+  } catch (const std::exception&) {
+    throw UsageError("--set " + s + ": value is not a number");
+  }
+  // A negative value is the two's complement of the register's width (R1=-500).
+  const int bits = value_bits(a);
+  if (v < 0 && bits > 1 && v >= -(int64_t(1) << (bits - 1))) v &= bits == 16 ? 0xFFFF : 0xFFFFFFFFLL;
+  if (v < 0) throw UsageError("--set " + s + ": value below the address's range");
+  plc.write(a, {static_cast<uint32_t>(v)});
+}
+
 int cmd_sim(const std::vector<std::string>& argv) {
   Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace", "engine"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
@@ -32,24 +52,7 @@ int cmd_sim(const std::vector<std::string>& argv) {
   if (!plc.set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
   // After RUN's clearing of the non-retentive memory: the values hold at the first scan,
   // retentive or not.
-  for (const auto& s : args.all("set")) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos) throw UsageError("--set takes ADDR=VALUE, got '" + s + "'");
-    const Address a = cell.config().resolve(s.substr(0, eq));
-    int64_t v;
-    try {
-      size_t used = 0;
-      v = std::stoll(s.substr(eq + 1), &used, 0);
-      if (used != s.size() - eq - 1) throw std::invalid_argument("x");
-    } catch (const std::exception&) {
-      throw UsageError("--set " + s + ": value is not a number");
-    }
-    // A negative value is the two's complement of the register's width (R1=-500).
-    const int bits = value_bits(a);
-    if (v < 0 && bits > 1 && v >= -(int64_t(1) << (bits - 1))) v &= bits == 16 ? 0xFFFF : 0xFFFFFFFFLL;
-    if (v < 0) throw UsageError("--set " + s + ": value below the address's range");
-    plc.write(a, {static_cast<uint32_t>(v)});
-  }
+  for (const auto& s : args.all("set")) apply_set(cell, plc, s);
   // Said only on a fallback: the status line carries the generation time, and sim's output
   // is the same on every run.
   const std::string fallback =
