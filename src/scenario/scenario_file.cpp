@@ -116,6 +116,88 @@ class Reader {
     return out;
   }
 
+  // {INPUT: WIDTH, ...}: each bit on for its width.
+  void read_pulses(const YAML::Node& a, const std::string& k, Step* s) const {
+    if (!a.IsMap() || a.size() == 0) r_.fail(a, k, "expected {INPUT: WIDTH}, e.g. {start_button: 100ms}");
+    for (const auto& kv : a) {
+      Assignment as;
+      as.line = YamlReader::line(kv.first);
+      as.target = probe(kv.first, k + "." + kv.first.Scalar());
+      if (as.target.kind != Probe::Kind::Address) r_.fail(kv.first, k, "a pulse drives a bit (an input or a relay)");
+      as.value.number = 1;
+      as.value.text = "on";
+      as.duration_us = duration(kv.second, k + "." + kv.first.Scalar());
+      if (as.duration_us == 0) r_.fail(kv.second, k, "a pulse of 0 s is no pulse");
+      s->assignments.push_back(as);
+    }
+  }
+
+  // {TARGET: {from: V, to: V, over: DURATION}, ...}
+  void read_ramps(const YAML::Node& a, const std::string& k, Step* s) const {
+    if (!a.IsMap() || a.size() == 0)
+      r_.fail(a, k, "expected {TARGET: {from: V, to: V, over: DURATION}}");
+    for (const auto& kv : a) {
+      const std::string kk = k + "." + kv.first.Scalar();
+      Assignment as;
+      as.line = YamlReader::line(kv.first);
+      as.target = drivable(kv.first, kk);
+      if (!kv.second.IsMap()) r_.fail(kv.second, kk, "expected {from: V, to: V, over: DURATION}");
+      r_.only(kv.second, kk, {"from", "to", "over"});
+      for (const char* req : {"from", "to", "over"})
+        if (!kv.second[req]) r_.fail(kv.second, kk, std::string("missing '") + req + "'");
+      as.from = value(as.target, kv.second["from"], kk + ".from");
+      as.value = value(as.target, kv.second["to"], kk + ".to");
+      if (as.from.has_unit && as.from.quantity.unit != as.value.quantity.unit)
+        r_.fail(kv.second["to"], kk + ".to", "from and to must have the same unit");
+      as.duration_us = duration(kv.second["over"], kk + ".over");
+      s->assignments.push_back(as);
+    }
+  }
+
+  // The condition and the timing keys beside it in the step (stays, within, between, timeout).
+  void read_expect(const YAML::Node& n, const YAML::Node& a, const std::string& key, const std::string& k,
+                   Step* s) const {
+    s->cond = condition(a, k);
+    if (n["tolerance"]) {
+      apply_tolerance(s->cond, tolerance(n["tolerance"], key + ".tolerance"));
+    }
+    if (n["stays"] && (n["within"] || n["between"]))
+      r_.fail(n["stays"], key + ".stays", "'stays' excludes 'within' and 'between'");
+    if (n["within"] && n["between"]) r_.fail(n["within"], key + ".within", "'within' excludes 'between'");
+    if (n["stays"]) s->stays_us = duration(n["stays"], key + ".stays");
+    if (n["within"]) {
+      s->has_window = true;
+      s->window_max_us = duration(n["within"], key + ".within");
+    }
+    if (n["between"]) window(n["between"], key + ".between", &s->window_min_us, &s->window_max_us), s->has_window = true;
+    s->timeout_us = n["timeout"] ? duration(n["timeout"], key + ".timeout") : kDefaultTimeoutUs;
+  }
+
+  // Conditions that must come true in list order, each with its own optional window.
+  void read_sequence(const YAML::Node& n, const YAML::Node& a, const std::string& key, const std::string& k,
+                     Step* s) const {
+    if (!a.IsSequence() || a.size() == 0) r_.fail(a, k, "expected a list of conditions, in the order they must happen");
+    for (size_t i = 0; i < a.size(); ++i) {
+      const YAML::Node e = a[i];
+      const std::string ek = k + "[" + std::to_string(i) + "]";
+      SequenceEntry se;
+      se.line = YamlReader::line(e);
+      if (e.IsMap()) {
+        r_.only(e, ek, {"that", "within", "between", "tolerance"});
+        if (!e["that"]) r_.fail(e, ek, "missing 'that' (the condition)");
+        se.cond = condition(e["that"], ek + ".that");
+        if (e["within"] && e["between"]) r_.fail(e["within"], ek, "'within' excludes 'between'");
+        if (e["within"]) se.max_us = duration(e["within"], ek + ".within");
+        if (e["between"]) window(e["between"], ek + ".between", &se.min_us, &se.max_us);
+        if (e["tolerance"]) apply_tolerance(se.cond, tolerance(e["tolerance"], ek + ".tolerance"));
+      } else {
+        se.cond = condition(e, ek);
+      }
+      s->sequence.push_back(se);
+    }
+    s->timeout_us = n["timeout"] ? duration(n["timeout"], key + ".timeout") : kDefaultTimeoutUs;
+  }
+
   Step step(const YAML::Node& n, const std::string& key) const {
     Step s;
     s.file = r_.file();
@@ -182,76 +264,16 @@ class Reader {
       }
     } else if (action == "pulse") {
       s.kind = Step::Kind::Pulse;
-      if (!a.IsMap() || a.size() == 0) r_.fail(a, k, "expected {INPUT: WIDTH}, e.g. {start_button: 100ms}");
-      for (const auto& kv : a) {
-        Assignment as;
-        as.line = YamlReader::line(kv.first);
-        as.target = probe(kv.first, k + "." + kv.first.Scalar());
-        if (as.target.kind != Probe::Kind::Address) r_.fail(kv.first, k, "a pulse drives a bit (an input or a relay)");
-        as.value.number = 1;
-        as.value.text = "on";
-        as.duration_us = duration(kv.second, k + "." + kv.first.Scalar());
-        if (as.duration_us == 0) r_.fail(kv.second, k, "a pulse of 0 s is no pulse");
-        s.assignments.push_back(as);
-      }
+      read_pulses(a, k, &s);
     } else if (action == "ramp") {
       s.kind = Step::Kind::Ramp;
-      if (!a.IsMap() || a.size() == 0)
-        r_.fail(a, k, "expected {TARGET: {from: V, to: V, over: DURATION}}");
-      for (const auto& kv : a) {
-        const std::string kk = k + "." + kv.first.Scalar();
-        Assignment as;
-        as.line = YamlReader::line(kv.first);
-        as.target = drivable(kv.first, kk);
-        if (!kv.second.IsMap()) r_.fail(kv.second, kk, "expected {from: V, to: V, over: DURATION}");
-        r_.only(kv.second, kk, {"from", "to", "over"});
-        for (const char* req : {"from", "to", "over"})
-          if (!kv.second[req]) r_.fail(kv.second, kk, std::string("missing '") + req + "'");
-        as.from = value(as.target, kv.second["from"], kk + ".from");
-        as.value = value(as.target, kv.second["to"], kk + ".to");
-        if (as.from.has_unit && as.from.quantity.unit != as.value.quantity.unit)
-          r_.fail(kv.second["to"], kk + ".to", "from and to must have the same unit");
-        as.duration_us = duration(kv.second["over"], kk + ".over");
-        s.assignments.push_back(as);
-      }
+      read_ramps(a, k, &s);
     } else if (action == "expect" || action == "wait_until") {
       s.kind = action == "expect" ? Step::Kind::Expect : Step::Kind::WaitUntil;
-      s.cond = condition(a, k);
-      if (n["tolerance"]) {
-        apply_tolerance(s.cond, tolerance(n["tolerance"], key + ".tolerance"));
-      }
-      if (n["stays"] && (n["within"] || n["between"]))
-        r_.fail(n["stays"], key + ".stays", "'stays' excludes 'within' and 'between'");
-      if (n["within"] && n["between"]) r_.fail(n["within"], key + ".within", "'within' excludes 'between'");
-      if (n["stays"]) s.stays_us = duration(n["stays"], key + ".stays");
-      if (n["within"]) {
-        s.has_window = true;
-        s.window_max_us = duration(n["within"], key + ".within");
-      }
-      if (n["between"]) window(n["between"], key + ".between", &s.window_min_us, &s.window_max_us), s.has_window = true;
-      s.timeout_us = n["timeout"] ? duration(n["timeout"], key + ".timeout") : kDefaultTimeoutUs;
+      read_expect(n, a, key, k, &s);
     } else {
       s.kind = Step::Kind::Sequence;
-      if (!a.IsSequence() || a.size() == 0) r_.fail(a, k, "expected a list of conditions, in the order they must happen");
-      for (size_t i = 0; i < a.size(); ++i) {
-        const YAML::Node e = a[i];
-        const std::string ek = k + "[" + std::to_string(i) + "]";
-        SequenceEntry se;
-        se.line = YamlReader::line(e);
-        if (e.IsMap()) {
-          r_.only(e, ek, {"that", "within", "between", "tolerance"});
-          if (!e["that"]) r_.fail(e, ek, "missing 'that' (the condition)");
-          se.cond = condition(e["that"], ek + ".that");
-          if (e["within"] && e["between"]) r_.fail(e["within"], ek, "'within' excludes 'between'");
-          if (e["within"]) se.max_us = duration(e["within"], ek + ".within");
-          if (e["between"]) window(e["between"], ek + ".between", &se.min_us, &se.max_us);
-          if (e["tolerance"]) apply_tolerance(se.cond, tolerance(e["tolerance"], ek + ".tolerance"));
-        } else {
-          se.cond = condition(e, ek);
-        }
-        s.sequence.push_back(se);
-      }
-      s.timeout_us = n["timeout"] ? duration(n["timeout"], key + ".timeout") : kDefaultTimeoutUs;
+      read_sequence(n, a, key, k, &s);
     }
     return s;
   }
