@@ -98,12 +98,86 @@ ErrorCode system_variable(uint32_t type, uint32_t index, std::vector<Address>* e
   return ErrorCode::Ok;
 }
 
+void values_as_read(const std::vector<uint32_t>& v, Response* r) { r->values = v; }
+
 uint32_t clamp_decimal(uint32_t v) { return std::min<uint32_t>(v, 9999); }
+
+// A timer or counter register; PV and SV read back clamped to 4 decimal digits.
+ErrorCode plan_timer_counter(const Request& req, Plan* p) {
+  const uint32_t n = req.a + 1;
+  if (n > kTimers) return ErrorCode::OutOfRange;  // as many counters as timers
+  const bool timer = req.cmd == Cmd::ReadTimerPv || req.cmd == Cmd::ReadTimerSv ||
+                     req.cmd == Cmd::WriteTimerPv || req.cmd == Cmd::WriteTimerSv;
+  const bool sv = req.cmd == Cmd::ReadTimerSv || req.cmd == Cmd::ReadCounterSv ||
+                  req.cmd == Cmd::WriteTimerSv || req.cmd == Cmd::WriteCounterSv;
+  const Address r = timer ? (sv ? timer_sv(n) : timer_pv(n)) : (sv ? counter_sv(n) : counter_pv(n));
+  if (req.values.empty()) {
+    p->reads.push_back(r);
+    p->finish = [](const std::vector<uint32_t>& v, Response* rsp) { rsp->values = {clamp_decimal(v[0])}; };
+  } else {
+    p->writes.push_back({r, req.values[0]});
+  }
+  return ErrorCode::Ok;
+}
+
+// A system variable: bit groups pack to 16 bits, the date (type 9) converts to and from FBs form.
+ErrorCode plan_system(const Request& req, Plan* p) {
+  bool bits = false;
+  std::vector<Address> elems;
+  const ErrorCode e = system_variable(req.a, req.b, &elems, &bits);
+  if (e != ErrorCode::Ok) return e;
+  const uint32_t type = req.a, index = req.b;
+  if (req.cmd == Cmd::ReadSystem) {
+    p->reads = elems;
+    p->finish = [=](const std::vector<uint32_t>& v, Response* r) {
+      uint32_t x = bits ? pack(v, 0, 16) : v[0];
+      if (type == 9) x = date_from_fbs(index, uint16_t(x));
+      r->values = {x};
+    };
+  } else if (bits) {
+    for (uint32_t i = 0; i < 16; ++i) p->writes.push_back({elems[i], (req.values[0] >> i) & 1u});
+  } else {
+    const uint32_t v = type == 9 ? date_to_fbs(index, uint16_t(req.values[0])) : req.values[0];
+    p->writes.push_back({elems[0], v});
+  }
+  return ErrorCode::Ok;
+}
+
+// B channels from A; a write answers with the count written.
+ErrorCode plan_analog(const Request& req, Plan* p) {
+  Address a;
+  const bool rd = req.cmd == Cmd::ReadAnalog;
+  if (req.b < 1) return ErrorCode::BadData;
+  for (uint32_t i = 0; i < req.b; ++i) {
+    if (rd ? !adc(req.a + i, &a) : !dac(req.a + i, &a)) return ErrorCode::OutOfRange;
+    if (rd) p->reads.push_back(a);
+    else p->writes.push_back({a, req.values[i]});
+  }
+  const uint32_t count = req.b;
+  p->finish = rd ? values_as_read
+                 : std::function<void(const std::vector<uint32_t>&, Response*)>(
+                       [count](const std::vector<uint32_t>&, Response* r) { r->values = {count}; });
+  return ErrorCode::Ok;
+}
+
+// B EEPROM integers from A: a write takes at most 16.
+ErrorCode plan_eeprom_ints(const Request& req, Plan* p) {
+  Address a;
+  const bool rd = req.cmd == Cmd::ReadEepromInts;
+  if (req.b < 1 || (!rd && req.b > 16)) return ErrorCode::BadData;
+  const uint32_t n = std::min<uint32_t>(req.b, 32);  // more than 32: the first 32
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!eeprom_int(req.a + i, &a)) return ErrorCode::OutOfRange;
+    if (rd) p->reads.push_back(a);
+    else p->writes.push_back({a, req.values[i]});
+  }
+  if (rd) p->finish = values_as_read;
+  return ErrorCode::Ok;
+}
 
 // Works out the plan of req, or the error it is refused with.
 ErrorCode plan(const Request& req, Plan* p) {
   auto single = [&](Address a) { p->reads.push_back(a); };
-  auto values_as_read = [](const std::vector<uint32_t>& v, Response* r) { r->values = v; };
   BitKind kind;
   Address a;
   switch (req.cmd) {
@@ -122,22 +196,8 @@ ErrorCode plan(const Request& req, Plan* p) {
       return ErrorCode::Ok;
     }
     case Cmd::ReadTimerPv: case Cmd::ReadTimerSv: case Cmd::ReadCounterPv: case Cmd::ReadCounterSv:
-    case Cmd::WriteTimerPv: case Cmd::WriteTimerSv: case Cmd::WriteCounterPv: case Cmd::WriteCounterSv: {
-      const uint32_t n = req.a + 1;
-      if (n > kTimers) return ErrorCode::OutOfRange;  // as many counters as timers
-      const bool timer = req.cmd == Cmd::ReadTimerPv || req.cmd == Cmd::ReadTimerSv ||
-                         req.cmd == Cmd::WriteTimerPv || req.cmd == Cmd::WriteTimerSv;
-      const bool sv = req.cmd == Cmd::ReadTimerSv || req.cmd == Cmd::ReadCounterSv ||
-                      req.cmd == Cmd::WriteTimerSv || req.cmd == Cmd::WriteCounterSv;
-      const Address r = timer ? (sv ? timer_sv(n) : timer_pv(n)) : (sv ? counter_sv(n) : counter_pv(n));
-      if (req.values.empty()) {
-        single(r);
-        p->finish = [](const std::vector<uint32_t>& v, Response* rsp) { rsp->values = {clamp_decimal(v[0])}; };
-      } else {
-        p->writes.push_back({r, req.values[0]});
-      }
-      return ErrorCode::Ok;
-    }
+    case Cmd::WriteTimerPv: case Cmd::WriteTimerSv: case Cmd::WriteCounterPv: case Cmd::WriteCounterSv:
+      return plan_timer_counter(req, p);
     case Cmd::ReadInteger:
     case Cmd::WriteInteger:
       if (!integer_var(req.a, &a)) return ErrorCode::OutOfRange;
@@ -167,27 +227,8 @@ ErrorCode plan(const Request& req, Plan* p) {
       else p->writes.push_back({a, req.values[0]});
       return ErrorCode::Ok;
     case Cmd::ReadSystem:
-    case Cmd::WriteSystem: {
-      bool bits = false;
-      std::vector<Address> elems;
-      const ErrorCode e = system_variable(req.a, req.b, &elems, &bits);
-      if (e != ErrorCode::Ok) return e;
-      const uint32_t type = req.a, index = req.b;
-      if (req.cmd == Cmd::ReadSystem) {
-        p->reads = elems;
-        p->finish = [=](const std::vector<uint32_t>& v, Response* r) {
-          uint32_t x = bits ? pack(v, 0, 16) : v[0];
-          if (type == 9) x = date_from_fbs(index, uint16_t(x));
-          r->values = {x};
-        };
-      } else if (bits) {
-        for (uint32_t i = 0; i < 16; ++i) p->writes.push_back({elems[i], (req.values[0] >> i) & 1u});
-      } else {
-        const uint32_t v = type == 9 ? date_to_fbs(index, uint16_t(req.values[0])) : req.values[0];
-        p->writes.push_back({elems[0], v});
-      }
-      return ErrorCode::Ok;
-    }
+    case Cmd::WriteSystem:
+      return plan_system(req, p);
     case Cmd::ReadHsc:
     case Cmd::WriteHsc:
       if (!hsc_pv(req.a, &a)) return ErrorCode::OutOfRange;
@@ -195,33 +236,11 @@ ErrorCode plan(const Request& req, Plan* p) {
       else p->writes.push_back({a, req.values[0]});
       return ErrorCode::Ok;
     case Cmd::ReadAnalog:
-    case Cmd::WriteAnalog: {
-      const bool rd = req.cmd == Cmd::ReadAnalog;
-      if (req.b < 1) return ErrorCode::BadData;
-      for (uint32_t i = 0; i < req.b; ++i) {
-        if (rd ? !adc(req.a + i, &a) : !dac(req.a + i, &a)) return ErrorCode::OutOfRange;
-        if (rd) p->reads.push_back(a);
-        else p->writes.push_back({a, req.values[i]});
-      }
-      const uint32_t count = req.b;
-      p->finish = rd ? values_as_read
-                     : std::function<void(const std::vector<uint32_t>&, Response*)>(
-                           [count](const std::vector<uint32_t>&, Response* r) { r->values = {count}; });
-      return ErrorCode::Ok;
-    }
+    case Cmd::WriteAnalog:
+      return plan_analog(req, p);
     case Cmd::ReadEepromInts:
-    case Cmd::WriteEepromInts: {
-      const bool rd = req.cmd == Cmd::ReadEepromInts;
-      if (req.b < 1 || (!rd && req.b > 16)) return ErrorCode::BadData;
-      const uint32_t n = std::min<uint32_t>(req.b, 32);  // more than 32: the first 32
-      for (uint32_t i = 0; i < n; ++i) {
-        if (!eeprom_int(req.a + i, &a)) return ErrorCode::OutOfRange;
-        if (rd) p->reads.push_back(a);
-        else p->writes.push_back({a, req.values[i]});
-      }
-      if (rd) p->finish = values_as_read;
-      return ErrorCode::Ok;
-    }
+    case Cmd::WriteEepromInts:
+      return plan_eeprom_ints(req, p);
     case Cmd::ForceBit: {
       static const BitKind kKinds[] = {BitKind::Input, BitKind::Output, BitKind::Timer, BitKind::Counter,
                                        BitKind::Relay, BitKind::Relay};
