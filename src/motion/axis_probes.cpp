@@ -32,15 +32,18 @@ ProbeReading AxisProbes::read(Plc& plc, const ProbeRef& p) const {
     if (n < 0) return Axis{0, 0, 0};
     return Axis{u.position(n), u.frequency(n) * u.axis(n).direction(), u.error(n)};
   });
+  return axis_reading(p.field, x.pulses, x.hz, x.error);
+}
+
+ProbeReading axis_reading(const std::string& field, int64_t pulses, double hz, int error) {
   ProbeReading r;
-  if (p.field == "state") {
-    // As the axis's status topic shows it: an error code, else pulses going out, else idle.
-    r.word = x.error ? "error" : x.hz != 0 ? "moving" : "idle";
-    r.number = x.error;
-    r.text = x.error ? "error " + std::to_string(x.error) : r.word;
+  if (field == "state") {
+    r.word = error ? "error" : hz != 0 ? "moving" : "idle";
+    r.number = error;
+    r.text = error ? "error " + std::to_string(error) : r.word;
     return r;
   }
-  r.number = p.field == "position" ? double(x.pulses) : x.hz;
+  r.number = field == "position" ? double(pulses) : hz;
   r.text = probe_number_text(r.number);
   return r;
 }

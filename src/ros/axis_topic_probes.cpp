@@ -3,6 +3,7 @@
 #include <map>
 
 #include "plc_cell/AxisStatus.h"
+#include "plc_cell/motion/axis_probes.h"
 #include "plc_cell/ros/topic_probes.h"
 
 namespace plc_cell {
@@ -38,16 +39,7 @@ class AxisTopicProbes : public TopicProbes {
     const auto it = axes_.find(node + "/motion/" + p.name + "/status");
     AxisStatus s;
     if (it != axes_.end()) s = it->second;
-    Reading r;
-    if (p.field == "state") {
-      r.word = s.error ? "error" : s.frequency != 0 ? "moving" : "idle";
-      r.number = s.error;
-      r.text = s.error ? "error " + std::to_string(s.error) : r.word;
-      return r;
-    }
-    r.number = p.field == "position" ? double(s.pulses) : s.frequency;
-    r.text = probe_number_text(r.number);
-    return r;
+    return motion::axis_reading(p.field, s.pulses, s.frequency, s.error);
   }
 
   void clear() override { axes_.clear(); }
