@@ -29,12 +29,12 @@ DEMO_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-
   ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rosmaster rosout python3-roslaunch python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
-  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev
+  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev nlohmann-json3-dev libjs-dygraphs
 PLOT_PACKAGES := python3-matplotlib
 TEST_PACKAGES := librostest-dev python3-rostest \
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
   socat mbpoll python3-pymodbus python3-serial python3-serial-asyncio python3-pytest git \
-  chromium-headless-shell universal-ctags
+  chromium-headless-shell chromium-driver python3-selenium universal-ctags
 DEB_PACKAGES := $(DEMO_PACKAGES) $(PLOT_PACKAGES) $(TEST_PACKAGES)
 
 # ROS 1 from Debian runs on Debian's python3; a pyenv python3 earlier on PATH lacks rospy.
