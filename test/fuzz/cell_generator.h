@@ -2,6 +2,8 @@
 // Builds a whole cell (YAML, IL program, simulation stimuli) from fuzzer bytes, from the
 // grammar of the cell YAML and of the IL instructions the subsystems offer, so that most
 // inputs are cells the builder accepts and the fuzzer's time goes into running them.
+// Each extension writes its own part (parts/*.cpp, registered through cell_part.h); this
+// runs them in order and assembles the cell.
 // Every enum key is drawn from all of its documented values; FUN141's P15 fields are
 // each "not configured" (FFH) some of the time; a small share of choices ignores the
 // pin bookkeeping on purpose, so rejections are exercised too.
