@@ -121,6 +121,25 @@ TEST(LadderExamples, TheConveyorDemoWithItsCommentsAndSignals) {
   EXPECT_EQ(l.networks[8].elements.at(0).form, "END");
 }
 
+TEST(LadderExamples, APositioningFunTakesARowPerInput) {
+  const Layout l = example("examples/motion/positioning.il");
+  const Network& n = l.networks.at(2);  // ORG M1925 / LD M1000 / LD M1001 / HSPSO
+  ASSERT_TRUE(n.drawable) << n.reason;
+  const Element& f = n.elements.back();
+  EXPECT_EQ(f.mnemonic, "HSPSO");
+  EXPECT_EQ(f.fun, 140);
+  ASSERT_EQ(f.inputs.size(), 3u);
+  EXPECT_EQ(f.inputs[0].name, "EN");
+  EXPECT_EQ(f.inputs[1].name, "PAU");
+  EXPECT_EQ(f.inputs[2].name, "ABT");
+  EXPECT_TRUE(cell(n, "M1925", 0, 0));
+  EXPECT_TRUE(cell(n, "M1000", 1, 0));
+  EXPECT_TRUE(cell(n, "M1001", 2, 0));
+  EXPECT_EQ(f.inputs[2].row, 2);
+  EXPECT_EQ(f.row, 0);
+  EXPECT_EQ(f.col, 1);
+}
+
 TEST(LadderExamples, ACommentAtTheEndOfALineStaysWithItsElement) {
   const Layout l = lay("; the belt\n\nORG     M0          ; a network starts with ORG\nOUT Y0 // and ends here\nEND\n");
   const Network& n = l.networks.at(0);
