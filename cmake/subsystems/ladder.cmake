@@ -1,8 +1,7 @@
 # The IL program drawn as ladder networks, with live power flow (docs/ladder.md). Sits on
-# the core alone; the monitor serves its JSON.
-find_package(nlohmann_json 3 REQUIRED)
+# the core alone; the monitor serves its JSON (nlohmann-json: header-only, in /usr/include).
 file(GLOB LADDER_SOURCES CONFIGURE_DEPENDS src/ladder/*.cpp)
-plc_cell_layer(plc_cell_ladder SOURCES ${LADDER_SOURCES} LINKS plc_cell_core nlohmann_json::nlohmann_json)
+plc_cell_layer(plc_cell_ladder SOURCES ${LADDER_SOURCES} LINKS plc_cell_core)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB LADDER_TESTS CONFIGURE_DEPENDS test/ladder/*_test.cpp)
