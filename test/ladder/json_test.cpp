@@ -94,6 +94,7 @@ TEST(LadderJson, AnUndrawableNetworkKeepsItsIlAndReason) {
   EXPECT_NE(j["reason"].get<std::string>().find("line 4"), std::string::npos);
   EXPECT_EQ(j["il"].size(), 4u);
   EXPECT_TRUE(j["elements"].empty());
+  EXPECT_EQ(j["instructions"], (nlohmann::json{0, 4}));  // for the coverage of its IL lines
 }
 
 TEST(LadderJson, FlowIsTheNetworkAndItsEnergisedIds) {
