@@ -94,7 +94,8 @@ TEST(LadderOutputs, AnOrLdAfterAnOutputHasNoPlanarLadder) {
 TEST(LadderOutputs, ABlockLeftOpenIsNotDrawable) {
   const Layout l = lay("ORG X0\nLD X1\nORG X2\nOUT Y0\nEND\n");
   EXPECT_FALSE(l.networks.at(0).drawable);
-  EXPECT_NE(l.networks.at(0).reason.find("left open"), std::string::npos) << l.networks.at(0).reason;
+  EXPECT_NE(l.networks.at(0).reason.find("line 2: 1 LD block(s) left open"), std::string::npos)
+      << l.networks.at(0).reason;
   EXPECT_TRUE(l.networks.at(1).drawable);
 }
 
@@ -105,6 +106,12 @@ TEST(LadderOutputs, ContactsAfterTheLastOutputHangBelowIt) {
   EXPECT_TRUE(vwire(n, 1, 0, 1));
   EXPECT_EQ(n.cols, 2);
   EXPECT_TRUE(cell(n, "Y0", 0, 2));
+}
+
+TEST(LadderOutputs, ContactsAfterTheLastOutputThatDoNotExtendItAreNotDrawable) {
+  const Network n = net0("ORG X0\nOUT Y0\nOR X1\nORG X2\nOUT Y1\nEND\n");
+  EXPECT_FALSE(n.drawable);
+  EXPECT_NE(n.reason.find("line 3: the contacts after the last output"), std::string::npos) << n.reason;
 }
 
 TEST(LadderOutputs, AnOutputAfterACallIsNotDrawable) {
