@@ -158,18 +158,16 @@ bool WsClient::closed_within(std::chrono::milliseconds timeout) {
   return impl_->closed;
 }
 
-int ws_refusal(uint16_t port, const std::string& host, const std::string& origin, const std::string& target) {
-  net::io_context ioc;
-  websocket::stream<beast::tcp_stream> ws(ioc);
-  beast::get_lowest_layer(ws).expires_after(kWait);
-  beast::get_lowest_layer(ws).connect(at(port));
-  ws.set_option(websocket::stream_base::decorator([origin](websocket::request_type& r) {
-    r.set(http::field::origin, origin);
-  }));
-  websocket::response_type res;
-  beast::error_code ec;
-  ws.handshake(res, host, target, ec);
-  return ec ? int(res.result_int()) : 0;
+int ws_upgrade(uint16_t port, const std::string& host, const std::string& origin, const std::string& target) {
+  HttpCall c;
+  c.target = target;
+  c.host = host;
+  c.origin = origin;
+  c.headers = {{"Connection", "Upgrade"},
+               {"Upgrade", "websocket"},
+               {"Sec-WebSocket-Version", "13"},
+               {"Sec-WebSocket-Key", "dGhlIHNhbXBsZSBub25jZQ=="}};
+  return http_call(port, c).status;
 }
 
 }  // namespace monitor_test

@@ -61,8 +61,8 @@ class WsClient {
   std::unique_ptr<Impl> impl_;
 };
 
-// The status of a refused WebSocket upgrade (0 when it was accepted).
-int ws_refusal(uint16_t port, const std::string& host, const std::string& origin, const std::string& target = "/api/live");
+// The status answering a WebSocket upgrade: 101 when accepted.
+int ws_upgrade(uint16_t port, const std::string& host, const std::string& origin, const std::string& target = "/api/live");
 
 }  // namespace monitor_test
 }  // namespace plc_cell

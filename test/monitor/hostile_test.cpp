@@ -68,7 +68,9 @@ TEST_F(MonitorTest, GeneratedHostileRequestsNeverStopTheServerOrTheScan) {
         c.body = g.json();
         const auto r = http_call(port, c);
         EXPECT_TRUE(r.status == 0 || (r.status >= 200 && r.status < 600)) << seed;
-        if (r.status >= 400) EXPECT_TRUE(r.json().contains("error")) << seed << " " << c.target << " -> " << r.body;
+        if (r.status >= 400) {
+          EXPECT_TRUE(r.json().contains("error")) << seed << " " << c.target << " -> " << r.body;
+        }
         break;
       }
       case 1: {  // raw bytes, half of them starting like HTTP

@@ -115,10 +115,10 @@ TEST_F(MonitorTest, BadSubscriptionsAreAnsweredWithAnErrorNamingTheField) {
 TEST_F(MonitorTest, WebSocketFromAForeignOriginOrHostIsRefused) {
   serve();
   const std::string self = "127.0.0.1:" + std::to_string(port);
-  EXPECT_EQ(ws_refusal(port, self, "http://evil.example"), 403);
-  EXPECT_EQ(ws_refusal(port, "evil.example:" + std::to_string(port), "http://evil.example:" + std::to_string(port)), 403);
-  EXPECT_EQ(ws_refusal(port, self, "http://" + self, "/elsewhere"), 404);
-  EXPECT_EQ(ws_refusal(port, self, "http://" + self), 0);
+  EXPECT_EQ(ws_upgrade(port, self, "http://evil.example"), 403);
+  EXPECT_EQ(ws_upgrade(port, "evil.example:" + std::to_string(port), "http://evil.example:" + std::to_string(port)), 403);
+  EXPECT_EQ(ws_upgrade(port, self, "http://" + self, "/elsewhere"), 404);
+  EXPECT_EQ(ws_upgrade(port, self, "http://" + self), 101);
 }
 
 TEST_F(MonitorTest, ASubscribedPageIsNotIdle) {
