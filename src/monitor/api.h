@@ -62,6 +62,11 @@ class Api {
   ApiReply replay_get();
   ApiReply replay_post(const nlohmann::json& body);
   ApiReply refuse_write(const std::string& what, const std::string& why);
+  // "" when the elements from a may be written, else why not.
+  std::string not_writable(const Address& a, uint32_t elements) const;
+  // A change the page asked for: refused (refusal not empty, or change throws) or done;
+  // logged to every page either way.
+  ApiReply apply(const std::string& what, const std::string& refusal, const std::function<void()>& change);
   void log(const std::string& text);
 
   Source& source_;

@@ -39,6 +39,22 @@ ApiReply Api::refuse_write(const std::string& what, const std::string& why) {
   return {403, "application/json", error_body(what + ": " + why)};
 }
 
+std::string Api::not_writable(const Address& a, uint32_t elements) const {
+  if (settings_.writable.allows(a.area, a.index, elements)) return "";
+  return format_address(a) + " is not writable (writable: " + settings_.writable.describe() + ")";
+}
+
+ApiReply Api::apply(const std::string& what, const std::string& refusal, const std::function<void()>& change) {
+  if (!refusal.empty()) return refuse_write(what, refusal);
+  try {
+    change();
+  } catch (const Error& e) {
+    return refuse_write(what, e.what());
+  }
+  log(what + " (accepted)");
+  return ok_reply();
+}
+
 ApiReply Api::post(const std::string& path, const nlohmann::json& body) {
   if (path == "/api/write") return write(body);
   if (path == "/api/force") return force(body);
@@ -61,16 +77,8 @@ ApiReply Api::write(const nlohmann::json& body) {
     values.push_back(encode_element(offset_address(a, uint32_t(i)), vs[i].get<int64_t>()));
     shown += (i ? "," : "") + std::to_string(vs[i].get<int64_t>());
   }
-  const std::string what = "write " + name + " = " + shown;
-  if (!settings_.writable.allows(a.area, a.index, elements(a, uint32_t(values.size()))))
-    return refuse_write(what, format_address(a) + " is not writable (writable: " + settings_.writable.describe() + ")");
-  try {
-    source_.write(a, values);
-  } catch (const Error& e) {
-    return refuse_write(what, e.what());
-  }
-  log(what + " (accepted)");
-  return ok_reply();
+  return apply("write " + name + " = " + shown, not_writable(a, elements(a, uint32_t(values.size()))),
+               [&] { source_.write(a, values); });
 }
 
 ApiReply Api::force(const nlohmann::json& body) {
@@ -80,37 +88,23 @@ ApiReply Api::force(const nlohmann::json& body) {
     throw Error("force: \"action\" must be on, off or release, not '" + action + "'");
   const Address a = resolve(name, *source_.program());
   if (a.width != Width::Bit) throw Error("force: " + name + " is not a single discrete");
-  const std::string what = "force " + name + " " + action;
-  if (!settings_.writable.allows(a.area, a.index, 1))
-    return refuse_write(what, format_address(a) + " is not writable (writable: " + settings_.writable.describe() + ")");
-  try {
+  return apply("force " + name + " " + action, not_writable(a, 1), [&] {
     if (action == "release") {
       source_.force(a, ForceAction::Enable);
     } else {
       source_.force(a, ForceAction::Disable);
       source_.force(a, action == "on" ? ForceAction::Set : ForceAction::Reset);
     }
-  } catch (const Error& e) {
-    return refuse_write(what, e.what());
-  }
-  log(what + " (accepted)");
-  return ok_reply();
+  });
 }
 
 ApiReply Api::mode(const nlohmann::json& body) {
   const std::string m = text_field(body, "mode", "mode");
   if (m != "run" && m != "stop") throw Error("mode: \"mode\" must be run or stop, not '" + m + "'");
-  const std::string what = "mode " + m;
   // RUN/STOP reaches every address: only a server writable everywhere switches it.
-  if (!settings_.writable.everything())
-    return refuse_write(what, "RUN/STOP needs writable: all (writable: " + settings_.writable.describe() + ")");
-  try {
-    source_.set_mode(m == "run" ? RunMode::Run : RunMode::Stop);
-  } catch (const Error& e) {
-    return refuse_write(what, e.what());
-  }
-  log(what + " (accepted)");
-  return ok_reply();
+  const std::string refusal =
+      settings_.writable.everything() ? "" : "RUN/STOP needs writable: all (writable: " + settings_.writable.describe() + ")";
+  return apply("mode " + m, refusal, [&] { source_.set_mode(m == "run" ? RunMode::Run : RunMode::Stop); });
 }
 
 ApiReply Api::replay_post(const nlohmann::json& body) {
