@@ -130,7 +130,8 @@ void group(Evaluation& ev, Rung* rung) {
     Group g;
     if (!last) g.extension = {ev.acc};
     else if (!extension_of(last, ev.acc, &g.extension))
-      ev.fail("the contacts after the last output do not extend its rung in series");
+      ev.fail(where(ev.p, ev.outputs.back().instruction + 1) +
+              ": the contacts after the last output do not extend its rung in series");
     rung->groups.push_back(std::move(g));
   }
 }
@@ -158,7 +159,7 @@ Rung build_rung(const Program& p, uint32_t first, uint32_t end) {
     else ev.output(i, &rung);
   }
   if (!ev.stack.empty())
-    ev.fail(std::to_string(ev.stack.size()) + " LD block(s) left open at the end of the network: "
+    ev.fail(where(p, end - 1) + ": " + std::to_string(ev.stack.size()) + " LD block(s) left open at the end of the network: "
             "no ANDLD or ORLD joins them to the rung");
   group(ev, &rung);
   rung.reason = ev.reason;
