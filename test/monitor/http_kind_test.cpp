@@ -34,9 +34,10 @@ TEST(HttpKind, YamlErrorsNameTheKeyAtItsLine) {
   } catch (const SourceError& e) {
     ASSERT_GE(e.diagnostics().size(), 1u) << e.what();
     const auto& d = e.diagnostics()[0];
-    EXPECT_NE(d.message.find("servers.http."), std::string::npos) << e.what();
-    EXPECT_GE(d.where.line, 6) << e.what();
-    EXPECT_NE(std::string(e.what()).find("cell.yaml:"), std::string::npos) << e.what();
+    EXPECT_NE(d.message.find("servers.http.writable"), std::string::npos) << e.what();
+    EXPECT_NE(d.message.find("'Q9'"), std::string::npos) << e.what();
+    EXPECT_EQ(d.where.line, 6) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cell.yaml:6:"), std::string::npos) << e.what();
   }
 }
 
