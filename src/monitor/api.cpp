@@ -89,9 +89,15 @@ nlohmann::json Api::status_json_now() {
 }
 
 nlohmann::json Api::status_message() {
-  auto j = status_json_now();
-  j["type"] = "status";
-  return j;
+  // Every page gets the status each second: one gathering serves all of them.
+  std::lock_guard<std::mutex> lk(status_mu_);
+  const auto now = std::chrono::steady_clock::now();
+  if (status_.is_null() || now - status_at_ >= std::chrono::milliseconds(500)) {
+    status_ = status_json_now();
+    status_["type"] = "status";
+    status_at_ = now;
+  }
+  return status_;
 }
 
 void Api::log(const std::string& text) {

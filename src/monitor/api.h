@@ -2,6 +2,7 @@
 // The monitor's HTTP API on a Source, without the transport (docs/monitor-api.md): the
 // Beast sessions hand each request here as plain text and send back what it returns, so
 // every rule (guard, token, writable ranges, limits, errors) is in this one place.
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -76,6 +77,9 @@ class Api {
   Events events_;
   std::mutex ladder_mu_;
   std::shared_ptr<const LadderView> ladder_;
+  std::mutex status_mu_;
+  nlohmann::json status_;  // the last status message, and when it was gathered
+  std::chrono::steady_clock::time_point status_at_;
 };
 
 }  // namespace monitor
