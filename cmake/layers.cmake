@@ -32,7 +32,9 @@ set(PLC_CELL_LAYER_RULES
   "runtime core io config timeline hsc temp motion sim persist fatek modbus tri comm"
   "scenario core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime"
   "explore core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario"
-  "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario")
+  "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario"
+  "recording core io config timeline coverage ladder monitor"
+  "remote core io config coverage ladder monitor fatek tri")
 
 set(PLC_CELL_LAYER_ROOTS ${CMAKE_CURRENT_BINARY_DIR}/layer_includes)
 set(plc_cell_layer_libraries)
