@@ -81,6 +81,7 @@ Reader Reader::parse(const std::string& bytes, const std::string& name) {
   try {
     read_info(r, &out.info_);
     out.keyframes_.emplace_back();
+    out.key_scans_.push_back(0);
     read_image(r, &out.keyframes_.back());
     out.initial_mode_ = read_mode(r, "initial mode");
     out.read_body(r);
@@ -118,7 +119,11 @@ void Reader::read_body(ByteReader& r) {
     s.end = changes_.size();
     scans_.push_back(s);
     apply(i, &img);
-    if ((i + 1) % kKeyframe == 0) keyframes_.push_back(img);
+    const size_t since = i + 1 - key_scans_.back();
+    if (since >= kKeyframeScans || s.end - scans_[key_scans_.back()].begin >= kKeyframeChanges) {
+      keyframes_.push_back(img);
+      key_scans_.push_back(i + 1);
+    }
   }
 }
 
@@ -147,8 +152,9 @@ size_t Reader::next_event(size_t from, int dir) const {
 
 void Reader::image_after(size_t i, Image* out) const {
   const size_t applied = std::min(i + 1, scans_.size());
-  *out = keyframes_[applied / kKeyframe];
-  for (size_t k = applied / kKeyframe * kKeyframe; k < applied; ++k) apply(k, out);
+  const size_t k = size_t(std::upper_bound(key_scans_.begin(), key_scans_.end(), applied) - key_scans_.begin()) - 1;
+  *out = keyframes_[k];
+  for (size_t n = key_scans_[k]; n < applied; ++n) apply(n, out);
 }
 
 std::vector<std::string> Reader::describe_changes(size_t i) const {

@@ -12,11 +12,12 @@ using testing::ConveyorRun;
 
 TEST(RecordingRoundTrip, EveryInstantAsAFreshRunOfTheDemo) {
   const std::string dir = testing::scratch_dir("round_trip");
-  const std::string path = testing::record_conveyor(dir, "7s");
+  const std::string path = testing::record_conveyor(dir, "40s");
   const recording::Reader rec = recording::Reader::load(path);
-  ASSERT_EQ(rec.scans(), 7000u);  // 1 ms scans
+  ASSERT_EQ(rec.scans(), 40000u);  // 1 ms scans
   EXPECT_EQ(rec.scan_us(0), 0u);
-  EXPECT_EQ(rec.scan_us(6999), 6999000u);
+  EXPECT_EQ(rec.scan_us(39999), 39999000u);
+  EXPECT_GE(rec.keyframes(), 3u);  // the instants below are rebuilt from several
   EXPECT_EQ(rec.info().program_file, "conveyor.il");
   EXPECT_NE(rec.info().program_text.find("OUT"), std::string::npos);
   EXPECT_EQ(rec.info().scan_period_us, 1000u);
@@ -25,10 +26,10 @@ TEST(RecordingRoundTrip, EveryInstantAsAFreshRunOfTheDemo) {
   EXPECT_FALSE(rec.info().failure_us);
 
   ConveyorRun fresh;
-  // Before, at and after the part's arrival (1 s), across keyframes, the robot's 1.5 s, the
-  // second part (6 s) and the last scan.
-  for (uint64_t t : {0ull, 1ull, 255000ull, 256000ull, 999000ull, 1000000ull, 1001000ull, 2500000ull, 2501000ull,
-                     6000000ull, 6999000ull}) {
+  // Before, at and after the part's arrival (1 s), the robot's 1.5 s, the second part
+  // (6 s), around the keyframes after 16384 and 32768 scans, and the last scan.
+  for (uint64_t t : {0ull, 1ull, 999000ull, 1000000ull, 1001000ull, 2500000ull, 2501000ull, 6000000ull,
+                     16383000ull, 16384000ull, 16385000ull, 32767000ull, 32768000ull, 39999000ull}) {
     const recording::Image expected = fresh.image_after(t);
     const size_t i = rec.scan_at(t);
     EXPECT_EQ(rec.scan_us(i), t / 1000 * 1000);

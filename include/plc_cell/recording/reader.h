@@ -1,7 +1,8 @@
 #pragma once
 // A recording read back (recording.h): its scans' instants and modes, the change events,
-// and the memory after any scan, rebuilt from the nearest keyframe (one every kKeyframe
-// scans, made while reading) and at most kKeyframe - 1 scans of changes. Reading checks
+// and the memory after any scan, rebuilt from the nearest keyframe before it (made while
+// reading, after kKeyframeChanges changes or kKeyframeScans scans, whichever comes first:
+// a quiet run needs few, and no rebuild applies more than that many). Reading checks
 // every byte: a file that is not a recording, of another version, cut short or damaged is
 // a RecordingError naming the file, the offset and why; nothing is half-read.
 #include <cstdint>
@@ -16,7 +17,8 @@
 namespace plc_cell {
 namespace recording {
 
-constexpr size_t kKeyframe = 256;
+constexpr size_t kKeyframeChanges = 4096;
+constexpr size_t kKeyframeScans = 16384;
 
 class ByteReader;
 
@@ -42,6 +44,7 @@ class Reader {
   // The memory after scan i; the memory before the first scan is initial().
   void image_after(size_t i, Image* out) const;
   const Image& initial() const { return keyframes_.front(); }
+  size_t keyframes() const { return keyframes_.size(); }
   // Addresses the changes of scan i touch, as text ("Y0 = 1", "D10 = 5").
   std::vector<std::string> describe_changes(size_t i) const;
 
@@ -62,7 +65,8 @@ class Reader {
   RunMode initial_mode_ = RunMode::Stop;
   std::vector<Scan> scans_;
   std::vector<Change> changes_;
-  std::vector<Image> keyframes_;  // [k]: memory after scans 0 .. k * kKeyframe - 1
+  std::vector<Image> keyframes_;   // [k]: the memory after the first key_scans_[k] scans
+  std::vector<size_t> key_scans_;
 };
 
 }  // namespace recording
