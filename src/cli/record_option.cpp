@@ -36,11 +36,15 @@ std::unique_ptr<recording::Recorder> record_case(scenario::CellTarget& target, c
   return rec;
 }
 
-std::string save_case(recording::Recorder& rec, const scenario::CaseResult& result, const std::string& dir) {
+std::string save_case(recording::Recorder& rec, const scenario::CaseResult& result, const std::string& dir,
+                      std::set<std::string>* used) {
   if (::mkdir(dir.c_str(), 0777) != 0 && errno != EEXIST)
     throw Error("cannot make the recording folder " + dir + ": " + std::strerror(errno));
   if (!result.passed) rec.set_failure(result.virtual_us, result.failure);
-  const std::string path = dir + "/" + recording::file_name_for(result.name);
+  std::string name = recording::file_name_for(result.name);
+  const std::string stem = name.substr(0, name.size() - std::strlen(recording::kExtension));
+  for (int n = 2; !used->insert(name).second; ++n) name = stem + "-" + std::to_string(n) + recording::kExtension;
+  const std::string path = dir + "/" + name;
   rec.save(path);
   return path;
 }

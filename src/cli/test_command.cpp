@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include "args.h"
@@ -80,6 +81,7 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   const bool coverage = args.has("coverage") || args.has("coverage-json") || args.has("coverage-html");
   coverage::Recorders recorders;
   std::vector<scenario::CaseResult> results;
+  std::set<std::string> recorded;  // the recordings' file names
   uint64_t virtual_us = 0;
   for (const auto& sc : files)
     for (const auto& c : sc.cases) {
@@ -92,7 +94,7 @@ int cmd_test(const std::vector<std::string>& argv_in) {
       virtual_us += results.back().virtual_us;
       print_result(sc, results.back());
       if (rec) {
-        const std::string path = save_case(*rec, results.back(), args.get("record"));
+        const std::string path = save_case(*rec, results.back(), args.get("record"), &recorded);
         if (!results.back().passed) std::cout << "    recorded: " << monitor_command_for(path) << "\n";
       }
     }
