@@ -20,6 +20,7 @@ set(PLC_CELL_LAYER_RULES
   "config core io"
   "timeline core"
   "coverage core"
+  "ladder core"
   "hsc core io config timeline"
   "temp core io config"
   "motion core io config timeline hsc"
@@ -29,10 +30,11 @@ set(PLC_CELL_LAYER_RULES
   "tri core io config"
   "modbus core io config tri"
   "comm core io config fatek modbus tri"
-  "runtime core io config timeline hsc temp motion sim persist fatek modbus tri comm"
-  "scenario core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime"
-  "explore core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario"
-  "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario"
+  "monitor core io config coverage ladder"
+  "runtime core io config timeline hsc temp motion sim persist fatek modbus tri comm coverage ladder monitor"
+  "scenario core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime coverage ladder monitor"
+  "explore core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor"
+  "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario ladder monitor"
   "recording core io config timeline coverage ladder monitor"
   "remote core io config coverage ladder monitor fatek tri")
 
