@@ -7,7 +7,7 @@ add_library(plc_cell_recording STATIC ${RECORDING_SOURCES})
 target_link_libraries(plc_cell_recording PUBLIC plc_cell_config PRIVATE ZLIB::ZLIB)
 set_target_properties(plc_cell_recording PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
-list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/record_option.cpp)
+list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/record_option.cpp ${PROJECT_SOURCE_DIR}/src/cli/monitor_command.cpp)
 list(APPEND PLC_CELL_TOOL_LIBS plc_cell_recording)
 
 if(CATKIN_ENABLE_TESTING)
