@@ -1,0 +1,208 @@
+// Watch tables: named lists of addresses or signal names, one format per row, with writing
+// and forcing through the API. The tables are kept in localStorage and can be downloaded
+// and loaded again as a JSON file: {"tables": [{"name", "rows": [{"address", "format"}]}]}.
+
+import * as api from "./api.js";
+import {FORMATS, isBit, isWide, parse, readAddress, show} from "./format.js";
+import {download, html} from "./dom.js";
+
+const STORE = "plc_cell.monitor.watch";
+
+function validTables(data) {
+  if (!data || !Array.isArray(data.tables)) throw new Error('a watch file holds {"tables": [...]}');
+  return data.tables.map((t, i) => {
+    if (!t || !Array.isArray(t.rows)) throw new Error(`table ${i + 1} has no "rows" list`);
+    return {name: String(t.name || `table ${i + 1}`),
+            rows: t.rows.filter((r) => r && r.address).map((r) => ({
+              address: String(r.address).trim(), format: FORMATS.includes(r.format) ? r.format : "unsigned"}))};
+  });
+}
+
+export class Watch {
+  constructor(root, {changed, log}) {
+    this.root = root;
+    this.changed = changed;  // the subscription must change
+    this.log = log;          // (text, level) into the log panel
+    this.values = {};
+    this.readOnly = false;
+    this.tables = this.load();
+    this.current = 0;
+    this.build();
+  }
+
+  load() {
+    try {
+      const saved = localStorage.getItem(STORE);
+      if (saved) return validTables(JSON.parse(saved));
+    } catch (e) {
+      console.warn("watch tables in localStorage ignored:", e.message);
+    }
+    return [{name: "watch 1", rows: []}];
+  }
+
+  save() {
+    localStorage.setItem(STORE, JSON.stringify({tables: this.tables}));
+  }
+
+  table() {
+    return this.tables[this.current];
+  }
+
+  build() {
+    this.root.textContent = "";
+    const bar = html("div", {class: "bar"}, this.root);
+    this.picker = html("select", {id: "watch-table", title: "watch table",
+                                  onchange: () => this.select(Number(this.picker.value))}, bar);
+    html("button", {onclick: () => this.newTable()}, bar, "New table");
+    html("button", {onclick: () => this.deleteTable()}, bar, "Delete table");
+    html("button", {id: "watch-download", onclick: () => this.download()}, bar, "Download");
+    const upload = html("input", {type: "file", accept: ".json,application/json", id: "watch-upload"}, bar);
+    upload.addEventListener("change", () => upload.files[0] && this.upload(upload.files[0]));
+    const add = html("form", {class: "add", id: "watch-add-form"}, this.root);
+    this.input = html("input", {id: "watch-add", placeholder: "D0, X1, temp_pv ...", size: 24}, add);
+    html("button", {type: "submit"}, add, "Add");
+    add.addEventListener("submit", (ev) => {
+      ev.preventDefault();
+      for (const a of this.input.value.split(/[\s,;]+/).filter(Boolean)) this.add(a);
+      this.input.value = "";
+    });
+    const table = html("table", {class: "watch", id: "watch"}, this.root);
+    const head = html("tr", {}, html("thead", {}, table));
+    for (const h of ["address", "format", "value", "write", "force", ""]) html("th", {}, head, h);
+    this.body = html("tbody", {}, table);
+    this.redraw();
+  }
+
+  redraw() {
+    this.picker.textContent = "";
+    this.tables.forEach((t, i) => html("option", {value: i}, this.picker, t.name));
+    this.picker.value = this.current;
+    this.body.textContent = "";
+    this.cells = [];
+    this.table().rows.forEach((row, i) => this.cells.push(this.renderRow(row, i)));
+    this.applyValues(this.values);
+  }
+
+  renderRow(row, i) {
+    const tr = html("tr", {}, this.body);
+    tr.dataset.address = row.address;
+    html("td", {class: "address"}, tr, row.address);
+    const fmt = html("select", {class: "format"}, html("td", {}, tr));
+    for (const f of FORMATS) html("option", {value: f}, fmt, f);
+    fmt.value = row.format;
+    fmt.addEventListener("change", () => this.setFormat(i, fmt.value));
+    const value = html("td", {class: "value"}, tr);
+    const wcell = html("td", {}, tr);
+    const form = html("form", {class: "write"}, wcell);
+    const input = html("input", {class: "write-value", size: 8, placeholder: "value"}, form);
+    html("button", {type: "submit", class: "write-button"}, form, "Write");
+    form.addEventListener("submit", (ev) => {
+      ev.preventDefault();
+      this.write(row, input.value);
+    });
+    const fcell = html("td", {class: "force"}, tr);
+    if (isBit(row.address) || !/^[A-Z]+\d+$/i.test(row.address)) {
+      for (const action of ["on", "off", "release"])
+        html("button", {class: `force-${action}`, onclick: () => this.force(row.address, action)}, fcell, action);
+    }
+    html("button", {class: "remove", title: "remove the row", onclick: () => this.remove(i)}, html("td", {}, tr), "×");
+    return {row, value};
+  }
+
+  add(address) {
+    const rows = this.table().rows;
+    if (!rows.some((r) => r.address === address)) rows.push({address, format: "unsigned"});
+    this.commit();
+  }
+
+  remove(i) {
+    this.table().rows.splice(i, 1);
+    this.commit();
+  }
+
+  setFormat(i, format) {
+    this.table().rows[i].format = format;
+    this.commit();
+  }
+
+  commit() {
+    this.save();
+    this.redraw();
+    this.changed();
+  }
+
+  select(i) {
+    this.current = Math.max(0, Math.min(i, this.tables.length - 1));
+    this.redraw();
+    this.changed();
+  }
+
+  newTable() {
+    this.tables.push({name: `watch ${this.tables.length + 1}`, rows: []});
+    this.current = this.tables.length - 1;
+    this.commit();
+  }
+
+  deleteTable() {
+    this.tables.splice(this.current, 1);
+    if (!this.tables.length) this.tables.push({name: "watch 1", rows: []});
+    this.current = 0;
+    this.commit();
+  }
+
+  download() {
+    download("watch-tables.json", JSON.stringify({tables: this.tables}, null, 2), "application/json");
+  }
+
+  async upload(file) {
+    try {
+      this.tables = validTables(JSON.parse(await file.text()));
+      this.current = 0;
+      this.commit();
+      this.log(`loaded ${this.tables.length} watch table(s) from ${file.name}`, "info");
+    } catch (e) {
+      this.log(`${file.name}: ${e.message}`, "error");
+    }
+  }
+
+  // What the subscription must read for the current table.
+  addresses() {
+    return this.table().rows.map((r) => readAddress(r.address, r.format));
+  }
+
+  applyValues(values) {
+    this.values = values;
+    for (const {row, value} of this.cells) {
+      const key = readAddress(row.address, row.format);
+      if (!(key in values)) continue;
+      const text = show(values[key], row.format);
+      if (value.textContent !== text) value.textContent = text;
+    }
+  }
+
+  async write(row, text) {
+    const address = readAddress(row.address, row.format);
+    let v;
+    try {
+      v = parse(text, row.format);
+    } catch (e) {
+      this.log(`write ${address}: ${e.message}`, "error");
+      return;
+    }
+    try {
+      await api.write(address, [v]);
+      this.log(`write ${address} = ${text.trim()}${isWide(row.format) ? ` (${row.format})` : ""}: accepted`, "own");
+    } catch (e) {
+      this.log(`write ${address} = ${text.trim()} refused: ${e.message}`, "error");
+    }
+  }
+
+  async force(address, action) {
+    try {
+      await api.force(address, action);
+      this.log(`force ${address} ${action}: accepted`, "own");
+    } catch (e) {
+      this.log(`force ${address} ${action} refused: ${e.message}`, "error");
+    }
+  }
+}
