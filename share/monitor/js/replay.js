@@ -25,7 +25,7 @@ export class ReplayBar {
 
   build() {
     this.root.textContent = "";
-    const steps = [["⏮ event", "event", -1], ["◀ scan", "scan", -1], ["scan ▶", "scan", 1], ["event ⏭", "event", 1]];
+    const steps = [["◀◀ event", "event", -1], ["◀ scan", "scan", -1], ["scan ▶", "scan", 1], ["event ▶▶", "event", 1]];
     const back = html("span", {class: "steps"}, this.root);
     for (const [label, step, n] of steps.slice(0, 2))
       html("button", {class: `step-${step}-${n < 0 ? "back" : "fwd"}`, onclick: () => this.move({step, n})}, back, label);

@@ -28,12 +28,9 @@ function panel(parent, title, level = "ok", id = null) {
 
 // Why RUN/STOP is not offered, or "" when it is.
 export function modeRefusal(status, session) {
+  if (session && session.kind === "replay") return "a recording cannot change mode";
   if (!status) return "the cell's status is not known yet";
-  if (!status.mode_switchable) {
-    return session && session.kind === "replay" ? "a recording cannot change mode"
-         : session && session.kind === "remote" ? "this source does not allow RUN/STOP from the page"
-         : "this cell does not allow RUN/STOP from the page";
-  }
+  if (!status.mode_switchable) return "this source does not allow RUN/STOP from the page";
   const writable = (session && session.writable) || "";
   if (!writable || writable === "none") return "the server is read-only (writable: none)";
   return "";
