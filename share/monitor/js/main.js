@@ -219,3 +219,5 @@ function wire() {
 
 wire();
 live.connect();
+// For the browser tests and the console: the page's parts.
+window.plcMonitor = {page, ladder, watch, trends, live};
