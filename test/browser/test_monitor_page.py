@@ -9,7 +9,7 @@ import subprocess
 
 import pytest
 
-from conftest import WRITABLE, conveyor_cell, free_port, js, open_page, ros_env, run, shell, stop, wait, \
+from conftest import conveyor_cell, free_port, get_json, js, open_page, ros_env, run, shell, stop, wait, \
     wait_for_server
 
 PROGRAM = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
@@ -138,7 +138,8 @@ def test_forcing_inside_the_writable_ranges_and_outside(cell, browser):
     watch_add(browser, "Y0").find_element("css selector", "button.force-on").click()
     refused = wait(browser, "the refusal of forcing Y0", lambda d: [l for l in log_lines(d)
                                                                     if l.startswith("error") and "Y0" in l])
-    assert "not writable" in refused[0] and WRITABLE in refused[0], refused
+    writable = get_json(cell["base"] + "/api/session")["writable"]
+    assert "Y0 is not writable" in refused[0] and writable in refused[0], refused
 
 
 def test_a_trend_collects_points(cell, browser):

@@ -33,6 +33,16 @@ async function call(method, path, body) {
   return data;
 }
 
+// Whether every name or address can be read: "" or the server's reason.
+export async function unreadable(names) {
+  try {
+    if (names.length) await read(names);
+    return "";
+  } catch (e) {
+    return e.message;
+  }
+}
+
 export const get = (path) => call("GET", path);
 export const post = (path, body) => call("POST", path, body);
 
@@ -42,6 +52,7 @@ export const status = () => get("/api/status");
 export const coverage = () => get("/api/coverage");
 export const replayState = () => get("/api/replay");
 export const replayMove = (body) => post("/api/replay", body);
+export const read = (names) => get(`/api/read?a=${encodeURIComponent(names.join(","))}`);
 export const write = (address, values) => post("/api/write", {address, values});
 export const force = (address, action) => post("/api/force", {address, action});
 export const setMode = (mode) => post("/api/mode", {mode});

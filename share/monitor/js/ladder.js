@@ -23,17 +23,6 @@ function colX(c) {
   return LEFT + c * sym.CELL_W;
 }
 
-// The addresses a network's drawing reads: what the subscription must bring.
-export function networkAddresses(net) {
-  const out = [];
-  for (const el of net.elements || []) {
-    if (el.address) out.push(el.address);
-    for (const v of el.values || []) out.push(v);
-    for (const op of el.operands || []) if (op.address) out.push(op.address);
-  }
-  return out;
-}
-
 export class Ladder {
   constructor(container, onAddress) {
     this.container = container;

@@ -7,7 +7,7 @@
 import * as api from "./api.js";
 import {coverageByLine} from "./coverage.js";
 import {show} from "./format.js";
-import {Ladder, networkAddresses} from "./ladder.js";
+import {Ladder} from "./ladder.js";
 import {Live} from "./live.js";
 import {Log} from "./log.js";
 import {ReplayBar} from "./replay.js";
@@ -22,9 +22,8 @@ const log = new Log($("log"));
 const addLog = (text, level) => log.add(text, level);
 const watch = new Watch($("watch-panel"), {changed: () => resubscribe(), log: addLog});
 const trends = new Trends($("trends-panel"), {changed: () => resubscribe(), log: addLog});
-const ladder = new Ladder($("ladder"), (address) => {
-  watch.add(address);
-  toast(`${address} added to the watch table`);
+const ladder = new Ladder($("ladder"), async (address) => {
+  if (await watch.add(address)) toast(`${address} added to the watch table`);
 });
 const observer = new IntersectionObserver(onVisibility, {root: null, rootMargin: "200px"});
 const live = new Live({frame: onFrame, status: onStatus, log: onLogEvent, program: () => loadLadder(),
@@ -44,12 +43,8 @@ function rate() {
 
 function resubscribe() {
   const networks = [...page.visible];
-  const wanted = [...watch.addresses(), ...trends.addresses()];
-  for (const i of networks) {
-    const e = ladder.entry(i);
-    if (e) wanted.push(...networkAddresses(e.net));
-  }
-  live.subscribe(networks, wanted, rate());
+  // The server adds what the networks' drawing reads (ladder::addresses).
+  live.subscribe(networks, [...watch.addresses(), ...trends.addresses()], rate());
 }
 
 function onVisibility(entries) {
@@ -150,6 +145,7 @@ async function onOpen() {
     await loadLadder();
     await loadStatus();
     banner("");
+    await watch.validate();
   } catch (e) {
     banner(`The server answered but the page could not load: ${e.message}. Retrying…`);
     setTimeout(onOpen, 1000);

@@ -31,8 +31,10 @@ export function modeRefusal(status, session) {
   if (session && session.kind === "replay") return "a recording cannot change mode";
   if (!status) return "the cell's status is not known yet";
   if (!status.mode_switchable) return "this source does not allow RUN/STOP from the page";
-  const writable = (session && session.writable) || "";
-  if (!writable || writable === "none") return "the server is read-only (writable: none)";
+  // RUN/STOP reaches every address: the server switches it only when everything is writable.
+  const writable = (session && session.writable) || "none";
+  if (writable === "none") return "the server is read-only (writable: none)";
+  if (writable !== "all") return `RUN/STOP needs writable: all (writable: ${writable})`;
   return "";
 }
 

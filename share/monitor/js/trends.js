@@ -2,6 +2,7 @@
 // dygraphs (Debian's libjs-dygraphs, served under /vendor/dygraphs/). Pause freezes the
 // drawing (points keep being collected); CSV exports what the window holds.
 
+import * as api from "./api.js";
 import {show} from "./format.js";
 import {download, html} from "./dom.js";
 
@@ -39,8 +40,13 @@ export class Trends {
     this.plot = html("div", {id: "trend-plot", class: "plot"}, this.root);
   }
 
-  add(address) {
+  async add(address) {
     if (this.series.includes(address)) return;
+    const why = await api.unreadable([address]);
+    if (why) {
+      this.log(`trend ${address}: ${why}`, "error");
+      return;
+    }
     this.series.push(address);
     this.rows = this.rows.map((r) => [...r, null]);
     this.redrawChips();

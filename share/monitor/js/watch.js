@@ -24,7 +24,7 @@ export class Watch {
     this.changed = changed;  // the subscription must change
     this.log = log;          // (text, level) into the log panel
     this.values = {};
-    this.readOnly = false;
+    this.bad = new Map();  // read address -> why the cell cannot read it
     this.tables = this.load();
     this.current = 0;
     this.build();
@@ -86,7 +86,12 @@ export class Watch {
   renderRow(row, i) {
     const tr = html("tr", {}, this.body);
     tr.dataset.address = row.address;
-    html("td", {class: "address"}, tr, row.address);
+    const name = html("td", {class: "address"}, tr, row.address);
+    const why = this.bad.get(readAddress(row.address, row.format));
+    if (why) {
+      tr.classList.add("invalid");
+      name.title = why;
+    }
     const fmt = html("select", {class: "format"}, html("td", {}, tr));
     for (const f of FORMATS) html("option", {value: f}, fmt, f);
     fmt.value = row.format;
@@ -109,10 +114,32 @@ export class Watch {
     return {row, value};
   }
 
-  add(address) {
+  // A name or address the cell cannot read is refused here, with the server's reason: in
+  // the subscription it would make the server refuse the whole list.
+  async add(address) {
+    const why = await api.unreadable([address]);
+    if (why) {
+      this.log(`watch ${address}: ${why}`, "error");
+      return false;
+    }
     const rows = this.table().rows;
     if (!rows.some((r) => r.address === address)) rows.push({address, format: "unsigned"});
     this.commit();
+    return true;
+  }
+
+  // Marks the rows this cell cannot read (tables saved for another cell); they stay in the
+  // table but out of the subscription.
+  async validate() {
+    this.bad = new Map();
+    const wanted = this.table().rows.map((r) => readAddress(r.address, r.format));
+    if (!(await api.unreadable(wanted))) return this.redraw();
+    for (const a of wanted) {
+      const why = await api.unreadable([a]);
+      if (why) this.bad.set(a, why);
+    }
+    this.redraw();
+    this.changed();
   }
 
   remove(i) {
@@ -120,9 +147,10 @@ export class Watch {
     this.commit();
   }
 
-  setFormat(i, format) {
+  async setFormat(i, format) {
     this.table().rows[i].format = format;
     this.commit();
+    await this.validate();
   }
 
   commit() {
@@ -135,6 +163,7 @@ export class Watch {
     this.current = Math.max(0, Math.min(i, this.tables.length - 1));
     this.redraw();
     this.changed();
+    this.validate();
   }
 
   newTable() {
@@ -159,6 +188,7 @@ export class Watch {
       this.tables = validTables(JSON.parse(await file.text()));
       this.current = 0;
       this.commit();
+      await this.validate();
       this.log(`loaded ${this.tables.length} watch table(s) from ${file.name}`, "info");
     } catch (e) {
       this.log(`${file.name}: ${e.message}`, "error");
@@ -167,7 +197,7 @@ export class Watch {
 
   // What the subscription must read for the current table.
   addresses() {
-    return this.table().rows.map((r) => readAddress(r.address, r.format));
+    return this.table().rows.map((r) => readAddress(r.address, r.format)).filter((a) => !this.bad.has(a));
   }
 
   applyValues(values) {
