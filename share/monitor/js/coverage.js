@@ -1,8 +1,8 @@
 // The coverage overlay: GET /api/coverage gives, per instruction in program order, what it
-// did since coverage started (bit 0: evaluated with its rung off, bit 1: energised). The
-// ladder colours by IL line, so the instructions are matched to lines: by the answer's own
-// "lines" when it gives them, else by the ladder's IL listing, one entry per instruction in
-// program order.
+// did since coverage started (bit 0: evaluated with its rung off, bit 1: energised). Drawn
+// elements carry their instruction's index; the IL listing of an undrawable network is
+// coloured by line, the instructions matched to lines by the answer's own "lines" when it
+// gives them, else by the ladder's IL listings, one entry per instruction in program order.
 
 import * as api from "./api.js";
 
@@ -12,16 +12,16 @@ function instructionLines(ladderData) {
   return lines;
 }
 
-// line -> seen bits, or null with the reason when there is no coverage.
-export async function coverageByLine(ladderData) {
+// {seen: per instruction, byLine: line -> seen bits}, or null with the reason when there is no coverage.
+export async function coverage(ladderData) {
   const data = await api.coverage();
-  if (!data.available) return {byLine: null, why: data.reason || "this source has no coverage"};
+  if (!data.available) return {cov: null, why: data.reason || "this source has no coverage"};
   const lines = Array.isArray(data.lines) ? data.lines : instructionLines(ladderData);
+  const seen = data.seen || [];
   const byLine = new Map();
-  (data.seen || []).forEach((seen, i) => {
+  seen.forEach((bits, i) => {
     const line = lines[i];
-    if (line === undefined) return;
-    byLine.set(line, (byLine.get(line) || 0) | seen);
+    if (line !== undefined) byLine.set(line, (byLine.get(line) || 0) | bits);
   });
-  return {byLine, why: ""};
+  return {cov: {seen, byLine}, why: ""};
 }

@@ -49,7 +49,8 @@ export class Ladder {
     html("span", {class: "netno"}, head, `${net.index}`);
     html("span", {class: "comment"}, head, net.comment || "");
     html("span", {class: "lineno"}, head, net.line ? `line ${net.line}` : "");
-    const entry = {net, div, parts: new Map(), lines: new Map(), on: new Set(), text: this.searchText(net)};
+    const entry = {net, div, parts: new Map(), lines: new Map(), instructions: new Map(), on: new Set(),
+                   text: this.searchText(net)};
     if (net.drawable === false) this.renderIl(entry);
     else this.renderSvg(entry);
     return entry;
@@ -92,23 +93,25 @@ export class Ladder {
         : svg("line", {x1: colX(w.from), y1: y(w.row), x2: colX(w.to), y2: y(w.row), class: "wire"}, root);
       this.remember(entry.parts, w.id, node);
     }
-    for (const el of net.elements || []) this.renderElement(entry, root, el, cols, y(el.row));
+    for (const el of net.elements || []) this.renderElement(entry, root, el, cols, y(el.row), y);
     for (const node of root.querySelectorAll("[data-value]")) this.remember(this.valueNodes, node.dataset.value, node);
   }
 
-  renderElement(entry, root, el, cols, y) {
+  renderElement(entry, root, el, cols, y, rowY) {
     const g = svg("g", {class: `el ${el.type}`}, root);
     g.dataset.id = el.id;
     if (el.address) g.dataset.address = el.address;
-    const named = {...el, name: el.name || this.signals[el.address] || ""};
-    const title = [el.address, named.name, el.line ? `line ${el.line}` : ""].filter(Boolean).join("  ");
+    const named = {...el, name: el.name || this.signals[el.address] || "", inputDy: {}};
+    for (const input of el.inputs || []) named.inputDy[input.row] = rowY(input.row) - y;
+    const title = [el.address, named.name, el.comment, el.line ? `line ${el.line}` : ""].filter(Boolean).join("  ");
     if (title) svg("title", {}, g, title);
     if (el.col >= cols) sym.output(g, named, colX(cols), sym.OUTPUT_W, y, this.onAddress);
     else if (el.type === "contact") sym.contact(g, named, colX(el.col), sym.CELL_W, y, this.onAddress);
     else if (el.type === "not") sym.not(g, named, colX(el.col), sym.CELL_W, y);
-    else sym.box(g, named, colX(el.col), sym.CELL_W, y, (el.mnemonic || el.type).toUpperCase(), [], this.onAddress);
+    else sym.inline(g, named, colX(el.col), sym.CELL_W, y, this.onAddress);
     this.remember(entry.parts, el.id, g);
-    if (el.line) this.remember(entry.lines, el.line, g);
+    if (Number.isInteger(el.instruction)) this.remember(entry.instructions, el.instruction, g);
+    else if (el.line) this.remember(entry.lines, el.line, g);
   }
 
   remember(map, key, node) {
@@ -142,17 +145,18 @@ export class Ladder {
     }
   }
 
-  // Coverage per IL line: seenByLine maps line -> 0..3 (bit 0 evaluated off, bit 1 energised).
-  applyCoverage(seenByLine) {
-    for (const e of this.nets) {
-      for (const [line, nodes] of e.lines) {
-        const seen = seenByLine ? seenByLine.get(line) : undefined;
-        for (const n of nodes) {
-          n.classList.remove("cov-on", "cov-off", "cov-never");
-          if (seen === undefined) continue;
-          n.classList.add(seen & 2 ? "cov-on" : seen & 1 ? "cov-off" : "cov-never");
-        }
+  // Coverage: per instruction (elements) and per IL line (the listing of an undrawable
+  // network), 0..3 (bit 0 evaluated with its rung off, bit 1 energised); null clears it.
+  applyCoverage(cov) {
+    const paint = (nodes, seen) => {
+      for (const n of nodes) {
+        n.classList.remove("cov-on", "cov-off", "cov-never");
+        if (seen !== undefined) n.classList.add(seen & 2 ? "cov-on" : seen & 1 ? "cov-off" : "cov-never");
       }
+    };
+    for (const e of this.nets) {
+      for (const [i, nodes] of e.instructions) paint(nodes, cov ? cov.seen[i] : undefined);
+      for (const [line, nodes] of e.lines) paint(nodes, cov ? cov.byLine.get(line) : undefined);
     }
   }
 

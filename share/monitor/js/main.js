@@ -5,7 +5,7 @@
 // and maybe a new program).
 
 import * as api from "./api.js";
-import {coverageByLine} from "./coverage.js";
+import {coverage} from "./coverage.js";
 import {show} from "./format.js";
 import {Ladder} from "./ladder.js";
 import {Live} from "./live.js";
@@ -157,13 +157,13 @@ function onClose(why, delay) {
          "The page shows the last values it received.");
 }
 
-async function refreshCoverage() {
+async function refreshCoverage(asked = false) {
   if (!page.ladderData) return;
   try {
-    const {byLine, why} = await coverageByLine(page.ladderData);
-    ladder.applyCoverage(byLine);
+    const {cov, why} = await coverage(page.ladderData);
+    ladder.applyCoverage(cov);
     $("coverage-toggle").title = why || "coverage since the start: green energised, red evaluated only, grey never run";
-    if (!byLine) toast(`no coverage: ${why}`);
+    if (!cov && asked) toast(`no coverage: ${why}`);
   } catch (e) {
     addLog(`coverage: ${e.message}`, "error");
   }
@@ -175,7 +175,7 @@ async function toggleCoverage() {
   button.setAttribute("aria-pressed", String(page.coverage));
   button.classList.toggle("active", page.coverage);
   document.body.classList.toggle("coverage", page.coverage);
-  if (page.coverage) await refreshCoverage();
+  if (page.coverage) await refreshCoverage(true);
   else ladder.applyCoverage(null);
 }
 

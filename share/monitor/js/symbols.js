@@ -8,6 +8,7 @@ export const CELL_W = 100;     // a contact column
 export const OUTPUT_W = 230;   // the output column (coils, boxes)
 export const RUNG_Y = 30;      // the rung line's offset from the row's top
 export const ROW_H = 62;       // a row with no box
+const STUB = 28;               // the wire into a box, room for an input's name
 
 const CONTACT_MARK = {no: "", nc: "/", up: "↑", down: "↓"};
 const COIL_MARK = {out: "", out_not: "/", set: "S", rst: "R"};
@@ -57,19 +58,28 @@ export function coil(g, el, x0, w, y, onAddress) {
 
 // A box at the output column: a title and lines of "label value" under it. Values that
 // follow an address are <tspan data-value="ADDR">, filled in by every frame.
+// A FUN's further inputs (el.inputs: [{name, row}], their rows' offsets in el.inputDy) come
+// in from the left at their own rows, each with its name over the wire.
 export function box(g, el, x0, w, y, title, rows, onAddress) {
-  line(g, x0, y, x0 + 14, y);
-  const h = boxHeight(rows.length);
-  svg("rect", {x: x0 + 14, y: y - 14, width: w - 24, height: h, rx: 3, class: "sym box"}, g);
-  svg("text", {x: x0 + 22, y: y + 4, class: "boxtitle"}, g, title);
+  const inputs = el.inputs && el.inputs.length ? el.inputs : [{name: "", row: el.row}];
+  const reach = Math.max(0, ...inputs.map((i) => (el.inputDy || {})[i.row] || 0));
+  for (const input of inputs) {
+    const iy = y + ((el.inputDy || {})[input.row] || 0);
+    line(g, x0, iy, x0 + STUB, iy);
+    if (input.name) svg("text", {x: x0 + 2, y: iy - 3, class: "input"}, g, input.name);
+  }
+  const h = Math.max(boxHeight(rows.length), reach + 26);
+  svg("rect", {x: x0 + STUB, y: y - 14, width: w - STUB - 10, height: h, rx: 3, class: "sym box"}, g);
+  svg("text", {x: x0 + STUB + 8, y: y + 4, class: "boxtitle"}, g, title);
   rows.forEach((r, i) => {
-    const t = svg("text", {x: x0 + 22, y: y + 22 + 16 * i, class: "boxrow"}, g);
+    const t = svg("text", {x: x0 + STUB + 8, y: y + 22 + 16 * i, class: "boxrow"}, g);
     svg("tspan", {class: "oplabel"}, t, r.label ? `${r.label}: ` : "");
     const text = svg("tspan", {class: r.address ? "addr" : "operand"}, t, r.text);
     if (r.address) {
       text.dataset.address = r.address;
       text.addEventListener("click", () => onAddress(r.address));
       svg("tspan", {class: "value", "data-value": r.value || r.address}, t, "");
+      if (r.signal) svg("tspan", {class: "name"}, t, ` ${r.signal}`);
     }
   });
 }
@@ -81,7 +91,7 @@ export function boxHeight(nrows) {
 function timerRows(el) {
   const values = el.values || [];
   const current = values.find((v) => v !== el.address) || values[1];
-  const rows = [{label: "PV", text: String(el.preset ?? "")}];
+  const rows = [{label: "PV", text: String(el.preset ?? ""), address: el.preset_address || null}];
   if (current) rows.push({label: "CV", text: current, address: current});
   if (el.address) rows.push({label: "out", text: el.address, address: el.address});
   return rows;
@@ -89,20 +99,27 @@ function timerRows(el) {
 
 function funRows(el) {
   return (el.operands || []).map((op) => ({label: op.name, text: op.text ?? op.address ?? "",
-                                           address: op.address || null}));
+                                           address: op.address || null, signal: op.signal || ""}));
 }
 
+// "FUN 8D MOV": the number with its 32-bit (D) and pulse (P) marks, then the mnemonic.
 function funTitle(el) {
   const flags = `${el.d32 ? "D" : ""}${el.pulse ? "P" : ""}`;
-  const name = el.mnemonic ? ` ${el.mnemonic}` : "";
-  return `FUN${el.fun ?? ""}${flags}${name}`;
+  const name = el.mnemonic && !/^FUN\b/.test(el.mnemonic) ? ` ${el.mnemonic}` : "";
+  return `FUN ${el.fun ?? ""}${flags}${name}`;
+}
+
+const FLOW_TITLE = {jump: "JMP", call: "CALL", label: "LBL"};
+
+function otherTitle(el) {
+  const head = FLOW_TITLE[el.type] || el.form || el.mnemonic || el.type.toUpperCase();
+  return [head, el.label || ""].join(" ").trim();
 }
 
 // The rows an output box has (for the row's height before drawing).
 export function outputRows(el) {
   if (el.type === "timer" || el.type === "counter") return timerRows(el);
-  if (el.type === "fun") return funRows(el);
-  return [];
+  return funRows(el);
 }
 
 export function output(g, el, x0, w, y, onAddress) {
@@ -115,9 +132,12 @@ export function output(g, el, x0, w, y, onAddress) {
                  timerRows(el), onAddress);
     case "fun":
       return box(g, el, x0, w, y, funTitle(el), funRows(el), onAddress);
-    default: {
-      const title = [el.mnemonic || el.type.toUpperCase(), el.label || el.text || ""].join(" ").trim();
-      return box(g, el, x0, w, y, title, [], onAddress);
-    }
+    default:
+      return box(g, el, x0, w, y, otherTitle(el), funRows(el), onAddress);
   }
+}
+
+// An element that is not a contact inside the rung (a label, a flow mark): a small box.
+export function inline(g, el, x0, w, y, onAddress) {
+  box(g, el, x0, w, y, otherTitle(el), funRows(el), onAddress);
 }
