@@ -107,19 +107,34 @@ def test_a_contact_lights_up_when_its_input_is_set_through_ros(cell, browser):
     wait(browser, "X0 drawn off again after ~write X0 [0]", lambda d: not energised(d, "X0"))
 
 
+def watch_format(driver, address, fmt):
+    row = driver.find_element("css selector", '#watch tr[data-address="%s"]' % address)
+    js(driver, "arguments[0].value = arguments[1]; arguments[0].dispatchEvent(new Event('change'))",
+       row.find_element("css selector", "select.format"), fmt)
+
+
 def test_a_watch_value_follows_the_program(cell, browser):
     open_page(browser, cell["base"])
-    for a in ("M0", "X1", "X0"):
+    for a in ("X3", "Y0"):
         watch_add(browser, a)
-    # M0, the line-running latch, set by the first-scan pulse; the stop button (NC) is closed.
-    wait(browser, "M0 = 1", lambda d: watch_value(d, "M0") == "1")
-    page_write(browser, "X1", 0)  # press stop: the program drops the latch
-    wait(browser, "M0 = 0 after stop", lambda d: watch_value(d, "M0") == "0")
-    page_write(browser, "X1", 1)
-    page_write(browser, "X0", 1)  # start: the latch holds again
-    wait(browser, "M0 = 1 after start", lambda d: watch_value(d, "M0") == "1")
-    page_write(browser, "X0", 0)
-    wait(browser, "the writes in the log", lambda d: sum("X1" in l for l in log_lines(d)) >= 2)
+    # The belt (Y0) stops while a part waits at the stopper (X3, simulated: 2.5 s of every 5 s)
+    # until the stopper is lowered, and runs while none is there: Y0 = M0 & (!X3 | Y1).
+    wait(browser, "a part at the stopper, the belt stopped",
+         lambda d: (watch_value(d, "X3"), watch_value(d, "Y0")) == ("1", "0"))
+    wait(browser, "no part, the belt running", lambda d: (watch_value(d, "X3"), watch_value(d, "Y0")) == ("0", "1"))
+
+
+def test_a_watch_row_writes_in_its_format(cell, browser):
+    open_page(browser, cell["base"])
+    watch_add(browser, "D10")
+    watch_format(browser, "D10", "signed")
+    page_write(browser, "D10", -5)
+    wait(browser, "D10 = -5 (signed)", lambda d: watch_value(d, "D10") == "-5")
+    watch_format(browser, "D10", "hex")
+    wait(browser, "D10 = 0xFFFB (hex)", lambda d: watch_value(d, "D10") == "0xFFFB")
+    code, out = run("rosservice call /plc_node/read D10 1", cell["env"])
+    assert code == 0 and "65531" in out, out
+    wait(browser, "the write in the log", lambda d: any("D10" in l for l in log_lines(d)))
 
 
 def test_forcing_inside_the_writable_ranges_and_outside(cell, browser):

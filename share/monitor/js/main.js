@@ -27,7 +27,7 @@ const ladder = new Ladder($("ladder"), async (address) => {
 });
 const observer = new IntersectionObserver(onVisibility, {root: null, rootMargin: "200px"});
 const live = new Live({frame: onFrame, status: onStatus, log: onLogEvent, program: () => loadLadder(),
-                       open: onOpen, close: onClose, error: (e) => addLog(`server: ${e}`, "error")});
+                       open: onOpen, close: onClose, error: (m) => addLog(`server: ${m.error || m}`, "error")});
 
 function toast(text) {
   const t = $("toast");
