@@ -20,6 +20,7 @@ set(PLC_CELL_LAYER_RULES
   "config core io"
   "timeline core"
   "coverage core"
+  "ladder core"
   "hsc core io config timeline"
   "temp core io config"
   "motion core io config timeline hsc"
