@@ -30,10 +30,11 @@ set(PLC_CELL_LAYER_RULES
   "tri core io config"
   "modbus core io config tri"
   "comm core io config fatek modbus tri"
-  "runtime core io config timeline hsc temp motion sim persist fatek modbus tri comm"
-  "scenario core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime"
-  "explore core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario"
-  "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario")
+  "monitor core io config coverage ladder"
+  "runtime core io config timeline hsc temp motion sim persist fatek modbus tri comm coverage ladder monitor"
+  "scenario core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime coverage ladder monitor"
+  "explore core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor"
+  "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario ladder monitor")
 
 set(PLC_CELL_LAYER_ROOTS ${CMAKE_CURRENT_BINARY_DIR}/layer_includes)
 set(plc_cell_layer_libraries)

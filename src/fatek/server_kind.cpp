@@ -15,7 +15,8 @@ ServerKind server_kind() {
   k.settings[0].repeatable = k.settings[1].repeatable = true;
   k.settings[2].cli_alias = "station";
   for (auto& s : client_limits(8)) k.settings.push_back(s);  // as the FATEK Ethernet module
-  k.make = [](Plc& plc, const Settings& v) {
+  k.make = [](const ServerContext& c, const Settings& v) {
+    Plc& plc = c.plc;
     ServerPolicy p;
     p.writable = v.writable("writable");
     p.max_connections = int(v.integer("max_connections"));

@@ -22,7 +22,8 @@ ServerKind server_kind() {
       integer_setting("gateway_retries", 2, 0, 10, "attempts after the first before the gateway answers exception 0x0B"));
   k.settings.push_back(setting("map", SettingType::Text,
                                "the map served: fbs (the FBs manual's) or tri (the TRi FMD's Table 14.1, docs/tri.md)", "fbs"));
-  k.make = [](Plc& plc, const Settings& v) {
+  k.make = [](const ServerContext& c, const Settings& v) {
+    Plc& plc = c.plc;
     SlaveOptions o;
     o.map = &map_profile(v.text("map"));  // the strategy, chosen once
     o.tcp = v.text("tcp");

@@ -95,8 +95,17 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
     return 0;
   });
 
+  ServerContext context(plc());
+  context.config = &cfg;
+  context.extensions = &soft_->extensions();
+  context.program_path = soft_->program_path();
+  context.servers = [this] {
+    std::vector<const Server*> out;
+    for (const auto& s : servers_) out.push_back(s.get());
+    return out;
+  };
   for (const auto& k : kinds)
-    for (auto& s : k.make(plc(), server_settings_.at(k.name))) servers_.push_back(std::move(s));
+    for (auto& s : k.make(context, server_settings_.at(k.name))) servers_.push_back(std::move(s));
   // Retentive memory from the last run, before the first scan and the first request.
   if (purpose == Purpose::Serve && !persist_.file.empty())
     persister_ = std::make_unique<persist::Persister>(plc(), persist_, std::move(log));

@@ -16,7 +16,8 @@ ServerKind server_kind() {
       integer_setting("wildcard_fcs", 1, 0, 1, "1: accept the wildcard FCS 00 (AUTO mode); 0: refuse it (SETPROTOCOL n,5)")};
   k.settings[0].repeatable = k.settings[1].repeatable = true;
   for (auto& s : client_limits(6)) k.settings.push_back(s);  // the FMD's 6 TCP connections
-  k.make = [](Plc& plc, const Settings& v) {
+  k.make = [](const ServerContext& c, const Settings& v) {
+    Plc& plc = c.plc;
     ServerOptions o;
     o.id = int(v.integer("id"));
     o.wildcard_fcs = v.integer("wildcard_fcs") != 0;

@@ -21,6 +21,20 @@ namespace plc_cell {
 
 class Plc;
 struct CellConfig;
+class CellExtension;
+
+// What a server kind's factory may use besides its settings: the PLC, and for a server
+// that shows the whole cell (the monitor, docs/monitor-api.md) the cell's config, its
+// extensions, its program file and its servers. A bare Plc converts to a context with
+// only the PLC (the protocol servers need no more).
+struct ServerContext {
+  ServerContext(Plc& p) : plc(p) {}  // NOLINT: implicit on purpose, see above
+  Plc& plc;
+  const CellConfig* config = nullptr;                                 // nullptr: no cell file
+  const std::vector<std::unique_ptr<CellExtension>>* extensions = nullptr;
+  std::string program_path;
+  std::function<std::vector<const Server*>()> servers;  // every server of the cell, when set
+};
 
 enum class SettingType {
   Text,        // free text
@@ -76,7 +90,7 @@ struct ServerKind {
   std::vector<SettingSpec> settings;
   // The servers these settings ask for (none when every endpoint is off), not started.
   // Throws plc_cell::Error on a combination the settings' own checks cannot see.
-  std::function<std::vector<std::unique_ptr<Server>>(Plc&, const Settings&)> make;
+  std::function<std::vector<std::unique_ptr<Server>>(const ServerContext&, const Settings&)> make;
 
   const SettingSpec* spec(const std::string& key) const;
   // "--fatek-idle-timeout", "~fatek_idle_timeout".

@@ -1,0 +1,176 @@
+#include "api.h"
+
+#include "feed.h"
+#include "json_views.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/monitor/live_source.h"
+#include "static_files.h"
+
+namespace plc_cell {
+namespace monitor {
+namespace {
+
+ApiReply json_reply(const nlohmann::json& j, int status = 200) { return {status, "application/json", dump(j)}; }
+ApiReply error_reply(int status, const std::string& why) { return {status, "application/json", error_body(why)}; }
+
+int hex(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+// %XX and '+' decoded; throws on a broken escape.
+std::string url_decode(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '+') out += ' ';
+    else if (s[i] != '%') out += s[i];
+    else {
+      if (i + 2 >= s.size() || hex(s[i + 1]) < 0 || hex(s[i + 2]) < 0) throw Error("a broken %-escape in the query");
+      out += char(hex(s[i + 1]) * 16 + hex(s[i + 2]));
+      i += 2;
+    }
+  }
+  return out;
+}
+
+// The value of key in a query string ("a=D0,X1&b=2"); false when absent.
+bool query_value(const std::string& query, const std::string& key, std::string* out) {
+  size_t start = 0;
+  while (start <= query.size()) {
+    size_t end = query.find('&', start);
+    if (end == std::string::npos) end = query.size();
+    const std::string part = query.substr(start, end - start);
+    if (part.rfind(key + "=", 0) == 0) {
+      *out = url_decode(part.substr(key.size() + 1));
+      return true;
+    }
+    start = end + 1;
+  }
+  return false;
+}
+
+std::vector<std::string> split_names(const std::string& s) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= s.size()) {
+    size_t end = s.find(',', start);
+    if (end == std::string::npos) end = s.size();
+    if (end > start) out.push_back(s.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string source_kind(Source& s) {
+  if (s.replay()) return "replay";
+  return dynamic_cast<LiveSource*>(&s) ? "live" : "remote";
+}
+
+}  // namespace
+
+Api::Api(Source& source, const HttpSettings& settings, const std::string& bound_host, std::string token, Events events)
+    : source_(source), settings_(settings), guard_(bound_host, settings.allowed_hosts), token_(std::move(token)),
+      events_(std::move(events)) {}
+
+std::shared_ptr<const LadderView> Api::ladder() {
+  auto program = source_.program();
+  std::lock_guard<std::mutex> lk(ladder_mu_);
+  if (!ladder_ || &ladder_->program() != program.get()) ladder_ = std::make_shared<LadderView>(program);
+  return ladder_;
+}
+
+nlohmann::json Api::status_message() {
+  auto j = status_json(source_.status());
+  j["type"] = "status";
+  return j;
+}
+
+void Api::log(const std::string& text) {
+  uint64_t t_us = 0;
+  try {
+    t_us = source_.read({}).t_us;
+  } catch (const std::exception&) {
+    // A source that cannot be read now still logs, at t 0.
+  }
+  if (events_.log) events_.log(dump({{"type", "log"}, {"t_us", t_us}, {"text", text}}));
+}
+
+ApiReply Api::handle(const ApiRequest& r) {
+  try {
+    if (const std::string why = refusal(r); !why.empty()) return error_reply(403, why);
+    const auto q = r.target.find('?');
+    const std::string path = r.target.substr(0, q);
+    const std::string query = q == std::string::npos ? "" : r.target.substr(q + 1);
+    if (r.method == "GET") return get(path, query);
+    if (r.method != "POST") return error_reply(405, r.method + " " + path + ": only GET and POST are served");
+    if (path.rfind("/api/", 0) != 0) return error_reply(405, "POST " + path + ": only the API takes POST");
+    if (r.token != token_)
+      return refuse_write("POST " + path,
+                          r.token.empty() ? "no X-Plc-Token header (GET /api/session gives it)" : "wrong X-Plc-Token");
+    if (r.body.size() > kMaxBody) return error_reply(413, "request body over the limit of 65536 bytes");
+    const auto body = nlohmann::json::parse(r.body, nullptr, false);
+    if (body.is_discarded() || !body.is_object())
+      return error_reply(400, "POST " + path + ": the body is not a JSON object");
+    return post(path, body);
+  } catch (const Error& e) {
+    return error_reply(400, e.what());
+  } catch (const std::exception& e) {
+    return error_reply(400, std::string("bad request: ") + e.what());
+  }
+}
+
+ApiReply Api::get(const std::string& path, const std::string& query) {
+  if (path == "/api/session")
+    return json_reply({{"token", token_},
+                       {"writable", settings_.writable.describe()},
+                       {"source", source_.describe()},
+                       {"kind", source_kind(source_)},
+                       {"rate_hz", kDefaultRateHz}});
+  if (path == "/api/ladder") return json_reply(ladder()->json());
+  if (path == "/api/status") return json_reply(status_json(source_.status()));
+  if (path == "/api/read") return read(query);
+  if (path == "/api/coverage") {
+    auto seen = source_.coverage();
+    if (!seen) return json_reply({{"available", false}, {"seen", nlohmann::json::array()}});
+    return json_reply({{"available", true}, {"seen", *seen}});
+  }
+  if (path == "/api/replay") return replay_get();
+  if (path.rfind("/api/", 0) == 0) return error_reply(404, path + ": no such API endpoint");
+  const auto file = static_file(path, settings_.asset_root.empty() ? default_asset_root() : settings_.asset_root,
+                                settings_.vendor_root);
+  return {file.status, file.type, file.body};
+}
+
+ApiReply Api::read(const std::string& query) {
+  std::string list;
+  if (!query_value(query, "a", &list)) return error_reply(400, "/api/read: no a= (a=D0,X1,start_pb)");
+  const auto names = split_names(list);
+  if (names.empty()) return error_reply(400, "/api/read: a= names nothing");
+  if (names.size() > kMaxWatch)
+    return error_reply(400, "/api/read: " + std::to_string(names.size()) + " names, the limit is " +
+                                std::to_string(kMaxWatch));
+  const auto program = source_.program();
+  std::vector<Address> addrs;
+  for (const auto& n : names) addrs.push_back(resolve(n, *program));
+  const Frame f = source_.read(addrs);
+  nlohmann::json values = nlohmann::json::object();
+  for (size_t i = 0; i < names.size(); ++i) values[names[i]] = f.values.at(i);
+  return json_reply({{"scan", f.scan}, {"t_us", f.t_us}, {"mode", mode_text(f.mode)}, {"values", values}});
+}
+
+ApiReply Api::replay_get() {
+  Replay* r = source_.replay();
+  if (!r) return error_reply(404, "/api/replay: this source is not a recording");
+  nlohmann::json failure = nullptr;
+  if (auto f = r->failure_us()) failure = *f;
+  return json_reply({{"begin_us", r->begin_us()},
+                     {"end_us", r->end_us()},
+                     {"cursor_us", r->cursor_us()},
+                     {"scans", r->scans()},
+                     {"failure_us", failure}});
+}
+
+}  // namespace monitor
+}  // namespace plc_cell

@@ -1,0 +1,152 @@
+#include "plc_cell/monitor/http_server.h"
+
+#include <cstdlib>
+#include <random>
+#include <sys/stat.h>
+#include <thread>
+
+#include "plc_cell/core/error.h"
+#include "plc_cell/io/serial_settings.h"
+#include "sessions.h"
+
+namespace plc_cell {
+namespace monitor {
+namespace {
+
+std::string random_token() {
+  std::random_device rd;
+  static const char digits[] = "0123456789abcdef";
+  std::string t;
+  for (int i = 0; i < 32; ++i) t += digits[rd() % 16];
+  return t;
+}
+
+bool is_dir(const std::string& p) {
+  struct stat st {};
+  return !p.empty() && ::stat(p.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+}  // namespace
+
+std::string default_asset_root() {
+  if (const char* env = std::getenv("PLC_CELL_MONITOR_ASSETS"); env && *env) return env;
+#ifdef PLC_CELL_MONITOR_SOURCE_ASSETS
+  if (is_dir(PLC_CELL_MONITOR_SOURCE_ASSETS)) return PLC_CELL_MONITOR_SOURCE_ASSETS;
+#endif
+#ifdef PLC_CELL_MONITOR_INSTALLED_ASSETS
+  if (is_dir(PLC_CELL_MONITOR_INSTALLED_ASSETS)) return PLC_CELL_MONITOR_INSTALLED_ASSETS;
+#endif
+  return "";
+}
+
+HttpSettings http_settings(const Settings& v) {
+  HttpSettings s;
+  s.endpoint = v.text("tcp");
+  s.writable = v.writable("writable");
+  s.max_connections = int(v.integer("max_connections"));
+  s.idle_timeout_us = v.duration_us("idle_timeout");
+  for (const auto& h : v.all("allowed_hosts"))
+    if (!h.empty()) s.allowed_hosts.push_back(h);
+  s.asset_root = v.text("assets");
+  return s;
+}
+
+class HttpServer::Impl {
+ public:
+  Impl(Source& source, HttpSettings settings) : source_(source), settings_(std::move(settings)), hub_(settings_) {
+    parse_host_port(settings_.endpoint, &host_, &port_);
+    if (host_.empty()) host_ = "127.0.0.1";
+  }
+  ~Impl() { stop(); }
+
+  void start();
+  void stop();
+  void accept();
+  std::string url() const {
+    const bool v6 = host_.find(':') != std::string::npos;
+    return "http://" + (v6 ? "[" + host_ + "]" : host_) + ":" + std::to_string(port_) + "/";
+  }
+  ServerStatus status() const {
+    ServerStatus s;
+    s.running = running_;
+    s.requests = hub_.requests;
+    s.rejected = hub_.rejected;
+    s.connections = hub_.connections;
+    std::lock_guard<std::mutex> lk(hub_.error_mu);
+    s.last_error = hub_.last_error;
+    return s;
+  }
+
+  Source& source_;
+  HttpSettings settings_;
+  std::string host_;
+  int port_ = 0;
+  std::string token_ = random_token();
+  std::atomic<bool> running_{false};
+  Hub hub_;  // before the io_context: sessions destroyed with it still count down here
+  net::io_context ioc_{1};
+  tcp::acceptor acceptor_{ioc_};
+  std::thread thread_;
+};
+
+void HttpServer::Impl::start() {
+  if (running_) return;
+  hub_.api = std::make_unique<Api>(source_, settings_, host_, token_,
+                                   Api::Events{[this](const std::string& m) {
+                                                 net::post(ioc_, [this, m] { hub_.broadcast(m); });
+                                               },
+                                               [this] { net::post(ioc_, [this] { hub_.frames_now(); }); }});
+  try {
+    tcp::resolver resolver(ioc_);
+    const auto found = *resolver.resolve(host_, std::to_string(port_)).begin();
+    acceptor_.open(found.endpoint().protocol());
+    acceptor_.set_option(net::socket_base::reuse_address(true));
+    acceptor_.bind(found.endpoint());
+    acceptor_.listen(net::socket_base::max_listen_connections);
+    port_ = acceptor_.local_endpoint().port();
+  } catch (const std::exception& e) {
+    beast::error_code ignored;
+    acceptor_.close(ignored);
+    throw Error("monitor " + settings_.endpoint + ": cannot listen: " + e.what());
+  }
+  running_ = true;
+  accept();
+  thread_ = std::thread([this] { ioc_.run(); });
+}
+
+void HttpServer::Impl::accept() {
+  acceptor_.async_accept(net::make_strand(ioc_), [this](beast::error_code ec, tcp::socket socket) {
+    if (ec == net::error::operation_aborted || !acceptor_.is_open()) return;
+    if (!ec) std::make_shared<HttpSession>(std::move(socket), hub_)->run();
+    accept();
+  });
+}
+
+void HttpServer::Impl::stop() {
+  if (!running_) return;
+  net::post(ioc_, [this] {
+    beast::error_code ignored;
+    acceptor_.close(ignored);
+  });
+  ioc_.stop();
+  if (thread_.joinable()) thread_.join();
+  running_ = false;
+}
+
+HttpServer::HttpServer(Source& source, HttpSettings settings)
+    : impl_(std::make_unique<Impl>(source, std::move(settings))) {}
+
+HttpServer::HttpServer(std::unique_ptr<Source> source, HttpSettings settings)
+    : owned_(std::move(source)), impl_(std::make_unique<Impl>(*owned_, std::move(settings))) {}
+
+HttpServer::~HttpServer() { impl_.reset(); }
+
+void HttpServer::start() { impl_->start(); }
+void HttpServer::stop() { impl_->stop(); }
+std::string HttpServer::describe() const { return "monitor " + impl_->url(); }
+ServerStatus HttpServer::status() const { return impl_->status(); }
+uint16_t HttpServer::port() const { return uint16_t(impl_->port_); }
+const std::string& HttpServer::token() const { return impl_->token_; }
+
+}  // namespace monitor
+}  // namespace plc_cell

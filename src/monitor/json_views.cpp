@@ -1,0 +1,61 @@
+#include "json_views.h"
+
+#include "plc_cell/core/scan_health.h"
+
+namespace plc_cell {
+namespace monitor {
+namespace {
+
+const char* level_text(ExtensionStatus::Level l) {
+  switch (l) {
+    case ExtensionStatus::Level::Ok: return "ok";
+    case ExtensionStatus::Level::Warn: return "warn";
+    case ExtensionStatus::Level::Error: return "error";
+  }
+  return "error";
+}
+
+nlohmann::json scan_json(const ScanStats& s) {
+  return {{"scans", s.scans},
+          {"cycle_avg_ns", uint64_t(s.cycle.avg_ns())},
+          {"cycle_max_ns", s.cycle.max_ns},
+          {"wake_avg_ns", uint64_t(s.wake_latency.avg_ns())},
+          {"wake_max_ns", s.wake_latency.max_ns},
+          {"overruns", s.overruns}};
+}
+
+}  // namespace
+
+const char* mode_text(RunMode m) { return m == RunMode::Run ? "run" : "stop"; }
+
+nlohmann::json status_json(const CellStatus& s) {
+  nlohmann::json j = {{"mode", mode_text(s.mode)}, {"mode_switchable", s.mode_switchable},
+                      {"engine", s.engine},        {"scan", scan_json(s.scan)},
+                      {"note", s.note}};
+  j["extensions"] = nlohmann::json::array();
+  for (const auto& e : s.extensions) {
+    nlohmann::json values = nlohmann::json::array();
+    for (const auto& kv : e.values) values.push_back({kv.first, kv.second});
+    j["extensions"].push_back(
+        {{"name", e.name}, {"level", level_text(e.level)}, {"message", e.message}, {"values", values}});
+  }
+  j["servers"] = nlohmann::json::array();
+  for (const auto& [name, st] : s.servers)
+    j["servers"].push_back({{"name", name},
+                            {"running", st.running},
+                            {"requests", st.requests},
+                            {"rejected", st.rejected},
+                            {"connections", st.connections},
+                            {"link_up", st.link_up},
+                            {"last_error", st.last_error}});
+  j["forced"] = nlohmann::json::array();
+  for (const auto& a : s.forced) j["forced"].push_back(format_address(a));
+  return j;
+}
+
+std::string dump(const nlohmann::json& j) { return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace); }
+
+std::string error_body(const std::string& why) { return dump(nlohmann::json{{"error", why}}); }
+
+}  // namespace monitor
+}  // namespace plc_cell

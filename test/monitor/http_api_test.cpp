@@ -1,0 +1,270 @@
+// The monitor's HTTP API against a real server (docs/monitor-api.md).
+#include "monitor_fixture.h"
+
+namespace plc_cell {
+namespace monitor_test {
+namespace {
+
+uint32_t value(Plc& plc, const char* a) { return plc.read(parse_address(a), 1)[0]; }
+
+TEST_F(MonitorTest, SessionGivesTokenWritableRangesAndKind) {
+  settings.writable = WritableRanges::parse("D0-D99,M800");
+  serve();
+  const auto r = http_get(port, "/api/session");
+  ASSERT_EQ(r.status, 200);
+  const auto j = r.json();
+  EXPECT_EQ(j["token"], server->token());
+  EXPECT_EQ(j["token"].get<std::string>().size(), 32u);
+  EXPECT_EQ(j["writable"], "D0-D99,M800");
+  EXPECT_EQ(j["source"], "cell test");
+  EXPECT_EQ(j["kind"], "live");
+  EXPECT_EQ(j["rate_hz"], 10);
+}
+
+TEST_F(MonitorTest, ReadGivesTheValuesOfOneInstant) {
+  serve();
+  plc.set_input(0, true);
+  scan();
+  scan();
+  const auto r = http_get(port, "/api/read?a=X0,Y0,R0,X1");
+  ASSERT_EQ(r.status, 200) << r.body;
+  const auto j = r.json();
+  EXPECT_EQ(j["values"]["X0"], 1);
+  EXPECT_EQ(j["values"]["Y0"], 1);
+  EXPECT_EQ(j["values"]["R0"], 7);
+  EXPECT_EQ(j["values"]["X1"], 0);
+  EXPECT_EQ(j["scan"], 2);
+  EXPECT_EQ(j["t_us"], 2000);
+  EXPECT_EQ(j["mode"], "run");
+}
+
+TEST_F(MonitorTest, ReadOfAnUnknownNameIs400NamingIt) {
+  serve();
+  const auto r = http_get(port, "/api/read?a=R0,no_such_thing");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_NE(r.json().value("error", "").find("no_such_thing"), std::string::npos) << r.body;
+  EXPECT_EQ(http_get(port, "/api/read").status, 400);
+  EXPECT_EQ(http_get(port, "/api/read?a=R%zz").status, 400);
+}
+
+TEST_F(MonitorTest, LadderListsTheNetworks) {
+  serve();
+  const auto r = http_get(port, "/api/ladder");
+  ASSERT_EQ(r.status, 200);
+  const auto j = r.json();
+  EXPECT_EQ(j["file"], "belt.il");
+  EXPECT_EQ(j["version"], 1);
+  ASSERT_EQ(j["networks"].size(), 2u);
+  EXPECT_EQ(j["networks"][0]["line"], 1);
+  EXPECT_EQ(j["networks"][1]["line"], 5);
+}
+
+TEST_F(MonitorTest, StatusReportsModeScansAndForcedPoints) {
+  serve();
+  plc.force(parse_address("X1"), ForceAction::Disable);
+  for (int i = 0; i < 3; ++i) scan();
+  const auto r = http_get(port, "/api/status");
+  ASSERT_EQ(r.status, 200);
+  const auto j = r.json();
+  EXPECT_EQ(j["mode"], "run");
+  EXPECT_EQ(j["scan"]["scans"], 3);
+  ASSERT_EQ(j["forced"].size(), 1u);
+  EXPECT_EQ(j["forced"][0], "X1");
+  EXPECT_FALSE(j["mode_switchable"]);  // read-only server
+}
+
+TEST_F(MonitorTest, WriteWithinTheRangesChangesThePlc) {
+  settings.writable = WritableRanges::parse("D0-D99,M800");
+  serve();
+  const auto r = http_post(port, "/api/write", R"({"address":"D5","values":[42,-1]})", token());
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(value(plc, "D5"), 42u);
+  EXPECT_EQ(value(plc, "D6"), 0xFFFFu);
+}
+
+TEST_F(MonitorTest, WriteOutsideTheRangesIsRefusedAndChangesNothing) {
+  settings.writable = WritableRanges::parse("D0-D99,M800");
+  serve();
+  const auto t = token();
+  auto r = http_post(port, "/api/write", R"({"address":"D500","values":[5]})", t);
+  EXPECT_EQ(r.status, 403);
+  EXPECT_EQ(r.json()["error"], "write D500 = 5: D500 is not writable (writable: D0-D99,M800)");
+  // Straddling the end of a range is refused whole.
+  r = http_post(port, "/api/write", R"({"address":"D99","values":[1,2]})", t);
+  EXPECT_EQ(r.status, 403);
+  EXPECT_EQ(value(plc, "D500"), 0u);
+  EXPECT_EQ(value(plc, "D99"), 0u);
+}
+
+TEST_F(MonitorTest, ReadOnlyByDefault) {
+  serve();
+  const auto r = http_post(port, "/api/write", R"({"address":"D0","values":[5]})", token());
+  EXPECT_EQ(r.status, 403);
+  EXPECT_NE(r.json().value("error", "").find("writable: none"), std::string::npos) << r.body;
+  EXPECT_EQ(value(plc, "D0"), 0u);
+}
+
+TEST_F(MonitorTest, WriteWithoutOrWithAWrongTokenIsRefused) {
+  settings.writable = WritableRanges::parse("all");
+  serve();
+  auto r = http_post(port, "/api/write", R"({"address":"D0","values":[5]})", "");
+  EXPECT_EQ(r.status, 403);
+  EXPECT_NE(r.json().value("error", "").find("X-Plc-Token"), std::string::npos) << r.body;
+  r = http_post(port, "/api/write", R"({"address":"D0","values":[5]})", std::string(32, '0'));
+  EXPECT_EQ(r.status, 403);
+  r = http_post(port, "/api/mode", R"({"mode":"stop"})", "nope");
+  EXPECT_EQ(r.status, 403);
+  EXPECT_EQ(value(plc, "D0"), 0u);
+  EXPECT_EQ(plc.mode(), RunMode::Run);
+}
+
+TEST_F(MonitorTest, ForeignOriginAndHostAreRefused) {
+  settings.writable = WritableRanges::parse("all");
+  serve();
+  const std::string t = token();
+  HttpCall c;
+  c.method = "POST";
+  c.target = "/api/write";
+  c.body = R"({"address":"D0","values":[5]})";
+  c.token = t;
+  c.origin = "http://evil.example";
+  auto r = http_call(port, c);
+  EXPECT_EQ(r.status, 403);
+  EXPECT_NE(r.json().value("error", "").find("Origin"), std::string::npos) << r.body;
+  // DNS rebinding: the attacker's name resolves to 127.0.0.1, same-origin for the browser.
+  c.host = "evil.example:" + std::to_string(port);
+  c.origin = "http://" + c.host;
+  r = http_call(port, c);
+  EXPECT_EQ(r.status, 403);
+  EXPECT_NE(r.json().value("error", "").find("Host"), std::string::npos) << r.body;
+  c = {};
+  c.target = "/api/session";
+  c.host = "evil.example";
+  EXPECT_EQ(http_call(port, c).status, 403);
+  EXPECT_EQ(value(plc, "D0"), 0u);
+  // Same-origin through a tunnel's other port, and localhost, are this server.
+  c.host = "localhost:9999";
+  c.origin = "http://localhost:9999";
+  EXPECT_EQ(http_call(port, c).status, 200);
+}
+
+TEST_F(MonitorTest, AllowedHostsAreAccepted) {
+  settings.allowed_hosts = {"plc.lan"};
+  serve();
+  HttpCall c;
+  c.target = "/api/session";
+  c.host = "PLC.lan:8080";
+  EXPECT_EQ(http_call(port, c).status, 200);
+}
+
+TEST_F(MonitorTest, ForceOnAndReleaseWithinTheRanges) {
+  settings.writable = WritableRanges::parse("M800,Y0");
+  serve();
+  const auto t = token();
+  ASSERT_EQ(http_post(port, "/api/force", R"({"address":"Y0","action":"on"})", t).status, 200);
+  scan();
+  EXPECT_EQ(value(plc, "Y0"), 1u);  // forced: the program's OUT leaves it
+  EXPECT_EQ(http_get(port, "/api/status").json()["forced"][0], "Y0");
+  ASSERT_EQ(http_post(port, "/api/force", R"({"address":"Y0","action":"release"})", t).status, 200);
+  scan();
+  EXPECT_EQ(value(plc, "Y0"), 0u);
+  EXPECT_EQ(http_post(port, "/api/force", R"({"address":"Y1","action":"on"})", t).status, 403);
+  EXPECT_EQ(http_post(port, "/api/force", R"({"address":"Y0","action":"maybe"})", t).status, 400);
+  EXPECT_EQ(http_post(port, "/api/force", R"({"address":"R0","action":"on"})", t).status, 400);
+}
+
+TEST_F(MonitorTest, ModeNeedsWritableAll) {
+  settings.writable = WritableRanges::parse("D0-D9");
+  serve();
+  EXPECT_EQ(http_post(port, "/api/mode", R"({"mode":"stop"})", token()).status, 403);
+  EXPECT_EQ(plc.mode(), RunMode::Run);
+  server->stop();
+  settings.writable = WritableRanges::parse("all");
+  serve();
+  EXPECT_EQ(http_post(port, "/api/mode", R"({"mode":"stop"})", token()).status, 200);
+  EXPECT_EQ(plc.mode(), RunMode::Stop);
+  EXPECT_TRUE(http_get(port, "/api/status").json()["mode_switchable"]);
+}
+
+TEST_F(MonitorTest, CoverageIsRecordedOnceAsked) {
+  serve();
+  auto j = http_get(port, "/api/coverage").json();
+  ASSERT_TRUE(j["available"]);
+  ASSERT_EQ(j["seen"].size(), 7u);
+  EXPECT_EQ(j["seen"][0], 0);  // nothing scanned since it started
+  scan();
+  j = http_get(port, "/api/coverage").json();
+  EXPECT_EQ(j["seen"][0], 1);  // ORG X0 saw X0 off
+}
+
+TEST_F(MonitorTest, ReplayIsNotFoundOnALiveCell) {
+  serve();
+  EXPECT_EQ(http_get(port, "/api/replay").status, 404);
+  EXPECT_EQ(http_post(port, "/api/replay", R"({"seek_us":0})", token()).status, 404);
+  EXPECT_EQ(http_get(port, "/api/nothing").status, 404);
+}
+
+TEST_F(MonitorTest, StaticFilesComeFromTheAssetRootAndNeverLeaveIt) {
+  serve();
+  auto r = http_get(port, "/");
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.body, "<html>monitor</html>");
+  EXPECT_EQ(r.content_type, "text/html; charset=utf-8");
+  r = http_get(port, "/assets/js/app.js");
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.body, "let x = 1;");
+  for (const char* bad : {"/assets/../index.html", "/assets/js/../../../etc/passwd", "/assets/%2e%2e/x", "/vendor/../x"}) {
+    r = http_get(port, bad);
+    EXPECT_EQ(r.status, 400) << bad;
+    EXPECT_TRUE(r.json().contains("error")) << bad;
+  }
+  EXPECT_EQ(http_get(port, "/assets/none.js").status, 404);
+  std::ifstream dygraphs("/usr/share/javascript/dygraphs/dygraph.min.js");
+  if (dygraphs) EXPECT_EQ(http_get(port, "/vendor/dygraphs/dygraph.min.js").status, 200);
+}
+
+TEST_F(MonitorTest, BodyOverTheLimitIs413) {
+  settings.writable = WritableRanges::parse("all");
+  serve();
+  const std::string big = R"({"address":"D0","values":[)" + std::string(70000, ' ') + "1]}";
+  const auto r = http_post(port, "/api/write", big, token());
+  EXPECT_EQ(r.status, 413);
+  EXPECT_NE(r.json().value("error", "").find("65536"), std::string::npos) << r.body;
+  EXPECT_EQ(value(plc, "D0"), 0u);
+}
+
+TEST_F(MonitorTest, MalformedBodiesAre400) {
+  settings.writable = WritableRanges::parse("all");
+  serve();
+  const auto t = token();
+  for (const char* body : {"", "{", "[1]", R"({"address":5,"values":[1]})", R"({"address":"D0"})",
+                           R"({"address":"D0","values":[]})", R"({"address":"D0","values":["x"]})",
+                           R"({"address":"D0","values":[70000]})", R"({"address":"Q0","values":[1]})"}) {
+    const auto r = http_post(port, "/api/write", body, t);
+    EXPECT_EQ(r.status, 400) << body;
+    EXPECT_TRUE(r.json().contains("error")) << body << " -> " << r.body;
+  }
+  EXPECT_EQ(value(plc, "D0"), 0u);
+}
+
+TEST_F(MonitorTest, ConnectionsOverTheCapAreRefused) {
+  settings.max_connections = 2;
+  serve();
+  WsClient a(port), b(port);
+  const auto r = http_get(port, "/api/session");
+  EXPECT_EQ(r.status, 503);
+  EXPECT_NE(r.json().value("error", "").find("max_connections 2"), std::string::npos) << r.body;
+  EXPECT_GE(server->status().rejected, 1u);
+}
+
+TEST_F(MonitorTest, SilentConnectionsAreClosedAfterTheIdleTimeout) {
+  settings.idle_timeout_us = 200'000;
+  serve();
+  EXPECT_TRUE(closed_when_silent(port, std::chrono::milliseconds(3000)));
+  WsClient page(port);  // a page that never subscribes is idle too
+  EXPECT_TRUE(page.closed_within(std::chrono::milliseconds(3000)));
+}
+
+}  // namespace
+}  // namespace monitor_test
+}  // namespace plc_cell
