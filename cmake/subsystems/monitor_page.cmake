@@ -1,10 +1,9 @@
 # The monitor's page (docs/monitor.md): HTML, CSS and our own ES modules in share/monitor,
-# served as they are (no build step). Installed at the same place under the package's share
-# folder as in the source tree, so the server finds it as <package>/share/monitor in the devel
-# and the install space alike. dygraphs is not in the repository: the server serves Debian's
+# served as they are (no build step). Installed as the package's share/plc_cell/monitor, where
+# the server looks when the source tree it was built from is gone. dygraphs is not in the repository: the server serves Debian's
 # libjs-dygraphs from /usr/share/javascript/dygraphs under /vendor/dygraphs/.
 get_filename_component(PLC_CELL_MONITOR_PAGE ${PROJECT_SOURCE_DIR}/share/monitor REALPATH)
-install(DIRECTORY ${PLC_CELL_MONITOR_PAGE}/ DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/share/monitor)
+install(DIRECTORY ${PLC_CELL_MONITOR_PAGE}/ DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/monitor)
 
 if(CATKIN_ENABLE_TESTING)
   include(${PROJECT_SOURCE_DIR}/cmake/pytest.cmake)

@@ -44,7 +44,9 @@ export function renderStatus(root, status) {
   const cell = panel(root, "Scan", status.mode === "fault" ? "error" : "ok", "status-scan");
   keyValues(cell, [["mode", (status.mode || "").toUpperCase()], ["engine", status.engine || "–"],
                    ["scans", scan.scans], ["cycle avg", us(scan.cycle_avg_ns)], ["cycle max", us(scan.cycle_max_ns)],
-                   ["wake p99", us(scan.wake_p99_ns)], ["overruns", scan.overruns]]);
+                   ["wake avg", us(scan.wake_avg_ns)], ["wake max", us(scan.wake_max_ns)],
+                   ...(scan.wake_p99_ns !== undefined ? [["wake p99", us(scan.wake_p99_ns)]] : []),
+                   ["overruns", scan.overruns]]);
   if (status.note) html("p", {class: "note"}, cell, status.note);
   const exts = status.extensions || [];
   const faults = exts.filter((e) => e.level === "error");
@@ -74,11 +76,12 @@ function renderServers(root, servers) {
   }
   const table = html("table", {class: "grid"}, p);
   const head = html("tr", {}, table);
-  for (const h of ["server", "running", "link", "requests", "rejected", "connections", "last error"]) html("th", {}, head, h);
+  for (const h of ["server", "state", "requests / rejected", "clients"]) html("th", {}, head, h);
   for (const s of servers) {
     const tr = html("tr", {}, table);
-    const link = s.link_up === undefined || s.link_up === null ? "–" : s.link_up ? "up" : "down";
-    for (const v of [s.name, s.running ? "yes" : "no", link, s.requests, s.rejected, s.connections, s.last_error || ""])
-      html("td", {}, tr, v === undefined ? "–" : String(v));
+    const link = s.link_up === false ? ", link down" : "";
+    const state = `${s.running ? "running" : "stopped"}${link}${s.last_error ? `: ${s.last_error}` : ""}`;
+    for (const v of [s.name, state, `${s.requests ?? "–"} / ${s.rejected ?? "–"}`, s.connections ?? "–"])
+      html("td", {}, tr, String(v));
   }
 }
