@@ -20,6 +20,7 @@ Command check_command();
 Command fatek_command();
 Command test_command();     // scenario files (src/cli/test_command.cpp)
 Command explore_command();  // random runs against properties (src/cli/explore_command.cpp)
+Command monitor_command();  // the browser monitor on a recording or a real PLC (src/cli/monitor_command.cpp)
 
 // Every subcommand, in the order --help lists them.
 const std::vector<Command>& commands();

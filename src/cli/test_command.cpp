@@ -5,11 +5,13 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include "args.h"
 #include "commands.h"
 #include "mutate_option.h"
+#include "record_option.h"
 #include "scenario_files.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
@@ -65,7 +67,8 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   // -k NAME, as pytest spells it, is --case NAME.
   std::vector<std::string> argv;
   for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a == "-j" ? "--jobs" : a);
-  Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine", "mutate-budget", "mutate-json", "jobs"},
+  Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine", "mutate-budget", "mutate-json", "jobs",
+                   "record"},
             {"coverage", "mutate"});
   if (args.positional().empty()) throw UsageError("no scenario file given");
   const std::optional<EngineChoice> engine = engine_option(args);  // else each cell's plc.engine
@@ -78,16 +81,22 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   const bool coverage = args.has("coverage") || args.has("coverage-json") || args.has("coverage-html");
   coverage::Recorders recorders;
   std::vector<scenario::CaseResult> results;
+  std::set<std::string> recorded;  // the recordings' file names
   uint64_t virtual_us = 0;
   for (const auto& sc : files)
     for (const auto& c : sc.cases) {
       if (!selected(filters, c.name)) continue;
       const auto target = fresh_target(sc, engine);  // a fresh cell for every case
       if (coverage) recorders.attach(target->cell().plc(), target->cell().config().signals);
+      const auto rec = args.has("record") ? record_case(*target, "plc_cell test " + sc.file + ": " + c.name) : nullptr;
       results.push_back(scenario::run_case(c, *target));
       if (coverage) recorders.detach(target->cell().plc());
       virtual_us += results.back().virtual_us;
       print_result(sc, results.back());
+      if (rec) {
+        const std::string path = save_case(*rec, results.back(), args.get("record"), &recorded);
+        if (!results.back().passed) std::cout << "    recorded: " << monitor_command_for(path) << "\n";
+      }
     }
   if (results.empty()) {
     std::cerr << "plc_cell test: no case matches -k";
@@ -118,9 +127,10 @@ Command test_command() {
   return {"test",
           "FILE.scenario.yaml... [-k NAME] [--junit OUT.xml] [--coverage]\n"
           "         [--coverage-json OUT.json] [--coverage-html DIR] [--engine E]\n"
-          "         [--mutate [--mutate-budget N] [--mutate-json OUT.json] [-j N]]\n"
+          "         [--mutate [--mutate-budget N] [--mutate-json OUT.json] [-j N]] [--record DIR]\n"
           "         run the scenarios' test cases in virtual time, each on a fresh cell;\n"
-          "         rung coverage summed over the cases; mutation testing of the programs\n",
+          "         rung coverage summed over the cases; mutation testing of the programs;\n"
+          "         --record: each case's run in DIR/<case>.plcrec (docs/recordings.md)\n",
           cmd_test};
 }
 

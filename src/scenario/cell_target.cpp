@@ -49,7 +49,10 @@ const Address& CellTarget::address(const std::string& name) {
 
 uint64_t CellTarget::period_us() const { return cell_->scan_period_us(); }
 
-void CellTarget::scan(uint64_t t_us) { cell_->plc().scan(t_us); }
+void CellTarget::scan(uint64_t t_us) {
+  cell_->plc().scan(t_us);
+  if (after_scan_) after_scan_(t_us);
+}
 
 // The extension that answers for p's family, or nullptr.
 const ProbeFacet* CellTarget::facet(const Probe& p) const {

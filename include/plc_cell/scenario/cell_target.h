@@ -1,6 +1,7 @@
 #pragma once
 // The cell in process as a scenario target: a fresh Cell (Purpose::Simulate) from the cell
 // YAML and program, scanned in virtual time as `plc_cell sim` scans it.
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -18,6 +19,8 @@ class CellTarget : public Target {
   ~CellTarget() override;
 
   Cell& cell() { return *cell_; }
+  // Called after every scan with its instant (`plc_cell test --record` records there).
+  void after_scan(std::function<void(uint64_t t_us)> hook) { after_scan_ = std::move(hook); }
 
   uint64_t period_us() const override;
   void scan(uint64_t t_us) override;
@@ -38,6 +41,7 @@ class CellTarget : public Target {
   const Address& address(const std::string& name);
   std::unique_ptr<Cell> cell_;
   std::map<std::string, Address> addresses_;
+  std::function<void(uint64_t)> after_scan_;
 };
 
 }  // namespace scenario

@@ -1,0 +1,139 @@
+// plc_cell monitor: the browser monitor on a recorded run (docs/recordings.md) or on a real
+// FATEK or TRi PLC polled through its host link (docs/monitor-remote.md), with the same
+// --http-* options as `plc_cell run`.
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+#include "args.h"
+#include "cell_options.h"
+#include "commands.h"
+#include "plc_cell/config/cell_config.h"
+#include "plc_cell/core/error.h"
+#include "plc_cell/io/stop_signal.h"
+#include "plc_cell/monitor/http_server.h"
+#include "plc_cell/monitor/server_kind.h"
+#include "plc_cell/recording/replay_source.h"
+#include "plc_cell/remote/fatek_link.h"
+#include "plc_cell/remote/remote_source.h"
+#include "plc_cell/remote/tri_link.h"
+#include "plc_cell/runtime/cell.h"
+#include "plc_cell/sim/soft_cell.h"
+
+namespace plc_cell {
+namespace cli {
+
+namespace {
+
+constexpr const char* kDefaultEndpoint = "127.0.0.1:8080";
+
+std::unique_ptr<monitor::Source> replay_source(const Args& args) {
+  const std::string path = args.get("recording");
+  auto src = std::make_unique<recording::ReplaySource>(recording::Reader::load(path), path, SoftCell::functions());
+  if (args.has("open-at")) {
+    const std::string at = args.get("open-at");
+    if (at == "failure") {
+      if (!src->failure_us()) throw Error(path + " has no failure: its case passed, or it is not a test case's");
+      src->seek(*src->failure_us());
+    } else {
+      uint64_t t;
+      try {
+        t = parse_duration_us(at);
+      } catch (const Error& e) {
+        throw UsageError("--open-at " + at + ": failure or a time such as 2.5s (" + e.what() + ")");
+      }
+      src->seek(t);
+    }
+  }
+  return src;
+}
+
+// The user's IL copy: --program, or the program and signals of the cell --config names.
+std::shared_ptr<const monitor::ProgramView> program_view(const Args& args) {
+  if (!args.has("config")) return remote::load_program_view(args.require("program"), SoftCell::functions());
+  CellOverrides o;
+  o.program = args.get("program");
+  Cell cell(args.get("config"), o, Cell::Purpose::Check);
+  return remote::load_program_view(cell.program_path(), SoftCell::functions(), cell.config().signals);
+}
+
+std::unique_ptr<monitor::Source> remote_source(const Args& args) {
+  const int timeout_ms = int(parse_duration_us(args.get("timeout", "1s")) / 1000);
+  if (timeout_ms < 10 || timeout_ms > 60000) throw UsageError("--timeout: between 10ms and 60s");
+  std::unique_ptr<remote::Link> link;
+  if (args.has("fatek")) {
+    remote::FatekLinkOptions o;
+    o.endpoint = args.get("fatek");
+    o.station = int(args.get_int("station", 1, 1, 254));
+    o.timeout_ms = timeout_ms;
+    link = std::make_unique<remote::FatekLink>(o);
+  } else {
+    remote::TriLinkOptions o;
+    o.endpoint = args.get("tri");
+    o.id = int(args.get_int("id", 1, 0, 255));
+    o.timeout_ms = timeout_ms;
+    link = std::make_unique<remote::TriLink>(o);
+  }
+  return std::make_unique<remote::RemoteSource>(std::move(link), program_view(args));
+}
+
+// The http kind's settings from --http-*, served on 127.0.0.1:8080 unless --http-tcp says.
+monitor::HttpSettings http_options(const Args& args) {
+  std::vector<SettingOverride> overrides = cell_overrides(args).servers;
+  if (!args.has("http-tcp")) overrides.push_back({"http", "tcp", {kDefaultEndpoint}, "the default"});
+  const ServerKind kind = monitor::server_kind();
+  const auto merged = merge_server_settings({kind}, CellConfig{}, overrides);
+  return monitor::http_settings(merged.at("http"));
+}
+
+std::vector<std::string> options() {
+  std::vector<std::string> out = {"recording", "open-at", "fatek", "tri", "program", "config",
+                                  "station", "id", "timeout", "duration"};
+  const ServerKind kind = monitor::server_kind();
+  for (const auto& s : kind.settings) out.push_back(kind.option(s).substr(2));
+  return out;
+}
+
+}  // namespace
+
+int cmd_monitor(const std::vector<std::string>& argv) {
+  StopSignal stop;
+  Args args(argv, options());
+  if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
+  const int given = int(args.has("recording")) + int(args.has("fatek")) + int(args.has("tri"));
+  if (given != 1) throw UsageError("give one of --recording FILE, --fatek HOST:PORT|DEV, --tri HOST:PORT|DEV");
+  if (args.has("open-at") && !args.has("recording")) throw UsageError("--open-at goes with --recording");
+  const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
+  const monitor::HttpSettings settings = http_options(args);
+  std::unique_ptr<monitor::Source> source = args.has("recording") ? replay_source(args) : remote_source(args);
+  monitor::HttpServer server(*source, settings);
+  server.start();
+  std::cerr << "plc_cell monitor: serving " << source->describe() << " on " << server.describe()
+            << "; Ctrl-C to stop" << std::endl;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (;;) {
+    std::chrono::milliseconds wait(1000);
+    if (duration) {
+      const auto left = std::chrono::microseconds(duration) - (std::chrono::steady_clock::now() - t0);
+      if (left <= left.zero()) break;
+      wait = std::min(wait, std::chrono::duration_cast<std::chrono::milliseconds>(left) + std::chrono::milliseconds(1));
+    }
+    if (stop.wait_for(wait)) break;
+  }
+  server.stop();
+  return 0;
+}
+
+Command monitor_command() {
+  return {"monitor",
+          "--recording FILE [--open-at failure|T] [--http-tcp HOST:PORT] [--http-...]\n"
+          "         --fatek HOST:PORT|DEV [--station N] (--program FILE.il | --config CELL.yaml)\n"
+          "         --tri HOST:PORT|DEV [--id N] (--program FILE.il | --config CELL.yaml)\n"
+          "         [--timeout 1s] [--duration T]\n"
+          "         the browser monitor on a recorded run (docs/recordings.md) or on a real PLC\n"
+          "         through its host link (docs/monitor-remote.md); 127.0.0.1:8080 by default\n",
+          cmd_monitor};
+}
+
+}  // namespace cli
+}  // namespace plc_cell

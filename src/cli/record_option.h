@@ -1,0 +1,30 @@
+#pragma once
+// `--record`: `plc_cell sim --record FILE` records the run, `plc_cell test --record DIR`
+// each case in DIR/<case>.plcrec (docs/recordings.md).
+#include <memory>
+#include <set>
+#include <string>
+
+#include "plc_cell/recording/recorder.h"
+#include "plc_cell/runtime/cell.h"
+#include "plc_cell/scenario/cell_target.h"
+#include "plc_cell/scenario/runner.h"
+
+namespace plc_cell {
+namespace cli {
+
+// What a recording of cell's run says about it: the program, the signals, the scan period.
+recording::RecordingInfo recording_info(const Cell& cell, const std::string& source);
+
+// Starts recording the case's scans on target (before its first scan).
+std::unique_ptr<recording::Recorder> record_case(scenario::CellTarget& target, const std::string& source);
+// Saves the case's recording in dir, with the failure when it failed; returns its path. A
+// name already in *used (two cases of one name in different files) gets "-2", "-3"...
+std::string save_case(recording::Recorder& rec, const scenario::CaseResult& result, const std::string& dir,
+                      std::set<std::string>* used);
+
+// The command that opens a recording in the monitor at its failure.
+std::string monitor_command_for(const std::string& path);
+
+}  // namespace cli
+}  // namespace plc_cell

@@ -1,0 +1,76 @@
+// `plc_cell run` standing in for a real PLC: the monitor's remote source over FATEK and
+// TRi host links to a spawned cell (its port read from its log, waits bounded).
+#include <gtest/gtest.h>
+
+#include "../reliability/run_child.h"
+#include "plc_cell/remote/fatek_link.h"
+#include "plc_cell/remote/remote_source.h"
+#include "plc_cell/remote/tri_link.h"
+#include "plc_cell/sim/soft_cell.h"
+
+namespace plc_cell {
+namespace {
+
+const std::string kDir = std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/";
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+// Reads until the line runs (the demo starts by itself), at most n polls.
+monitor::Frame poll_until_running(remote::RemoteSource& s, const std::vector<Address>& addrs, int n = 500) {
+  monitor::Frame f;
+  for (int i = 0; i < n; ++i) {
+    f = s.read(addrs);
+    if (f.values[0] == 1) break;
+  }
+  return f;
+}
+
+TEST(PlcCellRunAsAPlc, OverFatek) {
+  RunChild cell({"--config", kDir + "conveyor.yaml", "--fatek-tcp", "127.0.0.1:0", "--fatek-writable", "D0-D99"});
+  ASSERT_EQ(cell.ports.size(), 1u) << cell.log;
+  remote::FatekLinkOptions o;
+  o.endpoint = "127.0.0.1:" + std::to_string(cell.ports[0]);
+  remote::RemoteSource source(std::make_unique<remote::FatekLink>(o),
+                              remote::load_program_view(kDir + "conveyor.il", SoftCell::functions()));
+  const monitor::Frame f = poll_until_running(source, {parse_address("M0"), parse_address("X1")});
+  EXPECT_EQ(f.values, (std::vector<uint32_t>{1, 1}));  // line_running; stop_button (NC) simulated
+  EXPECT_EQ(f.mode, RunMode::Run);
+  source.write(parse_address("D10"), {321});
+  EXPECT_EQ(source.read({parse_address("D10")}).values, std::vector<uint32_t>{321});
+  EXPECT_NE(error_of([&] { source.write(parse_address("D200"), {1}); }).find("write"), std::string::npos);
+  EXPECT_EQ(source.read({parse_address("D200")}).values, std::vector<uint32_t>{0});
+  cell.kill9();
+  EXPECT_NE(error_of([&] { source.read({parse_address("D10")}); }).find("link down"), std::string::npos);
+  EXPECT_FALSE(source.status().servers[0].second.link_up);
+}
+
+TEST(PlcCellRunAsAPlc, OverTri) {
+  RunChild cell({"--config", kDir + "conveyor.yaml", "--tri-tcp", "127.0.0.1:0"});
+  ASSERT_EQ(cell.ports.size(), 1u) << cell.log;
+  remote::TriLinkOptions o;
+  o.endpoint = "127.0.0.1:" + std::to_string(cell.ports[0]);
+  remote::RemoteSource source(std::make_unique<remote::TriLink>(o),
+                              remote::load_program_view(kDir + "conveyor.il", SoftCell::functions()));
+  const monitor::Frame f = poll_until_running(source, {parse_address("M0"), parse_address("Y0")});
+  EXPECT_EQ(f.values[0], 1u);
+  source.write(parse_address("D10"), {321});
+  EXPECT_EQ(source.read({parse_address("D10")}).values, std::vector<uint32_t>{321});
+  // Not on a TRi: named.
+  EXPECT_NE(error_of([&] { source.read({parse_address("D4000")}); }).find("D4000"), std::string::npos);
+  EXPECT_NE(error_of([&] { source.force(parse_address("Y0"), ForceAction::Disable); }).find("no DISABLE flag"),
+            std::string::npos);
+  source.set_mode(RunMode::Stop);  // C2: the ladder halts
+  EXPECT_EQ(source.read({parse_address("M0")}).mode, RunMode::Stop);
+  source.set_mode(RunMode::Run);
+  EXPECT_EQ(source.read({parse_address("M0")}).mode, RunMode::Run);
+}
+
+}  // namespace
+}  // namespace plc_cell
