@@ -73,6 +73,10 @@ def log_lines(driver):
     return js(driver, "return [...document.querySelectorAll('#log li')].map(li => li.className + ' ' + li.textContent)")
 
 
+def tab(driver, panel):
+    driver.find_element("css selector", '.tabs button[data-tab="%s"]' % panel).click()
+
+
 def test_the_page_draws_the_conveyors_networks(cell, browser):
     open_page(browser, cell["base"])
     # Every coil, contact and timer of the program is drawn, with the cell's signal names.
@@ -143,12 +147,14 @@ def test_forcing_inside_the_writable_ranges_and_outside(cell, browser):
     row.find_element("css selector", "button.force-on").click()
     try:
         wait(browser, "X3 forced on in the watch table", lambda d: watch_value(d, "X3") == "1")
-        browser.find_element("css selector", '.tabs button[data-tab="status-panel"]').click()
+        tab(browser, "status-panel")
         wait(browser, "X3 among the forced points", lambda d: "X3" in d.find_element("id", "status-forced").text)
     finally:
+        tab(browser, "watch-panel")
         row.find_element("css selector", "button.force-release").click()
-    wait(browser, "X3 no longer forced",
-         lambda d: d.find_elements("id", "status-forced") and "X3" not in d.find_element("id", "status-forced").text)
+    tab(browser, "status-panel")
+    wait(browser, "X3 no longer forced", lambda d: "none" in d.find_element("id", "status-forced").text)
+    tab(browser, "watch-panel")
     # Y0 is outside the writable ranges: refused, with the server's reason on the page.
     watch_add(browser, "Y0").find_element("css selector", "button.force-on").click()
     refused = wait(browser, "the refusal of forcing Y0", lambda d: [l for l in log_lines(d)
@@ -159,7 +165,7 @@ def test_forcing_inside_the_writable_ranges_and_outside(cell, browser):
 
 def test_a_trend_collects_points(cell, browser):
     open_page(browser, cell["base"])
-    browser.find_element("css selector", '.tabs button[data-tab="trends-panel"]').click()
+    tab(browser, "trends-panel")
     box = browser.find_element("id", "trend-add")
     box.send_keys("TR50 M0")
     browser.find_element("css selector", "#trend-add-form button").click()

@@ -25,7 +25,7 @@ def serve(cmd, scratch, name, port):
 @pytest.fixture(scope="module")
 def recording(scratch):
     cell = conveyor_cell(scratch, free_port())
-    path = os.path.join(scratch, "conveyor.rec")
+    path = os.path.join(scratch, "conveyor.plcrec")
     code, out = run("plc_cell sim --config %s --duration 6s --record %s" % (cell, path))
     assert code == 0 and os.path.exists(path), out
     return path
