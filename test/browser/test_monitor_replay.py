@@ -49,32 +49,37 @@ def energised(driver, address):
                       ".some(g => g.classList.contains('on'))", address)
 
 
-def test_a_recording_scrubs_to_the_chosen_instant(recording, scratch, browser):
+@pytest.fixture
+def replay_monitor(recording, scratch):
+    """plc_cell monitor on the recording; stopped after the browser's screenshot."""
     port = free_port()
     proc, base, session = serve("plc_cell monitor --recording %s --http-tcp 127.0.0.1:%d" % (recording, port),
                                 scratch, "replay", port)
-    try:
-        assert session["kind"] == "replay", session
-        open_page(browser, base)
-        wait(browser, "the time slider", lambda d: d.find_element("id", "replay-slider").is_displayed())
-        assert "recording" in browser.find_element("id", "source").text
-        assert browser.find_element("id", "mode-switch").get_attribute("disabled")
-        box = browser.find_element("id", "watch-add")
-        box.send_keys("X3")
-        browser.find_element("css selector", "#watch-add-form button").click()
-        seek(browser, PART_ON_S)
-        wait(browser, "X3 = 1 at %.1f s" % PART_ON_S, lambda d: watch_value(d, "X3") == "1")
-        wait(browser, "the X3 contact energised at %.1f s" % PART_ON_S, lambda d: energised(d, "X3"))
-        seek(browser, PART_OFF_S)
-        wait(browser, "X3 = 0 at %.1f s" % PART_OFF_S, lambda d: watch_value(d, "X3") == "0")
-        wait(browser, "the X3 contact off at %.1f s" % PART_OFF_S, lambda d: not energised(d, "X3"))
-        # A step back by one scan stays in the part's absence; the cursor moved back.
-        before = float(browser.find_element("id", "clock").get_attribute("data-t-us"))
-        browser.find_element("css selector", "button.step-scan-back").click()
-        wait(browser, "the cursor one scan back", lambda d: float(
-            d.find_element("id", "clock").get_attribute("data-t-us")) < before)
-    finally:
-        stop(proc)
+    yield base, session
+    stop(proc)
+
+
+def test_a_recording_scrubs_to_the_chosen_instant(replay_monitor, browser):
+    base, session = replay_monitor
+    assert session["kind"] == "replay", session
+    open_page(browser, base)
+    wait(browser, "the time slider", lambda d: d.find_element("id", "replay-slider").is_displayed())
+    assert "recording" in browser.find_element("id", "kind").text.lower()
+    assert browser.find_element("id", "mode-switch").get_attribute("disabled")
+    box = browser.find_element("id", "watch-add")
+    box.send_keys("X3")
+    browser.find_element("css selector", "#watch-add-form button").click()
+    seek(browser, PART_ON_S)
+    wait(browser, "X3 = 1 at %.1f s" % PART_ON_S, lambda d: watch_value(d, "X3") == "1")
+    wait(browser, "the X3 contact energised at %.1f s" % PART_ON_S, lambda d: energised(d, "X3"))
+    seek(browser, PART_OFF_S)
+    wait(browser, "X3 = 0 at %.1f s" % PART_OFF_S, lambda d: watch_value(d, "X3") == "0")
+    wait(browser, "the X3 contact off at %.1f s" % PART_OFF_S, lambda d: not energised(d, "X3"))
+    # One scan back: the cursor moves back in time.
+    before = float(browser.find_element("id", "clock").get_attribute("data-t-us"))
+    browser.find_element("css selector", "button.step-scan-back").click()
+    wait(browser, "the cursor one scan back", lambda d: float(
+        d.find_element("id", "clock").get_attribute("data-t-us")) < before)
 
 
 def test_the_page_reconnects_after_the_cell_restarts(scratch, browser):

@@ -60,8 +60,9 @@ function describeSource(session, status) {
   const kind = session.kind || "live";
   const what = kind === "replay" ? "recording" : kind === "remote" ? "remote PLC" : "live cell";
   const note = (status && status.note) || (kind === "remote" ? "power flow computed from polled values" : "");
-  const text = `${what}: ${session.source || ""}${note ? ` — ${note}` : ""}`;
-  $("source").textContent = text;
+  $("kind").textContent = what;
+  $("kind").dataset.kind = kind;
+  $("source").textContent = `${session.source || ""}${note ? ` — ${note}` : ""}`;
   $("source").dataset.kind = kind;
   document.title = `${session.source || "plc_cell"} — monitor`;
 }
