@@ -12,8 +12,10 @@ list(APPEND PLC_CELL_TOOL_LIBS plc_cell_recording)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB RECORDING_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/recording/*_test.cpp)
-  catkin_add_gtest(recording_tests test/core/test_main.cpp ${RECORDING_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(recording_tests plc_cell_recording plc_cell_scenario)
+  # The monitor's test client drives `plc_cell monitor` as a page would.
+  catkin_add_gtest(recording_tests test/core/test_main.cpp ${RECORDING_TESTS} test/monitor/client.cpp
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  target_link_libraries(recording_tests plc_cell_recording plc_cell_scenario plc_cell_monitor)
   target_compile_definitions(recording_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")

@@ -108,7 +108,7 @@ int cmd_monitor(const std::vector<std::string>& argv) {
   std::unique_ptr<monitor::Source> source = args.has("recording") ? replay_source(args) : remote_source(args);
   monitor::HttpServer server(*source, settings);
   server.start();
-  std::cerr << "plc_cell monitor: serving " << source->describe() << " on " << server.describe()
+  std::cerr << "plc_cell monitor: serving " << server.describe() << " for " << source->describe()
             << "; Ctrl-C to stop" << std::endl;
   const auto t0 = std::chrono::steady_clock::now();
   for (;;) {

@@ -15,13 +15,15 @@ class RunChild {
  public:
   // Waits (up to timeout_ms) until every one of `servers` log lines appeared; servers = 0
   // returns as soon as the child is forked (read its log with next_line()).
-  explicit RunChild(const std::vector<std::string>& args, int servers = 1, int timeout_ms = 20000) {
+  // command: the tool's subcommand ("monitor" serves its page and logs the same way).
+  explicit RunChild(const std::vector<std::string>& args, int servers = 1, int timeout_ms = 20000,
+                    const char* command = "run") {
     int p[2];
     if (::pipe2(p, O_CLOEXEC) != 0) throw std::runtime_error("pipe");
     pid_ = ::fork();
     if (pid_ == 0) {
       ::dup2(p[1], 2);
-      std::vector<char*> av{const_cast<char*>(PLC_CELL_TOOL), const_cast<char*>("run")};
+      std::vector<char*> av{const_cast<char*>(PLC_CELL_TOOL), const_cast<char*>(command)};
       for (const auto& a : args) av.push_back(const_cast<char*>(a.c_str()));
       av.push_back(nullptr);
       ::execv(PLC_CELL_TOOL, av.data());
