@@ -29,3 +29,17 @@ export function download(name, text, type) {
   setTimeout(() => URL.revokeObjectURL(a.href), 1000);
   a.remove();
 }
+
+// A form that adds names: "<prefix>-add" for the field, "<prefix>-add-form" for the form;
+// onAdd gets each name of a list separated by spaces, commas or semicolons.
+export function addForm(parent, prefix, placeholder, onAdd) {
+  const form = html("form", {class: "add", id: `${prefix}-add-form`}, parent);
+  const input = html("input", {id: `${prefix}-add`, placeholder, size: 24}, form);
+  html("button", {type: "submit"}, form, "Add");
+  form.addEventListener("submit", async (ev) => {
+    ev.preventDefault();
+    const names = input.value.split(/[\s,;]+/).filter(Boolean);
+    input.value = "";
+    for (const a of names) await onAdd(a);  // in the order given
+  });
+}

@@ -4,7 +4,7 @@
 
 import * as api from "./api.js";
 import {show} from "./format.js";
-import {download, html} from "./dom.js";
+import {addForm, download, html} from "./dom.js";
 
 export class Trends {
   constructor(root, {changed, log}) {
@@ -20,14 +20,7 @@ export class Trends {
   }
 
   build() {
-    const form = html("form", {class: "add", id: "trend-add-form"}, this.root);
-    this.input = html("input", {id: "trend-add", placeholder: "temp_pv, DR4088, RC0 ...", size: 24}, form);
-    html("button", {type: "submit"}, form, "Add");
-    form.addEventListener("submit", (ev) => {
-      ev.preventDefault();
-      for (const a of this.input.value.split(/[\s,;]+/).filter(Boolean)) this.add(a);
-      this.input.value = "";
-    });
+    addForm(this.root, "trend", "temp_pv, DR4088, RC0 ...", (a) => this.add(a));
     const bar = html("div", {class: "bar"}, this.root);
     html("label", {}, bar, "window (s) ");
     const win = html("input", {type: "number", min: 1, max: 3600, value: this.windowS, id: "trend-window"}, bar);

@@ -4,7 +4,7 @@
 
 import * as api from "./api.js";
 import {FORMATS, isBit, isWide, parse, readAddress, show} from "./format.js";
-import {download, html} from "./dom.js";
+import {addForm, download, html} from "./dom.js";
 
 const STORE = "plc_cell.monitor.watch";
 
@@ -58,14 +58,7 @@ export class Watch {
     html("button", {id: "watch-download", onclick: () => this.download()}, bar, "Download");
     const upload = html("input", {type: "file", accept: ".json,application/json", id: "watch-upload"}, bar);
     upload.addEventListener("change", () => upload.files[0] && this.upload(upload.files[0]));
-    const add = html("form", {class: "add", id: "watch-add-form"}, this.root);
-    this.input = html("input", {id: "watch-add", placeholder: "D0, X1, temp_pv ...", size: 24}, add);
-    html("button", {type: "submit"}, add, "Add");
-    add.addEventListener("submit", (ev) => {
-      ev.preventDefault();
-      for (const a of this.input.value.split(/[\s,;]+/).filter(Boolean)) this.add(a);
-      this.input.value = "";
-    });
+    addForm(this.root, "watch", "D0, X1, temp_pv ...", (a) => this.add(a));
     const table = html("table", {class: "watch", id: "watch"}, this.root);
     const head = html("tr", {}, html("thead", {}, table));
     for (const h of ["address", "format", "value", "write", "force", ""]) html("th", {}, head, h);
