@@ -43,8 +43,9 @@ def contact(driver, address):
 
 
 def energised(driver, address):
-    return js(driver, "return [...document.querySelectorAll(`g.el.contact[data-address='${arguments[0]}']`)]"
-                      ".some(g => g.classList.contains('on'))", address)
+    """Whether a normally open contact of address is drawn passing power."""
+    return js(driver, "return [...document.querySelectorAll(`g.el.contact[data-address='${arguments[0]}']"
+                      "[data-form='no']`)].some(g => g.classList.contains('on'))", address)
 
 
 def watch_add(driver, address):
@@ -94,7 +95,7 @@ def test_the_page_draws_the_conveyors_networks(cell, browser):
     # The IL comment above the first network.
     first = browser.find_element("css selector", "#ladder .net .comment").text
     assert "Start/stop latch" in first, first
-    assert "live cell" in browser.find_element("id", "source").text
+    assert browser.find_element("id", "kind").text.lower() == "live cell"
 
 
 def test_a_contact_lights_up_when_its_input_is_set_through_ros(cell, browser):

@@ -45,8 +45,9 @@ def watch_value(driver, address):
 
 
 def energised(driver, address):
-    return js(driver, "return [...document.querySelectorAll(`g.el.contact[data-address='${arguments[0]}']`)]"
-                      ".some(g => g.classList.contains('on'))", address)
+    """Whether a normally open contact of address is drawn passing power."""
+    return js(driver, "return [...document.querySelectorAll(`g.el.contact[data-address='${arguments[0]}']"
+                      "[data-form='no']`)].some(g => g.classList.contains('on'))", address)
 
 
 @pytest.fixture

@@ -101,6 +101,7 @@ export class Ladder {
     const g = svg("g", {class: `el ${el.type}`}, root);
     g.dataset.id = el.id;
     if (el.address) g.dataset.address = el.address;
+    if (el.form) g.dataset.form = el.form;
     const named = {...el, name: el.name || this.signals[el.address] || "", inputDy: {}};
     for (const input of el.inputs || []) named.inputDy[input.row] = rowY(input.row) - y;
     const title = [el.address, named.name, el.comment, el.line ? `line ${el.line}` : ""].filter(Boolean).join("  ");
