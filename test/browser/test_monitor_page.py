@@ -98,6 +98,24 @@ def test_the_page_draws_the_conveyors_networks(cell, browser):
     assert browser.find_element("id", "kind").text.lower() == "live cell"
 
 
+def test_search_and_subscription_follow_what_is_shown(cell, browser):
+    browser.set_window_size(1400, 500)
+    open_page(browser, cell["base"])
+    total = len(browser.find_elements("css selector", "#ladder .net"))
+    subscribed = lambda d: js(d, "return window.plcMonitor.live.subscription.networks")  # noqa: E731
+    # Only the networks on the screen (and a margin) are subscribed to.
+    wait(browser, "a subscription to the first networks", lambda d: 0 in subscribed(d))
+    assert len(subscribed(browser)) < total, subscribed(browser)
+    js(browser, "document.querySelector('#ladder .net:last-child').scrollIntoView()")
+    wait(browser, "the last network subscribed once in view", lambda d: total - 1 in subscribed(d))
+    assert 0 not in subscribed(browser)
+    # Searching by address keeps the networks that mention it: T51 is timed in one, read in two.
+    browser.find_element("id", "search").send_keys("T51")
+    shown = lambda d: [n for n in d.find_elements("css selector", "#ladder .net") if n.is_displayed()]  # noqa: E731
+    wait(browser, "three networks mentioning T51", lambda d: len(shown(d)) == 3)
+    assert all("T51" in n.text for n in shown(browser))
+
+
 def test_a_contact_lights_up_when_its_input_is_set_through_ros(cell, browser):
     open_page(browser, cell["base"])
     wait(browser, "the X0 contact", lambda d: contact(d, "X0"))

@@ -100,8 +100,9 @@ export class Watch {
     });
     const fcell = html("td", {class: "force"}, tr);
     if (isBit(row.address) || !/^[A-Z]+\d+$/i.test(row.address)) {
-      for (const action of ["on", "off", "release"])
-        html("button", {class: `force-${action}`, onclick: () => this.force(row.address, action)}, fcell, action);
+      for (const [action, label] of [["on", "on"], ["off", "off"], ["release", "free"]])
+        html("button", {class: `force-${action}`, title: `force ${action}`, onclick: () => this.force(row.address, action)},
+             fcell, label);
     }
     html("button", {class: "remove", title: "remove the row", onclick: () => this.remove(i)}, html("td", {}, tr), "×");
     return {row, value};
