@@ -125,13 +125,17 @@ export class Watch {
   // Marks the rows this cell cannot read (tables saved for another cell); they stay in the
   // table but out of the subscription.
   async validate() {
-    this.bad = new Map();
+    const bad = new Map();
     const wanted = this.table().rows.map((r) => readAddress(r.address, r.format));
-    if (!(await api.unreadable(wanted))) return this.redraw();
-    for (const a of wanted) {
-      const why = await api.unreadable([a]);
-      if (why) this.bad.set(a, why);
+    if (await api.unreadable(wanted)) {
+      for (const a of wanted) {
+        const why = await api.unreadable([a]);
+        if (why) bad.set(a, why);
+      }
     }
+    // Redrawn only when the verdict changed: a redraw replaces the rows being typed in.
+    if (JSON.stringify([...bad]) === JSON.stringify([...this.bad])) return;
+    this.bad = bad;
     this.redraw();
     this.changed();
   }
