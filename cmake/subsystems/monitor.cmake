@@ -7,11 +7,8 @@ find_package(nlohmann_json 3 REQUIRED)
 file(GLOB MONITOR_SOURCES CONFIGURE_DEPENDS src/monitor/*.cpp)
 list(FILTER MONITOR_SOURCES EXCLUDE REGEX "/replay[^/]*\\.cpp$")
 add_library(plc_cell_monitor STATIC ${MONITOR_SOURCES})
-target_link_libraries(plc_cell_monitor PUBLIC plc_cell_config plc_cell_coverage nlohmann_json::nlohmann_json
-  Boost::boost pthread)
-if(TARGET plc_cell_ladder)
-  target_link_libraries(plc_cell_monitor PUBLIC plc_cell_ladder)
-endif()
+target_link_libraries(plc_cell_monitor PUBLIC plc_cell_config plc_cell_coverage plc_cell_ladder
+  nlohmann_json::nlohmann_json Boost::boost pthread)
 set_target_properties(plc_cell_monitor PROPERTIES POSITION_INDEPENDENT_CODE ON)
 # Where the page's files are found when neither the setting nor $PLC_CELL_MONITOR_ASSETS
 # says: the source tree this was built from, then the installed package.
@@ -22,10 +19,15 @@ list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_monitor)
 
 if(CATKIN_ENABLE_TESTING)
   file(GLOB MONITOR_TESTS CONFIGURE_DEPENDS test/monitor/*_test.cpp)
-  catkin_add_gtest(monitor_tests test/core/test_main.cpp ${MONITOR_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  catkin_add_gtest(monitor_tests test/core/test_main.cpp ${MONITOR_TESTS} test/monitor/client.cpp WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(monitor_tests plc_cell_monitor plc_cell_runtime)
   target_compile_definitions(monitor_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
   add_dependencies(monitor_tests plc_cell_tool)
 endif()
+
+# The scan's wake latency with 10 pages open against none (docs/performance.md, "Monitor").
+add_executable(bench_monitor_latency bench/monitor_latency.cpp test/monitor/client.cpp)
+target_link_libraries(bench_monitor_latency plc_cell_runtime)
+target_compile_definitions(bench_monitor_latency PRIVATE PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -58,7 +58,7 @@ nlohmann::json to_json(const Network& n) {
   for (const Wire& w : n.wires) wires.push_back(wire_json(w));
   return {{"index", n.index}, {"line", n.line}, {"comment", n.comment}, {"drawable", n.drawable},
           {"reason", n.reason}, {"il", il}, {"rows", n.rows}, {"cols", n.cols},
-          {"elements", elements}, {"wires", wires}};
+          {"elements", elements}, {"wires", wires}, {"instructions", {n.first, n.end}}};
 }
 
 nlohmann::json to_json(const Layout& layout) {

@@ -77,12 +77,19 @@ Api::Api(Source& source, const HttpSettings& settings, const std::string& bound_
 std::shared_ptr<const LadderView> Api::ladder() {
   auto program = source_.program();
   std::lock_guard<std::mutex> lk(ladder_mu_);
-  if (!ladder_ || &ladder_->program() != program.get()) ladder_ = std::make_shared<LadderView>(program);
+  if (!ladder_ || &ladder_->program() != program.get()) ladder_ = std::make_shared<LadderView>(program, source_.functions());
   return ladder_;
 }
 
+nlohmann::json Api::status_json_now() {
+  CellStatus s = source_.status();
+  // The page may switch RUN/STOP only where this server lets it (api_control.cpp).
+  s.mode_switchable = s.mode_switchable && settings_.writable.everything();
+  return status_json(s);
+}
+
 nlohmann::json Api::status_message() {
-  auto j = status_json(source_.status());
+  auto j = status_json_now();
   j["type"] = "status";
   return j;
 }
@@ -129,7 +136,7 @@ ApiReply Api::get(const std::string& path, const std::string& query) {
                        {"kind", source_kind(source_)},
                        {"rate_hz", kDefaultRateHz}});
   if (path == "/api/ladder") return json_reply(ladder()->json());
-  if (path == "/api/status") return json_reply(status_json(source_.status()));
+  if (path == "/api/status") return json_reply(status_json_now());
   if (path == "/api/read") return read(query);
   if (path == "/api/coverage") {
     auto seen = source_.coverage();

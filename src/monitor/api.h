@@ -52,6 +52,7 @@ class Api {
   const std::string& token() const { return token_; }
 
  private:
+  nlohmann::json status_json_now();
   ApiReply get(const std::string& path, const std::string& query);
   ApiReply post(const std::string& path, const nlohmann::json& body);
   ApiReply read(const std::string& query);

@@ -17,7 +17,7 @@ namespace monitor {
 
 class LadderView {
  public:
-  explicit LadderView(std::shared_ptr<const ProgramView> program);
+  LadderView(std::shared_ptr<const ProgramView> program, const FunctionTable* functions);
   ~LadderView();
 
   const ProgramView& program() const { return *program_; }

@@ -1,5 +1,6 @@
 #include "plc_cell/monitor/live_source.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -31,10 +32,6 @@ std::string file_text(const std::string& path) {
 }
 
 }  // namespace
-
-struct LiveSource::Identity {
-  std::vector<uint64_t> fingerprint;
-};
 
 LiveSource::LiveSource(const ServerContext& c, std::string name)
     : plc_(c.plc), config_(c.config), extensions_(c.extensions), servers_(c.servers), name_(std::move(name)) {}

@@ -64,6 +64,39 @@ TEST(LadderJson, ElementAndWireIdsShareOneSpace) {
   EXPECT_EQ(static_cast<int>(ids.size()), *ids.rbegin() + 1);  // 0..n-1
 }
 
+TEST(LadderJson, OutputsCarryTheirOwnFields) {
+  const Network n = net0("ORG X0\nTMR T5 100\nADD Sa=D0 Sb=K1 D=D2\nJMP AHEAD\nLBL AHEAD\nEND\n");
+  const nlohmann::json j = to_json(n);
+  const nlohmann::json& timer = j["elements"][1];
+  EXPECT_EQ(timer["type"], "timer");
+  EXPECT_EQ(timer["address"], "T5");
+  EXPECT_EQ(timer["preset"], "100");
+  EXPECT_EQ(timer["values"], (nlohmann::json{"T5", "RT5"}));
+  EXPECT_EQ(timer["col"], 1);
+  const nlohmann::json& fun = j["elements"][2];
+  EXPECT_EQ(fun["type"], "fun");
+  EXPECT_EQ(fun["fun"], 11);
+  EXPECT_EQ(fun["mnemonic"], "ADD");
+  EXPECT_EQ(fun["pulse"], false);
+  EXPECT_EQ(fun["d32"], false);
+  EXPECT_EQ(fun["operands"][0], (nlohmann::json{{"name", "Sa"}, {"text", "D0"}, {"address", "D0"}}));
+  EXPECT_EQ(fun["operands"][1], (nlohmann::json{{"name", "Sb"}, {"text", "K1"}}));
+  EXPECT_EQ(fun["inputs"], (nlohmann::json::array({{{"name", "EN"}, {"row", 1}}})));
+  const nlohmann::json& jump = j["elements"][3];
+  EXPECT_EQ(jump["type"], "jump");
+  EXPECT_EQ(jump["label"], "AHEAD");
+  EXPECT_EQ(jump["row"], 2);
+}
+
+TEST(LadderJson, AnUndrawableNetworkKeepsItsIlAndReason) {
+  const nlohmann::json j = to_json(net0("ORG X0\nOUT Y0\nOR X1\nOUT Y1\nEND\n"));
+  EXPECT_EQ(j["drawable"], false);
+  EXPECT_NE(j["reason"].get<std::string>().find("line 4"), std::string::npos);
+  EXPECT_EQ(j["il"].size(), 4u);
+  EXPECT_TRUE(j["elements"].empty());
+  EXPECT_EQ(j["instructions"], (nlohmann::json{0, 4}));  // for the coverage of its IL lines
+}
+
 TEST(LadderJson, FlowIsTheNetworkAndItsEnergisedIds) {
   Flow f;
   f.net = 2;

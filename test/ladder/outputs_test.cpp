@@ -231,6 +231,17 @@ TEST(LadderFlow, JumpsCallsLabelsAndLoopsAreBoxes) {
   for (const Network& n : nets) EXPECT_TRUE(n.drawable) << n.index << ": " << n.reason;
 }
 
+TEST(LadderFlow, AnInterruptRoutineEndsWithAnRtiBox) {
+  const Layout l = lay("ORG X0\nOUT Y0\nEND\nLBL 1MSI\nORG M0\nOUT Y1\nRTI\n");
+  ASSERT_EQ(l.networks.size(), 5u);
+  EXPECT_EQ(l.networks[2].elements.at(0).type, "label");
+  EXPECT_EQ(l.networks[2].elements.at(0).label, "1MSI");
+  EXPECT_EQ(l.networks[4].elements.at(0).type, "flow");
+  EXPECT_EQ(l.networks[4].elements.at(0).form, "RTI");
+  EXPECT_EQ(l.networks[4].rows, 1);
+  EXPECT_EQ(l.networks[4].cols, 0);
+}
+
 }  // namespace test
 }  // namespace ladder
 }  // namespace plc_cell

@@ -26,6 +26,7 @@ TEST_F(MonitorTest, FramesCarryTheSubscribedValuesAfterEachScan) {
   ASSERT_EQ(f["flow"].size(), 2u);
   EXPECT_EQ(f["flow"][1]["net"], 1);
   EXPECT_TRUE(f["values"].contains("X0"));  // network 0's contacts come with the frame
+  const size_t dark = f["flow"][0]["on"].size();
 
   plc.set_input(0, true);
   scan();
@@ -39,6 +40,8 @@ TEST_F(MonitorTest, FramesCarryTheSubscribedValuesAfterEachScan) {
   EXPECT_EQ(f["values"]["R0"], 7);
   EXPECT_EQ(f["values"]["X0"], 1);
   EXPECT_EQ(f["values"]["D7"], 1234);
+  // The latch conducts now: more of network 0 carries power, its coil among it.
+  EXPECT_GT(f["flow"][0]["on"].size(), dark);
 }
 
 TEST_F(MonitorTest, StatusComesWithoutAsking) {

@@ -1,5 +1,5 @@
 // Damaged, cut-short and foreign files: a clear error naming the file, the offset and why,
-// and never a crash (run under the sanitizers by the fuzz build's reader too).
+// and never a crash.
 #include <gtest/gtest.h>
 
 #include <random>

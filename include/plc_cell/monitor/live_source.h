@@ -29,11 +29,9 @@ class LiveSource : public Source {
   void force(const Address& bit, ForceAction action) override;
   void set_mode(RunMode mode) override;
   std::optional<std::vector<uint8_t>> coverage() override;
+  const FunctionTable* functions() const override { return &plc_.functions(); }
 
  private:
-  struct Identity;
-  bool program_changed(const Identity& now) const;
-
   Plc& plc_;
   const CellConfig* config_;
   const std::vector<std::unique_ptr<CellExtension>>* extensions_;

@@ -86,6 +86,9 @@ class Source {
   virtual std::optional<std::vector<uint8_t>> coverage() { return std::nullopt; }
   // The recorded run's cursor, or nullptr for a live or remote source.
   virtual Replay* replay() { return nullptr; }
+  // The instruction set the program was parsed with (the ladder's FUN names and inputs);
+  // nullptr: the core's.
+  virtual const FunctionTable* functions() const { return nullptr; }
 };
 
 }  // namespace monitor
