@@ -194,3 +194,19 @@ def test_a_trend_collects_points(cell, browser):
     # Points are at distinct instants of the cell's clock, in order.
     ts = js(browser, "return window.plcMonitor.trends.rows.map(r => r[0])")
     assert ts == sorted(ts) and len(set(ts)) == len(ts), ts
+
+
+def coverage_class(driver, address, form):
+    return js(driver, "const g = document.querySelector(`g.el.contact[data-address='${arguments[0]}']"
+                      "[data-form='${arguments[1]}']`); return g ? g.getAttribute('class') : ''", address, form)
+
+
+def test_the_coverage_overlay_colours_what_ran(cell, browser):
+    open_page(browser, cell["base"])
+    browser.find_element("id", "coverage-toggle").click()
+    # Since coverage started (the first request): the start button X0 was evaluated but never
+    # closed (the line latched at the first scan), the latch M0 closed.
+    wait(browser, "X0 evaluated, never energised", lambda d: "cov-off" in coverage_class(d, "X0", "no"))
+    wait(browser, "M0 energised", lambda d: "cov-on" in coverage_class(d, "M0", "no"))
+    browser.find_element("id", "coverage-toggle").click()
+    wait(browser, "the overlay off again", lambda d: "cov-" not in coverage_class(d, "X0", "no"))
