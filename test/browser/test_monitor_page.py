@@ -157,6 +157,12 @@ def test_a_watch_row_writes_in_its_format(cell, browser):
     wait(browser, "D10 = 0xFFFB (hex)", lambda d: watch_value(d, "D10") == "0xFFFB")
     code, out = run("rosservice call /plc_node/read D10 1", cell["env"])
     assert code == 0 and "65531" in out, out
+    # 32-bit: the double word D10..D11 (DD10), low word first.
+    watch_format(browser, "D10", "32-bit")
+    page_write(browser, "D10", 70000)
+    wait(browser, "D10 = 70000 (32-bit)", lambda d: watch_value(d, "D10") == "70000")
+    code, out = run("rosservice call /plc_node/read D10 2", cell["env"])
+    assert code == 0 and "[4464, 1]" in out, out
     wait(browser, "the write in the log", lambda d: any("D10" in l for l in log_lines(d)))
 
 

@@ -15,10 +15,13 @@ export function isWide(format) {
   return format === "32-bit" || format === "float";
 }
 
-// What the subscription asks for to show `address` in `format`.
-export function readAddress(address, format) {
-  if (!isWide(format) || isBit(address) || /^D[A-Z]/i.test(address)) return address;
-  return `D${address}`;
+// What the subscription asks for to show `address` in `format`; a signal name is first
+// turned into its address by `resolve` (the program's signals) for the wide formats.
+export function readAddress(address, format, resolve = (a) => a) {
+  if (!isWide(format)) return address;
+  const a = /^[A-Z]+\d+$/i.test(address) ? address : resolve(address);
+  if (isBit(a) || /^D[A-Z]/i.test(a) || !/^[A-Z]+\d+$/i.test(a)) return a;
+  return `D${a}`;
 }
 
 function floatOf(bits) {

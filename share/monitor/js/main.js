@@ -19,8 +19,14 @@ const $ = (id) => document.getElementById(id);
 const page = {session: null, ladderData: null, status: null, visible: new Set(), coverage: false, replay: null};
 
 const log = new Log($("log"));
+
+// The address of a signal name of the program (the ladder's signals map address -> name).
+function signalAddress(name) {
+  const signals = (page.ladderData && page.ladderData.signals) || {};
+  return Object.keys(signals).find((a) => signals[a] === name) || name;
+}
 const addLog = (text, level) => log.add(text, level);
-const watch = new Watch($("watch-panel"), {changed: () => resubscribe(), log: addLog});
+const watch = new Watch($("watch-panel"), {changed: () => resubscribe(), log: addLog, resolve: signalAddress});
 const trends = new Trends($("trends-panel"), {changed: () => resubscribe(), log: addLog});
 const ladder = new Ladder($("ladder"), async (address) => {
   if (await watch.add(address)) toast(`${address} added to the watch table`);

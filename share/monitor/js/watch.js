@@ -19,8 +19,9 @@ function validTables(data) {
 }
 
 export class Watch {
-  constructor(root, {changed, log}) {
+  constructor(root, {changed, log, resolve}) {
     this.root = root;
+    this.resolve = resolve;  // signal name -> address
     this.changed = changed;  // the subscription must change
     this.log = log;          // (text, level) into the log panel
     this.values = {};
@@ -80,7 +81,7 @@ export class Watch {
     const tr = html("tr", {}, this.body);
     tr.dataset.address = row.address;
     const name = html("td", {class: "address"}, tr, row.address);
-    const why = this.bad.get(readAddress(row.address, row.format));
+    const why = this.bad.get(this.read(row));
     if (why) {
       tr.classList.add("invalid");
       name.title = why;
@@ -126,7 +127,7 @@ export class Watch {
   // table but out of the subscription.
   async validate() {
     const bad = new Map();
-    const wanted = this.table().rows.map((r) => readAddress(r.address, r.format));
+    const wanted = this.table().rows.map((r) => this.read(r));
     if (await api.unreadable(wanted)) {
       for (const a of wanted) {
         const why = await api.unreadable([a]);
@@ -193,15 +194,19 @@ export class Watch {
     }
   }
 
+  read(row) {
+    return readAddress(row.address, row.format, this.resolve);
+  }
+
   // What the subscription must read for the current table.
   addresses() {
-    return this.table().rows.map((r) => readAddress(r.address, r.format)).filter((a) => !this.bad.has(a));
+    return this.table().rows.map((r) => this.read(r)).filter((a) => !this.bad.has(a));
   }
 
   applyValues(values) {
     this.values = values;
     for (const {row, value} of this.cells) {
-      const key = readAddress(row.address, row.format);
+      const key = this.read(row);
       if (!(key in values)) continue;
       const text = show(values[key], row.format);
       if (value.textContent !== text) value.textContent = text;
@@ -209,7 +214,7 @@ export class Watch {
   }
 
   async write(row, text) {
-    const address = readAddress(row.address, row.format);
+    const address = this.read(row);
     let v;
     try {
       v = parse(text, row.format);
