@@ -47,6 +47,7 @@ void Drawer::contact(const Instruction& in, Element* e) const {
   }
   e->address = format_address(in.addr);
   e->name = names_.of(in.addr);
+  e->bit = in.addr;
 }
 
 void Drawer::coil(const Instruction& in, Element* e) const {

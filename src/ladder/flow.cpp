@@ -12,7 +12,7 @@ namespace ladder {
 namespace {
 
 bool closed(const Element& e, const Lookup& now, const Lookup& prev) {
-  const Address a = parse_address(e.address);
+  const Address& a = e.bit;
   const bool v = now(a) != 0;
   if (e.form == "nc") return !v;
   if (e.form == "up") return v && prev(a) == 0;

@@ -17,7 +17,7 @@ namespace {
 // does not change from one scan to the next.
 template <typename T>
 void diff(const std::vector<T>& a, const std::vector<T>& b, std::vector<uint32_t>* out) {
-  constexpr size_t kBlock = 64 / sizeof(T);
+  constexpr size_t kBlock = 512 / sizeof(T);
   out->clear();
   for (size_t at = 0; at < a.size(); at += kBlock) {
     const size_t n = std::min(kBlock, a.size() - at);

@@ -39,22 +39,6 @@ Layout example(const std::filesystem::path& il) {
   return layout(parse_program(text, il.string(), fns), text, cell.config().signals, &fns);
 }
 
-void expect_a_sound_grid(const Network& n) {
-  std::set<std::pair<int, int>> cells;
-  for (const Element& e : n.elements) {
-    EXPECT_TRUE(cells.insert({e.row, e.col}).second) << "network " << n.index << ": two elements at (" << e.row
-                                                     << ", " << e.col << ")";
-    EXPECT_GE(e.row, 0);
-    EXPECT_LT(e.row, n.rows);
-    EXPECT_EQ(e.type == "contact" ? e.col < n.cols : e.col == n.cols, true)
-        << "network " << n.index << ": " << e.type << " " << e.address << " at column " << e.col;
-  }
-  for (const Wire& w : n.wires) {
-    EXPECT_LT(w.from, w.to) << "network " << n.index << " wire " << w.id;
-    EXPECT_LE(w.to, w.vertical ? n.rows - 1 : n.cols);
-  }
-}
-
 }  // namespace
 
 TEST(LadderExamples, EveryExampleProgramIsLaidOut) {

@@ -90,6 +90,7 @@ TEST(LadderPowerFlowAgreement, CoilsArePoweredExactlyWhenTheInterpreterDrivesThe
     const std::string il = gen.program();
     SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + il);
     const Layout l = lay(il);
+    for (const Network& n : l.networks) expect_a_sound_grid(n);
     Plc plc;
     plc.load_program_text(il, "random.il");
     ASSERT_TRUE(plc.set_mode(RunMode::Run));

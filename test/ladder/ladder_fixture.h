@@ -3,7 +3,9 @@
 // elements and wires by what the IL says, not by id.
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
+#include <utility>
 
 #include "plc_cell/core/function_table.h"
 #include "plc_cell/core/il_parser.h"
@@ -56,6 +58,26 @@ inline bool vwire(const Network& n, int col, int from, int to) {
   for (const Wire& w : n.wires)
     if (w.vertical && w.col == col && w.from == from && w.to == to) return true;
   return false;
+}
+
+// Every element in a cell of its own inside the grid, contacts left of the outputs' column.
+inline void expect_a_sound_grid(const Network& n) {
+  std::set<std::pair<int, int>> cells;
+  for (const Element& e : n.elements) {
+    EXPECT_TRUE(cells.insert({e.row, e.col}).second) << "network " << n.index << ": two elements at (" << e.row
+                                                     << ", " << e.col << ")";
+    EXPECT_GE(e.row, 0);
+    EXPECT_LT(e.row, n.rows);
+    EXPECT_EQ(e.type == "contact" ? e.col < n.cols : e.col == n.cols, true)
+        << "network " << n.index << ": " << e.type << " " << e.address << " at column " << e.col;
+  }
+  for (const Wire& w : n.wires) {
+    EXPECT_LT(w.from, w.to) << "network " << n.index << " wire " << w.id;
+    for (int c = w.from; !w.vertical && c < w.to; ++c)
+      EXPECT_EQ(cells.count({w.row, c}), 0u) << "network " << n.index << ": wire " << w.id << " runs through ("
+                                            << w.row << ", " << c << ")";
+    EXPECT_LE(w.to, w.vertical ? n.rows - 1 : n.cols);
+  }
 }
 
 }  // namespace test

@@ -10,7 +10,7 @@
 namespace plc_cell {
 namespace {
 
-const std::string kFails = std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/too_strict.fails.yaml";
+const std::string& kFails = testing::kFailingScenario;
 
 TEST(RecordedCase, AFailingCaseOpensAtItsFailure) {
   const std::string dir = testing::scratch_dir("cases");

@@ -2,6 +2,7 @@
 // Recordings made the way users make them: `plc_cell sim --record` on the demo conveyor,
 // and the same run again in process for the values a recording must give back.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fstream>
@@ -16,7 +17,7 @@
 namespace plc_cell {
 namespace testing {
 
-inline const std::string kConveyorYaml = std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/conveyor.yaml";
+inline const std::string kExamples = std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/";
 
 // A folder of its own for a test's files.
 inline std::string scratch_dir(const std::string& name) {
@@ -31,6 +32,25 @@ inline std::string file_bytes(const std::string& path) {
   s << in.rdbuf();
   return s.str();
 }
+
+// The demo cell with its real-time clock started at a fixed date: without one the RTC
+// registers start from the host's clock, and two runs a second apart differ there.
+inline std::string fixed_clock_conveyor() {
+  const std::string dir = "/tmp/plc_cell_recording_" + std::to_string(getpid()) + "_cell";
+  ::mkdir(dir.c_str(), 0755);
+  std::string yaml = file_bytes(kExamples + "conveyor.yaml");
+  const std::string program = "program: conveyor.il";
+  yaml.replace(yaml.find(program), program.size(), "program: " + kExamples + "conveyor.il");
+  std::ofstream(dir + "/conveyor.yaml") << yaml << "modules:\n  rtc: {start: 2026-01-01T00:00:00}\n";
+  std::string scenario = file_bytes(kExamples + "too_strict.fails.yaml");
+  const std::string cell = "cell: conveyor.yaml";
+  scenario.replace(scenario.find(cell), cell.size(), "cell: " + dir + "/conveyor.yaml");
+  std::ofstream(dir + "/too_strict.fails.yaml") << scenario;
+  return dir + "/conveyor.yaml";
+}
+inline const std::string kConveyorYaml = fixed_clock_conveyor();
+// too_strict.fails.yaml on that cell.
+inline const std::string kFailingScenario = kConveyorYaml.substr(0, kConveyorYaml.rfind('/')) + "/too_strict.fails.yaml";
 
 // `plc_cell sim --record` of the demo conveyor for duration; returns the file's path.
 inline std::string record_conveyor(const std::string& dir, const std::string& duration, const std::string& name = "run") {

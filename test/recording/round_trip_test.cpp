@@ -60,6 +60,10 @@ TEST(RecordingRoundTrip, TheInitialImageIsTheMemoryBeforeTheFirstScan) {
   EXPECT_TRUE(rec.initial().bits == before.bits);
   EXPECT_TRUE(rec.initial().words == before.words);
   EXPECT_EQ(rec.initial_mode(), RunMode::Run);
+  Memory clock;
+  recording::restore(rec.initial(), &clock);
+  EXPECT_EQ(clock.reg(Area::R, 4133), 26u);  // the cell's RTC start, 2026-01-01
+  EXPECT_EQ(clock.reg(Area::R, 4128), 0u);
   // M1924 (first scan) is on after the first scan only.
   recording::Image first, second;
   rec.image_after(0, &first);

@@ -62,6 +62,13 @@ TEST(PlcCellRunAsAPlc, OverTri) {
   EXPECT_EQ(f.values[0], 1u);
   source.write(parse_address("D10"), {321});
   EXPECT_EQ(source.read({parse_address("D10")}).values, std::vector<uint32_t>{321});
+  // Sixteen outputs are one word of 16: one RVS frame (the TRi's mode is not read).
+  std::vector<Address> outputs;
+  for (uint32_t i = 0; i < 16; ++i) outputs.push_back(Address{Area::Y, Width::Bit, i});
+  const uint64_t before = source.frames();
+  const monitor::Frame y = source.read(outputs);
+  EXPECT_EQ(source.frames() - before, 1u);
+  EXPECT_EQ(y.values.size(), 16u);
   // Not on a TRi: named.
   EXPECT_NE(error_of([&] { source.read({parse_address("D4000")}); }).find("D4000"), std::string::npos);
   EXPECT_NE(error_of([&] { source.force(parse_address("Y0"), ForceAction::Disable); }).find("no DISABLE flag"),

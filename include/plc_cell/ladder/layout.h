@@ -55,9 +55,11 @@ struct Element {
   std::vector<FunOperand> operands;  // fun; FOR's count
   std::vector<FunInput> inputs;      // fun
   std::string label;                 // jump, call, label
-  // Power (not drawn): the node that feeds it and, for a contact, the node it drives.
+  // Power (not drawn): the node that feeds it and, for a contact, the node it drives and
+  // the bit it reads.
   int in = -1;
   int out = -1;
+  Address bit{};
 };
 
 // Horizontal: on row `row` from boundary `from` to boundary `to` (columns).
