@@ -114,9 +114,15 @@ test: build
 # The demo runs on loopback: ROS_HOSTNAME=localhost unless ROS_HOSTNAME or ROS_IP is set,
 # and a hint instead of roslaunch's stack trace when the master could not reach itself
 # (scripts/ros_loopback.py).
+# The browser monitor of the demo cell listens on MONITOR (loopback; `make demo MONITOR=127.0.0.1:9090`
+# when 8080 is taken), its pages may write and force MONITOR_WRITABLE (docs/monitor.md): all, so
+# that RUN/STOP works too, as the demo is a simulated cell on loopback.
+MONITOR ?= 127.0.0.1:8080
+MONITOR_WRITABLE ?= all
 demo: deps-demo $(DEMO_BUILT)
 	@ros_env=$$($(PY) scripts/ros_loopback.py) && eval "$$ros_env" && \
-	echo "== starting the demo cell. In another shell:" && \
+	echo "== starting the demo cell. The monitor: http://$(MONITOR)/ (open it in a browser)" && \
+	echo "   In another shell:" && \
 	echo "     source $(WS)/devel/setup.bash" && \
 	if [ -n "$$ros_env" ]; then echo "     $$ros_env"; fi && \
 	echo "     rostopic list" && \
@@ -124,7 +130,7 @@ demo: deps-demo $(DEMO_BUILT)
 	echo "     rostopic echo /plc_node/io_words" && \
 	echo "     rosservice call /plc_node/read R0 1" && \
 	echo "   Ctrl-C stops it." && \
-	source $(WS)/devel/setup.bash && roslaunch plc_cell cell_sim.launch
+	source $(WS)/devel/setup.bash && roslaunch plc_cell cell_sim.launch http_tcp:=$(MONITOR) http_writable:=$(MONITOR_WRITABLE)
 
 # The whole suite in a throwaway Debian 12 root: proves `make test` on a machine with nothing
 # installed by hand (scripts/test_fresh.sh; root only). CI runs this.

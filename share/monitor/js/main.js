@@ -1,0 +1,226 @@
+// The monitor page: fetches the session, the ladder and the status, then lives on the
+// WebSocket. Subscribes to the networks in view (IntersectionObserver) and to what the watch
+// table and the trends show. After a drop it says so in a banner, keeps the last picture and
+// starts again from the session when the server is back (a restarted cell has a new token
+// and maybe a new program).
+
+import * as api from "./api.js";
+import {coverage} from "./coverage.js";
+import {show} from "./format.js";
+import {Ladder} from "./ladder.js";
+import {Live} from "./live.js";
+import {Log} from "./log.js";
+import {ReplayBar} from "./replay.js";
+import {modeRefusal, renderStatus} from "./status.js";
+import {Trends} from "./trends.js";
+import {Watch} from "./watch.js";
+
+const $ = (id) => document.getElementById(id);
+const page = {session: null, ladderData: null, status: null, visible: new Set(), coverage: false, replay: null};
+
+const log = new Log($("log"));
+
+// The address of a signal name of the program (the ladder's signals map address -> name).
+function signalAddress(name) {
+  const signals = (page.ladderData && page.ladderData.signals) || {};
+  return Object.keys(signals).find((a) => signals[a] === name) || name;
+}
+const addLog = (text, level) => log.add(text, level);
+const watch = new Watch($("watch-panel"), {changed: () => resubscribe(), log: addLog, resolve: signalAddress});
+const trends = new Trends($("trends-panel"), {changed: () => resubscribe(), log: addLog});
+const ladder = new Ladder($("ladder"), async (address) => {
+  if (await watch.add(address)) toast(`${address} added to the watch table`);
+});
+const observer = new IntersectionObserver(onVisibility, {root: null, rootMargin: "200px"});
+const live = new Live({frame: onFrame, status: onStatus, log: onLogEvent, program: () => loadLadder(),
+                       open: onOpen, close: onClose, error: (m) => addLog(`server: ${m.error || m}`, "error")});
+
+function toast(text) {
+  const t = $("toast");
+  t.textContent = text;
+  t.hidden = false;
+  clearTimeout(toast.timer);
+  toast.timer = setTimeout(() => (t.hidden = true), 2000);
+}
+
+function rate() {
+  return Number($("rate").value) || 10;
+}
+
+function resubscribe() {
+  const networks = [...page.visible];
+  // The server adds what the networks' drawing reads (ladder::addresses).
+  live.subscribe(networks, [...watch.addresses(), ...trends.addresses()], rate());
+}
+
+function onVisibility(entries) {
+  for (const e of entries) {
+    const index = Number(e.target.dataset.network);
+    if (e.isIntersecting) page.visible.add(index);
+    else page.visible.delete(index);
+  }
+  resubscribe();
+}
+
+function describeSource(session, status) {
+  const kind = session.kind || "live";
+  const what = kind === "replay" ? "recording" : kind === "remote" ? "remote PLC" : "live cell";
+  const note = (status && status.note) || (kind === "remote" ? "power flow computed from polled values" : "");
+  $("kind").textContent = what;
+  $("kind").dataset.kind = kind;
+  $("source").textContent = `${session.source || ""}${note ? ` — ${note}` : ""}`;
+  $("source").dataset.kind = kind;
+  document.title = `${session.source || "plc_cell"} — monitor`;
+}
+
+async function loadSession() {
+  const session = await api.session();
+  page.session = session;
+  api.setToken(session.token);
+  if (session.rate_hz && !page.rateSet) $("rate").value = String(session.rate_hz);
+  describeSource(session, page.status);
+  if (session.kind === "replay") {
+    if (!page.replay) page.replay = new ReplayBar($("replay"), addLog);
+    await page.replay.start();
+  }
+}
+
+async function loadLadder() {
+  const data = await api.ladder();
+  page.ladderData = data;
+  observer.disconnect();
+  page.visible.clear();
+  ladder.render(data);
+  for (const e of ladder.nets) observer.observe(e.div);
+  onSearch();
+  if (page.coverage) await refreshCoverage();
+  resubscribe();
+}
+
+async function loadStatus() {
+  onStatus(await api.status());
+}
+
+function onFrame(frame) {
+  const values = frame.values || {};
+  ladder.applyValues(values, (v) => show(v, "signed"));
+  ladder.applyFlow(frame.flow);
+  watch.applyValues(values);
+  trends.addFrame(frame);
+  if (page.replay) page.replay.frame(frame);
+  if (frame.mode) setMode(frame.mode);
+  const clock = $("clock");
+  clock.textContent = `scan ${frame.scan ?? "–"}  t ${frame.t_us !== undefined ? (frame.t_us / 1e6).toFixed(3) : "–"} s`;
+  clock.dataset.scan = frame.scan;
+  clock.dataset.tUs = frame.t_us;
+}
+
+function setMode(mode) {
+  const m = $("mode");
+  m.textContent = mode.toUpperCase();
+  m.className = `mode mode-${mode}`;
+}
+
+function onStatus(status) {
+  const {type, ...rest} = status;
+  page.status = rest;
+  renderStatus($("status-panel"), rest);
+  if (rest.mode) setMode(rest.mode);
+  if (page.session) describeSource(page.session, rest);
+  const button = $("mode-switch");
+  const why = modeRefusal(rest, page.session);
+  button.disabled = why !== "";
+  button.title = why || `switch the cell to ${rest.mode === "run" ? "STOP" : "RUN"}`;
+  button.textContent = rest.mode === "run" ? "STOP" : "RUN";
+  if (page.coverage) refreshCoverage();
+}
+
+function onLogEvent(msg) {
+  log.add(msg.text, "server", msg.t_us ?? null);
+}
+
+function banner(text) {
+  const b = $("banner");
+  b.textContent = text;
+  b.hidden = !text;
+  document.body.classList.toggle("disconnected", Boolean(text));
+}
+
+async function onOpen() {
+  try {
+    await loadSession();
+    await loadLadder();
+    await loadStatus();
+    banner("");
+    await watch.validate();
+  } catch (e) {
+    banner(`The server answered but the page could not load: ${e.message}. Retrying…`);
+    setTimeout(onOpen, 1000);
+  }
+}
+
+function onClose(why, delay) {
+  banner(`Connection to the cell lost (${why}). Reconnecting in ${(delay / 1000).toFixed(1)} s… ` +
+         "The page shows the last values it received.");
+}
+
+async function refreshCoverage(asked = false) {
+  if (!page.ladderData) return;
+  try {
+    const {cov, why} = await coverage(page.ladderData);
+    ladder.applyCoverage(cov);
+    $("coverage-toggle").title = why || "coverage since the start: green energised, red evaluated only, grey never run";
+    if (!cov && asked) toast(`no coverage: ${why}`);
+  } catch (e) {
+    addLog(`coverage: ${e.message}`, "error");
+  }
+}
+
+async function toggleCoverage() {
+  page.coverage = !page.coverage;
+  const button = $("coverage-toggle");
+  button.setAttribute("aria-pressed", String(page.coverage));
+  button.classList.toggle("active", page.coverage);
+  document.body.classList.toggle("coverage", page.coverage);
+  if (page.coverage) await refreshCoverage(true);
+  else ladder.applyCoverage(null);
+}
+
+async function switchMode() {
+  const to = page.status && page.status.mode === "run" ? "stop" : "run";
+  try {
+    await api.setMode(to);
+    addLog(`mode ${to}: accepted`, "own");
+  } catch (e) {
+    addLog(`mode ${to} refused: ${e.message}`, "error");
+    toast(e.message);
+  }
+}
+
+function onSearch() {
+  const q = $("search").value;
+  const shown = ladder.search(q);
+  $("search-count").textContent = q.trim() ? `${shown} of ${ladder.nets.length} networks` : "";
+}
+
+function showTab(id) {
+  for (const b of document.querySelectorAll(".tabs button")) b.classList.toggle("active", b.dataset.tab === id);
+  for (const s of document.querySelectorAll(".side .tab")) s.hidden = s.id !== id;
+  if (id === "trends-panel") trends.resetGraph();
+}
+
+function wire() {
+  for (const b of document.querySelectorAll(".tabs button")) b.addEventListener("click", () => showTab(b.dataset.tab));
+  $("search").addEventListener("input", onSearch);
+  $("coverage-toggle").addEventListener("click", toggleCoverage);
+  $("mode-switch").addEventListener("click", switchMode);
+  $("rate").addEventListener("change", () => {
+    page.rateSet = true;
+    resubscribe();
+  });
+}
+
+wire();
+live.connect();
+// For the browser tests and the console: the page's parts.
+window.plcMonitor = {page, ladder, watch, trends, live};

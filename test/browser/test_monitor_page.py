@@ -1,0 +1,218 @@
+"""The monitor page on the demo conveyor (examples/conveyor) served by plc_node (roslaunch
+cell_sim.launch, the monitor and its writable ranges from the cell YAML's servers.http), in
+headless chromium: the networks drawn, power flow following an input set through plc_node's
+~write service, a watch value following the program, forcing inside and outside the writable
+ranges, a trend collecting points."""
+import os
+import re
+import subprocess
+
+import pytest
+
+from conftest import conveyor_cell, free_port, get_json, js, open_page, ros_env, run, shell, stop, wait, \
+    wait_for_server
+
+PROGRAM = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
+                       "examples", "conveyor", "conveyor.il")
+
+
+@pytest.fixture(scope="module")
+def cell(scratch):
+    http = free_port()
+    master = free_port()
+    env = ros_env(master)
+    path = conveyor_cell(scratch, http)
+    log_path = os.path.join(scratch, "roslaunch.log")
+    with open(log_path, "w") as log:
+        proc = shell("roslaunch -p %d plc_cell cell_sim.launch cell:=%s" % (master, path), env,
+                     stdout=log, stderr=subprocess.STDOUT)
+    try:
+        base = "http://127.0.0.1:%d" % http
+        wait_for_server(base, proc, log_path)
+        yield {"base": base, "env": env}
+    finally:
+        stop(proc)
+
+
+def program_lines():
+    return [l.split(";")[0].split() for l in open(PROGRAM)]
+
+
+def contact(driver, address):
+    return driver.find_elements("css selector", 'g.el.contact[data-address="%s"]' % address)
+
+
+def energised(driver, address):
+    """Whether a normally open contact of address is drawn passing power."""
+    return js(driver, "return [...document.querySelectorAll(`g.el.contact[data-address='${arguments[0]}']"
+                      "[data-form='no']`)].some(g => g.classList.contains('on'))", address)
+
+
+def watch_add(driver, address):
+    box = driver.find_element("id", "watch-add")
+    box.clear()
+    box.send_keys(address)
+    driver.find_element("css selector", "#watch-add-form button").click()
+    return wait(driver, "a watch row for %s" % address,
+                lambda d: d.find_elements("css selector", '#watch tr[data-address="%s"]' % address))[0]
+
+
+def watch_value(driver, address):
+    return js(driver, "const r = document.querySelector(`#watch tr[data-address='${arguments[0]}'] td.value`);"
+                      "return r ? r.textContent : null", address)
+
+
+def page_write(driver, address, value):
+    row = driver.find_element("css selector", '#watch tr[data-address="%s"]' % address)
+    field = row.find_element("css selector", "input.write-value")
+    field.clear()
+    field.send_keys(str(value))
+    row.find_element("css selector", "button.write-button").click()
+
+
+def log_lines(driver):
+    return js(driver, "return [...document.querySelectorAll('#log li')].map(li => li.className + ' ' + li.textContent)")
+
+
+def tab(driver, panel):
+    driver.find_element("css selector", '.tabs button[data-tab="%s"]' % panel).click()
+
+
+def test_the_page_draws_the_conveyors_networks(cell, browser):
+    open_page(browser, cell["base"])
+    # Every coil, contact and timer of the program is drawn, with the cell's signal names.
+    words = program_lines()
+    coils = {w[1] for w in words if len(w) == 2 and w[0] in ("OUT", "SET", "RST")}
+    contacts = {w[-1] for w in words if w and w[0] in ("ORG", "AND", "OR", "LD") and re.match(r"^[XYMTC]\d+$", w[-1])}
+    timers = {w[1] for w in words if w and w[0] == "TMR"}
+    assert coils and contacts and timers
+    wait(browser, "every coil, contact and timer of conveyor.il", lambda d: all(
+        d.find_elements("css selector", 'g.el[data-address="%s"]' % a) for a in coils | contacts | timers))
+    assert browser.find_elements("css selector", 'g.el.coil[data-address="Y0"]')
+    names = js(browser, "return document.querySelector('#ladder').textContent")
+    for name in ("start_button", "conveyor_run", "part_present"):
+        assert name in names
+    # The IL comment above the first network.
+    first = browser.find_element("css selector", "#ladder .net .comment").text
+    assert "Start/stop latch" in first, first
+    assert browser.find_element("id", "kind").text.lower() == "live cell"
+
+
+def test_search_and_subscription_follow_what_is_shown(cell, browser):
+    browser.set_window_size(1400, 500)
+    open_page(browser, cell["base"])
+    total = len(browser.find_elements("css selector", "#ladder .net"))
+    subscribed = lambda d: js(d, "return window.plcMonitor.live.subscription.networks")  # noqa: E731
+    # Only the networks on the screen (and a margin) are subscribed to.
+    wait(browser, "a subscription to the first networks", lambda d: 0 in subscribed(d))
+    assert len(subscribed(browser)) < total, subscribed(browser)
+    js(browser, "document.querySelector('#ladder .net:last-child').scrollIntoView()")
+    wait(browser, "the last network subscribed once in view", lambda d: total - 1 in subscribed(d))
+    assert 0 not in subscribed(browser)
+    # Searching by address keeps the networks that mention it: T51 is timed in one, read in two.
+    browser.find_element("id", "search").send_keys("T51")
+    shown = lambda d: [n for n in d.find_elements("css selector", "#ladder .net") if n.is_displayed()]  # noqa: E731
+    wait(browser, "three networks mentioning T51", lambda d: len(shown(d)) == 3)
+    assert all("T51" in n.text for n in shown(browser))
+
+
+def test_a_contact_lights_up_when_its_input_is_set_through_ros(cell, browser):
+    open_page(browser, cell["base"])
+    wait(browser, "the X0 contact", lambda d: contact(d, "X0"))
+    wait(browser, "X0 (start button, not pressed) drawn off", lambda d: not energised(d, "X0"))
+    code, out = run("rosservice call /plc_node/write X0 '[1]'", cell["env"])
+    assert code == 0 and "success: True" in out, out
+    try:
+        wait(browser, "X0 drawn energised after ~write X0 [1]", lambda d: energised(d, "X0"))
+    finally:
+        code, out = run("rosservice call /plc_node/write X0 '[0]'", cell["env"])
+    assert code == 0, out
+    wait(browser, "X0 drawn off again after ~write X0 [0]", lambda d: not energised(d, "X0"))
+
+
+def watch_format(driver, address, fmt):
+    row = driver.find_element("css selector", '#watch tr[data-address="%s"]' % address)
+    js(driver, "arguments[0].value = arguments[1]; arguments[0].dispatchEvent(new Event('change'))",
+       row.find_element("css selector", "select.format"), fmt)
+
+
+def test_a_watch_value_follows_the_program(cell, browser):
+    open_page(browser, cell["base"])
+    for a in ("X3", "Y0"):
+        watch_add(browser, a)
+    # The belt (Y0) stops while a part waits at the stopper (X3, simulated: 2.5 s of every 5 s)
+    # until the stopper is lowered, and runs while none is there: Y0 = M0 & (!X3 | Y1).
+    wait(browser, "a part at the stopper, the belt stopped",
+         lambda d: (watch_value(d, "X3"), watch_value(d, "Y0")) == ("1", "0"))
+    wait(browser, "no part, the belt running", lambda d: (watch_value(d, "X3"), watch_value(d, "Y0")) == ("0", "1"))
+
+
+def test_a_watch_row_writes_in_its_format(cell, browser):
+    open_page(browser, cell["base"])
+    watch_add(browser, "D10")
+    watch_format(browser, "D10", "signed")
+    page_write(browser, "D10", -5)
+    wait(browser, "D10 = -5 (signed)", lambda d: watch_value(d, "D10") == "-5")
+    watch_format(browser, "D10", "hex")
+    wait(browser, "D10 = 0xFFFB (hex)", lambda d: watch_value(d, "D10") == "0xFFFB")
+    code, out = run("rosservice call /plc_node/read D10 1", cell["env"])
+    assert code == 0 and "65531" in out, out
+    # 32-bit: the double word D10..D11 (DD10), low word first.
+    watch_format(browser, "D10", "32-bit")
+    page_write(browser, "D10", 70000)
+    wait(browser, "D10 = 70000 (32-bit)", lambda d: watch_value(d, "D10") == "70000")
+    code, out = run("rosservice call /plc_node/read D10 2", cell["env"])
+    assert code == 0 and "[4464, 1]" in out, out
+    wait(browser, "the write in the log", lambda d: any("D10" in l for l in log_lines(d)))
+
+
+def test_forcing_inside_the_writable_ranges_and_outside(cell, browser):
+    open_page(browser, cell["base"])
+    row = watch_add(browser, "X3")
+    row.find_element("css selector", "button.force-on").click()
+    try:
+        wait(browser, "X3 forced on in the watch table", lambda d: watch_value(d, "X3") == "1")
+        tab(browser, "status-panel")
+        wait(browser, "X3 among the forced points", lambda d: "X3" in d.find_element("id", "status-forced").text)
+    finally:
+        tab(browser, "watch-panel")
+        row.find_element("css selector", "button.force-release").click()
+    tab(browser, "status-panel")
+    wait(browser, "X3 no longer forced", lambda d: "none" in d.find_element("id", "status-forced").text)
+    tab(browser, "watch-panel")
+    # Y0 is outside the writable ranges: refused, with the server's reason on the page.
+    watch_add(browser, "Y0").find_element("css selector", "button.force-on").click()
+    refused = wait(browser, "the refusal of forcing Y0", lambda d: [l for l in log_lines(d)
+                                                                    if l.startswith("error") and "Y0" in l])
+    writable = get_json(cell["base"] + "/api/session")["writable"]
+    assert "Y0 is not writable" in refused[0] and writable in refused[0], refused
+
+
+def test_a_trend_collects_points(cell, browser):
+    open_page(browser, cell["base"])
+    tab(browser, "trends-panel")
+    box = browser.find_element("id", "trend-add")
+    box.send_keys("TR50 M0")
+    browser.find_element("css selector", "#trend-add-form button").click()
+    wait(browser, "20 points in the trend",
+         lambda d: int(d.find_element("id", "trend-points").get_attribute("data-count") or 0) >= 20)
+    assert browser.find_elements("css selector", "#trend-plot canvas"), "dygraphs drew nothing"
+    # Points are at distinct instants of the cell's clock, in order.
+    ts = js(browser, "return window.plcMonitor.trends.rows.map(r => r[0])")
+    assert ts == sorted(ts) and len(set(ts)) == len(ts), ts
+
+
+def coverage_class(driver, address, form):
+    return js(driver, "const g = document.querySelector(`g.el.contact[data-address='${arguments[0]}']"
+                      "[data-form='${arguments[1]}']`); return g ? g.getAttribute('class') : ''", address, form)
+
+
+def test_the_coverage_overlay_colours_what_ran(cell, browser):
+    open_page(browser, cell["base"])
+    browser.find_element("id", "coverage-toggle").click()
+    # Since coverage started (the first request): the start button X0 was evaluated but never
+    # closed (the line latched at the first scan), the latch M0 closed.
+    wait(browser, "X0 evaluated, never energised", lambda d: "cov-off" in coverage_class(d, "X0", "no"))
+    wait(browser, "M0 energised", lambda d: "cov-on" in coverage_class(d, "M0", "no"))
+    browser.find_element("id", "coverage-toggle").click()
+    wait(browser, "the overlay off again", lambda d: "cov-" not in coverage_class(d, "X0", "no"))
