@@ -175,7 +175,8 @@ def test_tools_are_declared():
 # CMake packages found by the build, and the keys that provide them.
 CMAKE_PACKAGES = {"yaml-cpp": "yaml-cpp", "ZLIB": "zlib", "benchmark": "benchmark",
                   "PkgConfig": "pkg-config", "GTest": "gtest", "rostest": "rostest", "catkin": "catkin",
-                  "asmjit": "libasmjit-dev", "nodelet": "nodelet", "pluginlib": "pluginlib"}
+                  "asmjit": "libasmjit-dev", "nodelet": "nodelet", "pluginlib": "pluginlib",
+                  "Boost": "boost", "nlohmann_json": "nlohmann-json3-dev"}
 
 
 def test_cmake_packages_are_declared():

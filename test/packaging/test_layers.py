@@ -31,7 +31,7 @@ BELOW = rules()
 TOP = {"cli", "ros"}  # the tool and the nodes sit on top and may use any layer
 # The shared libraries of the layers (the protocol libraries are static: the include roots
 # cover them).
-LIBS = ["core", "io", "config", "timeline", "coverage", "hsc", "temp", "motion", "sim"]
+LIBS = ["core", "io", "config", "timeline", "coverage", "ladder", "hsc", "temp", "motion", "sim"]
 
 
 def folders():
