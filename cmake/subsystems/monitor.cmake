@@ -1,14 +1,12 @@
 # The browser monitor's server (docs/monitor-api.md): Boost.Beast HTTP and WebSocket on a
 # monitor::Source, the cell in this process as one (LiveSource), and the `http` server kind
-# the runtime registers. Beast is compiled in two files only (http_session.cpp with the
-# page's WebSocket, http_server.cpp with the listener): it is slow to compile.
-find_package(Boost 1.74 REQUIRED)
-find_package(nlohmann_json 3 REQUIRED)
+# the runtime registers. Beast is compiled in three files only (http_server.cpp, the
+# listener; http_session.cpp and page_session.cpp): it is slow to compile. Beast (of
+# roscpp's Boost) and nlohmann-json are header-only, in /usr/include.
 file(GLOB MONITOR_SOURCES CONFIGURE_DEPENDS src/monitor/*.cpp)
 list(FILTER MONITOR_SOURCES EXCLUDE REGEX "/replay[^/]*\\.cpp$")
 add_library(plc_cell_monitor STATIC ${MONITOR_SOURCES})
-target_link_libraries(plc_cell_monitor PUBLIC plc_cell_config plc_cell_coverage plc_cell_ladder
-  nlohmann_json::nlohmann_json Boost::boost pthread)
+target_link_libraries(plc_cell_monitor PUBLIC plc_cell_config plc_cell_coverage plc_cell_ladder pthread)
 set_target_properties(plc_cell_monitor PROPERTIES POSITION_INDEPENDENT_CODE ON)
 # Where the page's files are found when neither the setting nor $PLC_CELL_MONITOR_ASSETS
 # says: the source tree this was built from, then the installed package.

@@ -111,7 +111,18 @@ void HttpServer::Impl::start() {
   }
   running_ = true;
   accept();
-  thread_ = std::thread([this] { ioc_.run(); });
+  thread_ = std::thread([this] {
+    // A handler that throws (a source failing where no one expected it) costs its session,
+    // never the server.
+    for (;;) {
+      try {
+        ioc_.run();
+        return;
+      } catch (const std::exception& e) {
+        hub_.note_error(e.what());
+      }
+    }
+  });
 }
 
 void HttpServer::Impl::accept() {

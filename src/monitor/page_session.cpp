@@ -27,7 +27,11 @@ void PageSession::run(http::request<http::string_body> upgrade) {
 void PageSession::on_accept(beast::error_code ec) {
   if (ec) return;
   hub_.pages.push_back(weak_from_this());
-  program_version_ = hub_.api->ladder()->program().version;
+  try {
+    program_version_ = hub_.api->ladder()->program().version;
+  } catch (const std::exception& e) {
+    send(dump({{"type", "error"}, {"error", e.what()}}));
+  }
   tick_status();
   tick_idle();
   read();
