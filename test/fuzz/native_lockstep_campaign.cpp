@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     input.resize(64 + next() % 4033);  // 64 to 4096 bytes, as the fuzz target's -max_len
     for (uint8_t& b : input) b = static_cast<uint8_t>(next());
     LLVMFuzzerTestOneInput(input.data(), input.size());
-    if (n % 100000 == 0 || n == programs) {
+    if (n % 10000 == 0 || n == programs) {
       const double s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       std::printf("%llu programs, no difference, %.0f s, %.0f programs/s\n", static_cast<unsigned long long>(n), s_,
                   n / s_);
