@@ -110,6 +110,7 @@ void Interpreter::load(const Program& program) {
     x.is32 = in.is32;
     x.pulse = in.pulse;
     x.n_inputs = 1;
+    x.index = static_cast<uint32_t>(i);
     x.first_op = static_cast<uint32_t>(ops.size());
     if (bind(program, in, edge, &b, &x, &op, &ops)) {
       extra_of[i] = static_cast<int>(extras.size());
@@ -132,6 +133,7 @@ void Interpreter::load(const Program& program) {
   ops_ = std::move(ops);
   bound_op_ = std::move(bound_op);
   record_into(nullptr);  // a recording belongs to the program it was started on
+  edges_.assign(program_.edge_slots, 0);  // sized before the machine code binds its addresses
   bind_native();
   reset_state();
 }
@@ -191,12 +193,7 @@ void Interpreter::bind_native() {
     return;
   }
   std::vector<native::Step> steps(program_.code.size());
-  for (size_t i = 0; i < steps.size(); ++i) {
-    const Op op = bound_op_[i];
-    steps[i].op = op;
-    if (op <= Op::Rst && op != Op::AndLd && op != Op::OrLd) steps[i].bit = code_[i].bit;
-    if (op == Op::Fun) steps[i].fun_inputs = code_[i].extra->n_inputs;
-  }
+  for (size_t i = 0; i < steps.size(); ++i) native_step(i, &steps[i]);
   const auto t0 = std::chrono::steady_clock::now();
   auto nc = std::make_unique<native::NativeCode>();
   std::string why;
@@ -219,6 +216,26 @@ void Interpreter::bind_native() {
   native_ = std::move(nc);
 }
 
+// What the generator needs of instruction i: its device and edge memory, or the call that
+// executes it (interpreter_steps.inc) with its Extra.
+void Interpreter::native_step(size_t i, native::Step* s) {
+  const Op op = bound_op_[i];
+  s->op = op;
+  if (op <= Op::Rst && op != Op::AndLd && op != Op::OrLd) s->bit = code_[i].bit;
+  if (op >= Op::OrgUp && op <= Op::OrDown) s->edge = edges_.data() + code_[i].arg;
+  native::CallFn call = nullptr;
+  switch (op) {
+    case Op::RstReg: call = &Interpreter::native_reset; break;
+    case Op::Tmr: call = &Interpreter::native_timer; break;
+    case Op::Ctr: call = &Interpreter::native_counter; break;
+    case Op::Fun: call = &Interpreter::native_fun; break;
+    default: return;
+  }
+  s->call = call;
+  s->arg = code_[i].extra;
+  s->fun_inputs = code_[i].extra->n_inputs;
+}
+
 void Interpreter::record_into(uint8_t* seen) {
   seen_ = seen;
   if (!seen) {
@@ -231,7 +248,7 @@ void Interpreter::record_into(uint8_t* seen) {
 }
 
 void Interpreter::reset_state() {
-  edges_.assign(program_.edge_slots, 0);
+  std::fill(edges_.begin(), edges_.end(), 0);  // in place: the machine code holds their addresses
   timer_rem_us_.fill(0);
   timer_running_.fill(0);
   fault_.clear();
@@ -257,6 +274,8 @@ bool Interpreter::run_routine(const std::string& label, uint64_t now_us, ScanEng
 }
 
 // ---- execution --------------------------------------------------------------
+
+#include "interpreter_steps.inc"
 
 bool Interpreter::execute(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine) {
   if (seen_) return run_recording(pc, now_us, dt_us, engine, routine);

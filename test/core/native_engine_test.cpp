@@ -50,17 +50,17 @@ struct Pair {
 
 }  // namespace
 
-TEST(NativeEngine, CompilesTheStraightRunsAndSaysSo) {
+TEST(NativeEngine, CompilesTheNetworksBetweenFlowInstructionsAndSaysSo) {
   Pair p("ORG X0\nAND X1\nLD X2\nOR NOT X3\nANDLD\nOUT Y0\nOUT NOT Y1\nSET M5\n"
-         "ORG X4\nTMR T0 10\nORG T0\nOUT Y2\nAND X5\nOUT Y3\nEND\n");
-  // ORG X0 .. ORG X4 are one run; TMR and END stay handlers; ORG T0 .. OUT Y3 are the second run.
-  EXPECT_EQ(p.status().rfind("native: 13 of 15 instructions in 2 machine-code runs", 0), 0u) << p.status();
+         "ORG X4\nTMR T0 10\nJMP L0\nORG T0\nOUT Y2\nAND X5\nOUT Y3\nLBL L0\nEND\n");
+  // ORG X0 .. TMR T0 are one run, ORG T0 .. OUT Y3 the second; JMP, LBL and END stay handlers.
+  EXPECT_EQ(p.status().rfind("native: 14 of 17 instructions in 2 machine-code runs", 0), 0u) << p.status();
   const native::NativeCode* nc = p.native.locked([](ScanEngine& e, Memory&) { return e.interpreter().native_code(); });
   ASSERT_NE(nc, nullptr);
   ASSERT_EQ(nc->runs().size(), 2u);
   EXPECT_EQ(nc->runs()[0].first, 0u);
-  EXPECT_EQ(nc->runs()[0].length, 9u);
-  EXPECT_EQ(nc->runs()[1].first, 10u);
+  EXPECT_EQ(nc->runs()[0].length, 10u);
+  EXPECT_EQ(nc->runs()[1].first, 11u);
   EXPECT_EQ(nc->runs()[1].length, 4u);
 }
 

@@ -70,8 +70,14 @@ class Generator {
  private:
   std::string bit(const char* areas) {
     const std::string a(1, areas[f_.ConsumeIntegralInRange<size_t>(0, std::strlen(areas) - 1)]);
-    const int n = a == "X" ? 16 : a == "T" || a == "C" ? 4 : 12;
-    return a + std::to_string(f_.ConsumeIntegralInRange(0, n - 1));
+    if (a == "T" || a == "C") return a + number(a[0]);
+    return a + std::to_string(f_.ConsumeIntegralInRange(0, a == "X" ? 15 : 11));
+  }
+  // Timers of the three time bases; counters of 16 and of 32 bits.
+  std::string number(char area) {
+    static const int timers[] = {0, 1, 60, 210}, counters[] = {0, 1, 200, 201};
+    const int k = f_.ConsumeIntegralInRange(0, 3);
+    return std::to_string(area == 'T' ? timers[k] : counters[k]);
   }
   std::string contact(const char* op) {
     static const char* const mods[] = {"", "NOT ", "TU ", "TD "};
@@ -103,9 +109,8 @@ class Generator {
       case 2: out_ += "SET " + bit("YM") + "\n"; break;
       case 3: out_ += "RST " + bit("YMTC") + "\n"; break;
       case 4: out_ += "RST " + reg() + "\n"; break;
-      case 5: out_ += "TMR T" + std::to_string(f_.ConsumeIntegralInRange(0, 3)) + " " +
-                      std::to_string(f_.ConsumeIntegralInRange(0, 30)) + "\n"; break;
-      case 6: out_ += "CTR C" + std::to_string(f_.ConsumeIntegralInRange(0, 3)) + " " +
+      case 5: out_ += "TMR T" + number('T') + " " + std::to_string(f_.ConsumeIntegralInRange(0, 30)) + "\n"; break;
+      case 6: out_ += "CTR C" + number('C') + " " +
                       std::to_string(f_.ConsumeIntegralInRange(0, 9)) + "\n"; break;
       case 7: out_ += "INC" + mods() + " " + reg() + "\n"; break;
       case 8: out_ += "ADD" + mods() + " Sa=" + reg() + " Sb=" + std::to_string(f_.ConsumeIntegralInRange(-9, 9)) +

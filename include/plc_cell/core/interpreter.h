@@ -74,8 +74,9 @@ class Interpreter {
   void record_into(uint8_t* seen);
   uint8_t* recording() const { return seen_; }
 
-  // The native engine (docs/native-engine.md): straight runs of contacts and coils compiled
-  // to machine code by load(); every other instruction keeps its handler here. Takes effect
+  // The native engine (docs/native-engine.md): the networks compiled to machine code by
+  // load() (TMR, CTR, register RST and FUN as calls to this class's own bodies of them);
+  // the flow instructions keep their handlers here. Takes effect
   // at the next load(). Where the code cannot be generated the interpreter runs the whole
   // program and engine_status() says why. Coverage recording always runs the interpreter.
   void use_native(bool on);
@@ -97,6 +98,7 @@ class Interpreter {
     bool is32;
     bool pulse;
     uint8_t clears;   // RST of a timer (1) or counter (2) also clears its value
+    uint32_t index;   // the instruction's own index (a FUN's ExecContext::instance)
     const FunctionSpec* fn;
   };
   struct Bound {
@@ -116,6 +118,19 @@ class Interpreter {
   bool run_recording(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   bool run_native(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   void bind_native();
+  void native_step(size_t i, native::Step* s);
+  // The bodies of register RST, TMR, CTR and FUN (interpreter_steps.inc): the run loops and
+  // the native engine's machine code (through the native_* calls) execute these same
+  // functions, so the two engines share their semantics by construction.
+  unsigned edge_up(uint32_t slot, unsigned v);
+  void reset_step(const Extra& x, unsigned acc, ExecContext& ctx);
+  void timer_step(const Extra& x, unsigned acc, ExecContext& ctx);
+  void counter_step(const Extra& x, unsigned acc, ExecContext& ctx);
+  unsigned fun_step(const Extra& x, ExecContext& ctx);  // ctx.inputs set; returns the rung result
+  static unsigned native_reset(native::Frame* f, const void* x, unsigned acc);
+  static unsigned native_timer(native::Frame* f, const void* x, unsigned acc);
+  static unsigned native_counter(native::Frame* f, const void* x, unsigned acc);
+  static unsigned native_fun(native::Frame* f, const void* x, unsigned inputs);
   // load(): binds instruction in (its edge slot `edge`) into b and x, its operands onto
   // ops; op becomes the opcode it runs as. False: it needs no Extra.
   bool bind(const Program& program, const Instruction& in, uint32_t edge, Bound* b, Extra* x, Op* op,

@@ -1,6 +1,7 @@
 #pragma once
 // The scan cycle: input image -> program -> output image, with special relays,
 // timers, RUN/STOP and the watchdog. Not thread-safe; the Plc facade locks around it.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -107,7 +108,7 @@ class ScanEngine {
   std::vector<AreaRange> retentive_;
   std::vector<ScanHook*> hooks_;
   ExtensionSlots extensions_;
-  std::vector<bool> inputs_ = std::vector<bool>(256, false);
+  std::array<uint8_t, 256> inputs_{};  // 0/1, one byte each: the input image copies them branch-free
   RunMode mode_ = RunMode::Stop;
   bool first_scan_ = false;
   bool have_time_ = false;

@@ -6,7 +6,7 @@ namespace plc_cell {
 
 enum class EngineChoice {
   Interpreter,  // the threaded interpreter
-  Native,       // straight runs of the program compiled to machine code at load time
+  Native,       // the networks compiled to machine code at load time (flow on the interpreter)
   Lockstep,     // both, on two copies of the memory, compared after every scan and routine
 };
 

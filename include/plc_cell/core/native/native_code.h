@@ -1,13 +1,14 @@
 #pragma once
-// Machine code for the straight runs of an IL program (docs/native-engine.md).
+// Machine code for the networks of an IL program (docs/native-engine.md).
 //
-// A run is a sequence of instructions that have a machine-code template: plain and negated
-// contacts, ANDLD/ORLD and the bit coils OUT, OUT NOT, SET, RST. Every other instruction
-// (edge contacts, timers, counters, FUN, register resets, flow) is left to the
-// interpreter's own handler, so the two engines share those semantics by construction.
-// Inside a run the accumulator and the block stack live in registers (the first six
-// levels; deeper levels in the interpreter's stack array), and every device is an
-// absolute address bound at load time.
+// A run is a sequence of instructions that have a machine-code template: every contact
+// (edge contacts with their edge memories too), ANDLD/ORLD, the bit coils OUT, OUT NOT,
+// SET, RST, and TMR, CTR, register RST and FUN as calls to the interpreter's own bodies of
+// them (Step::call), so the two engines share those semantics by construction. The flow
+// instructions (LBL, JMP, CALL, RTS, RTI, FOR, NEXT, END) end a run and stay on the
+// interpreter's dispatch loop. Inside a run the accumulator and the block stack live in
+// registers (the first four levels; deeper levels in the interpreter's stack array), and
+// every device is an absolute address bound at load time.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -17,17 +18,30 @@
 
 namespace plc_cell::native {
 
+// What a run passes to the calls it makes, and where it finds the block stack.
+struct Frame {
+  void* self;      // the interpreter
+  void* ctx;       // its ExecContext for this run of the program
+  uint8_t* stack;  // its block stack: levels below a run's entry depth are read from here,
+                   // and levels below its exit depth left here, as the interpreter would
+};
+
+// An instruction executed by a call: arg is its own data, acc the rung result (a FUN: its
+// inputs, bit k input k). Returns the rung result after it.
+using CallFn = unsigned (*)(Frame* frame, const void* arg, unsigned acc);
+
 // One bound instruction as the generator sees it.
 struct Step {
   Op op = Op::Lbl;
   uint8_t* bit = nullptr;   // the device of a contact or coil
+  uint8_t* edge = nullptr;  // the edge memory of TU/TD contact
+  CallFn call = nullptr;    // TMR, CTR, register RST, FUN
+  const void* arg = nullptr;
   uint8_t fun_inputs = 1;   // a FUN's number of inputs (it pops all but one block)
 };
 
-// acc is the rung result on entry (0/1); stack is the interpreter's block stack, whose
-// levels below the run's entry depth it reads and whose levels below its exit depth it
-// leaves as the interpreter would. Returns the rung result.
-using RunFn = unsigned (*)(unsigned acc, uint8_t* stack);
+// acc is the rung result on entry (0/1). Returns the rung result.
+using RunFn = unsigned (*)(unsigned acc, Frame* frame);
 
 struct Run {
   uint32_t first = 0;   // index of its first instruction

@@ -1,0 +1,112 @@
+// The native engine's edge contacts and its calls of TMR, CTR, register RST and FUN
+// (docs/native-engine.md): whole networks are machine code, and the memory equals the
+// interpreter's after every scan and every interrupt routine.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "plc_cell/core/il_parser.h"
+#include "plc_cell/core/interpreter.h"
+#include "plc_cell/core/native/lockstep.h"
+
+using namespace plc_cell;
+
+namespace {
+
+// The core's FUNs and one with three inputs (EN and two LD blocks) that writes what it saw
+// and counts its executions, so that an input taken from the wrong block stack level, or a
+// call made or skipped where the interpreter does not, changes the memory.
+FunctionTable table() {
+  FunctionTable t = FunctionTable::with_core_functions();
+  FunctionSpec s;
+  s.number = 250;
+  s.mnemonic = "SEE3";
+  s.inputs = {"EN", "B", "C"};
+  s.operands = {{"D", OperandRole::Dest}};
+  s.always_runs = true;
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    c.put(o[0], c.get(o[0]) * 8 + (c.en | c.inputs[1] << 1 | c.inputs[2] << 2));
+  };
+  t.add(s);
+  return t;
+}
+
+struct Engines {
+  FunctionTable fns = table();
+  Memory mem_i, mem_n;
+  Interpreter interp{mem_i, fns}, native{mem_n, fns};
+  Program prog;
+
+  explicit Engines(const std::string& text) {
+    prog = parse_program(text, "calls.il", fns);
+    native.use_native(true);
+    interp.load(prog);
+    native.load(prog);
+    for (Memory* m : {&mem_i, &mem_n}) m->set_bit(Area::M, special::kAlwaysOn, true);
+  }
+  // Empty while both memories are equal after the scan (or the routine, if irq).
+  std::string scan(uint32_t x, uint32_t dt, bool irq, int s) {
+    for (Memory* m : {&mem_i, &mem_n})
+      for (uint32_t i = 0; i < 16; ++i) m->set_bit(Area::X, i, (x >> i) & 1u);
+    now += dt;
+    const bool ok_i = irq ? interp.run_routine("X0+I", now, nullptr) : interp.run_main(now, dt, nullptr);
+    const bool ok_n = irq ? native.run_routine("X0+I", now, nullptr) : native.run_main(now, dt, nullptr);
+    if (ok_i != ok_n || interp.fault() != native.fault()) return "faults: " + interp.fault() + " / " + native.fault();
+    return first_difference(mem_n, mem_i, prog, "scan " + std::to_string(s));
+  }
+  uint64_t now = 0;
+};
+
+// Every instruction kind that runs in a network, each edge contact form, counters of 16 and
+// 32 bits, timers of two time bases, blocks nested into the stack array (level 4 and up:
+// the first four levels are registers) and a three-input FUN.
+const char* const kNetworks =
+    "ORG TU X0\nAND TD X1\nLD TU X2\nOR TD X3\nANDLD\nLD NOT X4\nAND TU X5\nORLD\nOUT Y0\n"
+    "ORG TD X6\nOR TU X7\nLD TD X8\nAND TU X9\nORLD\nCTR C1 5\nAND TU X10\nCTR C200 3\n"
+    "ORG X11\nTMR T1 4\nORG X11\nTMR T60 2\nORG T1\nOUT Y1\nORG C1\nOUT Y2\n"
+    "ORG X12\nRST C1\nAND X13\nRST T1\nORG TU X14\nRST D3\nOR X15\nRST R4\n"
+    "ORG M1925\nINC.P R0\nAND X1\nADD.DP Sa=R2 Sb=7 D=R2\nORG X2\nMOV S=WX0 D=R6\n"
+    "ORG X3\nLD X4\nLD TU X5\nLD X6\nLD TD X7\nLD X8\nAND X9\nORLD\nANDLD\nORLD\n"
+    "SEE3.P D=R8\nOUT Y3\nORG X12\nLD X13\nLD TU X14\nSEE3 D=R9\nOUT Y4\n";
+
+std::string program() {
+  return std::string(kNetworks) + "END\nLBL X0+I\n" + kNetworks + "RTI\n";
+}
+
+}  // namespace
+
+TEST(NativeEngine, WholeNetworksAreMachineCode) {
+  Engines e(program());
+  const native::NativeCode* nc = e.native.native_code();
+  ASSERT_NE(nc, nullptr) << e.native.engine_status();
+  // Two runs, the main program and the routine; END, LBL and RTI stay on the dispatch loop.
+  ASSERT_EQ(nc->runs().size(), 2u) << e.native.engine_status();
+  EXPECT_EQ(nc->native_instructions(), e.prog.code.size() - 3) << e.native.engine_status();
+}
+
+TEST(NativeEngine, EdgeContactsTimersCountersAndFunsEqualTheInterpreter) {
+  Engines e(program());
+  uint64_t r = 12345;
+  auto next = [&r] { return static_cast<uint32_t>((r = r * 6364136223846793005ull + 1442695040888963407ull) >> 33); };
+  for (int s = 1; s <= 4000; ++s) {
+    const uint32_t x = next();
+    const std::string d = e.scan(x, next() % 40000, next() % 5 == 0, s);
+    ASSERT_EQ(d, "") << "scan " << s;
+  }
+  // The stimulus reached the interesting states: counters and timers done, FUNs ran.
+  EXPECT_EQ(e.mem_n.bit(Area::Y, 2), e.mem_i.bit(Area::Y, 2));
+  EXPECT_NE(e.mem_n.reg(Area::R, 8), 0u);
+  EXPECT_NE(e.mem_n.reg(Area::R, 0), 0u);
+}
+
+TEST(NativeEngine, AForcedPointStopsTheCallsAsOnTheInterpreter) {
+  Engines e("ORG X0\nTMR T2 1\nORG TU X1\nCTR C3 2\nORG T2\nOUT Y0\nORG C3\nOUT Y1\nEND\n");
+  for (Memory* m : {&e.mem_i, &e.mem_n}) {
+    m->set_disabled(Area::T, 2, true);
+    m->set_disabled(Area::C, 3, true);
+  }
+  for (int s = 1; s <= 200; ++s) ASSERT_EQ(e.scan(s % 7 ? 3u : 0u, 20000, false, s), "") << s;
+  EXPECT_FALSE(e.mem_n.bit(Area::Y, 0));  // the disabled T2 and C3 never turn on
+  EXPECT_FALSE(e.mem_n.bit(Area::Y, 1));
+  EXPECT_NE(e.mem_n.reg(Area::RC, 3), 0u);  // while the counter's value counts
+}
