@@ -1,7 +1,6 @@
 // plc_cell monitor: the browser monitor on a recorded run (docs/recordings.md) or on a real
 // FATEK or TRi PLC polled through its host link (docs/monitor-remote.md), with the same
 // --http-* options as `plc_cell run`.
-#include <chrono>
 #include <iostream>
 #include <memory>
 
@@ -110,16 +109,7 @@ int cmd_monitor(const std::vector<std::string>& argv) {
   server.start();
   std::cerr << "plc_cell monitor: serving " << server.describe() << " for " << source->describe()
             << "; Ctrl-C to stop" << std::endl;
-  const auto t0 = std::chrono::steady_clock::now();
-  for (;;) {
-    std::chrono::milliseconds wait(1000);
-    if (duration) {
-      const auto left = std::chrono::microseconds(duration) - (std::chrono::steady_clock::now() - t0);
-      if (left <= left.zero()) break;
-      wait = std::min(wait, std::chrono::duration_cast<std::chrono::milliseconds>(left) + std::chrono::milliseconds(1));
-    }
-    if (stop.wait_for(wait)) break;
-  }
+  stop.wait_until_stopped(duration);
   server.stop();
   return 0;
 }

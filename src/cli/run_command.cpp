@@ -1,6 +1,4 @@
 // plc_cell run: the soft PLC headless in real time until SIGINT/SIGTERM.
-#include <algorithm>
-#include <chrono>
 #include <iostream>
 
 #include "args.h"
@@ -34,19 +32,7 @@ int cmd_run(const std::vector<std::string>& argv) {
   cell.start_scanning();
   std::cerr << "plc_cell run: " << cell.program_path() << " scanning every " << cell.scan_period_us()
             << " us; Ctrl-C to stop\n";
-  const auto t0 = std::chrono::steady_clock::now();
-  for (;;) {
-    std::chrono::milliseconds wait(1000);
-    if (duration) {
-      const auto left = std::chrono::microseconds(duration) - (std::chrono::steady_clock::now() - t0);
-      if (left <= left.zero()) break;
-      wait = std::min(wait, std::chrono::duration_cast<std::chrono::milliseconds>(left) + std::chrono::milliseconds(1));
-    }
-    if (stop.wait_for(wait)) {
-      std::cerr << "plc_cell run: " << stop.signal_name() << ": stopping\n";
-      break;
-    }
-  }
+  if (stop.wait_until_stopped(duration)) std::cerr << "plc_cell run: " << stop.signal_name() << ": stopping\n";
   const std::string priority_error = cell.loop()->priority_error();
   const auto ps = cell.persister() ? cell.persister()->status() : persist::PersistStatus();
   cell.stop();  // servers, scans, then the newest image goes to disk

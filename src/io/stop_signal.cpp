@@ -5,6 +5,7 @@
 #include <sys/signalfd.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -38,6 +39,19 @@ bool StopSignal::wait_for(std::chrono::milliseconds timeout) {
   if (r != ssize_t(sizeof info)) return false;
   signo_ = int(info.ssi_signo);
   return true;
+}
+
+bool StopSignal::wait_until_stopped(uint64_t duration_us) {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (;;) {
+    std::chrono::milliseconds wait(1000);
+    if (duration_us) {
+      const auto left = std::chrono::microseconds(duration_us) - (std::chrono::steady_clock::now() - t0);
+      if (left <= left.zero()) return false;
+      wait = std::min(wait, std::chrono::duration_cast<std::chrono::milliseconds>(left) + std::chrono::milliseconds(1));
+    }
+    if (wait_for(wait)) return true;
+  }
 }
 
 const char* StopSignal::signal_name() const {

@@ -10,6 +10,7 @@
 // Construct it first thing in main (or in the command), before any thread exists: a
 // thread started earlier keeps both signals unblocked and would take the default action.
 #include <chrono>
+#include <cstdint>
 
 namespace plc_cell {
 
@@ -23,6 +24,9 @@ class StopSignal {
   // Waits up to `timeout` for SIGINT or SIGTERM. True once one has arrived (and from then
   // on, at once); false on timeout. Call from one thread only.
   bool wait_for(std::chrono::milliseconds timeout);
+  // Waits for SIGINT or SIGTERM, or, when duration_us > 0, until duration_us after the call:
+  // the foreground commands' "until interrupted, or for --duration". True on a signal.
+  bool wait_until_stopped(uint64_t duration_us);
   // The signal that asked for the stop (SIGINT or SIGTERM), 0 while none has.
   int signal_number() const { return signo_; }
   // "SIGTERM", "SIGINT" or "" for log lines.
