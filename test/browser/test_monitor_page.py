@@ -8,6 +8,7 @@ import re
 import subprocess
 
 import pytest
+from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
 
 from conftest import conveyor_cell, free_port, get_json, js, open_page, ros_env, run, shell, stop, wait, \
     wait_for_server
@@ -62,12 +63,29 @@ def watch_value(driver, address):
                       "return r ? r.textContent : null", address)
 
 
+def in_row(driver, address, what, action):
+    """action(row) on the watch row of address, found afresh until it holds: the page redraws
+    the table (a row added, a reconnection), and a row found before a redraw is gone."""
+    def attempt(d):
+        try:
+            action(d.find_element("css selector", '#watch tr[data-address="%s"]' % address))
+            return True
+        except (NoSuchElementException, StaleElementReferenceException):
+            return False
+    wait(driver, "%s in the watch row of %s" % (what, address), attempt)
+
+
+def row_click(driver, address, button):
+    in_row(driver, address, button, lambda row: row.find_element("css selector", button).click())
+
+
 def page_write(driver, address, value):
-    row = driver.find_element("css selector", '#watch tr[data-address="%s"]' % address)
-    field = row.find_element("css selector", "input.write-value")
-    field.clear()
-    field.send_keys(str(value))
-    row.find_element("css selector", "button.write-button").click()
+    def write(row):
+        field = row.find_element("css selector", "input.write-value")
+        field.clear()
+        field.send_keys(str(value))
+        row.find_element("css selector", "button.write-button").click()
+    in_row(driver, address, "a write of %s" % value, write)
 
 
 def log_lines(driver):
@@ -131,9 +149,9 @@ def test_a_contact_lights_up_when_its_input_is_set_through_ros(cell, browser):
 
 
 def watch_format(driver, address, fmt):
-    row = driver.find_element("css selector", '#watch tr[data-address="%s"]' % address)
-    js(driver, "arguments[0].value = arguments[1]; arguments[0].dispatchEvent(new Event('change'))",
-       row.find_element("css selector", "select.format"), fmt)
+    in_row(driver, address, "format %s" % fmt, lambda row: js(
+        driver, "arguments[0].value = arguments[1]; arguments[0].dispatchEvent(new Event('change'))",
+        row.find_element("css selector", "select.format"), fmt))
 
 
 def test_a_watch_value_follows_the_program(cell, browser):
@@ -168,20 +186,21 @@ def test_a_watch_row_writes_in_its_format(cell, browser):
 
 def test_forcing_inside_the_writable_ranges_and_outside(cell, browser):
     open_page(browser, cell["base"])
-    row = watch_add(browser, "X3")
-    row.find_element("css selector", "button.force-on").click()
+    watch_add(browser, "X3")
+    row_click(browser, "X3", "button.force-on")
     try:
         wait(browser, "X3 forced on in the watch table", lambda d: watch_value(d, "X3") == "1")
         tab(browser, "status-panel")
         wait(browser, "X3 among the forced points", lambda d: "X3" in d.find_element("id", "status-forced").text)
     finally:
         tab(browser, "watch-panel")
-        row.find_element("css selector", "button.force-release").click()
+        row_click(browser, "X3", "button.force-release")
     tab(browser, "status-panel")
     wait(browser, "X3 no longer forced", lambda d: "none" in d.find_element("id", "status-forced").text)
     tab(browser, "watch-panel")
     # Y0 is outside the writable ranges: refused, with the server's reason on the page.
-    watch_add(browser, "Y0").find_element("css selector", "button.force-on").click()
+    watch_add(browser, "Y0")
+    row_click(browser, "Y0", "button.force-on")
     refused = wait(browser, "the refusal of forcing Y0", lambda d: [l for l in log_lines(d)
                                                                     if l.startswith("error") and "Y0" in l])
     writable = get_json(cell["base"] + "/api/session")["writable"]
