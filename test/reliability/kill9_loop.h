@@ -99,6 +99,7 @@ class Loop {
     const int fport = child.ports.at(0), mport = child.ports.at(1);
     check(child, mport);
     std::atomic<long> acks{0};
+    std::atomic<long> mbpoll_acks{0};  // this round's: a spawned mbpoll takes far longer than a frame
     std::atomic<bool> dead{false};
     const long kill_after = std::uniform_int_distribution<long>(1, 120)(rng_);
     const uint32_t seeds[3] = {uint32_t(rng_()), uint32_t(rng_()), uint32_t(rng_())};
@@ -145,6 +146,7 @@ class Loop {
           g.maybe_k = -1;
           ++stats.acked[w];
           ++acks;
+          if (w == 2) ++mbpoll_acks;
         }
         if (mb) {
           modbus_close(mb);
@@ -154,7 +156,13 @@ class Loop {
     // Waits on the clients' progress, not on time; the bound only guards against writers that
     // all failed (then the round still kills and the next start checks what was acknowledged).
     const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    while (acks.load() < kill_after && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    // Every fourth round also waits for an mbpoll acknowledgement: the in-process clients
+    // reach kill_after long before one spawned mbpoll has answered, and the third-party
+    // client's writes must be among those that survive the kills.
+    const bool wait_mbpoll = n % 4 == 0;
+    while ((acks.load() < kill_after || (wait_mbpoll && mbpoll_acks.load() == 0)) &&
+           std::chrono::steady_clock::now() < give_up)
+      std::this_thread::yield();
     if (acks.load() < kill_after) stats.errors.push_back("round " + std::to_string(n) + ": writers stalled at " + std::to_string(acks.load()) + " acknowledgements");
     child.kill9();
     dead = true;
