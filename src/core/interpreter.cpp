@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 
 #include "plc_cell/core/error.h"
 
@@ -132,6 +133,10 @@ void Interpreter::load(const Program& program) {
   extras_ = std::move(extras);  // moving a vector keeps its elements where they are
   ops_ = std::move(ops);
   bound_op_ = std::move(bound_op);
+  word_ops_.clear();
+  constants_.clear();
+  for (size_t i = 0; i < extra_of.size(); ++i)
+    if (extra_of[i] >= 0) bind_words(program_.code[i], &extras_[static_cast<size_t>(extra_of[i])]);
   record_into(nullptr);  // a recording belongs to the program it was started on
   edges_.assign(program_.edge_slots, 0);  // sized before the machine code binds its addresses
   bind_native();
@@ -217,23 +222,35 @@ void Interpreter::bind_native() {
 }
 
 // What the generator needs of instruction i: its device and edge memory, or the call that
-// executes it (interpreter_steps.inc) with its Extra.
+// executes it (interpreter_steps.inc) with its Extra, or a FUN's word form.
 void Interpreter::native_step(size_t i, native::Step* s) {
   const Op op = bound_op_[i];
   s->op = op;
   if (op <= Op::Rst && op != Op::AndLd && op != Op::OrLd) s->bit = code_[i].bit;
   if (op >= Op::OrgUp && op <= Op::OrDown) s->edge = edges_.data() + code_[i].arg;
-  native::CallFn call = nullptr;
+  if (op != Op::RstReg && op != Op::Tmr && op != Op::Ctr && op != Op::Fun) return;
+  const Extra& x = *code_[i].extra;
+  s->arg = &x;
+  s->fun_inputs = x.n_inputs;
   switch (op) {
-    case Op::RstReg: call = &Interpreter::native_reset; break;
-    case Op::Tmr: call = &Interpreter::native_timer; break;
-    case Op::Ctr: call = &Interpreter::native_counter; break;
-    case Op::Fun: call = &Interpreter::native_fun; break;
-    default: return;
+    case Op::RstReg: s->call = &Interpreter::native_reset; break;
+    case Op::Ctr: s->call = &Interpreter::native_counter; break;
+    case Op::Tmr:
+      s->call = x.preset ? &Interpreter::native_timer : &Interpreter::native_timer_bound;
+      if (x.preset) s->arg = x.preset;
+      s->imm = x.number;
+      break;
+    default:  // FUN
+      if (x.words && !x.pulse) {
+        s->words = x.words;
+        s->word_ops = x.word_ops;
+        s->word_count = static_cast<uint8_t>(x.n_ops);
+        break;
+      }
+      s->call = &Interpreter::native_fun;
+      s->may_fault = !x.words;
+      break;
   }
-  s->call = call;
-  s->arg = code_[i].extra;
-  s->fun_inputs = code_[i].extra->n_inputs;
 }
 
 void Interpreter::record_into(uint8_t* seen) {

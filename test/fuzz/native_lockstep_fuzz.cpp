@@ -1,7 +1,7 @@
 // Differential fuzzer (docs/native-engine.md): a random valid program over the whole
-// instruction set (contacts and edge contacts, nested blocks, coils, SET/RST, timers,
-// counters, FUN with .P/.D and with several inputs, JMP, CALL/RTS, FOR/NEXT, an interrupt
-// routine) runs on the interpreter and on the native engine, each on its own memory, with
+// instruction set (contacts and edge contacts, nested blocks, coils, SET/RST, timers with
+// constant and register presets, counters, FUN with .P/.D, with flags and with several
+// inputs, in word forms and handlers, JMP, CALL/RTS, FOR/NEXT, an interrupt routine) runs on the interpreter and on the native engine, each on its own memory, with
 // the same random inputs, forced points and interrupts, for up to 200 scans. Any
 // difference between the two memories, or between their faults, is a finding.
 #include <fuzzer/FuzzedDataProvider.h>
@@ -102,14 +102,30 @@ class Generator {
     if (f_.ConsumeBool()) m += m.empty() ? ".P" : "P";
     return m;
   }
+  // SUB or CMP with some of their flags (on points that may be forced), Sb a register, a
+  // small constant or one beyond int16 (which the word forms leave to the handler).
+  std::string flag_fun() {
+    const bool cmp = f_.ConsumeBool();
+    const int v = f_.ConsumeIntegralInRange(0, 2);
+    std::string s = std::string(cmp ? "CMP" : "SUB") + mods() + " Sa=" + reg() +
+                    " Sb=" + (v == 0 ? reg() : v == 1 ? std::to_string(f_.ConsumeIntegralInRange(-3, 3)) : "40000");
+    if (!cmp) s += " D=" + reg();
+    static const char* const flags[2][3] = {{"ZR", "CY", "BR"}, {"EQ", "GT", "LT"}};
+    for (const char* flag : flags[cmp])
+      if (f_.ConsumeBool()) s += std::string(" ") + flag + "=" + bit("YM");
+    return s + "\n";
+  }
   void output(int calls, int& labels, int nets) {
-    switch (f_.ConsumeIntegralInRange(0, 12)) {
+    switch (f_.ConsumeIntegralInRange(0, 13)) {
       case 0: out_ += "OUT " + bit("YM") + "\n"; break;
       case 1: out_ += "OUT NOT " + bit("YM") + "\n"; break;
       case 2: out_ += "SET " + bit("YM") + "\n"; break;
       case 3: out_ += "RST " + bit("YMTC") + "\n"; break;
       case 4: out_ += "RST " + reg() + "\n"; break;
-      case 5: out_ += "TMR T" + number('T') + " " + std::to_string(f_.ConsumeIntegralInRange(0, 30)) + "\n"; break;
+      case 5:  // a constant preset, or a register's (which the program's INC/ADD/MOV change)
+        out_ += "TMR T" + number('T') + " " +
+                (f_.ConsumeBool() ? std::to_string(f_.ConsumeIntegralInRange(0, 30)) : reg()) + "\n";
+        break;
       case 6: out_ += "CTR C" + number('C') + " " +
                       std::to_string(f_.ConsumeIntegralInRange(0, 9)) + "\n"; break;
       case 7: out_ += "INC" + mods() + " " + reg() + "\n"; break;
@@ -125,6 +141,7 @@ class Generator {
       case 11:
         if (calls > 0) out_ += "CALL S" + std::to_string(2 - calls + f_.ConsumeIntegralInRange(0, calls - 1)) + "\n";
         break;
+      case 12: out_ += flag_fun(); break;
       default: out_ += "MOV S=" + std::to_string(f_.ConsumeIntegralInRange(0, 99)) + " D=" + reg() + "\n"; break;
     }
   }

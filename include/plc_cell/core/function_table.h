@@ -45,6 +45,18 @@ struct BoundOperand {
 
 using FunctionHandler = std::function<void(ExecContext&, const BoundOperand* ops)>;
 
+// A FUN's word form (docs/native-engine.md, "FUN calls"): its handler compiled for operands
+// that are all bound pointers, each a register's word (a constant: a slot of two words), a
+// discrete's byte (a flag) or null (an absent optional flag), passed in order (o0 is the
+// first operand). Where an instruction's operands allow it, both engines call this form
+// instead of `handler`, without an ExecContext. It comes from the same body as `handler`
+// (core/fun_forms.h), so the two cannot differ; it never throws.
+using WordHandler = void (*)(void* o0, void* o1, void* o2, void* o3, void* o4, void* o5) noexcept;
+struct WordForms {
+  WordHandler w16 = nullptr;  // 16-bit: every operand a Reg16 or a constant in int16 range
+  WordHandler w32 = nullptr;  // .D: every operand a Reg32 or a constant in int32 range
+};
+
 struct FunctionSpec {
   uint16_t number = 0;
   std::string mnemonic;
@@ -54,6 +66,9 @@ struct FunctionSpec {
   bool allow_pulse = true;
   bool always_runs = false;  // called with EN off too (instructions that track their input)
   FunctionHandler handler;
+  // Optional word forms of handler, for one-input FUNs of up to six operands that read and
+  // write only Source/Dest values and BitOut flags, and never throw.
+  WordForms words;
   // Optional parse-time check of the operands (in spec order); a non-empty answer
   // is reported as an error at the instruction.
   std::function<std::string(const std::vector<Operand>&)> check;

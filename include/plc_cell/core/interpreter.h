@@ -2,6 +2,7 @@
 // Executes a Program against a Memory. Single-threaded; the scan engine owns it.
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -100,6 +101,9 @@ class Interpreter {
     uint8_t clears;   // RST of a timer (1) or counter (2) also clears its value
     uint32_t index;   // the instruction's own index (a FUN's ExecContext::instance)
     const FunctionSpec* fn;
+    WordHandler words;         // FUN: its word form for these operands, or null (fn->handler)
+    void* const* word_ops;     // its six operand pointers (function_table.h, WordHandler)
+    const uint16_t* preset;    // TMR: the preset's word (a register or a constant's slot), or null
   };
   struct Bound {
     int32_t handler;  // offset of this opcode's handler from the first one (direct threading)
@@ -124,17 +128,25 @@ class Interpreter {
   // functions, so the two engines share their semantics by construction.
   unsigned edge_up(uint32_t slot, unsigned v);
   void reset_step(const Extra& x, unsigned acc, ExecContext& ctx);
-  void timer_step(const Extra& x, unsigned acc, ExecContext& ctx);
+  int64_t timer_preset(const Extra& x, ExecContext& ctx) const;
+  void timer_step(uint32_t n, int64_t preset, unsigned acc, uint32_t dt_us);
   void counter_step(const Extra& x, unsigned acc, ExecContext& ctx);
-  unsigned fun_step(const Extra& x, ExecContext& ctx);  // ctx.inputs set; returns the rung result
-  static unsigned native_reset(native::Frame* f, const void* x, unsigned acc);
-  static unsigned native_timer(native::Frame* f, const void* x, unsigned acc);
-  static unsigned native_counter(native::Frame* f, const void* x, unsigned acc);
-  static unsigned native_fun(native::Frame* f, const void* x, unsigned inputs);
+  // ctx.inputs set; returns the rung result, with native::kFault if the handler threw.
+  unsigned fun_step(const Extra& x, ExecContext& ctx);
+  bool call_handler(const Extra& x, ExecContext& ctx);  // false: it threw, and the fault is set
+  static unsigned native_reset(native::Frame* f, const void* x, unsigned acc, uint32_t);
+  static unsigned native_timer(native::Frame* f, const void* preset, unsigned acc, uint32_t timer);
+  static unsigned native_timer_bound(native::Frame* f, const void* x, unsigned acc, uint32_t);
+  static unsigned native_counter(native::Frame* f, const void* x, unsigned acc, uint32_t);
+  static unsigned native_fun(native::Frame* f, const void* x, unsigned inputs, uint32_t);
   // load(): binds instruction in (its edge slot `edge`) into b and x, its operands onto
   // ops; op becomes the opcode it runs as. False: it needs no Extra.
   bool bind(const Program& program, const Instruction& in, uint32_t edge, Bound* b, Extra* x, Op* op,
             std::vector<BoundOperand>* ops) const;
+  // After bind(): a FUN's word form and its operand pointers, a TMR's preset word, where the
+  // operands allow them (interpreter_words.cpp). Constants get slots in constants_.
+  void bind_words(const Instruction& in, Extra* x);
+  void* word_pointer(const BoundOperand& o, OperandRole role, bool is32);
   void set_fault(size_t pc, const std::string& why);
 
   Memory& mem_;
@@ -156,6 +168,8 @@ class Interpreter {
   std::string engine_status_ = "interpreter";
   std::vector<Extra> extras_;
   std::vector<BoundOperand> ops_;
+  std::deque<std::array<void*, 6>> word_ops_;  // deques: what they hold never moves
+  std::deque<std::array<uint16_t, 2>> constants_;  // constant operands as words (low word first)
   std::vector<uint8_t> edges_;
   std::array<uint32_t, 256> timer_base_us_{};
   std::array<uint64_t, 256> timer_rem_us_{};

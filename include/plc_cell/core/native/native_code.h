@@ -4,7 +4,8 @@
 // A run is a sequence of instructions that have a machine-code template: every contact
 // (edge contacts with their edge memories too), ANDLD/ORLD, the bit coils OUT, OUT NOT,
 // SET, RST, and TMR, CTR, register RST and FUN as calls to the interpreter's own bodies of
-// them (Step::call), so the two engines share those semantics by construction. The flow
+// them (Step::call), or of a FUN's word form (Step::words), so the two engines share those
+// semantics by construction. The flow
 // instructions (LBL, JMP, CALL, RTS, RTI, FOR, NEXT, END) end a run and stay on the
 // interpreter's dispatch loop. Inside a run the accumulator and the block stack live in
 // registers (the first four levels; deeper levels in the interpreter's stack array), and
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/core/function_table.h"
 #include "plc_cell/core/program.h"
 
 namespace plc_cell::native {
@@ -24,11 +26,16 @@ struct Frame {
   void* ctx;       // its ExecContext for this run of the program
   uint8_t* stack;  // its block stack: levels below a run's entry depth are read from here,
                    // and levels below its exit depth left here, as the interpreter would
+  uint32_t dt_us;  // time since the previous scan (TMR)
 };
 
-// An instruction executed by a call: arg is its own data, acc the rung result (a FUN: its
-// inputs, bit k input k). Returns the rung result after it.
-using CallFn = unsigned (*)(Frame* frame, const void* arg, unsigned acc);
+// Set in what a call or a run returns when a FUN handler threw: the interpreter's fault is
+// set, and the run stops there, as the interpreter's loop does.
+constexpr unsigned kFault = 0x80000000u;
+
+// An instruction executed by a call: arg and imm are its own data, acc the rung result
+// (a FUN: its inputs, bit k input k). Returns the rung result after it, or kFault.
+using CallFn = unsigned (*)(Frame* frame, const void* arg, unsigned acc, uint32_t imm);
 
 // One bound instruction as the generator sees it.
 struct Step {
@@ -37,10 +44,17 @@ struct Step {
   uint8_t* edge = nullptr;  // the edge memory of TU/TD contact
   CallFn call = nullptr;    // TMR, CTR, register RST, FUN
   const void* arg = nullptr;
+  uint32_t imm = 0;
+  bool may_fault = false;   // the call runs a FUN handler, which may throw
   uint8_t fun_inputs = 1;   // a FUN's number of inputs (it pops all but one block)
+  // A one-input FUN without .P that has a word form for its operands: called directly while
+  // its EN is on, with its operand pointers in the argument registers (instead of call).
+  WordHandler words = nullptr;
+  void* const* word_ops = nullptr;
+  uint8_t word_count = 0;   // operand pointers it passes
 };
 
-// acc is the rung result on entry (0/1). Returns the rung result.
+// acc is the rung result on entry (0/1). Returns the rung result, or kFault.
 using RunFn = unsigned (*)(unsigned acc, Frame* frame);
 
 struct Run {
