@@ -163,7 +163,7 @@ struct TwoEngines {
 TEST(NativeFunForms, BothEnginesTakeTheWordFormWhereTheOperandsAllowIt) {
   TwoEngines e(
       "ORG M1925\nPROBE S=R0 D=R1\nPROBE S=5 D=R2\nPROBE S=WX0 D=R3\nPROBE S=40000 D=R4\n"
-      "LD M1925\nLD M1925\nORLD\nPROBE.P S=R0 D=R5\nOUT Y0\nEND\n");
+      "PROBE.P S=R0 D=R5\nOUT Y0\nEND\n");
   ASSERT_TRUE(e.native.native_active()) << e.native.engine_status();
   EXPECT_TRUE(e.scan());
   EXPECT_EQ(e.mem_n.reg(Area::R, 1), 100u);  // registers and a constant in range: the word form
@@ -184,7 +184,10 @@ TEST(NativeFunForms, AThrowingHandlerFaultsBothEnginesAlike) {
   ASSERT_TRUE(e.native.native_active()) << e.native.engine_status();
   EXPECT_TRUE(e.scan());  // EN off: the handler does not run
   EXPECT_TRUE(e.mem_n.bit(Area::Y, 2));
-  for (Memory* m : {&e.mem_i, &e.mem_n}) m->set_bit(Area::Y, 2, false);
+  for (Memory* m : {&e.mem_i, &e.mem_n}) {
+    m->set_bit(Area::Y, 2, false);
+    m->set_reg(Area::R, 1, 0);
+  }
   e.set_x(1, true);
   EXPECT_FALSE(e.scan());
   EXPECT_EQ(e.native.fault(), "forms.il:4: FUN 252 THROW failed: table full");
