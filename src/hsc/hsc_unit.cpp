@@ -73,6 +73,7 @@ void HscUnit::compose() {
   for (int n = 0; n < 8; ++n) {
     const CounterDef& d = cfg_.counters[n];
     if (d.used) parts_.push_back(d.timer ? static_cast<Component*>(&timers_[n]) : &counters_[n]);
+    if (d.used && !d.timer) scanned_.push_back(&counters_[n]);
   }
   parts_.push_back(&hsta_);
   parts_.push_back(&time_base_);
@@ -179,7 +180,7 @@ void HscUnit::before_inputs(uint64_t) {
   if (!running()) return;
   for (int x = 0; x < 16; ++x)
     if (pins_.driven(x)) ctx_.engine.set_input(x, pins_.level(x, now()));
-  for (Component* p : parts_) p->before_inputs();
+  for (Component* p : scanned_) p->before_inputs();
 }
 
 // After the input image is taken: the filtered levels of X0-X15, the capture
@@ -193,7 +194,7 @@ void HscUnit::before_program(uint64_t now_us) {
 
 void HscUnit::after_program(uint64_t) {
   if (!running()) return;
-  for (Component* p : parts_) p->after_program();
+  for (Component* p : scanned_) p->after_program();
   refresh_outputs(0, OutputImage::kOutputs);
 }
 

@@ -5,6 +5,17 @@ namespace hsc {
 
 // Rising at delay + k*period, falling width later.
 uint64_t PulseTrain::next_after(uint64_t t, bool* rising) const {
+  if (t >= asked && t < edge) {
+    *rising = edge_rising;
+    return edge;
+  }
+  asked = t;
+  edge = next_edge(t, &edge_rising);
+  *rising = edge_rising;
+  return edge;
+}
+
+uint64_t PulseTrain::next_edge(uint64_t t, bool* rising) const {
   if (t < delay) {
     *rising = true;
     return delay;

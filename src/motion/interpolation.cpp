@@ -352,6 +352,7 @@ void Interpolation::write_wr(Group& g) {
 }
 
 double Interpolation::vector_speed(int gp, uint64_t t) const {
+  if (groups_.empty()) return 0;  // most cells, most scans
   double s2 = 0;
   for (const auto& kv : groups_) {
     if (kv.second.call.gp != gp) continue;
@@ -363,7 +364,8 @@ double Interpolation::vector_speed(int gp, uint64_t t) const {
 
 void Interpolation::write_status(uint64_t t) {
   for (int gp = 0; gp < 2; ++gp) {
-    const uint32_t v = static_cast<uint32_t>(std::llround(vector_speed(gp, t)));
+    const double speed = vector_speed(gp, t);  // 0 without a moving group: no rounding to do
+    const uint32_t v = speed == 0 ? 0 : static_cast<uint32_t>(std::llround(speed));
     mem_.set_reg(Area::R, kVectorReg + 2 * gp, static_cast<uint16_t>(v & 0xFFFF));
     mem_.set_reg(Area::R, kVectorReg + 2 * gp + 1, static_cast<uint16_t>(v >> 16));
     mem_.set_bit(Area::M, kGroupDoneRelay + gp, finished_[gp]);

@@ -17,10 +17,13 @@ void StatusRegisters::write(uint64_t t) {
       mem_.set_reg(Area::R, reg, static_cast<uint16_t>(uint64_t(v) & 0xFFFF));
       mem_.set_reg(Area::R, reg + 1, static_cast<uint16_t>((uint64_t(v) >> 16) & 0xFFFF));
     };
-    a.written_pos = static_cast<int32_t>(a.axis.position(t));
+    // An idle axis (most of them, most scans) has its values at hand: no profile to
+    // evaluate, the frequency 0, the rest of its last move.
+    const bool moving = a.axis.moving();
+    a.written_pos = static_cast<int32_t>(moving ? a.axis.position(t) : a.axis.idle_position());
     put32(kPosReg + 2 * n, a.written_pos);
-    put32(kFreqReg + 2 * n, std::llround(a.axis.frequency(t)));
-    put32(kRemainReg + 2 * n, a.axis.moving() ? a.axis.remaining(t) : a.rest);
+    put32(kFreqReg + 2 * n, moving ? std::llround(a.axis.frequency(t)) : 0);
+    put32(kRemainReg + 2 * n, moving ? a.axis.remaining(t) : a.rest);
     mem_.set_bit(Area::M, kReadyRelay + n, a.owner == kFree);
     mem_.set_bit(Area::M, kLastStepRelay + n, a.finished);
   }

@@ -49,7 +49,11 @@ Rtc::Rtc(RtcConfig cfg, Memory& mem) : cfg_(cfg), mem_(mem) {
 
 const DateTime& Rtc::calendar() {
   // The calendar walks years and months: only when the second changes.
-  if (seconds() != calendar_s_) calendar_s_ = seconds(), calendar_ = from_seconds(calendar_s_);
+  if (seconds() != calendar_s_) {
+    calendar_s_ = seconds();
+    calendar_ = from_seconds(calendar_s_);
+    calendar_weekday_ = weekday(calendar_s_);
+  }
   return calendar_;
 }
 
@@ -69,6 +73,11 @@ void Rtc::before_inputs(uint64_t now_us) {
   // The crystal's error minus what D4054 corrects (the S35390A's digital calibration).
   double rate = cfg_.drift_s_per_day;
   if (const auto corr = rtc_calibration_rate(mem_.reg(Area::D, rtcreg::kCalibration))) rate -= *corr;
+  if (rate == 0.0) {  // an exact crystal (the usual cell): the residual stays below 1 us
+    us_ += static_cast<int64_t>(dt);
+    if (us_ >= kEnd) us_ -= kEnd;
+    return;
+  }
   residual_us_ += static_cast<double>(dt) * rate / 86400.0;
   const double whole = std::trunc(residual_us_);
   residual_us_ -= whole;
@@ -142,7 +151,7 @@ void Rtc::publish() {
   mem_.set_reg(Area::R, rtcreg::kDay, static_cast<uint16_t>(t.day));
   mem_.set_reg(Area::R, rtcreg::kMonth, static_cast<uint16_t>(t.month));
   mem_.set_reg(Area::R, rtcreg::kYear, static_cast<uint16_t>(t.year - 2000));
-  mem_.set_reg(Area::R, rtcreg::kWeek, static_cast<uint16_t>(week()));
+  mem_.set_reg(Area::R, rtcreg::kWeek, static_cast<uint16_t>((calendar_weekday_ + week_offset_) % 7));  // week()
   mem_.set_reg(Area::R, rtcreg::kHourMinute, static_cast<uint16_t>(t.hour << 8 | t.minute));
 }
 

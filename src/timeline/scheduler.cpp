@@ -51,10 +51,14 @@ void Scheduler::advance(uint64_t to) {
       dispatch();
       if (!running_) return;
     }
-    uint64_t t = to;
-    for (EventSource* s : sources_) t = std::min(t, std::max(s->next_event_ns(), now_ns_));
+    uint64_t due = EventSource::kNever;
+    for (EventSource* s : sources_) due = std::min(due, std::max(s->next_event_ns(), now_ns_));
+    const uint64_t t = std::min(to, due);
     for (EventSource* s : sources_) s->advance_to(t);
     now_ns_ = t;
+    // Most scans fall between events: at `to` no source has anything to do (EventSource::at)
+    // and no request waits (dispatch drains them all), so the instant ends here.
+    if (due > t) return;
     in_instant_ = true;
     for (EventSource* s : sources_) s->at(t);
     in_instant_ = false;

@@ -76,6 +76,22 @@ TEST(OutputImage, ImmediateRefreshOfAnUnalignedRangeTouchesOnlyThatRange) {
   EXPECT_EQ(std::get<1>(seen[3]), 13u);
 }
 
+// A scan's refresh usually finds the whole image unchanged and stops there: a change in
+// the last block, beside an owned output that changed too, must still be found.
+TEST(OutputImage, AChangeInTheLastBlockIsFoundBesideAnOwnedOne) {
+  Terminal term;
+  Memory& mem = term.mem;
+  OutputImage& img = term.img;
+  img.own(254, true);
+  img.refresh(0, 256, 1);
+  mem.set_bit(Area::Y, 254, true);  // owned: never reaches the terminal
+  img.refresh(0, 256, 2);
+  EXPECT_TRUE(term.changes.empty());
+  mem.set_bit(Area::Y, 255, true);
+  img.refresh(0, 256, 3);
+  EXPECT_EQ(term.changes, (Changes{{3, 255, true}}));
+}
+
 TEST(OutputImage, AForcedOutputShowsItsForcedLevel) {
   Terminal term;
   Memory& mem = term.mem;

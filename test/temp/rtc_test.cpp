@@ -249,6 +249,25 @@ TEST_F(RtcTest, ASlowClockCorrectedBy5603H) {
   EXPECT_EQ(rtc->seconds() - before, 10 * 86400);
 }
 
+// An exact crystal needs no drift arithmetic, but a calibration code written while it
+// runs still changes its rate from that scan on: D4054 = 56E5H corrects a crystal 3.38 s/day
+// fast, so an exact one loses 3.38 s a day.
+TEST_F(RtcTest, ACalibrationWrittenToAnExactClockTakesEffectAtTheNextScan) {
+  setup("modules:\n  rtc: {start: 2026-01-01T00:00:00}\n", kIdle);
+  scans(1, 1000000);
+  int64_t before = rtc->seconds();
+  scans(86400, 1000000);
+  EXPECT_EQ(rtc->seconds() - before, 86400);
+  put("D4054", 0x56E5);
+  before = rtc->seconds();
+  scans(86400, 1000000);
+  EXPECT_EQ(rtc->seconds() - before, 86396);  // 86396.62 s
+  put("D4054", 0);
+  before = rtc->seconds();
+  scans(3600, 1000000);
+  EXPECT_EQ(rtc->seconds() - before, 3600);
+}
+
 TEST_F(RtcTest, WithoutAStartItReadsTheHostsLocalTime) {
   setup("cell: {name: x}\n", kIdle);
   scans(1);

@@ -140,6 +140,26 @@ TEST(Scheduler, ASourceAddedDuringRunStartsAtThePresentInstant) {
   });
 }
 
+// Most scans fall between events and end at once; an instant that falls on a scan's own
+// instant, or a request made between scans, must still be served in that scan.
+TEST(Scheduler, AnInstantOnAScanActsInThatScan) {
+  Cell c;
+  std::vector<std::string> log;
+  Scripted a("a", {2000 * kUs, 4000 * kUs}, &log, irq::kHsc0I);
+  c.add(&a);
+  ASSERT_TRUE(c.plc.set_mode(RunMode::Run));
+  c.run_ms(2);
+  EXPECT_EQ(log, (std::vector<std::string>{"a start 0", "a advance 2000000", "a at 2000000 clock 2000000"}));
+  ASSERT_EQ(c.isrs.size(), 1u);
+  EXPECT_EQ(c.isrs[0].first, 2000 * kUs);
+  EXPECT_EQ(c.get("R11"), 1u);  // the routine ran before the scan's program
+  c.plc.scan(3000);
+  EXPECT_EQ(log.size(), 3u);
+  c.plc.scan(4000);
+  EXPECT_EQ(log.back(), "a at 4000000 clock 4000000");
+  EXPECT_EQ(c.get("R11"), 2u);
+}
+
 TEST(Scheduler, StopsMovingTheClockInStop) {
   Cell c;
   std::vector<std::string> log;

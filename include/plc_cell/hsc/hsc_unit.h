@@ -149,6 +149,7 @@ class HscUnit : public ScanHook, public timeline::EventSource {
   std::array<int, 16> meter_of_{};    // index in meters_ of input x, -1: not measured
   std::vector<std::pair<int, ScanDebounce>> scan_filters_;  // the filtered ones of X16-X35
   std::vector<Component*> parts_;     // the configured parts, in the order they act
+  std::vector<Component*> scanned_;   // those with work at the scans: the counters
 };
 
 }  // namespace hsc

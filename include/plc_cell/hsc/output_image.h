@@ -37,6 +37,7 @@ class OutputImage {
     double hz;
   };
   void changed(uint32_t y, bool v, uint64_t t_ns);
+  bool unchanged() const;  // no output of ours differs from the terminals
 
   const Memory& mem_;
   // One byte per output, as the memory's: 1 ON; owned: 1 where the output is not ours.

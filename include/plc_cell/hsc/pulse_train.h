@@ -13,7 +13,13 @@ struct PulseTrain {
 
   // First edge strictly after t; *rising tells which.
   uint64_t next_after(uint64_t t, bool* rising) const;
+  uint64_t next_edge(uint64_t t, bool* rising) const;  // the same, computed
   bool level_at(uint64_t t) const { return t >= delay && (t - delay) % period < width; }
+
+  // The last answer holds for every t in [asked, edge): the scheduler asks at each scan,
+  // and most scans fall between two edges, so the division is done once per edge.
+  mutable uint64_t asked = 1, edge = 0;
+  mutable bool edge_rising = false;
 };
 
 }  // namespace hsc

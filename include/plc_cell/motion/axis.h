@@ -33,6 +33,7 @@ class Axis {
   bool moving() const { return active_; }
   uint64_t end_ns() const;                 // kNever when idle or endless
   int64_t position(uint64_t t) const;      // logical position, pulses
+  int64_t idle_position() const { return pos0_; }  // position() while not moving
   double frequency(uint64_t t) const;      // Hz (0 when idle)
   int64_t remaining(uint64_t t) const;     // logical pulses still to go (0 when endless)
   int64_t emitted(uint64_t t) const;       // pulses of this move so far

@@ -63,6 +63,7 @@ class Rtc : public ScanHook {
   bool prev_round_ = false;
   int64_t calendar_s_ = -1;  // the second calendar_ shows
   DateTime calendar_;
+  int calendar_weekday_ = 0;  // of calendar_s_
 };
 
 // The cell's RTC (every FBs MC/MN main unit has one), configured by modules.rtc.
