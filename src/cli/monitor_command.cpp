@@ -121,7 +121,7 @@ int cmd_monitor(const std::vector<std::string>& argv) {
 
 Command monitor_command() {
   return {"monitor",
-          " --recording FILE [--open-at failure|T] [--http-tcp HOST:PORT] [--http-...]\n"
+          "--recording FILE [--open-at failure|T] [--http-tcp HOST:PORT] [--http-...]\n"
           "         --fatek HOST:PORT|DEV [--station N] (--program FILE.il | --config CELL.yaml)\n"
           "         --tri HOST:PORT|DEV [--id N] (--program FILE.il | --config CELL.yaml)\n"
           "         [--timeout 1s] [--duration T]\n"
