@@ -10,7 +10,7 @@ namespace cli {
 
 struct Command {
   const char* name;
-  const char* usage;  // its lines of --help, each indented to the usage column
+  const char* usage;  // its lines of --help, set in the usage column (their leading blanks dropped)
   int (*run)(const std::vector<std::string>& args);  // the process exit status
 };
 

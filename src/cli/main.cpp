@@ -1,5 +1,7 @@
 // plc_cell: the soft PLC from the command line, no ROS master needed.
+#include <algorithm>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,15 +25,28 @@ const char* placeholder(plc_cell::SettingType t) {
   return "TEXT";
 }
 
+// A command's usage lines in a column as wide as the longest name and a space: each line
+// is re-indented, so a longer name added to the list moves every line and never overruns.
+void command_lines(std::ostream& out) {
+  size_t width = 0;
+  for (const auto& c : plc_cell::cli::commands()) width = std::max(width, std::string(c.name).size() + 1);
+  for (const auto& c : plc_cell::cli::commands()) {
+    std::istringstream lines(c.usage);
+    std::string line, name = c.name;
+    while (std::getline(lines, line)) {
+      line.erase(0, line.find_first_not_of(' '));
+      name.resize(width, ' ');
+      out << "  " << name << line << "\n";
+      name.clear();
+    }
+  }
+}
+
 // The commands and the server options come from their lists (cli::commands(), the server
 // kinds' schemas): a new command or server kind lists itself.
 void usage(std::ostream& out) {
   out << "usage: plc_cell COMMAND [options]\n\ncommands:\n";
-  for (const auto& c : plc_cell::cli::commands()) {
-    std::string name = c.name;
-    name.resize(7, ' ');
-    out << "  " << name << c.usage;
-  }
+  command_lines(out);
   for (const auto& k : plc_cell::Cell::server_kinds()) {
     out << "\n" << k.title << ":\n";
     for (const auto& s : k.settings) {

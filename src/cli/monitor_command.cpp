@@ -60,18 +60,23 @@ std::unique_ptr<monitor::Source> remote_source(const Args& args) {
   const int timeout_ms = int(parse_duration_us(args.get("timeout", "1s")) / 1000);
   if (timeout_ms < 10 || timeout_ms > 60000) throw UsageError("--timeout: between 10ms and 60s");
   std::unique_ptr<remote::Link> link;
-  if (args.has("fatek")) {
-    remote::FatekLinkOptions o;
-    o.endpoint = args.get("fatek");
-    o.station = int(args.get_int("station", 1, 1, 254));
-    o.timeout_ms = timeout_ms;
-    link = std::make_unique<remote::FatekLink>(o);
-  } else {
-    remote::TriLinkOptions o;
-    o.endpoint = args.get("tri");
-    o.id = int(args.get_int("id", 1, 0, 255));
-    o.timeout_ms = timeout_ms;
-    link = std::make_unique<remote::TriLink>(o);
+  const std::string option = args.has("fatek") ? "fatek" : "tri";
+  try {
+    if (option == "fatek") {
+      remote::FatekLinkOptions o;
+      o.endpoint = args.get("fatek");
+      o.station = int(args.get_int("station", 1, 1, 254));
+      o.timeout_ms = timeout_ms;
+      link = std::make_unique<remote::FatekLink>(o);
+    } else {
+      remote::TriLinkOptions o;
+      o.endpoint = args.get("tri");
+      o.id = int(args.get_int("id", 1, 0, 255));
+      o.timeout_ms = timeout_ms;
+      link = std::make_unique<remote::TriLink>(o);
+    }
+  } catch (const Error& e) {
+    throw UsageError("--" + option + ": " + e.what());  // the endpoint's text, refused
   }
   return std::make_unique<remote::RemoteSource>(std::move(link), program_view(args));
 }
@@ -116,7 +121,7 @@ int cmd_monitor(const std::vector<std::string>& argv) {
 
 Command monitor_command() {
   return {"monitor",
-          " --recording FILE [--open-at failure|T] [--http-tcp HOST:PORT] [--http-...]\n"
+          "--recording FILE [--open-at failure|T] [--http-tcp HOST:PORT] [--http-...]\n"
           "         --fatek HOST:PORT|DEV [--station N] (--program FILE.il | --config CELL.yaml)\n"
           "         --tri HOST:PORT|DEV [--id N] (--program FILE.il | --config CELL.yaml)\n"
           "         [--timeout 1s] [--duration T]\n"

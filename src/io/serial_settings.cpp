@@ -19,8 +19,9 @@ static bool all_digits(const std::string& s) {
   return true;
 }
 
-SerialSettings parse_serial_settings(const std::string& text, const std::string& default_format) {
+SerialSettings parse_serial_settings(const std::string& text, const std::string& default_format, int default_baud) {
   SerialSettings s;
+  s.baud = default_baud;
   const auto bad = [&](const std::string& why) { return Error("serial port '" + text + "': " + why); };
   const auto c1 = text.find(':');
   s.device = text.substr(0, c1);
@@ -49,7 +50,8 @@ void parse_host_port(const std::string& text, std::string* host, int* port) {
   const auto c = text.rfind(':');
   if (c == std::string::npos) throw Error("'" + text + "': expected HOST:PORT, e.g. 127.0.0.1:500");
   const std::string p = text.substr(c + 1);
-  if (!all_digits(p) || p.size() > 5 || std::stoi(p) > 65535) throw Error("'" + text + "': port '" + p + "' is not 0..65535");
+  if (!all_digits(p)) throw Error("'" + text + "': port '" + p + "' is not a number (expected HOST:PORT, e.g. 127.0.0.1:500)");
+  if (p.size() > 5 || std::stoi(p) > 65535) throw Error("'" + text + "': port '" + p + "' is not 0..65535");
   *host = text.substr(0, c);
   if (host->empty()) *host = "127.0.0.1";
   *port = std::stoi(p);

@@ -59,10 +59,7 @@ class FdTransport : public Transport {
 
 class TcpTransport : public FdTransport {
  public:
-  explicit TcpTransport(const std::string& hp) {
-    parse_host_port(hp, &host_, &port_);
-    if (host_.empty()) host_ = "127.0.0.1";
-  }
+  TcpTransport(std::string host, int port) : host_(host.empty() ? "127.0.0.1" : std::move(host)), port_(port) {}
   ~TcpTransport() override { close(); }
   void open() override {
     close();
@@ -108,7 +105,13 @@ class SerialTransport : public FdTransport {
 }  // namespace
 
 std::unique_ptr<Transport> tcp_transport(const std::string& host_port) {
-  return std::make_unique<TcpTransport>(host_port);
+  std::string host;
+  int port = 0;
+  parse_host_port(host_port, &host, &port);
+  return tcp_transport(host, port);
+}
+std::unique_ptr<Transport> tcp_transport(const std::string& host, int port) {
+  return std::make_unique<TcpTransport>(host, port);
 }
 std::unique_ptr<Transport> serial_transport(const SerialSettings& line) {
   return std::make_unique<SerialTransport>(line);

@@ -84,29 +84,34 @@ class HttpServer::Impl {
   std::string token_ = random_token();
   std::atomic<bool> running_{false};
   Hub hub_;  // before the io_context: sessions destroyed with it still count down here
-  net::io_context ioc_{1};
-  tcp::acceptor acceptor_{ioc_};
+  // One of each per start: stop() destroys the io_context with the handlers it still
+  // holds, and with them the sessions (their connections close), so that a start after a
+  // stop begins as the first did.
+  std::unique_ptr<net::io_context> ioc_;
+  std::unique_ptr<tcp::acceptor> acceptor_;
   std::thread thread_;
 };
 
 void HttpServer::Impl::start() {
   if (running_) return;
+  ioc_ = std::make_unique<net::io_context>(1);
+  acceptor_ = std::make_unique<tcp::acceptor>(*ioc_);
   hub_.api = std::make_unique<Api>(source_, settings_, host_, token_,
                                    Api::Events{[this](const std::string& m) {
-                                                 net::post(ioc_, [this, m] { hub_.broadcast(m); });
+                                                 net::post(*ioc_, [this, m] { hub_.broadcast(m); });
                                                },
-                                               [this] { net::post(ioc_, [this] { hub_.frames_now(); }); }});
+                                               [this] { net::post(*ioc_, [this] { hub_.frames_now(); }); }});
   try {
-    tcp::resolver resolver(ioc_);
+    tcp::resolver resolver(*ioc_);
     const auto found = *resolver.resolve(host_, std::to_string(port_)).begin();
-    acceptor_.open(found.endpoint().protocol());
-    acceptor_.set_option(net::socket_base::reuse_address(true));
-    acceptor_.bind(found.endpoint());
-    acceptor_.listen(net::socket_base::max_listen_connections);
-    port_ = acceptor_.local_endpoint().port();
+    acceptor_->open(found.endpoint().protocol());
+    acceptor_->set_option(net::socket_base::reuse_address(true));
+    acceptor_->bind(found.endpoint());
+    acceptor_->listen(net::socket_base::max_listen_connections);
+    port_ = acceptor_->local_endpoint().port();  // a start after a stop binds this port again
   } catch (const std::exception& e) {
-    beast::error_code ignored;
-    acceptor_.close(ignored);
+    acceptor_.reset();
+    ioc_.reset();
     throw Error("monitor " + settings_.endpoint + ": cannot listen: " + e.what());
   }
   running_ = true;
@@ -116,7 +121,7 @@ void HttpServer::Impl::start() {
     // never the server.
     for (;;) {
       try {
-        ioc_.run();
+        ioc_->run();
         return;
       } catch (const std::exception& e) {
         hub_.note_error(e.what());
@@ -126,8 +131,8 @@ void HttpServer::Impl::start() {
 }
 
 void HttpServer::Impl::accept() {
-  acceptor_.async_accept(net::make_strand(ioc_), [this](beast::error_code ec, tcp::socket socket) {
-    if (ec == net::error::operation_aborted || !acceptor_.is_open()) return;
+  acceptor_->async_accept(net::make_strand(*ioc_), [this](beast::error_code ec, tcp::socket socket) {
+    if (ec == net::error::operation_aborted || !acceptor_->is_open()) return;
     if (!ec) std::make_shared<HttpSession>(std::move(socket), hub_)->run();
     accept();
   });
@@ -135,12 +140,10 @@ void HttpServer::Impl::accept() {
 
 void HttpServer::Impl::stop() {
   if (!running_) return;
-  net::post(ioc_, [this] {
-    beast::error_code ignored;
-    acceptor_.close(ignored);
-  });
-  ioc_.stop();
+  ioc_->stop();
   if (thread_.joinable()) thread_.join();
+  acceptor_.reset();
+  ioc_.reset();
   running_ = false;
 }
 

@@ -1,6 +1,7 @@
 #include "plc_cell/remote/fatek_link.h"
 
 #include "plc_cell/fatek/poll_plan.h"
+#include "plc_cell/io/endpoint.h"
 
 namespace plc_cell {
 namespace remote {
@@ -10,17 +11,7 @@ FatekLink::FatekLink(const FatekLinkOptions& opt) {
   co.station = opt.station;
   co.timeout_ms = opt.timeout_ms;
   co.retries = opt.retries;
-  // HOST:PORT has a port after its last colon; a serial line starts with its device path.
-  const bool serial = !opt.endpoint.empty() && opt.endpoint[0] == '/';
-  std::unique_ptr<Transport> t;
-  if (serial) {
-    t = fatek::serial_transport(parse_serial_settings(opt.endpoint));
-  } else {
-    std::string host;
-    int port = 0;
-    parse_host_port(opt.endpoint, &host, &port);  // throws naming the text
-    t = fatek::tcp_transport(opt.endpoint);
-  }
+  std::unique_ptr<Transport> t = client_transport(opt.endpoint);  // the FBs' 9600 7E1 by default
   name_ = "FATEK " + t->describe() + " station " + std::to_string(opt.station);
   client_ = std::make_unique<fatek::Client>(std::move(t), co);
 }

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "plc_cell/io/endpoint.h"
 #include "plc_cell/tri/poll_plan.h"
 
 namespace plc_cell {
@@ -12,17 +13,7 @@ TriLink::TriLink(const TriLinkOptions& opt) {
   co.id = opt.id;
   co.timeout_ms = opt.timeout_ms;
   co.retries = opt.retries;
-  std::unique_ptr<Transport> t;
-  if (!opt.endpoint.empty() && opt.endpoint[0] == '/') {
-    SerialSettings line = parse_serial_settings(opt.endpoint, "8N1");
-    if (opt.endpoint.find(':') == std::string::npos) line.baud = tri::kDefaultBaud;
-    t = serial_transport(line);
-  } else {
-    std::string host;
-    int port = 0;
-    parse_host_port(opt.endpoint, &host, &port);  // throws naming the text
-    t = tcp_transport(opt.endpoint);
-  }
+  std::unique_ptr<Transport> t = client_transport(opt.endpoint, {"8N1", tri::kDefaultBaud});
   char id[8];
   std::snprintf(id, sizeof id, "%02X", unsigned(opt.id) & 0xFF);
   name_ = "TRi " + t->describe() + " ID " + id;

@@ -15,14 +15,9 @@ Bridge::Bridge(BridgeConfig cfg, Sinks sinks)
   co.id = cfg_.id;
   co.timeout_ms = int(cfg_.timeout_s * 1000);
   co.retries = cfg_.retries;
-  std::unique_ptr<Transport> t;
-  if (cfg_.tcp.empty()) {
-    SerialSettings line = parse_serial_settings(cfg_.serial, "8N1");
-    if (cfg_.serial.find(':') == std::string::npos) line.baud = kDefaultBaud;  // the TRi's 38400 8N1
-    t = serial_transport(line);
-  } else {
-    t = tcp_transport(cfg_.tcp);
-  }
+  std::unique_ptr<Transport> t = cfg_.tcp.empty()
+                                     ? serial_transport(parse_serial_settings(cfg_.serial, "8N1", kDefaultBaud))
+                                     : tcp_transport(cfg_.tcp);
   char id[8];
   std::snprintf(id, sizeof id, "%02X", unsigned(cfg_.id));
   link_name_ = t->describe() + " ID " + id;

@@ -1,5 +1,6 @@
 #include "plc_cell/tri/server_kind.h"
 
+#include "plc_cell/tri/client.h"
 #include "plc_cell/tri/server.h"
 
 namespace plc_cell {
@@ -31,11 +32,8 @@ ServerKind server_kind() {
       parse_host_port(hp, &host, &port);
       out.push_back(std::make_unique<TcpServer>(plc, host, port, o));
     }
-    for (const auto& dev : v.all("serial")) {
-      SerialSettings line = parse_serial_settings(dev, "8N1");
-      if (dev.find(':') == std::string::npos) line.baud = 38400;  // the TRi's default rate
-      out.push_back(std::make_unique<SerialServer>(plc, line, o));
-    }
+    for (const auto& dev : v.all("serial"))
+      out.push_back(std::make_unique<SerialServer>(plc, parse_serial_settings(dev, "8N1", kDefaultBaud), o));
     return out;
   };
   return k;

@@ -5,8 +5,6 @@ import json
 import os
 import re
 import shutil
-import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -20,23 +18,13 @@ from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.support.ui import WebDriverWait
 
 # realpath: run from the workspace, this file is reached through its links to the package.
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+from pyutil import ROOT, devel  # noqa: E402
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from ros_loopback import loopback_env  # noqa: E402
 
 WAIT = 30.0  # seconds: every wait on the page or on a process is bounded by this
 WRITABLE = "X0-X7,M800-M899,D0-D99"
-
-
-def devel():
-    lib = os.environ.get("PLC_CELL_LIB_DIR")  # set by the package's run_tests
-    return os.path.dirname(lib) if lib else os.path.join(ROOT, ".build", "ws", "devel")
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def ros_env(master_port):
@@ -54,20 +42,6 @@ def run(cmd, env=None, limit=120):
     p = shell(cmd, env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     out, _ = p.communicate(timeout=limit)
     return p.returncode, out.decode(errors="replace")
-
-
-def stop(p):
-    """Stops a process this test started (its own session) and what it started."""
-    for sig, limit in ((signal.SIGINT, 15), (signal.SIGKILL, 5)):
-        try:
-            os.killpg(p.pid, sig)
-        except ProcessLookupError:
-            return
-        try:
-            p.wait(timeout=limit)
-            return
-        except subprocess.TimeoutExpired:
-            continue
 
 
 def get_json(url):

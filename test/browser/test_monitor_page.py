@@ -10,11 +10,10 @@ import subprocess
 import pytest
 from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
 
-from conftest import conveyor_cell, free_port, get_json, js, open_page, ros_env, run, shell, stop, wait, \
-    wait_for_server
+from conftest import conveyor_cell, get_json, js, open_page, ros_env, run, shell, wait, wait_for_server
+from pyutil import ROOT, free_port, stop
 
-PROGRAM = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
-                       "examples", "conveyor", "conveyor.il")
+PROGRAM = os.path.join(ROOT, "examples", "conveyor", "conveyor.il")
 
 
 @pytest.fixture(scope="module")

@@ -6,7 +6,8 @@ import subprocess
 
 import pytest
 
-from conftest import conveyor_cell, free_port, js, open_page, run, shell, stop, wait, wait_for_server
+from conftest import conveyor_cell, js, open_page, run, shell, wait, wait_for_server
+from pyutil import free_port, stop
 
 # The demo's part sensor (examples/conveyor/conveyor.yaml): a pulse of period 5 s and width
 # 2.5 s after a delay of 1 s, so X3 is on from 1.0 s to 3.5 s and from 6.0 s to 8.5 s.

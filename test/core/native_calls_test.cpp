@@ -9,30 +9,14 @@
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/native/lockstep.h"
 
+#include "see3_function.h"
+
 using namespace plc_cell;
 
 namespace {
 
-// The core's FUNs and one with three inputs (EN and two LD blocks) that writes what it saw
-// and counts its executions, so that an input taken from the wrong block stack level, or a
-// call made or skipped where the interpreter does not, changes the memory.
-FunctionTable table() {
-  FunctionTable t = FunctionTable::with_core_functions();
-  FunctionSpec s;
-  s.number = 250;
-  s.mnemonic = "SEE3";
-  s.inputs = {"EN", "B", "C"};
-  s.operands = {{"D", OperandRole::Dest}};
-  s.always_runs = true;
-  s.handler = [](ExecContext& c, const BoundOperand* o) {
-    c.put(o[0], c.get(o[0]) * 8 + (c.en | c.inputs[1] << 1 | c.inputs[2] << 2));
-  };
-  t.add(s);
-  return t;
-}
-
 struct Engines {
-  FunctionTable fns = table();
+  FunctionTable fns = native_test::functions_with_see3();
   Memory mem_i, mem_n;
   Interpreter interp{mem_i, fns}, native{mem_n, fns};
   Program prog;

@@ -19,8 +19,6 @@ import glob
 import os
 import re
 import shlex
-import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -29,11 +27,11 @@ import time
 import pytest
 
 # realpath: run from the workspace, this file is reached through its links to the package.
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+from pyutil import ROOT, devel, free_port, stop  # noqa: E402
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from ros_loopback import loopback_env  # noqa: E402
 
-WS = os.path.join(ROOT, ".build", "ws")
 DOCS = ["README.md"] + sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "docs", "*.md")))
 
 FENCE = re.compile(r"^```([^\n]*)\n(.*?)^```\s*$", re.M | re.S)
@@ -79,12 +77,6 @@ def commands(kind, body):
     return [(c, [e for e in exp if e.strip()]) for c, exp in out]
 
 
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 class Shell:
     """A user's shell: the scratch folder, setup.bash sourced, a private ROS master."""
 
@@ -96,7 +88,7 @@ class Shell:
         self.env.pop("ROS_NAMESPACE", None)
 
     def start(self, cmd):
-        script = "source %s/devel/setup.bash >/dev/null 2>&1\n%s\n" % (shlex.quote(WS), cmd)
+        script = "source %s/setup.bash >/dev/null 2>&1\n%s\n" % (shlex.quote(devel()), cmd)
         return subprocess.Popen(["bash", "-c", script], cwd=self.workdir, env=self.env, stdin=subprocess.DEVNULL,
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
 
@@ -112,19 +104,6 @@ class Shell:
             if window is None:
                 return -1, out.decode(errors="replace") + "\n[killed after %d s]" % COMMAND_LIMIT
             return None, out.decode(errors="replace")
-
-
-def stop(p):
-    for sig, wait in ((signal.SIGINT, 10), (signal.SIGKILL, 5)):
-        try:
-            os.killpg(p.pid, sig)
-        except ProcessLookupError:
-            return
-        try:
-            p.wait(timeout=wait)
-            return
-        except subprocess.TimeoutExpired:
-            continue
 
 
 def untracked():

@@ -16,26 +16,11 @@
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/native/lockstep.h"
 
+#include "../core/see3_function.h"
+
 using namespace plc_cell;
 
 namespace {
-
-// The core's FUNs and one with three inputs (EN and two LD blocks), as cells' PID or FUN140
-// have, without their subsystems: it writes what it saw.
-FunctionTable table() {
-  FunctionTable t = FunctionTable::with_core_functions();
-  FunctionSpec s;
-  s.number = 250;
-  s.mnemonic = "SEE3";
-  s.inputs = {"EN", "B", "C"};
-  s.operands = {{"D", OperandRole::Dest}};
-  s.always_runs = true;
-  s.handler = [](ExecContext& c, const BoundOperand* o) {
-    c.put(o[0], c.get(o[0]) * 8 + (c.inputs[0] | c.inputs[1] << 1 | c.inputs[2] << 2));
-  };
-  t.add(s);
-  return t;
-}
 
 class Generator {
  public:
@@ -175,7 +160,7 @@ class Generator {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const FunctionTable fns = table();
+  static const FunctionTable fns = native_test::functions_with_see3();
   FuzzedDataProvider f(data, size);
   const std::string text = Generator(f).program();
   Program prog;

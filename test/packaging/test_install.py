@@ -7,27 +7,17 @@ import os
 import re
 import shutil
 import signal
-import socket
 import subprocess
+import sys
 import tempfile
 import xmlrpc.client
 
 import pytest
 
 # realpath: run from the workspace, this file is reached through its links to the package.
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+from pyutil import ROOT, devel, free_port  # noqa: E402
 EXPORTED = {"core", "io", "config", "timeline", "hsc", "temp", "motion", "sim"}
-
-
-def devel():
-    lib = os.environ.get("PLC_CELL_LIB_DIR")  # set by the package's run_tests
-    return os.path.dirname(lib) if lib else os.path.join(ROOT, ".build", "ws", "devel")
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def configured_prefix(build):

@@ -10,16 +10,12 @@ import sys
 import tempfile
 
 # realpath: run from the workspace, this file is reached through its links to the package.
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+from pyutil import ROOT, devel  # noqa: E402
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from ros_loopback import loopback_env, unreachable  # noqa: E402
 
 NOWHERE = "plc-cell-host-that-resolves-nowhere"
-
-
-def devel():
-    lib = os.environ.get("PLC_CELL_LIB_DIR")  # set by the package's run_tests
-    return os.path.dirname(lib) if lib else os.path.join(ROOT, ".build", "ws", "devel")
 
 
 def bare_env(scratch):

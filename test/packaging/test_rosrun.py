@@ -3,14 +3,11 @@ lives inside the package (.build/ws), and its source space must not lead rosrun'
 (`find -L` over the package) back into the package, a loop find warns about."""
 import os
 import subprocess
+import sys
 
 # realpath: run from the workspace, this file is reached through its links to the package.
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
-
-
-def devel():
-    lib = os.environ.get("PLC_CELL_LIB_DIR")  # set by the package's run_tests
-    return os.path.dirname(lib) if lib else os.path.join(ROOT, ".build", "ws", "devel")
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+from pyutil import ROOT, devel  # noqa: E402
 
 
 def rosrun(*args):

@@ -72,6 +72,10 @@ TEST(MonitorCommand, RefusedUsages) {
   EXPECT_NE(r.out.find("give one of --recording FILE"), std::string::npos) << r.out;
   r = testing::run_tool("monitor --fatek 127.0.0.1:1 --open-at failure --program " + kExamples + "conveyor.il");
   EXPECT_NE(r.out.find("--open-at goes with --recording"), std::string::npos) << r.out;
+  r = testing::run_tool("monitor --tri /nonexistent/ttyUSB0 --program " + kExamples + "conveyor.il");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("plc_cell monitor: --tri: endpoint '/nonexistent/ttyUSB0': no such device"), std::string::npos)
+      << r.out;
   const std::string dir = testing::scratch_dir("monitor_usage");
   const std::string rec = testing::record_conveyor(dir, "10ms");
   r = testing::run_tool("monitor --recording " + rec + " --open-at failure --http-tcp 127.0.0.1:0");

@@ -6,34 +6,20 @@
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/server.h"
 #include "plc_cell/remote/fatek_link.h"
-#include "plc_cell/remote/remote_source.h"
-#include "plc_cell/sim/soft_cell.h"
+#include "remote_fixture.h"
 
 namespace plc_cell {
 namespace {
 
-const std::string kProgram = std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/conveyor.il";
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "accepted";
-}
+using remote_test::error_of;
 
 class FatekSource : public ::testing::Test {
  protected:
   FatekSource() {
-    plc.load_program_file(kProgram);
+    plc.load_program_file(remote_test::kConveyorIl);
     serve(0);
-    remote::FatekLinkOptions o;
-    o.endpoint = "127.0.0.1:" + std::to_string(server->port());
-    o.timeout_ms = 500;
-    source = std::make_unique<remote::RemoteSource>(std::make_unique<remote::FatekLink>(o),
-                                                    remote::load_program_view(kProgram, SoftCell::functions()),
-                                                    std::chrono::milliseconds(0));
+    source = remote_test::conveyor_source<remote::FatekLink>(
+        remote_test::on_loopback<remote::FatekLinkOptions>(server->port(), 500), std::chrono::milliseconds(0));
   }
   void serve(int port, const std::string& writable = "D0-D99,Y0-Y15") {
     fatek::TcpServerOptions o;
@@ -144,18 +130,15 @@ TEST_F(FatekSource, ALinkThatDropsIsReportedAndComesBack) {
 }
 
 TEST(FatekSourceDown, WithinTheRetryIntervalADownLinkFailsAtOnce) {
-  remote::FatekLinkOptions o;
-  o.endpoint = "127.0.0.1:1";  // nothing listens on port 1
-  o.timeout_ms = 300;
-  remote::RemoteSource source(std::make_unique<remote::FatekLink>(o),
-                              remote::load_program_view(kProgram, SoftCell::functions()),
-                              std::chrono::hours(1));
-  EXPECT_NE(error_of([&] { source.read({parse_address("D0")}); }).find("link down"), std::string::npos);
-  const uint64_t frames = source.frames();
+  // Nothing listens on port 1.
+  const auto source = remote_test::conveyor_source<remote::FatekLink>(
+      remote_test::on_loopback<remote::FatekLinkOptions>(1, 300), std::chrono::hours(1));
+  EXPECT_NE(error_of([&] { source->read({parse_address("D0")}); }).find("link down"), std::string::npos);
+  const uint64_t frames = source->frames();
   // Refused without touching the line.
-  EXPECT_NE(error_of([&] { source.read({parse_address("D0")}); }).find("link down"), std::string::npos);
-  EXPECT_EQ(source.frames(), frames);
-  EXPECT_EQ(source.status().servers[0].second.rejected, 1u);
+  EXPECT_NE(error_of([&] { source->read({parse_address("D0")}); }).find("link down"), std::string::npos);
+  EXPECT_EQ(source->frames(), frames);
+  EXPECT_EQ(source->status().servers[0].second.rejected, 1u);
 }
 
 TEST(RemoteProgram, AProgramThatDoesNotParseNamesItsLine) {

@@ -4,23 +4,14 @@
 
 #include "../reliability/run_child.h"
 #include "plc_cell/remote/fatek_link.h"
-#include "plc_cell/remote/remote_source.h"
 #include "plc_cell/remote/tri_link.h"
-#include "plc_cell/sim/soft_cell.h"
+#include "remote_fixture.h"
 
 namespace plc_cell {
 namespace {
 
-const std::string kDir = std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/";
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "accepted";
-}
+using remote_test::error_of;
+const std::string& kDir = remote_test::kConveyorDir;
 
 // Reads until the line runs (the demo starts by itself), at most n polls.
 monitor::Frame poll_until_running(remote::RemoteSource& s, const std::vector<Address>& addrs, int n = 500) {
@@ -35,10 +26,9 @@ monitor::Frame poll_until_running(remote::RemoteSource& s, const std::vector<Add
 TEST(PlcCellRunAsAPlc, OverFatek) {
   RunChild cell({"--config", kDir + "conveyor.yaml", "--fatek-tcp", "127.0.0.1:0", "--fatek-writable", "D0-D99"});
   ASSERT_EQ(cell.ports.size(), 1u) << cell.log;
-  remote::FatekLinkOptions o;
-  o.endpoint = "127.0.0.1:" + std::to_string(cell.ports[0]);
-  remote::RemoteSource source(std::make_unique<remote::FatekLink>(o),
-                              remote::load_program_view(kDir + "conveyor.il", SoftCell::functions()));
+  const auto made = remote_test::conveyor_source<remote::FatekLink>(
+      remote_test::on_loopback<remote::FatekLinkOptions>(cell.ports[0]));
+  remote::RemoteSource& source = *made;
   const monitor::Frame f = poll_until_running(source, {parse_address("M0"), parse_address("X1")});
   EXPECT_EQ(f.values, (std::vector<uint32_t>{1, 1}));  // line_running; stop_button (NC) simulated
   EXPECT_EQ(f.mode, RunMode::Run);
@@ -54,10 +44,9 @@ TEST(PlcCellRunAsAPlc, OverFatek) {
 TEST(PlcCellRunAsAPlc, OverTri) {
   RunChild cell({"--config", kDir + "conveyor.yaml", "--tri-tcp", "127.0.0.1:0"});
   ASSERT_EQ(cell.ports.size(), 1u) << cell.log;
-  remote::TriLinkOptions o;
-  o.endpoint = "127.0.0.1:" + std::to_string(cell.ports[0]);
-  remote::RemoteSource source(std::make_unique<remote::TriLink>(o),
-                              remote::load_program_view(kDir + "conveyor.il", SoftCell::functions()));
+  const auto made = remote_test::conveyor_source<remote::TriLink>(
+      remote_test::on_loopback<remote::TriLinkOptions>(cell.ports[0]));
+  remote::RemoteSource& source = *made;
   const monitor::Frame f = poll_until_running(source, {parse_address("M0"), parse_address("Y0")});
   EXPECT_EQ(f.values[0], 1u);
   source.write(parse_address("D10"), {321});

@@ -7,18 +7,15 @@ import glob
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
 import xml.etree.ElementTree as ET
 
 # realpath: run from the workspace, this file is reached through its links to the package.
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+from pyutil import ROOT, devel  # noqa: E402
 PACKAGE = os.path.join(ROOT, "test", "user_package", "my_cell_tests")
 CASES = ["start runs the motor, the lamp follows after 1 s", "stop stops the motor and the lamp"]
-
-
-def devel():
-    lib = os.environ.get("PLC_CELL_LIB_DIR")  # set by the package's run_tests
-    return os.path.dirname(lib) if lib else os.path.join(ROOT, ".build", "ws", "devel")
 
 
 def run_tests(ws):

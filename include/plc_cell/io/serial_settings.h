@@ -16,9 +16,12 @@ struct SerialSettings {
 };
 
 // Throws plc_cell::Error naming the text and the reason. default_format applies when
-// FORMAT is omitted (7E1 for FATEK, 8E1 for Modbus RTU).
-SerialSettings parse_serial_settings(const std::string& text, const std::string& default_format = "7E1");
-// "HOST:PORT" (HOST may be empty for 127.0.0.1); throws plc_cell::Error.
+// FORMAT is omitted (7E1 for FATEK, 8E1 for Modbus RTU, 8N1 for the TRi), default_baud
+// when BAUD is (9600; the TRi's 38400).
+SerialSettings parse_serial_settings(const std::string& text, const std::string& default_format = "7E1",
+                                     int default_baud = 9600);
+// "HOST:PORT" (HOST may be empty for 127.0.0.1; PORT 0..65535, 0 for a server to pick one);
+// throws plc_cell::Error saying whether the port is missing, not a number or out of range.
 void parse_host_port(const std::string& text, std::string* host, int* port);
 
 }  // namespace plc_cell

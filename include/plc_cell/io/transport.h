@@ -47,6 +47,7 @@ class Transport {
 };
 // "HOST:PORT" (HOST may be empty for 127.0.0.1).
 std::unique_ptr<Transport> tcp_transport(const std::string& host_port);
+std::unique_ptr<Transport> tcp_transport(const std::string& host, int port);
 // The device is reopened by the next transaction after a failure (an adapter unplugged
 // and plugged back is found).
 std::unique_ptr<Transport> serial_transport(const SerialSettings& line);

@@ -40,8 +40,10 @@ class HttpServer : public Server {
   HttpServer(std::unique_ptr<Source> source, HttpSettings settings);
   ~HttpServer() override;
 
-  void start() override;  // binds; throws plc_cell::Error naming the endpoint
-  void stop() override;
+  // Binds; throws plc_cell::Error naming the endpoint. After a stop() it serves again, on
+  // the port the first start bound (the one picked for port 0) and with the same token.
+  void start() override;
+  void stop() override;  // closes every connection; start() may follow
   std::string describe() const override;  // "monitor http://127.0.0.1:8080/"
   ServerStatus status() const override;
 

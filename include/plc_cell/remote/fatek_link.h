@@ -21,7 +21,8 @@ struct FatekLinkOptions {
 
 class FatekLink : public Link {
  public:
-  // Throws Error for an endpoint that does not parse. Connects at the first transaction.
+  // Throws Error for an endpoint client_transport refuses (io/endpoint.h). Connects at the
+  // first transaction.
   explicit FatekLink(const FatekLinkOptions& opt);
   std::string describe() const override { return name_; }
   std::vector<uint32_t> read(const std::vector<Address>& addrs) override;

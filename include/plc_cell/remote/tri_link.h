@@ -23,6 +23,8 @@ struct TriLinkOptions {
 
 class TriLink : public Link {
  public:
+  // Throws Error for an endpoint client_transport refuses (io/endpoint.h). Connects at the
+  // first transaction.
   explicit TriLink(const TriLinkOptions& opt);
   std::string describe() const override { return name_; }
   std::vector<uint32_t> read(const std::vector<Address>& addrs) override;
