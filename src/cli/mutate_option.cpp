@@ -20,6 +20,8 @@ void run_mutate(const Args& args, const std::vector<scenario::Scenario>& files, 
   const auto results = mutation::run_mutation(files, o, [&](const scenario::Scenario& sc, const std::string& program) {
     return fresh_target(sc, e, program);
   });
+  std::cout << "mutation testing on the " << engine_choice_name(e)
+            << " engine (the original program's cases on the interpreter, recording what they execute)\n";
   std::cout.flush();
   mutation::write_text(results, std::cout);
   if (args.has("mutate-json")) {

@@ -108,6 +108,9 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   for (const auto& r : results) failed += !r.passed;
   std::cout << "== " << results.size() - failed << " passed, " << failed << " failed ("
             << scenario::format_time(virtual_us) << " of virtual time)\n";
+  // Recording runs the interpreter whatever the cell's engine: the user must not take the
+  // run for one on the native engine.
+  if (coverage) std::cout << "coverage: every case ran on the interpreter's recording loop\n";
   // Mutants only of programs whose cases all pass: a failing case would kill every one.
   std::string mutation_html;
   if (args.has("mutate") && !failed) {

@@ -5,7 +5,9 @@
 namespace plc_cell {
 
 ScanEngine::ScanEngine(Memory& mem, const FunctionTable& functions)
-    : mem_(mem), functions_(functions), interp_(mem, functions) {}
+    : mem_(mem), functions_(functions), interp_(mem, functions) {
+  set_engine(kDefaultEngine);
+}
 
 void ScanEngine::load(const Program& program) {
   interp_.load(program);

@@ -66,7 +66,10 @@ TEST(CellConfig, ReadsEveryKey) {
   EXPECT_EQ(c.sim_inputs[2].on_delay_us, 200000u);
 }
 
-TEST(CellConfig, EngineIsOneOfThree) {
+TEST(CellConfig, EngineIsOneOfThreeAndNativeByDefault) {
+  EXPECT_EQ(parse_cell_config("cell: {name: a}\n", "cell.yaml", Cell::sections()).engine, EngineChoice::Native);
+  EXPECT_EQ(parse_cell_config("plc: {engine: interpreter}\n", "cell.yaml", Cell::sections()).engine,
+            EngineChoice::Interpreter);
   EXPECT_NE(error_of("plc:\n  engine: jit\n").find("cell.yaml:2:11: error: key 'plc.engine': expected native, interpreter or lockstep"),
             std::string::npos) << error_of("plc:\n  engine: jit\n");
 }

@@ -3,9 +3,10 @@
 
 using namespace plc_cell;
 
-using Instructions = PlcFixture;
+class Instructions : public BothEnginesFixture {};
+PLC_CELL_ON_BOTH_ENGINES(Instructions);
 
-TEST_F(Instructions, ContactsAndCoils) {
+TEST_P(Instructions, ContactsAndCoils) {
   load("ORG X0\nAND X1\nOUT Y0\n"
        "ORG X0\nOR X1\nOUT Y1\n"
        "ORG NOT X0\nAND NOT X1\nOUT Y2\n"
@@ -24,7 +25,7 @@ TEST_F(Instructions, ContactsAndCoils) {
   }
 }
 
-TEST_F(Instructions, BlocksWithAndLdOrLd) {
+TEST_P(Instructions, BlocksWithAndLdOrLd) {
   // Y0 = (X0 OR X1) AND (X2 OR X3);  Y1 = (X0 AND X1) OR (X2 AND X3)
   load("ORG X0\nOR X1\nLD X2\nOR X3\nANDLD\nOUT Y0\n"
        "ORG X0\nAND X1\nLD X2\nAND X3\nORLD\nOUT Y1\n"
@@ -38,7 +39,7 @@ TEST_F(Instructions, BlocksWithAndLdOrLd) {
   }
 }
 
-TEST_F(Instructions, EdgeContactsPulseForOneScan) {
+TEST_P(Instructions, EdgeContactsPulseForOneScan) {
   load("ORG TU X0\nOUT Y0\nORG TD X0\nOUT Y1\nORG X1\nAND TU X0\nOUT Y2\nEND\n");
   scans(1);
   EXPECT_EQ(get("Y0"), 0u);
@@ -60,7 +61,7 @@ TEST_F(Instructions, EdgeContactsPulseForOneScan) {
   EXPECT_EQ(get("Y2"), 1u);
 }
 
-TEST_F(Instructions, SetResetLatch) {
+TEST_P(Instructions, SetResetLatch) {
   load("ORG X0\nSET Y0\nORG X1\nRST Y0\nEND\n");
   input(0, true);
   scans(1);
@@ -75,7 +76,7 @@ TEST_F(Instructions, SetResetLatch) {
   EXPECT_EQ(get("Y0"), 0u);
 }
 
-TEST_F(Instructions, MultipleOutputsShareOneNetwork) {
+TEST_P(Instructions, MultipleOutputsShareOneNetwork) {
   load("ORG X0\nOUT Y0\nOUT M5\nOUT NOT Y1\nEND\n");
   input(0, true);
   scans(1);
@@ -84,7 +85,7 @@ TEST_F(Instructions, MultipleOutputsShareOneNetwork) {
   EXPECT_EQ(get("Y1"), 0u);
 }
 
-TEST_F(Instructions, MoveAndWordViews) {
+TEST_P(Instructions, MoveAndWordViews) {
   load("ORG M1925\nFUN 8 S=1234 D=R0\nMOV R0 D5\nFUN 8 S=HAAAA D=WY8\nFUN 8 S=WX0 D=R1\n"
        "MOV.D S=H12345678 D=DR10\nMOVN S=0 D=R2\nEND\n");
   input(0, true);
@@ -101,7 +102,7 @@ TEST_F(Instructions, MoveAndWordViews) {
   EXPECT_EQ(get("R2"), 0xFFFFu);
 }
 
-TEST_F(Instructions, InstructionsRunOnlyWhenEnabled) {
+TEST_P(Instructions, InstructionsRunOnlyWhenEnabled) {
   load("ORG X0\nMOV S=7 D=R0\nORG X1\nINC R1\nEND\n");
   scans(5);
   EXPECT_EQ(get("R0"), 0u);
@@ -111,7 +112,7 @@ TEST_F(Instructions, InstructionsRunOnlyWhenEnabled) {
   EXPECT_EQ(get("R1"), 5u);  // INC without P runs every scan
 }
 
-TEST_F(Instructions, PulseFormRunsOnTheRisingEdgeOnly) {
+TEST_P(Instructions, PulseFormRunsOnTheRisingEdgeOnly) {
   load("ORG X1\nINC.P R1\nORG X1\nFUN 15P D=R2\nEND\n");
   input(1, true);
   scans(5);
@@ -124,7 +125,7 @@ TEST_F(Instructions, PulseFormRunsOnTheRisingEdgeOnly) {
   EXPECT_EQ(get("R1"), 2u);
 }
 
-TEST_F(Instructions, AddSubWithSignedFlags) {
+TEST_P(Instructions, AddSubWithSignedFlags) {
   load("ORG M1925\n"
        "ADD Sa=R0 Sb=R1 D=R2 ZR=M0 CY=M1 BR=M2\n"
        "SUB Sa=R0 Sb=R1 D=R3 ZR=M3 CY=M4 BR=M5\n"
@@ -152,7 +153,7 @@ TEST_F(Instructions, AddSubWithSignedFlags) {
   EXPECT_EQ(sget("R2"), 10);
 }
 
-TEST_F(Instructions, MultiplyAndDivide) {
+TEST_P(Instructions, MultiplyAndDivide) {
   load("ORG M1925\n"
        "MUL Sa=R0 Sb=R1 D=R10\n"
        "DIV Sa=R0 Sb=R1 D=R20 ERR=M0\n"
@@ -180,7 +181,7 @@ TEST_F(Instructions, MultiplyAndDivide) {
   EXPECT_EQ(plc.read(parse_address("DR52"), 1)[0], 30000u);
 }
 
-TEST_F(Instructions, IncDecWrap) {
+TEST_P(Instructions, IncDecWrap) {
   load("ORG M1925\nINC D=R0 OVF=M0\nDEC D=R1 UDF=M1\nEND\n");
   put("R0", 32767);
   put("R1", uint16_t(-32768));
@@ -191,7 +192,7 @@ TEST_F(Instructions, IncDecWrap) {
   EXPECT_EQ(get("M1"), 1u);
 }
 
-TEST_F(Instructions, CompareIsSigned) {
+TEST_P(Instructions, CompareIsSigned) {
   load("ORG M1925\nCMP Sa=R0 Sb=R1 EQ=M0 GT=M1 LT=M2\nCMP.D Sa=DR10 Sb=100000 EQ=M3 GT=M4 LT=M5\nEND\n");
   put("R0", uint16_t(-1));
   put("R1", 1);
@@ -204,7 +205,7 @@ TEST_F(Instructions, CompareIsSigned) {
   EXPECT_EQ(get("M4") + get("M5"), 0u);
 }
 
-TEST_F(Instructions, LogicAndShift) {
+TEST_P(Instructions, LogicAndShift) {
   load("ORG M1925\nWAND Sa=R0 Sb=HFF00 D=R1\nFUN 19 Sa=R0 Sb=H000F D=R2\nWXOR Sa=R0 Sb=HFFFF D=R3 ZR=M0\n"
        "MOV R0 R4\nSHL D=R4 N=4 OTB=M1\nMOV R0 R5\nSHR D=R5 N=1 OTB=M2\nEND\n");
   put("R0", 0x1234);
@@ -219,7 +220,7 @@ TEST_F(Instructions, LogicAndShift) {
   EXPECT_EQ(get("M2"), 0u);
 }
 
-TEST_F(Instructions, BcdConversions) {
+TEST_P(Instructions, BcdConversions) {
   load("ORG M1925\nBCD S=R0 D=R1 ERR=M0\nBIN S=R2 D=R3 ERR=M1\nBCD.D S=DR10 D=DR12\nBIN S=R4 D=R5 ERR=M2\nEND\n");
   put("R0", 1234);
   put("R2", 0x9876);
@@ -239,7 +240,7 @@ TEST_F(Instructions, BcdConversions) {
   EXPECT_EQ(get("R1"), 0x1234u);
 }
 
-TEST_F(Instructions, JumpSkipsCode) {
+TEST_P(Instructions, JumpSkipsCode) {
   load("ORG X0\nJMP skip\nORG M1925\nINC R0\nLBL skip\nORG M1925\nINC R1\nEND\n");
   scans(3);
   input(0, true);
@@ -248,7 +249,7 @@ TEST_F(Instructions, JumpSkipsCode) {
   EXPECT_EQ(get("R1"), 5u);
 }
 
-TEST_F(Instructions, CallAndReturn) {
+TEST_P(Instructions, CallAndReturn) {
   load("ORG X0\nCALL add_ten\nORG M1925\nINC R1\nEND\n"
        "LBL add_ten\nORG M1925\nADD Sa=R0 Sb=10 D=R0\nRTS\n");
   scans(2);
@@ -258,7 +259,7 @@ TEST_F(Instructions, CallAndReturn) {
   EXPECT_EQ(get("R1"), 5u);
 }
 
-TEST_F(Instructions, ForNextLoops) {
+TEST_P(Instructions, ForNextLoops) {
   // The manual's CLINK example loops over a table with FOR/NEXT.
   load("ORG M1925\nMOV S=0 D=R0\nFOR 10\nORG M1925\nINC R0\nNEXT\nFOR R5\nORG M1925\nINC R1\nNEXT\nEND\n");
   put("R5", 3);
@@ -270,7 +271,7 @@ TEST_F(Instructions, ForNextLoops) {
   EXPECT_EQ(get("R1"), 6u);
 }
 
-TEST_F(Instructions, RunawayLoopTripsTheWatchdogAndStops) {
+TEST_P(Instructions, RunawayLoopTripsTheWatchdogAndStops) {
   load("LBL top\nORG M1925\nJMP top\nEND\n");
   plc.locked([](ScanEngine& e, Memory&) {
     e.interpreter().set_loop_budget(1000);
@@ -282,7 +283,7 @@ TEST_F(Instructions, RunawayLoopTripsTheWatchdogAndStops) {
   EXPECT_NE(fault.find("test.il:3: watchdog"), std::string::npos) << fault;
 }
 
-TEST_F(Instructions, RecursionBeyondTheCallDepthFaults) {
+TEST_P(Instructions, RecursionBeyondTheCallDepthFaults) {
   load("ORG M1925\nCALL r\nEND\nLBL r\nORG M1925\nCALL r\nRTS\n");
   scans(1);
   EXPECT_EQ(plc.mode(), RunMode::Stop);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "plc_cell/core/il_parser.h"
@@ -24,11 +25,13 @@ struct Pair {
 
   explicit Pair(const std::string& text) {
     for (Plc* p : {&interp, &native}) p->load_program_text(text, "pair.il");
-    native.locked([](ScanEngine& e, Memory&) {
-      e.set_engine(EngineChoice::Native);
-      return 0;
-    });
+    for (auto [p, e] : {std::pair{&interp, EngineChoice::Interpreter}, std::pair{&native, EngineChoice::Native}})
+      p->locked([e = e](ScanEngine& se, Memory&) {
+        se.set_engine(e);
+        return 0;
+      });
     for (Plc* p : {&interp, &native}) EXPECT_TRUE(p->set_mode(RunMode::Run));
+    EXPECT_EQ(interp.locked([](ScanEngine& e, Memory&) { return e.engine_status(); }), "interpreter");
   }
   // Empty while both memories are equal after the scan.
   std::string scan(const std::function<bool(uint32_t)>& x) {
@@ -62,6 +65,14 @@ TEST(NativeEngine, CompilesTheNetworksBetweenFlowInstructionsAndSaysSo) {
   EXPECT_EQ(nc->runs()[0].length, 10u);
   EXPECT_EQ(nc->runs()[1].first, 11u);
   EXPECT_EQ(nc->runs()[1].length, 4u);
+}
+
+TEST(NativeEngine, IsTheDefault) {
+  Plc plc;
+  plc.load_program_text("ORG X0\nAND X1\nOUT Y0\nEND\n", "d.il");
+  const auto [engine, status] = plc.locked([](ScanEngine& e, Memory&) { return std::pair{e.engine(), e.engine_status()}; });
+  EXPECT_EQ(engine, EngineChoice::Native);
+  EXPECT_EQ(status.rfind("native: 3 of 4 instructions in 1 machine-code runs", 0), 0u) << status;
 }
 
 TEST(NativeEngine, EqualsTheInterpreterOnEveryInputCombination) {
@@ -150,9 +161,11 @@ TEST(NativeEngine, EveryExampleEqualsTheInterpreterFor60VirtualSeconds) {
     }
     SCOPED_TRACE(il.string());
     ASSERT_TRUE(fs::exists(yaml)) << yaml;
-    Cell interp(yaml.string(), interp_engine, Cell::Purpose::Check);
     CellOverrides native_engine = interp_engine;
+    interp_engine.run.push_back({"", "engine", {"interpreter"}, "test"});
     native_engine.run.push_back({"", "engine", {"native"}, "test"});
+    Cell interp(yaml.string(), interp_engine, Cell::Purpose::Check);
+    ASSERT_EQ(interp.plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); }), "interpreter");
     Cell native(yaml.string(), native_engine, Cell::Purpose::Check);
     const std::string status = native.plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
     ASSERT_EQ(status.rfind("native: ", 0), 0u) << status;

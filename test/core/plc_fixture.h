@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/function_table.h"
+#include "plc_cell/core/native/engine_choice.h"
 #include "plc_cell/core/plc.h"
 
 namespace plc_cell {
@@ -35,4 +37,27 @@ class PlcFixture : public ::testing::Test {
   uint64_t now_us = 0;
 };
 
+// The instructions' tests run on both engines: on native, the default, and on the
+// interpreter, which keeps its own tests. A suite of this fixture is instantiated with
+// PLC_CELL_ON_BOTH_ENGINES(Suite); its tests are named Suite.Test/native and
+// Suite.Test/interpreter, so --gtest_filter='Suite.*' runs both.
+class BothEnginesFixture : public PlcFixture, public ::testing::WithParamInterface<EngineChoice> {
+ protected:
+  explicit BothEnginesFixture(FunctionTable functions = FunctionTable::with_core_functions())
+      : PlcFixture(std::move(functions)) {
+    plc.locked([](ScanEngine& e, Memory&) {
+      e.set_engine(GetParam());
+      return 0;
+    });
+  }
+};
+
 }  // namespace plc_cell
+
+#define PLC_CELL_ON_BOTH_ENGINES(Suite)                                                       \
+  INSTANTIATE_TEST_SUITE_P(, Suite,                                                           \
+                           ::testing::Values(::plc_cell::EngineChoice::Native,                \
+                                             ::plc_cell::EngineChoice::Interpreter),          \
+                           [](const ::testing::TestParamInfo<::plc_cell::EngineChoice>& i) {  \
+                             return std::string(::plc_cell::engine_choice_name(i.param));     \
+                           })

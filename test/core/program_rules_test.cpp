@@ -41,18 +41,20 @@ FunctionTable with_two_inputs() {
   return t;
 }
 
-using ProgramRules = PlcFixture;
+class ProgramRules : public BothEnginesFixture {};
+PLC_CELL_ON_BOTH_ENGINES(ProgramRules);
 
-class TwoInputRules : public PlcFixture {
+class TwoInputRules : public BothEnginesFixture {
  protected:
-  TwoInputRules() : PlcFixture(with_two_inputs()) {}
+  TwoInputRules() : BothEnginesFixture(with_two_inputs()) {}
 };
+PLC_CELL_ON_BOTH_ENGINES(TwoInputRules);
 
 }  // namespace
 
 // ---- Areas and FOR ---------------------------------------------------------------
 
-TEST_F(ProgramRules, JmpStaysInItsAreaAndMayReachAnyLabelAfterEnd) {
+TEST_P(ProgramRules, JmpStaysInItsAreaAndMayReachAnyLabelAfterEnd) {
   EXPECT_NE(errors_of("ORG M1925\nJMP sub\nEND\nLBL sub\nRTS\n").find("p.il:2:5: error: JMP SUB crosses"),
             std::string::npos);
   EXPECT_NE(errors_of("LBL top\nORG M1925\nCALL s\nEND\nLBL s\nORG M1925\nJMP top\nRTS\n").find("p.il:7:5: error: JMP TOP crosses"),
@@ -68,7 +70,7 @@ TEST_F(ProgramRules, JmpStaysInItsAreaAndMayReachAnyLabelAfterEnd) {
   EXPECT_EQ(get("R2"), 3u);
 }
 
-TEST_F(ProgramRules, ALabelInsideAForBodyIsAcceptedInBothAreas) {
+TEST_P(ProgramRules, ALabelInsideAForBodyIsAcceptedInBothAreas) {
   // The same FOR body with a label inside, in the main program and in a routine.
   EXPECT_EQ(errors_of("FOR 2\nLBL in_main\nORG M1925\nINC R0\nNEXT\nEND\n"), "");
   EXPECT_EQ(errors_of("ORG M1925\nCALL s\nEND\nLBL s\nFOR 2\nLBL in_sub\nORG M1925\nINC R0\nNEXT\nRTS\n"), "");
@@ -84,7 +86,7 @@ TEST_F(ProgramRules, ALabelInsideAForBodyIsAcceptedInBothAreas) {
   EXPECT_EQ(get("R0"), 4u);
 }
 
-TEST_F(ProgramRules, ForReadsItsCountOnce) {
+TEST_P(ProgramRules, ForReadsItsCountOnce) {
   // R5 = 3 at the first FOR; the body sets R5 = 10: this scan still loops 3 times, the next 10.
   load("ORG M1925\nFOR R5\nORG M1925\nINC R0\nMOV S=10 D=R5\nNEXT\nEND\n");
   put("R5", 3);
@@ -100,7 +102,7 @@ TEST_F(ProgramRules, ForReadsItsCountOnce) {
 
 // ---- One network result ------------------------------------------------------------
 
-TEST_F(ProgramRules, TmrCtrAndFunPassTheNetworkResultOn) {
+TEST_P(ProgramRules, TmrCtrAndFunPassTheNetworkResultOn) {
   // T0 needs 5 x 10 ms, C0 3 edges: at the first scan with X0 on neither is on, yet the
   // coils after them follow X0.
   load("ORG X0\nTMR T0 5\nOUT Y0\nCTR C0 3\nOUT Y1\nMOV S=7 D=R0\nOUT Y2\nEND\n");
@@ -119,7 +121,7 @@ TEST_F(ProgramRules, TmrCtrAndFunPassTheNetworkResultOn) {
   EXPECT_EQ(get("Y2"), 0u);
 }
 
-TEST_F(TwoInputRules, AFunWithSeveralInputsLeavesItsEnAsTheResult) {
+TEST_P(TwoInputRules, AFunWithSeveralInputsLeavesItsEnAsTheResult) {
   load("ORG X0\nLD X1\nFUN 240 F=M0\nOUT Y0\nEND\n");
   input(0, true);
   input(1, false);
@@ -135,7 +137,7 @@ TEST_F(TwoInputRules, AFunWithSeveralInputsLeavesItsEnAsTheResult) {
 
 // ---- Edge results ------------------------------------------------------------------
 
-TEST_F(ProgramRules, ShiftCountsAtOrBeyondTheWidthAndNotPositive) {
+TEST_P(ProgramRules, ShiftCountsAtOrBeyondTheWidthAndNotPositive) {
   load("ORG M1925\nSHL D=R0 N=R10 OTB=M0\nSHR D=R1 N=R10 OTB=M1\nEND\n");
   const auto run = [&](uint32_t n) {
     put("R0", 0x2001);
@@ -170,7 +172,7 @@ TEST_F(ProgramRules, ShiftCountsAtOrBeyondTheWidthAndNotPositive) {
   EXPECT_EQ(get("M1"), 1u);
 }
 
-TEST_F(ProgramRules, DivisionTruncatesTowardZeroAndMinusOneOverflowWraps) {
+TEST_P(ProgramRules, DivisionTruncatesTowardZeroAndMinusOneOverflowWraps) {
   load("ORG M1925\n"
        "DIV Sa=-7 Sb=2 D=R0 ERR=M0\n"
        "DIV Sa=7 Sb=-2 D=R2 ERR=M1\n"
@@ -193,7 +195,7 @@ TEST_F(ProgramRules, DivisionTruncatesTowardZeroAndMinusOneOverflowWraps) {
   EXPECT_EQ(get("M0") + get("M1"), 0u);
 }
 
-TEST_F(ProgramRules, RegisterPresetsZeroOrNegativeAreReachedAtOnce) {
+TEST_P(ProgramRules, RegisterPresetsZeroOrNegativeAreReachedAtOnce) {
   load("ORG X0\nTMR T0 R0\nORG X1\nCTR C0 R1\nCTR C1 R2\nEND\n");
   put("R0", 0xFFFB);  // -5
   put("R1", 40000);   // reads -25536
@@ -219,7 +221,7 @@ TEST_F(ProgramRules, RegisterPresetsZeroOrNegativeAreReachedAtOnce) {
   EXPECT_EQ(get("T0"), 0u);
 }
 
-TEST_F(ProgramRules, ThirtyTwoBitCountersReadAPairPreset) {
+TEST_P(ProgramRules, ThirtyTwoBitCountersReadAPairPreset) {
   EXPECT_NE(errors_of("ORG X0\nCTR C0 DR0\nEND\n").find("p.il:2:8: error: 'DR0' is 32-bit; C0 takes a 16-bit preset"),
             std::string::npos);
   EXPECT_NE(errors_of("ORG X0\nTMR T0 DR0\nEND\n").find("'DR0' is 32-bit; T0 takes a 16-bit preset"), std::string::npos);
@@ -246,7 +248,7 @@ TEST_F(ProgramRules, ThirtyTwoBitCountersReadAPairPreset) {
   EXPECT_EQ(get("C201"), 1u);
 }
 
-TEST_F(ProgramRules, ATmrRunTwiceAScanAddsTheScanTimeTwice) {
+TEST_P(ProgramRules, ATmrRunTwiceAScanAddsTheScanTimeTwice) {
   // T0: 0.01 s base, preset 100 (1 s); 10 ms scans; the FOR runs TMR twice a scan.
   // First scan with X0 on: starts (0), then +1; each later scan +2: RT0 = 2k - 1 after k
   // scans, so 99 after 50 scans and the preset (101 clamped to 100) at the 51st: 0.51 s, not 1 s.
@@ -261,7 +263,7 @@ TEST_F(ProgramRules, ATmrRunTwiceAScanAddsTheScanTimeTwice) {
   EXPECT_EQ(get("T0"), 1u);
 }
 
-TEST_F(ProgramRules, FunWritesToRtAndRcAreCarriedOn) {
+TEST_P(ProgramRules, FunWritesToRtAndRcAreCarriedOn) {
   // T0: 0.01 s base, preset 10; 10 ms scans. Scans 1-2: RT0 0, 1. Scan 3: TMR makes 2,
   // then MOV.P writes 8 (T0 was compared before: off). Scan 4: 9, off. Scan 5: 10, on.
   load("ORG X0\nTMR T0 10\nORG X1\nMOV.P S=8 D=RT0\n"
@@ -291,7 +293,7 @@ TEST_F(ProgramRules, FunWritesToRtAndRcAreCarriedOn) {
 
 // ---- Syntax --------------------------------------------------------------------------
 
-TEST_F(ProgramRules, WViewsAsMulAndDivDestinationsSpanTwoWords) {
+TEST_P(ProgramRules, WViewsAsMulAndDivDestinationsSpanTwoWords) {
   EXPECT_NE(errors_of("ORG M1925\nMUL Sa=1 Sb=1 D=WY248\nEND\n").find("p.il:2:"), std::string::npos);
   load("ORG M1925\nMUL Sa=300 Sb=300 D=WY0\nDIV Sa=100 Sb=7 D=WM0\nEND\n");
   scans(1);
@@ -301,7 +303,7 @@ TEST_F(ProgramRules, WViewsAsMulAndDivDestinationsSpanTwoWords) {
   EXPECT_EQ(get("WM16"), 2u);
 }
 
-TEST_F(ProgramRules, FunNumberMnemonicAndModifiers) {
+TEST_P(ProgramRules, FunNumberMnemonicAndModifiers) {
   EXPECT_EQ(errors_of("ORG M1925\nFUN 8 MOV.D S=DR0 D=DR2\nFUN 8D MOV S=DR0 D=DR4\nFUN 8P MOV S=R0 D=R1\n"
                       "FUN 8 MOV.DP S=DR0 D=DR6\nEND\n"),
             "");
@@ -314,7 +316,7 @@ TEST_F(ProgramRules, FunNumberMnemonicAndModifiers) {
   EXPECT_EQ(get("DR2"), 70000u);
 }
 
-TEST_F(ProgramRules, PositionalOperandsAfterABareMnemonicAndMixed) {
+TEST_P(ProgramRules, PositionalOperandsAfterABareMnemonicAndMixed) {
   load("ORG M1925\nMOV R0 R10\nADD R0 5 R2 M0\nADD D=R3 R0 -5 ZR=M1\nEND\n");
   put("R0", 5);
   scans(1);
@@ -325,7 +327,7 @@ TEST_F(ProgramRules, PositionalOperandsAfterABareMnemonicAndMixed) {
   EXPECT_EQ(get("M1"), 1u);
 }
 
-TEST_F(ProgramRules, ConstantSigns) {
+TEST_P(ProgramRules, ConstantSigns) {
   EXPECT_NE(errors_of("ORG M1925\nMOV S=-K5 D=R0\nEND\n").find("p.il:2:7: error: '-K5': the sign goes after K (K-5)"),
             std::string::npos);
   EXPECT_NE(errors_of("ORG M1925\nMOV S=H-5 D=R0\nEND\n").find("p.il:2:7: error: 'H-5': a hexadecimal constant has no sign"),

@@ -7,9 +7,10 @@
 
 using namespace plc_cell;
 
-using TimersCounters = PlcFixture;
+class TimersCounters : public BothEnginesFixture {};
+PLC_CELL_ON_BOTH_ENGINES(TimersCounters);
 
-TEST_F(TimersCounters, TimerBasesFollowTheTimerNumber) {
+TEST_P(TimersCounters, TimerBasesFollowTheTimerNumber) {
   // T0-T49: 0.01 s, T50-T199: 0.1 s, T200-T255: 1 s (FBs default).
   load("ORG X0\nTMR T0 100\nORG X0\nTMR T50 10\nORG X0\nTMR T200 1\nEND\n");
   input(0, true);
@@ -29,7 +30,7 @@ TEST_F(TimersCounters, TimerBasesFollowTheTimerNumber) {
   EXPECT_EQ(get("RT0"), 100u);
 }
 
-TEST_F(TimersCounters, TimerResetsWhenItsInputDrops) {
+TEST_P(TimersCounters, TimerResetsWhenItsInputDrops) {
   load("ORG X0\nTMR T60 5\nORG T60\nOUT Y0\nEND\n");
   input(0, true);
   scans(300);  // 0.3 s: RT60 = 2 (at t=0.299 s it has 299 ms -> 2 ticks)
@@ -46,7 +47,7 @@ TEST_F(TimersCounters, TimerResetsWhenItsInputDrops) {
   EXPECT_EQ(get("Y0"), 1u);  // the contact is read later in the same scan
 }
 
-TEST_F(TimersCounters, ScanPeriodsThatDoNotDivideTheBaseCarryTheRemainder) {
+TEST_P(TimersCounters, ScanPeriodsThatDoNotDivideTheBaseCarryTheRemainder) {
   // 0.01 s base, 3 ms scans: 20 ticks = 200 ms -> on at the first k with 3k >= 200, k = 67.
   load("ORG X0\nTMR T1 20\nEND\n");
   input(0, true);
@@ -56,7 +57,7 @@ TEST_F(TimersCounters, ScanPeriodsThatDoNotDivideTheBaseCarryTheRemainder) {
   EXPECT_EQ(get("T1"), 1u);
 }
 
-TEST_F(TimersCounters, PresetFromARegister) {
+TEST_P(TimersCounters, PresetFromARegister) {
   load("ORG X0\nTMR T2 R100\nEND\n");
   put("R100", 5);  // 5 x 0.01 s
   input(0, true);
@@ -66,7 +67,7 @@ TEST_F(TimersCounters, PresetFromARegister) {
   EXPECT_EQ(get("T2"), 1u);
 }
 
-TEST_F(TimersCounters, RstClearsATimer) {
+TEST_P(TimersCounters, RstClearsATimer) {
   load("ORG X0\nTMR T3 1000\nORG X1\nRST T3\nEND\n");
   input(0, true);
   scans(100);
@@ -76,7 +77,7 @@ TEST_F(TimersCounters, RstClearsATimer) {
   EXPECT_EQ(get("RT3"), 0u);
 }
 
-TEST_F(TimersCounters, CounterCountsRisingEdgesUpToThePreset) {
+TEST_P(TimersCounters, CounterCountsRisingEdgesUpToThePreset) {
   load("ORG X0\nCTR C0 3\nORG C0\nOUT Y0\nORG X1\nRST C0\nEND\n");
   for (int pulse = 1; pulse <= 5; ++pulse) {
     input(0, true);
@@ -93,7 +94,7 @@ TEST_F(TimersCounters, CounterCountsRisingEdgesUpToThePreset) {
   EXPECT_EQ(get("C0"), 0u);
 }
 
-TEST_F(TimersCounters, ThirtyTwoBitCounter) {
+TEST_P(TimersCounters, ThirtyTwoBitCounter) {
   load("ORG X0\nCTR C200 100000\nEND\n");
   plc.write(parse_address("DRC200"), {99998});
   for (int i = 0; i < 3; ++i) {
@@ -106,7 +107,7 @@ TEST_F(TimersCounters, ThirtyTwoBitCounter) {
   EXPECT_EQ(get("C200"), 1u);
 }
 
-TEST_F(TimersCounters, CounterValuesSurviveStopRunOnlyWhenRetentive) {
+TEST_P(TimersCounters, CounterValuesSurviveStopRunOnlyWhenRetentive) {
   plc.locked([](ScanEngine& e, Memory&) {
     e.set_retentive({{Area::RC, 5, 5}});
     return 0;

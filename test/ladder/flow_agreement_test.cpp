@@ -1,7 +1,7 @@
-// Power flow against the interpreter: random networks of X/M contacts in series, parallel
-// and nested LD blocks (every contact form), feeding OUT / OUT NOT coils on Y, some on
-// branches; after every scan the powered state of each coil must be the Y value the scan
-// wrote.
+// Power flow against the scan (on the default engine): random networks of X/M contacts in
+// series, parallel and nested LD blocks (every contact form), feeding OUT / OUT NOT coils
+// on Y, some on branches; after every scan the powered state of each coil must be the Y
+// value the scan wrote.
 #include <random>
 #include <sstream>
 #include <string>
@@ -83,7 +83,7 @@ Values read_frame(const Plc& plc, const Layout& l) {
 
 }  // namespace
 
-TEST(LadderPowerFlowAgreement, CoilsArePoweredExactlyWhenTheInterpreterDrivesThem) {
+TEST(LadderPowerFlowAgreement, CoilsArePoweredExactlyWhenTheScanDrivesThem) {
   int coils_checked = 0, powered = 0;
   for (unsigned seed = 1; seed <= 300; ++seed) {
     Generator gen(seed);

@@ -82,7 +82,9 @@ TEST(Mutation, KilledSurvivedAndEquivalentOnASmallCell) {
   const ToolResult r = run_tool("test " + dir + "/s.scenario.yaml --mutate --mutate-json " + json + " --coverage-html " + html);
   EXPECT_EQ(r.status, 0) << r.out;
   const std::string p = dir + "/cell.il";
-  EXPECT_TRUE(has(r.out, "mutation testing of " + p + ": 16 mutants, 2 cases each\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "mutation testing on the native engine (the original program's cases on the interpreter, "
+                         "recording what they execute)\nmutation testing of " + p + ": 16 mutants, 2 cases each\n"))
+      << r.out;
   // OR NOT X1 holds Y0 on from the first scan: no case checks that Y0 is off before X0.
   // OR -> AND keeps Y0 off with X0: killed. OR TU X1 changes nothing while X1 stays off,
   // and ORG TU T0 nothing as SET latches: equivalent-suspects.
@@ -105,7 +107,8 @@ TEST(Mutation, KilledSurvivedAndEquivalentOnASmallCell) {
   EXPECT_TRUE(has(b.out, ": 5 mutants (of 16), 2 cases each\n")) << b.out;
   // -k: the selected cases only. Without "start", X0 and X1 stay OFF: the two mutants that
   // turn Y0 on survive, the four that leave it OFF are equivalent-suspects.
-  const ToolResult k = run_tool("test " + dir + "/s.scenario.yaml --mutate -k timer");
+  const ToolResult k = run_tool("test " + dir + "/s.scenario.yaml --mutate -k timer --engine lockstep");
+  EXPECT_TRUE(has(k.out, "mutation testing on the lockstep engine (")) << k.out;
   EXPECT_TRUE(has(k.out, ": 16 mutants, 1 case each\n  killed 9, survived 2, equivalent-suspect 5")) << k.out;
   EXPECT_TRUE(has(k.out, "  network 1 (line 1): 0/2 killed, 4 equivalent-suspect\n")) << k.out;
 }

@@ -239,6 +239,8 @@ class PlcNodeTest(unittest.TestCase):
         keys = dict((kv.key, kv.value) for kv in st.values)
         self.assertGreater(int(keys["scans"]), 0)
         self.assertIn("cycle max (us)", keys)
+        # Neither the cell nor the node chooses an engine: the default, native.
+        self.assertTrue(keys["engine"].startswith("native: "), keys["engine"])
 
     def test_a_cell_with_no_counters_has_no_counters_topic(self):
         # test_cell.yaml has no counters: none of its topics is ~counters.

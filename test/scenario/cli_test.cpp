@@ -138,6 +138,9 @@ TEST(ScenarioCli, CoverageOfTheWholeRun) {
   const ToolResult r = run_tool("test " + kExamples + " --junit " + dir + ".xml --coverage --coverage-json " + dir +
                                 ".json --coverage-html " + dir);
   EXPECT_EQ(r.status, 0) << r.out;
+  // The cells' engine is native by default, but a recording runs the interpreter: said once.
+  EXPECT_TRUE(has(r.out, " of virtual time)\ncoverage: every case ran on the interpreter's recording loop\ncoverage of "))
+      << r.out;
   // The conveyor's seven cases together exercise all of it (its ORG M1925 network reads a
   // relay that is ON by definition: not measured).
   EXPECT_TRUE(has(r.out, "coverage of " + kSrc + "/examples/conveyor/conveyor.il (7 runs)\n"
@@ -158,6 +161,7 @@ TEST(ScenarioCli, CoverageOfTheWholeRun) {
   // Coverage without a flag is not recorded: the same run prints no coverage.
   const ToolResult plain = run_tool("test " + kSrc + "/examples/conveyor/conveyor.scenario.yaml");
   EXPECT_FALSE(has(plain.out, "coverage of")) << plain.out;
+  EXPECT_FALSE(has(plain.out, "recording loop")) << plain.out;
 }
 
 // End to end: a folder whose name is not UTF-8 and a case name with control characters

@@ -46,7 +46,7 @@ struct CellConfig {
   std::string program;  // absolute or relative to the config's folder, as resolved
   uint64_t scan_period_us = 1000;
   uint64_t watchdog_us = 200000;
-  EngineChoice engine = EngineChoice::Interpreter;  // plc.engine
+  EngineChoice engine = kDefaultEngine;  // plc.engine
   std::vector<AreaRange> retentive = default_retentive();
   std::vector<TimerBaseRange> timer_bases;
   PersistSettings persist;

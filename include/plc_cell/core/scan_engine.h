@@ -103,6 +103,7 @@ class ScanEngine {
   Memory& mem_;
   const FunctionTable& functions_;
   Interpreter interp_;
+  // What interp_ starts as; the constructor then chooses kDefaultEngine.
   EngineChoice engine_ = EngineChoice::Interpreter;
   std::unique_ptr<Lockstep> lockstep_;  // the interpreter's copy, in lockstep only
   std::vector<AreaRange> retentive_;

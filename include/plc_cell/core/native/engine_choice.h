@@ -10,6 +10,10 @@ enum class EngineChoice {
   Lockstep,     // both, on two copies of the memory, compared after every scan and routine
 };
 
+// What a scan engine and a cell's plc.engine start with; the native engine falls back to
+// the interpreter by itself where it cannot generate code.
+constexpr EngineChoice kDefaultEngine = EngineChoice::Native;
+
 // "interpreter", "native" or "lockstep"; false for anything else.
 bool parse_engine_choice(const std::string& text, EngineChoice* out);
 const char* engine_choice_name(EngineChoice e);
