@@ -15,7 +15,7 @@
 namespace plc_cell {
 namespace {
 
-constexpr int kConnectMs = 1000;
+constexpr int kPortConnectMs = 1000;
 
 }  // namespace
 
@@ -75,7 +75,7 @@ int ComPort::open_tcp() {
     return -1;
   }
   std::string why;
-  const int fd = connect_tcp(host, port, kConnectMs, &why);
+  const int fd = connect_tcp(host, port, kPortConnectMs, &why);
   if (fd < 0) {
     std::lock_guard<std::mutex> lk(mu_);
     error_ = "tcp " + line_.tcp + ": " + why;

@@ -11,16 +11,12 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/io/transport.h"
+#include "close_fd.h"
 
 namespace plc_cell {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-void close_fd(int& fd) {
-  if (fd >= 0) ::close(fd);
-  fd = -1;
-}
 
 constexpr int kIdlePollMs = 200;     // how often a line with nothing buffered looks up
 constexpr int kReplyTimeoutMs = 2000;  // a reply the line cannot take by then is dropped

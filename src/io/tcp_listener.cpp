@@ -14,16 +14,12 @@
 #include <cstring>
 
 #include "plc_cell/core/error.h"
+#include "close_fd.h"
 
 namespace plc_cell {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-void close_fd(int& fd) {
-  if (fd >= 0) ::close(fd);
-  fd = -1;
-}
 
 struct Rx {
   std::string in, out;

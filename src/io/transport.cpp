@@ -18,7 +18,7 @@
 namespace plc_cell {
 namespace {
 
-constexpr int kConnectMs = 3000;  // a master's connection attempt
+constexpr int kMasterConnectMs = 3000;  // a master's connection attempt
 
 class FdTransport : public Transport {
  public:
@@ -64,7 +64,7 @@ class TcpTransport : public FdTransport {
   void open() override {
     close();
     std::string why;
-    const int fd = connect_tcp(host_, port_, kConnectMs, &why);
+    const int fd = connect_tcp(host_, port_, kMasterConnectMs, &why);
     if (fd < 0) throw CommError(describe() + ": " + why);
     fd_ = fd;
   }

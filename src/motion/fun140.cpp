@@ -13,9 +13,7 @@
 namespace plc_cell {
 namespace motion {
 
-namespace {
-constexpr uint16_t kWrDn = 1u << 14;
-}  // namespace
+using flow::kWrDn;
 
 Fun140Outputs Positioning::fun140(const Fun140Call& c, uint64_t now_us) {
   const uint64_t t = now_us * 1000;

@@ -17,10 +17,13 @@ constexpr uint32_t kGroupDoneRelay = 1934; // M1934+gp: the group finished its l
 constexpr uint32_t kVectorReg = 4068;      // DR4068+2gp: vector speed (R4068..R4071)
 constexpr uint32_t kGroupErrReg = 4060;    // D4060+gp
 constexpr uint32_t kGroupStepReg = 4062;   // D4062+gp
-constexpr uint64_t kTimeUnitNs = 10000000; // WAIT times in 0.01 s
-constexpr int kMaxStepsPerInstant = 1000;
-constexpr uint16_t kWrPaused = 1u << 8, kWrWaiting = 1u << 9, kWrAct = 1u << 12, kWrErr = 1u << 13,
-                   kWrDn = 1u << 14;
+using flow::kTimeUnitNs;
+using flow::kMaxStepsPerInstant;
+using flow::kWrPaused;
+using flow::kWrWaiting;
+using flow::kWrAct;
+using flow::kWrErr;
+using flow::kWrDn;
 
 bool has(uint8_t mask, int n) { return (mask >> n) & 1; }
 }  // namespace

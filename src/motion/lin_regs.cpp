@@ -8,7 +8,7 @@ namespace motion {
 
 namespace {
 // Word 0: b0 LINE, b1 ABS, b2 Ut, b3 = 0, b4-7 axis mask, b8-14 flow (text::flow_bits), b15 = 0.
-constexpr uint16_t kLineBit = 1u << 0, kAbsBit = 1u << 1, kUtBit = 1u << 2;
+constexpr uint16_t kLineMask = 1u << 0, kAbsMask = 1u << 1, kUtMask = 1u << 2;
 constexpr int kMaskShift = 4;
 // Word 1: operand kinds, 2 bits each: speed, s0, s1, s2, s3, time.
 int kind_shift(int operand) { return 2 * operand; }
@@ -28,7 +28,7 @@ std::vector<uint16_t> encode_lin_table(const LinTable& t) {
   for (size_t i = 0; i < t.steps.size(); ++i) {
     const LinStep& s = t.steps[i];
     uint16_t* w = &r[kHeaderWords + kLinStepWords * i];
-    w[0] = static_cast<uint16_t>((s.line ? kLineBit : 0) | (s.abs ? kAbsBit : 0) | (s.ut ? kUtBit : 0) |
+    w[0] = static_cast<uint16_t>((s.line ? kLineMask : 0) | (s.abs ? kAbsMask : 0) | (s.ut ? kUtMask : 0) |
                                  (uint32_t(s.axes) << kMaskShift) | text::flow_bits(s.flow));
     uint32_t kinds = uint32_t(s.flow.speed.kind) | (uint32_t(s.flow.time.kind) << kind_shift(5));
     put_pair(&w[2], s.flow.speed.value);
@@ -57,9 +57,9 @@ bool decode_lin_table(const uint16_t* r, size_t n, LinTable* out, TableError* er
     if (w[kCheckWord] != i + 1) return bad(34, "check word must be the step number");
     if (w[0] & (1u << 3)) return bad(kIllegalLin, "bit 3 of the command word must be 0");
     LinStep s;
-    s.line = w[0] & kLineBit;
-    s.abs = w[0] & kAbsBit;
-    s.ut = w[0] & kUtBit;
+    s.line = w[0] & kLineMask;
+    s.abs = w[0] & kAbsMask;
+    s.ut = w[0] & kUtMask;
     s.axes = static_cast<uint8_t>((w[0] >> kMaskShift) & 0xF);
     const uint32_t kinds = w[1];
     for (int k = 0; k < 6; ++k)

@@ -15,10 +15,14 @@ namespace plc_cell {
 namespace motion {
 
 namespace {
-constexpr uint64_t kTimeUnitNs = 10000000;  // WAIT/ACT times are in 0.01 s
-constexpr int kMaxStepsPerInstant = 1000;   // GOTO loops of empty moves must not hang a scan
-constexpr uint16_t kWrPaused = 1u << 8, kWrWaiting = 1u << 9, kWrEndless = 1u << 10, kWrAct = 1u << 12,
-                   kWrErr = 1u << 13, kWrDn = 1u << 14;
+using flow::kTimeUnitNs;
+using flow::kMaxStepsPerInstant;
+using flow::kWrPaused;
+using flow::kWrWaiting;
+using flow::kWrEndless;
+using flow::kWrAct;
+using flow::kWrErr;
+using flow::kWrDn;
 }  // namespace
 
 uint64_t Positioning::next_event(const Program& p) const {

@@ -10,6 +10,13 @@ namespace plc_cell {
 namespace motion {
 namespace flow {
 
+constexpr uint64_t kTimeUnitNs = 10000000;  // WAIT/ACT times are in 0.01 s
+constexpr int kMaxStepsPerInstant = 1000;   // GOTO loops of empty moves must not hang a scan
+
+// The status word WR+1 of a FUN140 axis or a FUN147 group.
+constexpr uint16_t kWrPaused = 1u << 8, kWrWaiting = 1u << 9, kWrEndless = 1u << 10, kWrAct = 1u << 12,
+                   kWrErr = 1u << 13, kWrDn = 1u << 14;
+
 inline Area area(Operand::Kind k) { return k == Operand::D ? Area::D : Area::R; }
 
 // A 32-bit operand pair (low word first).
