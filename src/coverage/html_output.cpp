@@ -8,6 +8,7 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/coverage/outputs.h"
+#include "ratio_text.h"
 
 namespace plc_cell {
 namespace coverage {
@@ -83,8 +84,6 @@ std::string note(const Item& it) {
   }
   return "";
 }
-
-std::string ratio(uint32_t n, uint32_t of) { return std::to_string(n) + "/" + std::to_string(of); }
 
 void summary_row(const Report& r, size_t p, std::ostream& out) {
   const Totals& t = r.totals;

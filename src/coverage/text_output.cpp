@@ -1,15 +1,10 @@
 #include <ostream>
 
 #include "plc_cell/coverage/outputs.h"
+#include "ratio_text.h"
 
 namespace plc_cell {
 namespace coverage {
-
-namespace {
-
-std::string ratio(uint32_t n, uint32_t of) { return std::to_string(n) + "/" + std::to_string(of); }
-
-}  // namespace
 
 void write_text(const std::vector<Report>& reports, std::ostream& out) {
   bool first = true;

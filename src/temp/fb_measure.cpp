@@ -10,6 +10,7 @@
 #include "plc_cell/temp/fb_tc_scaling.h"
 #include "plc_cell/temp/rtd.h"
 #include "plc_cell/temp/temperature_cell.h"
+#include "set_output.h"
 
 namespace plc_cell {
 namespace temp {
@@ -21,11 +22,6 @@ constexpr uint32_t kPrimitives = 3968;  // R3968 TP0 .. R3999 TP31
 constexpr int32_t kRtdBroken = 9999;
 
 uint16_t reg(const ExecContext& c, uint32_t r) { return c.mem.reg(Area::R, r); }
-
-void set_y(const BoundOperand& y, uint32_t i, bool v) {
-  uint8_t& b = y.b[i];
-  if (!(b & kBitDisabled)) b = v ? kBitState : 0;
-}
 
 int dos(const FbPoints& p) { return p.per_ai == 6 ? 6 : 8; }
 

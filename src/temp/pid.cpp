@@ -22,11 +22,11 @@ constexpr uint16_t kAuto = 1u << 0, kSolved = 1u << 1, kBumpless = 1u << 2, kErr
 
 int32_t s16(uint16_t v) { return int16_t(v); }
 
-constexpr size_t kOperands = 8;  // Ts SR OR PR WR ERR HAL LAL
+constexpr size_t kPidOperands = 8;  // Ts SR OR PR WR ERR HAL LAL
 
 // Ts, often a constant: what `check` can tell before the first scan. The settings in
 // SR and PR are register contents, known at run time only.
-const OperandRules& rules() {
+const OperandRules& pid_rules() {
   static const OperandRules r = {
       {"1 <= Ts <= 3000 (0.01 s)", [](const OperandValues& v) { return v[0] >= 1 && v[0] <= 3000; }},
   };
@@ -60,7 +60,7 @@ bool settings_ok(const Settings& s) {
          s.liwl < s.hiwl && (s.method == 0 || s.method == 1) && s.gain >= 1 && s.gain <= 5000;
 }
 
-void run(ExecContext& c, const BoundOperand* o) {
+void run_pid(ExecContext& c, const BoundOperand* o) {
   const bool autom = c.inputs[0], bum = c.inputs[1], direct = c.inputs[2];
   const int64_t ts = c.get(o[0]);
   uint16_t* sr = o[1].w;
@@ -70,7 +70,7 @@ void run(ExecContext& c, const BoundOperand* o) {
   const BoundOperand &err = o[5], &hal = o[6], &lal = o[7];
 
   const Settings s = read_settings(c.mem, sr, pr);
-  const bool ok = !broken_rule(rules(), OperandValues(c, o, kOperands)) && settings_ok(s);
+  const bool ok = !broken_rule(pid_rules(), OperandValues(c, o, kPidOperands)) && settings_ok(s);
   uint16_t status = wr[0] & (kAuto | kBumpless);
   c.flag(err, !ok);
   if (!ok) {
@@ -146,11 +146,11 @@ void add_pid_function(FunctionTable& t) {
   s.allow_32 = false;
   s.allow_pulse = false;
   s.always_runs = true;  // manual mode (A/M = 0) still scales PV and drives HAL/LAL
-  s.rules = rules();
+  s.rules = pid_rules();
   s.handler = [](ExecContext& c, const BoundOperand* o) {
     // WR+0 bit 1 is on only in the scan the loop is solved.
     o[4].w[0] &= uint16_t(~kSolved);
-    run(c, o);
+    run_pid(c, o);
   };
   t.add(s);
 }

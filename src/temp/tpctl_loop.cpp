@@ -7,18 +7,10 @@
 #include "plc_cell/core/interpreter.h"
 #include "plc_cell/core/memory.h"
 #include "plc_cell/temp/temperature_cell.h"
+#include "set_output.h"
 
 namespace plc_cell {
 namespace temp {
-namespace {
-
-void set_y(const BoundOperand& y, uint32_t i, bool v) {
-  uint8_t& c = y.b[i];
-  if (!(c & kBitDisabled)) c = v ? kBitState : 0;
-}
-
-}  // namespace
-
 OperandRule tpctl_outputs_rule(size_t yn, size_t zn, int64_t zn_max, const std::string& zn_name) {
   return {"Yn: " + zn_name + " outputs within Y0-Y255", [=](const OperandValues& v) {
             return v[zn] < 1 || v[zn] > zn_max || v.y_fit(yn, uint32_t(v[zn]));

@@ -1,4 +1,5 @@
 #include "plc_cell/tri/commands.h"
+#include "hex_digit.h"
 
 #include <cstdio>
 
@@ -91,13 +92,6 @@ bool match_header(std::string_view body, Cmd* cmd, size_t* len) {
       }
   }
   return false;
-}
-
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
 }
 
 // n hex digits from the front of s; false when there are not n of them.

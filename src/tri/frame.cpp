@@ -3,17 +3,11 @@
 #include <cstdio>
 
 #include "plc_cell/tri/fcs.h"
+#include "hex_digit.h"
 
 namespace plc_cell {
 namespace tri {
 namespace {
-
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
-}
 
 int hex2(std::string_view s) {
   if (s.size() != 2) return -1;
