@@ -107,12 +107,34 @@ SharedScanThread::~SharedScanThread() {
   if (thread_.joinable()) thread_.join();
 }
 
-uint64_t SharedScanThread::add(Plc& plc, std::chrono::nanoseconds period, std::function<void()> after_scan) {
+int SharedScanThread::priority() {
+  std::lock_guard<std::mutex> lk(mu_);
+  return priority_;
+}
+
+std::string SharedScanThread::priority_error() {
+  std::lock_guard<std::mutex> lk(mu_);
+  return priority_error_;
+}
+
+uint64_t SharedScanThread::add(Plc& plc, std::chrono::nanoseconds period, std::function<void()> after_scan,
+                               int priority) {
   const uint64_t base_us = plc.locked([](ScanEngine& e, Memory&) { return e.now_us(); });
   std::lock_guard<std::mutex> lk(mu_);
   const uint64_t p = std::max<uint64_t>(1, uint64_t(period.count())), epoch = mono_ns();
   entries_.push_back(Entry{next_id_, &plc, p, base_us, epoch, epoch + p, std::move(after_scan)});
   if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
+  if (priority > priority_) {
+    sched_param sp{};
+    sp.sched_priority = priority;
+    const int rc = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &sp);
+    if (rc == 0) {
+      priority_ = priority;
+      priority_error_.clear();
+    } else {
+      priority_error_ = std::string("SCHED_FIFO refused: ") + std::strerror(rc);
+    }
+  }
   cv_.notify_all();
   return next_id_++;
 }

@@ -15,7 +15,7 @@ std::vector<std::string> plc_node_parameters() {
   std::vector<std::string> out{"cell",        "program",          "io_rate",      "autostart",
                                "frame_id",    "counter_rate",     "motion_rate",  "temperature_rate",
                                "virtual_time", "clock_topic",     "virtual_time_lag", "publish_every_scan",
-                               "clock_rate", "shared_scan",
+                               "clock_rate", "shared_scan", "shared_scan_threads",
                                "diagnostic_period"};
   for (const auto& spec : Cell::run_settings()) out.push_back(spec.key);
   for (const auto& k : Cell::server_kinds())

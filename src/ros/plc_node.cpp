@@ -31,7 +31,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
   cell_ = std::make_unique<Cell>(cell_path_, overrides_, Cell::Purpose::Serve,
                                  [](const std::string& l) { ROS_INFO("plc_node: %s", l.c_str()); });
   program_path_ = cell_->program_path();
-  make_diagnostics(nh);
+  make_diagnostics();
   frame_id_ = frame_id_param(pnh);
   // Before any subscription or service: a nodelet's callbacks may run before this returns.
   driver_ = make_driver(nh, pnh);
@@ -48,12 +48,16 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
   const std::string engine = cell_->plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
   ROS_INFO("plc_node: engine %s", engine.c_str());
   driver_->start();
+  // Last: as a nodelet, the timer's callback runs on the manager's workers at once, and every
+  // check it calls reads what the lines above made (the forced set is made by make_topics).
+  diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   ROS_INFO("plc_node: cell '%s', program %s, scan %.3f ms%s, %s", cell_->config().name.c_str(), program_path_.c_str(),
            double(cell_->scan_period_us()) / 1e3, driver_->republishes() ? "" : " of virtual time",
            autostart_ ? "RUN" : "STOP");
 }
 
 PlcNode::~PlcNode() {
+  diag_timer_.stop();  // no check reads a stopping cell
   services_.clear();  // no request writes into a stopping cell
   driver_->stop();
   cell_->stop();      // servers, scans, then the store's last image
@@ -103,13 +107,12 @@ void PlcNode::make_topics(ros::NodeHandle& pnh) {
   services_.push_back(pnh.advertiseService("simulate", &PlcNode::on_simulate, this));
 }
 
-void PlcNode::make_diagnostics(ros::NodeHandle& nh) {
+void PlcNode::make_diagnostics() {
   // Two nodes may run the same cell YAML (cells.launch): the node name tells them apart.
   updater_.setHardwareID("plc_cell/" + cell_->config().name + "@" + node_name_);
   updater_.add("scan", this, &PlcNode::diagnose);
   updater_.add("forced points", this, &PlcNode::diagnose_forced);
   if (cell_->persister()) updater_.add("persistence", this, &PlcNode::diagnose_persist);
-  diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
 }
 
 std::unique_ptr<ScanDriver> PlcNode::make_driver(ros::NodeHandle& nh, ros::NodeHandle& pnh) {

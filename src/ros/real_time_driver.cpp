@@ -51,7 +51,10 @@ void RealTimeDriver::start() {
   Cell& cell = host_.cell();
   if (!shared_) return cell.start_scanning([this] { after_scan(); });
   shared_thread_ = &SharedScanThread::process(unsigned(shared_threads_));
-  shared_id_ = shared_thread_->add(cell.plc(), std::chrono::microseconds(cell.scan_period_us()), [this] { after_scan(); });
+  shared_id_ = shared_thread_->add(cell.plc(), std::chrono::microseconds(cell.scan_period_us()), [this] { after_scan(); },
+                                   cell.rt_priority());
+  const std::string refused = shared_thread_->priority_error();
+  if (cell.rt_priority() > 0 && !refused.empty()) ROS_WARN("plc_node: ~rt_priority: %s", refused.c_str());
 }
 
 void RealTimeDriver::stop() {

@@ -63,10 +63,15 @@ class SharedScanThread {
 
   // plc scanned every period from one period from now on, continuing its engine's clock;
   // after_scan after each of its scans, outside the PLC lock. Returns the handle of remove().
-  uint64_t add(Plc& plc, std::chrono::nanoseconds period, std::function<void()> after_scan);
+  // priority: the cell's SCHED_FIFO priority (1..99; 0 none). The thread runs at the highest
+  // priority of the PLCs it was given, as a cell's own loop would (RealTimeLoop::set_priority);
+  // if refused (no CAP_SYS_NICE) it keeps its priority and priority_error() says why.
+  uint64_t add(Plc& plc, std::chrono::nanoseconds period, std::function<void()> after_scan, int priority = 0);
   // Returns once the PLC is no longer scanned (not from an after_scan).
   void remove(uint64_t id);
   size_t scanned_plcs();
+  int priority();
+  std::string priority_error();
 
  private:
   struct Entry {
@@ -82,6 +87,8 @@ class SharedScanThread {
   std::vector<Entry> entries_;
   uint64_t next_id_ = 1;
   bool stopping_ = false;
+  int priority_ = 0;
+  std::string priority_error_;
   std::thread thread_;
 };
 

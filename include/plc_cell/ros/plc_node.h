@@ -52,7 +52,7 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   };
 
   void make_topics(ros::NodeHandle& pnh);
-  void make_diagnostics(ros::NodeHandle& nh);
+  void make_diagnostics();
   std::unique_ptr<ScanDriver> make_driver(ros::NodeHandle& nh, ros::NodeHandle& pnh);
 
   // ScanDriver::Host.
