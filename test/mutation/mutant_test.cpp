@@ -98,8 +98,9 @@ TEST(Mutation, KilledSurvivedAndEquivalentOnASmallCell) {
   EXPECT_TRUE(has(j, "{\"line\": 7, \"network\": 3, \"operator\": \"SET/RST\", \"from\": \"SET Y1\", \"to\": \"RST Y1\", "
                      "\"status\": \"killed\", \"killed_by\": \"timer\", \"executed_by\": [\"start\", \"timer\"]}")) << j;
   EXPECT_TRUE(has(slurp(html + "/index.html"), "<h2>Mutation testing</h2>"));
-  // The same report with two worker processes.
-  const ToolResult r2 = run_tool("test " + dir + "/s.scenario.yaml --mutate -j 2 --mutate-json " + json + "2");
+  // The same report with two worker processes (and the same outputs asked for).
+  const ToolResult r2 =
+      run_tool("test " + dir + "/s.scenario.yaml --mutate -j 2 --mutate-json " + json + "2 --coverage-html " + html + "2");
   EXPECT_EQ(r2.out, r.out);
   EXPECT_EQ(slurp(json + "2"), j);
   // A budget: evenly spaced mutants, the count said.
