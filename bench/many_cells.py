@@ -10,7 +10,10 @@ threads from /proc, and overruns as each cell's "scan" entry on /diagnostics cou
 (its overruns at the window's end less those at its start), with the cells' average scan
 time. The machine's load average is printed with each row: the other processes on the
 machine share the cores, and a scan thread they preempt overruns; --rt-priority N runs the
-scan threads under SCHED_FIFO (where allowed) so that only the cells themselves can.
+scan threads under SCHED_FIFO (where allowed) so that only the cells themselves can. Each
+overrun is split as the cells count it: "off the CPU" when the scan thread's own CPU time
+since it woke does not explain it (woken late or preempted: the machine's), "from the
+cells" when it does (the scans and after-scan work ran past the period).
 
     bench/many_cells.py --workspace .build/ws --cells 1,20,100 --seconds 10
 
@@ -57,6 +60,7 @@ class Overruns:
         import rospy
         from diagnostic_msgs.msg import DiagnosticArray
         self.last = {}
+        self.off_cpu = {}  # each cell's overruns with its scan thread off the CPU
         self.cycle = {}  # each cell's average scan time, us
         rospy.Subscriber("/diagnostics", DiagnosticArray, self.on_diag, queue_size=1000)
 
@@ -66,6 +70,7 @@ class Overruns:
                 values = {kv.key: kv.value for kv in st.values}
                 if "overruns" in values:
                     self.last[st.name] = int(values["overruns"])
+                    self.off_cpu[st.name] = int(values["overruns, thread off the CPU"])
                     self.cycle[st.name] = float(values["cycle avg (us)"])
 
 
@@ -111,17 +116,18 @@ def measure(way, ws, cell, n, scan, prio, settle, seconds, env, overruns):
         if len(overruns.last) < n:
             raise SystemExit("%s: %d of %d cells on /diagnostics" % (way, len(overruns.last), n))
         time.sleep(settle)
-        before = dict(overruns.last)
+        before, before_off = dict(overruns.last), dict(overruns.off_cpu)
         cpu0, t0 = sum(cpu_seconds(p.pid) for p in measured), time.time()
         time.sleep(seconds)
         cpu1, t1 = sum(cpu_seconds(p.pid) for p in measured), time.time()
-        after = dict(overruns.last)
+        after, after_off = dict(overruns.last), dict(overruns.off_cpu)
         rss = sum(status(p.pid, "VmRSS") for p in measured)
         threads = sum(status(p.pid, "Threads") for p in measured)
         cpu = 100.0 * (cpu1 - cpu0) / (t1 - t0)
         over = sum(after[k] - before.get(k, after[k]) for k in after)
+        off = sum(after_off[k] - before_off.get(k, after_off[k]) for k in after_off)
         cycle = sum(overruns.cycle.values()) / max(1, len(overruns.cycle))
-        return {"cpu": cpu, "rss_kb": rss, "threads": threads, "overruns": over, "load": os.getloadavg()[0],
+        return {"cpu": cpu, "rss_kb": rss, "threads": threads, "overruns": over, "off_cpu": off, "load": os.getloadavg()[0],
                 "cycle": cycle}
     finally:
         for p in procs:
@@ -133,6 +139,7 @@ def measure(way, ws, cell, n, scan, prio, settle, seconds, env, overruns):
                 p.kill()
                 p.wait()
         overruns.last.clear()
+        overruns.off_cpu.clear()
         time.sleep(2)  # the last /diagnostics of the stopped cells
 
 
@@ -163,14 +170,14 @@ def main():
         rospy.init_node("many_cells_bench", anonymous=True, disable_signals=True)
         overruns = Overruns()
         print("| cells | way | CPU per cell (%% of a core) | RSS per cell (MB) | threads | scan (us) "
-              "| overruns in %g s | load |" % a.seconds)
-        print("|---|---|---|---|---|---|---|---|")
+              "| overruns in %g s | of them off the CPU | from the cells | load |" % a.seconds)
+        print("|---|---|---|---|---|---|---|---|---|---|")
         for n in [int(x) for x in a.cells.split(",")]:
             for way in a.ways.split(","):
                 r = measure(way, a.workspace, a.cell, n, a.scan, a.rt_priority, a.settle, a.seconds, env, overruns)
-                print("| %d | %s | %.2f | %.1f | %d | %.1f | %d | %.1f |" % (
+                print("| %d | %s | %.2f | %.1f | %d | %.1f | %d | %d | %d | %.1f |" % (
                     n, way, r["cpu"] / n, r["rss_kb"] / 1024.0 / n, r["threads"], r["cycle"], r["overruns"],
-                    r["load"]), flush=True)
+                    r["off_cpu"], r["overruns"] - r["off_cpu"], r["load"]), flush=True)
     finally:
         master.terminate()
         master.wait()

@@ -42,7 +42,8 @@ int cmd_run(const std::vector<std::string>& argv) {
   const std::string fault = cell.plc().locked([](ScanEngine& e, Memory&) { return e.fault(); });
   std::cerr << "plc_cell run: " << st.scans << " scans, cycle avg " << st.cycle.avg_ns() / 1000.0
             << " us max " << st.cycle.max_ns / 1000.0 << " us, wake latency max "
-            << st.wake_latency.max_ns / 1000.0 << " us, overruns " << st.overruns << "\n";
+            << st.wake_latency.max_ns / 1000.0 << " us, overruns " << st.overruns << " ("
+            << st.overruns_off_cpu << " with the scan thread off the CPU)\n";
   if (!fault.empty()) std::cerr << "fault: " << fault << "\n";
   return fault.empty() ? 0 : 1;
 }

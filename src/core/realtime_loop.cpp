@@ -16,6 +16,11 @@ uint64_t mono_ns() {
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return uint64_t(ts.tv_sec) * 1000000000ull + uint64_t(ts.tv_nsec);
 }
+uint64_t thread_cpu_ns() {  // a system call: once per wake-up, and after a scan that overran
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return uint64_t(ts.tv_sec) * 1000000000ull + uint64_t(ts.tv_nsec);
+}
 void sleep_until_ns(uint64_t t) {
   timespec ts;
   ts.tv_sec = static_cast<time_t>(t / 1000000000ull);
@@ -25,8 +30,9 @@ void sleep_until_ns(uint64_t t) {
 }
 
 // One scan at the engine time of woke, due at *next: accounted, *next moved past it (periods
-// missed skipped, not caught up). Returns the wake latency.
-uint64_t scan_once(Plc& plc, uint64_t base_us, uint64_t epoch, uint64_t period, uint64_t* next) {
+// missed skipped, not caught up); cpu_woke is the thread's CPU time when it woke for this
+// scan (or for the round of scans it is one of). Returns the wake latency.
+uint64_t scan_once(Plc& plc, uint64_t base_us, uint64_t epoch, uint64_t period, uint64_t* next, uint64_t cpu_woke) {
   const uint64_t woke = mono_ns();
   const uint64_t latency = woke > *next ? woke - *next : 0;
   const uint64_t now_us = base_us + (woke - epoch) / 1000;
@@ -35,16 +41,23 @@ uint64_t scan_once(Plc& plc, uint64_t base_us, uint64_t epoch, uint64_t period, 
     const uint64_t exec = mono_ns() - woke;
     *next += period;
     const uint64_t done = mono_ns();
-    uint64_t missed = 0;
+    uint64_t missed = 0, off_cpu = 0;
     if (done > *next) {
       missed = (done - *next) / period + 1;
       *next += missed * period;
+      off_cpu = overruns_off_cpu(missed, thread_cpu_ns() - cpu_woke, period);
     }
-    e.report_cycle(exec, latency, missed);
+    e.report_cycle(exec, latency, missed, off_cpu);
   });
   return latency;
 }
 }  // namespace
+
+uint64_t overruns_off_cpu(uint64_t missed, uint64_t on_cpu_ns, uint64_t period_ns) {
+  if (period_ns == 0) return 0;
+  const uint64_t by_work = on_cpu_ns > period_ns ? (on_cpu_ns - period_ns) / period_ns + 1 : 0;
+  return missed - std::min(missed, by_work);
+}
 
 RealTimeLoop::RealTimeLoop(Plc& plc, std::chrono::nanoseconds period) : plc_(plc), period_(period) {}
 
@@ -77,7 +90,7 @@ void RealTimeLoop::run() {
   uint64_t next = epoch + period;
   while (running_) {
     sleep_until_ns(next);
-    const uint64_t latency = scan_once(plc_, base_us, epoch, period, &next);
+    const uint64_t latency = scan_once(plc_, base_us, epoch, period, &next, thread_cpu_ns());
     if (record_) latencies_.push_back(latency);
     if (after_scan_) after_scan_();
   }
@@ -157,10 +170,11 @@ void SharedScanThread::run() {
     for (const Entry& e : entries_) due = std::min(due, e.next_ns);
     lk.unlock();  // a cell added meanwhile waits at most this sleep
     sleep_until_ns(due);
+    const uint64_t cpu_woke = thread_cpu_ns();
     lk.lock();
     for (Entry& e : entries_) {
       if (e.next_ns > mono_ns()) continue;
-      scan_once(*e.plc, e.base_us, e.epoch_ns, e.period_ns, &e.next_ns);
+      scan_once(*e.plc, e.base_us, e.epoch_ns, e.period_ns, &e.next_ns, cpu_woke);
       if (e.after_scan) e.after_scan();
     }
   }

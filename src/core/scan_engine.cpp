@@ -131,10 +131,12 @@ void ScanEngine::scan(uint64_t now_us) {
   for (auto* h : hooks_) h->after_program(now_us);
 }
 
-void ScanEngine::report_cycle(uint64_t exec_ns, uint64_t wake_latency_ns, uint64_t missed_periods) {
+void ScanEngine::report_cycle(uint64_t exec_ns, uint64_t wake_latency_ns, uint64_t missed_periods,
+                              uint64_t missed_off_cpu) {
   stats_.cycle.add(exec_ns);
   stats_.wake_latency.add(wake_latency_ns);
   stats_.overruns += missed_periods;
+  stats_.overruns_off_cpu += std::min(missed_off_cpu, missed_periods);
   stats_.recent.add(now_us_, wake_latency_ns, missed_periods);
   if (mode_ == RunMode::Run && watchdog_us_ > 0 && exec_ns > watchdog_us_ * 1000) {
     watchdog_tripped_ = true;

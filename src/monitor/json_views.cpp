@@ -21,7 +21,8 @@ nlohmann::json scan_json(const ScanStats& s) {
           {"cycle_max_ns", s.cycle.max_ns},
           {"wake_avg_ns", uint64_t(s.wake_latency.avg_ns())},
           {"wake_max_ns", s.wake_latency.max_ns},
-          {"overruns", s.overruns}};
+          {"overruns", s.overruns},
+          {"overruns_off_cpu", s.overruns_off_cpu}};
 }
 
 }  // namespace

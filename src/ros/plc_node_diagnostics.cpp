@@ -38,6 +38,7 @@ void PlcNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("wake latency avg (us)", v.st.wake_latency.avg_ns() / 1000.0);
   stat.add("wake latency max (us)", v.st.wake_latency.max_ns / 1000.0);
   stat.add("overruns", v.st.overruns);
+  stat.add("overruns, thread off the CPU", v.st.overruns_off_cpu);
   stat.add("overruns, last 10 s", recent.overruns);
   stat.add("wake latency max, last 10 s (us)", recent.max_wake_latency_ns / 1000.0);
   // A respawned cell shows as a new pid with a short uptime (launch/cells.launch restarts it).

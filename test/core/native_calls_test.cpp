@@ -5,40 +5,21 @@
 
 #include <string>
 
-#include "plc_cell/core/il_parser.h"
-#include "plc_cell/core/interpreter.h"
-#include "plc_cell/core/native/lockstep.h"
-
 #include "see3_function.h"
+#include "two_engines.h"
 
 using namespace plc_cell;
 
 namespace {
 
-struct Engines {
-  FunctionTable fns = native_test::functions_with_see3();
-  Memory mem_i, mem_n;
-  Interpreter interp{mem_i, fns}, native{mem_n, fns};
-  Program prog;
-
-  explicit Engines(const std::string& text) {
-    prog = parse_program(text, "calls.il", fns);
-    native.use_native(true);
-    interp.load(prog);
-    native.load(prog);
-    for (Memory* m : {&mem_i, &mem_n}) m->set_bit(Area::M, special::kAlwaysOn, true);
-  }
-  // Empty while both memories are equal after the scan (or the routine, if irq).
+// The differential fixture on this file's program text.
+struct Engines : native_test::TwoEngines {
+  explicit Engines(const std::string& text)
+      : TwoEngines(native_test::see3_table(), text, "calls.il") {}
   std::string scan(uint32_t x, uint32_t dt, bool irq, int s) {
-    for (Memory* m : {&mem_i, &mem_n})
-      for (uint32_t i = 0; i < 16; ++i) m->set_bit(Area::X, i, (x >> i) & 1u);
-    now += dt;
-    const bool ok_i = irq ? interp.run_routine("X0+I", now, nullptr) : interp.run_main(now, dt, nullptr);
-    const bool ok_n = irq ? native.run_routine("X0+I", now, nullptr) : native.run_main(now, dt, nullptr);
-    if (ok_i != ok_n || interp.fault() != native.fault()) return "faults: " + interp.fault() + " / " + native.fault();
-    return first_difference(mem_n, mem_i, prog, "scan " + std::to_string(s));
+    set_inputs(static_cast<uint16_t>(x));
+    return step(dt, irq, "scan " + std::to_string(s));
   }
-  uint64_t now = 0;
 };
 
 // Every instruction kind that runs in a network, each edge contact form, counters of 16 and

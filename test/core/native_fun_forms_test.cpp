@@ -8,10 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "plc_cell/core/il_parser.h"
-#include "plc_cell/core/interpreter.h"
-#include "plc_cell/core/native/lockstep.h"
 #include "plc_cell/core/plc.h"
+
+#include "two_engines.h"
 
 using namespace plc_cell;
 
@@ -132,36 +131,24 @@ FunctionTable probe_table() {
   return t;
 }
 
-struct TwoEngines {
-  FunctionTable fns = probe_table();
-  Memory mem_i, mem_n;
-  Interpreter interp{mem_i, fns}, native{mem_n, fns};
-  Program prog;
-
-  explicit TwoEngines(const std::string& text) {
-    prog = parse_program(text, "forms.il", fns);
-    native.use_native(true);
-    interp.load(prog);
-    native.load(prog);
-    for (Memory* m : {&mem_i, &mem_n}) m->set_bit(Area::M, special::kAlwaysOn, true);
+// Both engines on this file's table; every scan's results and faults must agree.
+struct FormEngines : native_test::TwoEngines {
+  explicit FormEngines(const std::string& text) : TwoEngines(table(), text, "forms.il") {}
+  static const FunctionTable& table() {
+    static const FunctionTable t = probe_table();
+    return t;
   }
-  void set_x(uint32_t i, bool v) {
-    for (Memory* m : {&mem_i, &mem_n}) m->set_bit(Area::X, i, v);
-  }
-  // Both engines run the main program; their results and faults must agree.
   bool scan() {
-    const bool ok_i = interp.run_main(0, 0, nullptr), ok_n = native.run_main(0, 0, nullptr);
-    EXPECT_EQ(ok_i, ok_n);
-    EXPECT_EQ(interp.fault(), native.fault());
-    EXPECT_EQ(first_difference(mem_n, mem_i, prog, "the scan"), "");
-    return ok_n;
+    bool ok = false;
+    EXPECT_EQ(step(0, false, "the scan", &ok), "");
+    return ok;
   }
 };
 
 }  // namespace
 
 TEST(NativeFunForms, BothEnginesTakeTheWordFormWhereTheOperandsAllowIt) {
-  TwoEngines e(
+  FormEngines e(
       "ORG M1925\nPROBE S=R0 D=R1\nPROBE S=5 D=R2\nPROBE S=WX0 D=R3\nPROBE S=40000 D=R4\n"
       "PROBE.P S=R0 D=R5\nOUT Y0\nEND\n");
   ASSERT_TRUE(e.native.native_active()) << e.native.engine_status();
@@ -180,7 +167,7 @@ TEST(NativeFunForms, BothEnginesTakeTheWordFormWhereTheOperandsAllowIt) {
 TEST(NativeFunForms, AThrowingHandlerFaultsBothEnginesAlike) {
   // The handler throws in the middle of a machine-code run: the networks before it have
   // run, those after it have not, on both engines; the program can run again.
-  TwoEngines e("ORG M1925\nOUT Y0\nORG X1\nTHROW D=R0\nOUT Y1\nORG M1925\nOUT Y2\nMOV S=7 D=R1\nEND\n");
+  FormEngines e("ORG M1925\nOUT Y0\nORG X1\nTHROW D=R0\nOUT Y1\nORG M1925\nOUT Y2\nMOV S=7 D=R1\nEND\n");
   ASSERT_TRUE(e.native.native_active()) << e.native.engine_status();
   EXPECT_TRUE(e.scan());  // EN off: the handler does not run
   EXPECT_TRUE(e.mem_n.bit(Area::Y, 2));

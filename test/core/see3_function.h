@@ -25,6 +25,11 @@ inline FunctionTable functions_with_see3() {
   t.add(s);
   return t;
 }
+// One table for a whole run: the tests and the fuzzer load many programs against it.
+inline const FunctionTable& see3_table() {
+  static const FunctionTable t = functions_with_see3();
+  return t;
+}
 
 }  // namespace native_test
 }  // namespace plc_cell

@@ -9,14 +9,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "plc_cell/core/error.h"
-#include "plc_cell/core/il_parser.h"
-#include "plc_cell/core/interpreter.h"
-#include "plc_cell/core/native/lockstep.h"
 
 #include "../core/see3_function.h"
+#include "../core/two_engines.h"
 
 using namespace plc_cell;
 
@@ -160,44 +159,29 @@ class Generator {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const FunctionTable fns = native_test::functions_with_see3();
   FuzzedDataProvider f(data, size);
   const std::string text = Generator(f).program();
-  Program prog;
+  std::optional<native_test::TwoEngines> e;
   try {
-    prog = parse_program(text, "gen.il", fns);
-  } catch (const Error& e) {
-    finding(std::string("the generator wrote an invalid program: ") + e.what(), text);
+    e.emplace(native_test::see3_table(), text, "gen.il");
+  } catch (const Error& err) {
+    finding(std::string("the generator wrote an invalid program: ") + err.what(), text);
   }
-  Memory mem_i, mem_n;
-  Interpreter interp(mem_i, fns), native(mem_n, fns);
-  native.use_native(true);
-  interp.load(prog);
-  native.load(prog);
-  if (!native.native_active()) finding(native.engine_status(), text);
-  for (Memory* m : {&mem_i, &mem_n}) m->set_bit(Area::M, special::kAlwaysOn, true);
+  if (!e->native.native_active()) finding(e->native.engine_status(), text);
   const int scans = f.ConsumeIntegralInRange(1, 200);
-  uint64_t now = 0;
   for (int s = 1; s <= scans && f.remaining_bytes() > 0; ++s) {
-    const uint16_t x = f.ConsumeIntegral<uint16_t>();
+    e->set_inputs(f.ConsumeIntegral<uint16_t>());
     const int forced = f.ConsumeIntegralInRange(-1, 15);  // a point forced (disabled) or released, or none
     const bool disable = f.ConsumeBool();
-    for (Memory* m : {&mem_i, &mem_n}) {
-      for (uint32_t i = 0; i < 16; ++i) m->set_bit(Area::X, i, (x >> i) & 1u);
-      if (forced >= 0) m->set_disabled(forced < 8 ? Area::Y : Area::M, static_cast<uint32_t>(forced) % 8, disable);
-    }
+    if (forced >= 0)
+      for (Memory* m : {&e->mem_i, &e->mem_n})
+        m->set_disabled(forced < 8 ? Area::Y : Area::M, static_cast<uint32_t>(forced) % 8, disable);
     const uint32_t dt = f.ConsumeIntegralInRange<uint32_t>(0, 40000);
-    now += dt;
     const bool irq = f.ConsumeIntegralInRange(0, 3) == 0;
-    const std::string what = (irq ? "routine X0+I in scan " : "scan ") + std::to_string(s);
-    const bool ok_i = irq ? interp.run_routine("X0+I", now, nullptr) : interp.run_main(now, dt, nullptr);
-    const bool ok_n = irq ? native.run_routine("X0+I", now, nullptr) : native.run_main(now, dt, nullptr);
-    if (ok_i != ok_n || interp.fault() != native.fault())
-      finding("faults differ after " + what + ": interpreter '" + interp.fault() + "', native '" + native.fault() + "'",
-              text);
-    const std::string d = first_difference(mem_n, mem_i, prog, what);
+    bool ok = true;
+    const std::string d = e->step(dt, irq, (irq ? "routine X0+I in scan " : "scan ") + std::to_string(s), &ok);
     if (!d.empty()) finding(d, text);
-    if (!ok_i) break;
+    if (!ok) break;
   }
   return 0;
 }

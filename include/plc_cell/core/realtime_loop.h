@@ -15,6 +15,14 @@
 
 namespace plc_cell {
 
+// Of the `missed` periods a scan ran past, those its thread's own work does not explain.
+// on_cpu_ns is the CPU time the thread used from its wake-up to the end of the scan (the
+// cell's scan and, on a shared thread, the scans and after-scan calls before it). That work
+// alone, started on time, misses the periods it runs past the first; the others were lost
+// while the thread was off the CPU (woken late, or preempted by another thread): the
+// machine's overruns, not the cells'.
+uint64_t overruns_off_cpu(uint64_t missed, uint64_t on_cpu_ns, uint64_t period_ns);
+
 class RealTimeLoop {
  public:
   RealTimeLoop(Plc& plc, std::chrono::nanoseconds period);

@@ -77,7 +77,7 @@ class ScanEngine {
   uint64_t now_us() const { return now_us_; }
 
   // The real-time loop reports each scan's duration; past the watchdog the PLC stops.
-  void report_cycle(uint64_t exec_ns, uint64_t wake_latency_ns, uint64_t missed_periods);
+  void report_cycle(uint64_t exec_ns, uint64_t wake_latency_ns, uint64_t missed_periods, uint64_t missed_off_cpu = 0);
 
   const ScanStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }

@@ -28,6 +28,9 @@ struct ScanStats {
   DurationStats cycle;         // time spent in one scan (real-time loop only)
   DurationStats wake_latency;  // how late the loop woke after its deadline
   uint64_t overruns = 0;       // periods missed because a scan ran past its deadline
+  // Of those, the periods lost while the scan thread was off the CPU (woken late or
+  // preempted): the machine's, not the scans' (overruns_off_cpu in realtime_loop.h).
+  uint64_t overruns_off_cpu = 0;
   ScanWindow recent;           // the same, over the last seconds of scans (real-time loop only)
 };
 
