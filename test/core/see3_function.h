@@ -11,24 +11,23 @@
 namespace plc_cell {
 namespace native_test {
 
-inline FunctionTable functions_with_see3() {
-  FunctionTable t = FunctionTable::with_core_functions();
-  FunctionSpec s;
-  s.number = 250;
-  s.mnemonic = "SEE3";
-  s.inputs = {"EN", "B", "C"};
-  s.operands = {{"D", OperandRole::Dest}};
-  s.always_runs = true;
-  s.handler = [](ExecContext& c, const BoundOperand* o) {
-    c.put(o[0], c.get(o[0]) * 16 + (c.en | c.inputs[0] << 1 | c.inputs[1] << 2 | c.inputs[2] << 3));
-  };
-  t.add(s);
-  return t;
-}
 // One table for a whole run: the tests and the fuzzer load many programs against it.
 inline const FunctionTable& see3_table() {
-  static const FunctionTable t = functions_with_see3();
-  return t;
+  static const FunctionTable table = [] {
+    FunctionTable t = FunctionTable::with_core_functions();
+    FunctionSpec s;
+    s.number = 250;
+    s.mnemonic = "SEE3";
+    s.inputs = {"EN", "B", "C"};
+    s.operands = {{"D", OperandRole::Dest}};
+    s.always_runs = true;
+    s.handler = [](ExecContext& c, const BoundOperand* o) {
+      c.put(o[0], c.get(o[0]) * 16 + (c.en | c.inputs[0] << 1 | c.inputs[1] << 2 | c.inputs[2] << 3));
+    };
+    t.add(s);
+    return t;
+  }();
+  return table;
 }
 
 }  // namespace native_test

@@ -71,6 +71,7 @@ TEST_F(MonitorTest, StatusReportsModeScansAndForcedPoints) {
   const auto j = r.json();
   EXPECT_EQ(j["mode"], "run");
   EXPECT_EQ(j["scan"]["scans"], 3);
+  EXPECT_EQ(j["scan"]["overruns_off_cpu"], 0);  // virtual scans: none missed, none off the CPU
   ASSERT_EQ(j["forced"].size(), 1u);
   EXPECT_EQ(j["forced"][0], "X1");
   EXPECT_FALSE(j["mode_switchable"]);  // read-only server
