@@ -78,8 +78,11 @@ bool ScanEngine::run_routine(const std::string& label, uint64_t now_us, std::str
   return run_program(label, now_us, 0, why);
 }
 
-void ScanEngine::add_hook(ScanHook* h) {
+void ScanEngine::add_hook(ScanHook* h, unsigned phases) {
   hooks_.push_back(h);
+  if (phases & ScanHook::kBeforeInputs) before_inputs_.push_back(h);
+  if (phases & ScanHook::kBeforeProgram) before_program_.push_back(h);
+  if (phases & ScanHook::kAfterProgram) after_program_.push_back(h);
   h->attached(*this);
 }
 
@@ -87,6 +90,8 @@ void ScanEngine::remove_hook(ScanHook* h) {
   const auto it = std::remove(hooks_.begin(), hooks_.end(), h);
   if (it == hooks_.end()) return;
   hooks_.erase(it, hooks_.end());
+  for (auto* phase : {&before_inputs_, &before_program_, &after_program_})
+    phase->erase(std::remove(phase->begin(), phase->end(), h), phase->end());
   h->detached(*this);
 }
 
@@ -109,7 +114,7 @@ void ScanEngine::scan(uint64_t now_us) {
   const uint32_t dt = have_time_ && now_us > now_us_ ? static_cast<uint32_t>(std::min<uint64_t>(now_us - now_us_, UINT32_MAX)) : 0;
   have_time_ = true;
   now_us_ = now_us;
-  for (auto* h : hooks_) h->before_inputs(now_us);
+  for (auto* h : before_inputs_) h->before_inputs(now_us);
   // Memory::set_bit for each input, as arithmetic the compiler vectorises (a fixed cost of
   // every scan): a disabled (forced) point keeps its byte.
   uint8_t* const x_bits = mem_.bits(Area::X);
@@ -120,7 +125,7 @@ void ScanEngine::scan(uint64_t now_us) {
   ++stats_.scans;
   if (mode_ != RunMode::Run) return;
   update_special_relays();
-  for (auto* h : hooks_) h->before_program(now_us);
+  for (auto* h : before_program_) h->before_program(now_us);
   std::string why;
   const bool ok = run_program({}, now_us, dt, &why);
   first_scan_ = false;
@@ -128,7 +133,7 @@ void ScanEngine::scan(uint64_t now_us) {
     fault_stop(why);
     return;
   }
-  for (auto* h : hooks_) h->after_program(now_us);
+  for (auto* h : after_program_) h->after_program(now_us);
 }
 
 void ScanEngine::report_cycle(uint64_t exec_ns, uint64_t wake_latency_ns, uint64_t missed_periods,

@@ -153,7 +153,10 @@ void HscUnit::at(uint64_t t) {
 void HscUnit::act(uint64_t t, const std::vector<std::pair<int, bool>>& group) {
   const InputLevels before = pins_.levels();
   for (const auto& g : group)
-    if (!pins_.driven(g.first)) pins_.levels()[g.first] = pins_[g.first].raw = g.second;
+    if (!pins_.driven(g.first)) {
+      pins_.levels()[g.first] = g.second;
+      pins_.set_raw(g.first, g.second);
+    }
   const InputLevels after = pins_.levels();
   for (Component* p : parts_) p->input_edges(t, before, after);
   for (int x = 0; x < 16; ++x) {
@@ -174,12 +177,18 @@ void HscUnit::add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint
 void HscUnit::before_inputs(uint64_t) {
   if (!running()) return;  // the scheduler's hook, before this one, has brought the clock to now
   // Levels that the simulation or a ROS topic set since the last scan change now.
-  for (int x = 0; x < 16; ++x)
-    if (!pins_.driven(x) && ctx_.engine.input(x) != pins_[x].raw) terminal_.external(x, ctx_.engine.input(x));
+  uint8_t terminals[16];
+  for (int x = 0; x < 16; ++x) terminals[x] = ctx_.engine.input(x) ? 1 : 0;
+  for (uint16_t c = pins_.undriven_changes(terminals); c != 0; c = static_cast<uint16_t>(c & (c - 1))) {
+    const int x = __builtin_ctz(c);
+    terminal_.external(x, terminals[x] != 0);
+  }
   if (terminal_.due(now())) ctx_.sched.advance(now());
   if (!running()) return;
-  for (int x = 0; x < 16; ++x)
-    if (pins_.driven(x)) ctx_.engine.set_input(x, pins_.level(x, now()));
+  for (uint16_t d = pins_.driven_mask(); d != 0; d = static_cast<uint16_t>(d & (d - 1))) {
+    const int x = __builtin_ctz(d);
+    ctx_.engine.set_input(x, pins_.level(x, now()));
+  }
   for (Component* p : scanned_) p->before_inputs();
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "plc_cell/core/error.h"
@@ -36,6 +37,7 @@ bool InputPin::source_was_on(uint64_t now_ns) const {
 }
 
 InputPins::InputPins(const HscConfig& cfg) {
+  undriven_bytes_.fill(0xFF);
   for (int x = 0; x < 16; ++x) {
     pins_[x].filter_ns = cfg.filter_ns[x];
     pins_[x].capture = cfg.capture[x];
@@ -52,22 +54,45 @@ void InputPins::bind(EdgeSource* s, int pin_a, int pin_b) {
                                   pins_[x].src->name() + " and " + s->name());
     pins_[x].src = s;
     pins_[x].phase = k;
+    set_driven(x, true);
   }
 }
 
 void InputPins::unbind(const EdgeSource* s) {
-  for (auto& p : pins_)
-    if (p.src == s) {
-      p.src = nullptr;
-      p.phase = -1;
+  for (int x = 0; x < 16; ++x)
+    if (pins_[x].src == s) {
+      pins_[x].src = nullptr;
+      pins_[x].phase = -1;
+      set_driven(x, false);
     }
+}
+
+void InputPins::set_driven(int x, bool on) {
+  driven_ = static_cast<uint16_t>(on ? driven_ | (1u << x) : driven_ & ~(1u << x));
+  undriven_bytes_[x] = on ? 0 : 0xFF;
+}
+
+uint16_t InputPins::undriven_changes(const uint8_t* inputs) const {
+  uint64_t in[2], raw[2], undriven[2];
+  std::memcpy(in, inputs, sizeof in);
+  std::memcpy(raw, raw_.data(), sizeof raw);
+  std::memcpy(undriven, undriven_bytes_.data(), sizeof undriven);
+  if ((((in[0] ^ raw[0]) & undriven[0]) | ((in[1] ^ raw[1]) & undriven[1])) == 0) return 0;
+  uint16_t changed = 0;
+  for (int x = 0; x < 16; ++x)
+    if (inputs[x] != raw_[x]) changed = static_cast<uint16_t>(changed | (1u << x));
+  return static_cast<uint16_t>(changed & ~driven_);
 }
 
 void InputPins::start(uint64_t t_ns, const ScanEngine& engine) {
   for (int x = 0; x < 16; ++x) {
     InputPin& p = pins_[x];
-    if (!p.src) term_[x] = p.raw = engine.input(x);
-    else p.cap_q = p.src->quarter(t_ns);
+    if (!p.src) {
+      term_[x] = engine.input(x);
+      set_raw(x, engine.input(x));
+    } else {
+      p.cap_q = p.src->quarter(t_ns);
+    }
     ++p.gen;  // filter outputs pending from the last run are void
     p.latch = false;
   }

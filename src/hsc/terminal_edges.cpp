@@ -19,7 +19,7 @@ void TerminalEdges::mute(int x, bool muted) {
   if (x < 0 || x > 15 || muted_[x] == muted) return;
   muted_[x] = muted;
   if (muted || !simulated_[x]) return;
-  ctx_.engine.set_input(x, pins_[x].raw);  // not yet scanned: the simulation's level comes instead
+  ctx_.engine.set_input(x, pins_.raw(x));  // not yet scanned: the simulation's level comes instead
   const auto train = std::find_if(trains_.begin(), trains_.end(), [x](const PulseTrain& t) { return t.x == x; });
   if (train == trains_.end()) {
     edges_.push({ctx_.now(), seq_++, x, sim_raw_[x]});  // through the filter, as the steps' edges
@@ -94,8 +94,8 @@ void TerminalEdges::filter(const Edge& e, std::vector<std::pair<int, bool>>* gro
     group->push_back({e.x, e.level});
     return;
   }
-  if (e.level == p.raw) return;
-  p.raw = e.level;
+  if (e.level == pins_.raw(e.x)) return;
+  pins_.set_raw(e.x, e.level);
   ctx_.engine.set_input(e.x, e.level);
   ++p.gen;
   if (e.level != pins_.levels()[e.x]) edges_.push({e.t + p.filter_ns, seq_++, e.x, e.level, true, p.gen});

@@ -11,12 +11,15 @@ namespace motion {
 
 void StatusRegisters::write(uint64_t t) {
   wiring_.write_pins(t);
+  // Through one pointer, as this runs twice in every scan: Memory::set_reg would find the
+  // area's storage again for each of the 24 registers.
+  uint16_t* const r = mem_.words(Area::R);
+  const auto put32 = [r](uint32_t reg, int64_t v) {
+    r[reg] = static_cast<uint16_t>(uint64_t(v) & 0xFFFF);
+    r[reg + 1] = static_cast<uint16_t>((uint64_t(v) >> 16) & 0xFFFF);
+  };
   for (int n = 0; n < kAxes; ++n) {
     AxisState& a = axes_[n];
-    const auto put32 = [&](uint32_t reg, int64_t v) {
-      mem_.set_reg(Area::R, reg, static_cast<uint16_t>(uint64_t(v) & 0xFFFF));
-      mem_.set_reg(Area::R, reg + 1, static_cast<uint16_t>((uint64_t(v) >> 16) & 0xFFFF));
-    };
     // An idle axis (most of them, most scans) has its values at hand: no profile to
     // evaluate, the frequency 0, the rest of its last move.
     const bool moving = a.axis.moving();
@@ -30,10 +33,10 @@ void StatusRegisters::write(uint64_t t) {
 }
 
 void StatusRegisters::adopt_ladder_positions() {
+  const uint16_t* const pos = mem_.words(Area::R) + kPosReg;
   for (int n = 0; n < kAxes; ++n) {
     AxisState& a = axes_[n];
-    const int64_t reg = static_cast<int32_t>(uint32_t(mem_.reg(Area::R, kPosReg + 2 * n)) |
-                                             (uint32_t(mem_.reg(Area::R, kPosReg + 2 * n + 1)) << 16));
+    const int64_t reg = static_cast<int32_t>(uint32_t(pos[2 * n]) | (uint32_t(pos[2 * n + 1]) << 16));
     if (reg != a.written_pos && !a.axis.moving()) a.axis.set_position(reg);
   }
 }

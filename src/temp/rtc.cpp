@@ -71,8 +71,12 @@ void Rtc::before_inputs(uint64_t now_us) {
   const uint64_t dt = now_us - last_us_;
   last_us_ = now_us;
   // The crystal's error minus what D4054 corrects (the S35390A's digital calibration).
-  double rate = cfg_.drift_s_per_day;
-  if (const auto corr = rtc_calibration_rate(mem_.reg(Area::D, rtcreg::kCalibration))) rate -= *corr;
+  const uint16_t code = mem_.reg(Area::D, rtcreg::kCalibration);
+  if (code != calibration_code_) {
+    calibration_code_ = code;
+    calibration_ = rtc_calibration_rate(code).value_or(0.0);
+  }
+  const double rate = cfg_.drift_s_per_day - calibration_;
   if (rate == 0.0) {  // an exact crystal (the usual cell): the residual stays below 1 us
     us_ += static_cast<int64_t>(dt);
     if (us_ >= kEnd) us_ -= kEnd;
@@ -143,16 +147,18 @@ void Rtc::on_run() {
   publish();  // STOP -> RUN cleared R4128-R4135 (and M1952)
 }
 
+// Every scan: through one pointer (Memory::set_reg finds the area's storage again each time).
 void Rtc::publish() {
   const DateTime& t = calendar();
-  mem_.set_reg(Area::R, rtcreg::kSecond, static_cast<uint16_t>(t.second));
-  mem_.set_reg(Area::R, rtcreg::kMinute, static_cast<uint16_t>(t.minute));
-  mem_.set_reg(Area::R, rtcreg::kHour, static_cast<uint16_t>(t.hour));
-  mem_.set_reg(Area::R, rtcreg::kDay, static_cast<uint16_t>(t.day));
-  mem_.set_reg(Area::R, rtcreg::kMonth, static_cast<uint16_t>(t.month));
-  mem_.set_reg(Area::R, rtcreg::kYear, static_cast<uint16_t>(t.year - 2000));
-  mem_.set_reg(Area::R, rtcreg::kWeek, static_cast<uint16_t>((calendar_weekday_ + week_offset_) % 7));  // week()
-  mem_.set_reg(Area::R, rtcreg::kHourMinute, static_cast<uint16_t>(t.hour << 8 | t.minute));
+  uint16_t* const r = mem_.words(Area::R);
+  r[rtcreg::kSecond] = static_cast<uint16_t>(t.second);
+  r[rtcreg::kMinute] = static_cast<uint16_t>(t.minute);
+  r[rtcreg::kHour] = static_cast<uint16_t>(t.hour);
+  r[rtcreg::kDay] = static_cast<uint16_t>(t.day);
+  r[rtcreg::kMonth] = static_cast<uint16_t>(t.month);
+  r[rtcreg::kYear] = static_cast<uint16_t>(t.year - 2000);
+  r[rtcreg::kWeek] = static_cast<uint16_t>((calendar_weekday_ + week_offset_) % 7);  // week()
+  r[rtcreg::kHourMinute] = static_cast<uint16_t>(t.hour << 8 | t.minute);
 }
 
 std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem) {

@@ -14,6 +14,7 @@ import urllib.request
 
 import pytest
 from selenium import webdriver
+from selenium.common.exceptions import StaleElementReferenceException
 from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.support.ui import WebDriverWait
 
@@ -107,8 +108,12 @@ def browser(request, artefacts, scratch):
 
 
 def wait(driver, what, condition, limit=WAIT):
-    """condition(driver) truthy within limit, else a failure that says what was awaited."""
-    return WebDriverWait(driver, limit, poll_frequency=0.1).until(condition, message="waited %.0f s for %s" % (limit, what))
+    """condition(driver) truthy within limit, else a failure that says what was awaited.
+
+    The page redraws its panels as the cell's values come: an element a condition found
+    may be replaced before it reads it (stale), and that poll is simply not yet true."""
+    return WebDriverWait(driver, limit, poll_frequency=0.1, ignored_exceptions=(StaleElementReferenceException,)).until(
+        condition, message="waited %.0f s for %s" % (limit, what))
 
 
 def js(driver, script, *args):

@@ -135,4 +135,12 @@ def test_many_cells_loads_each_cell_into_one_manager():
     for i in range(5):
         assert cfg.params["/cell_%d/plc_node/scan_period" % i].value == 0.001
         assert cfg.params["/cell_%d/plc_node/shared_scan" % i].value is True
+        assert cfg.params["/cell_%d/plc_node/rt_priority" % i].value == 0
     assert "/cell_5/plc_node/cell" not in cfg.params
+
+
+def test_many_cells_passes_the_rt_priority_to_every_cell():
+    cfg = load("many_cells.launch", "cells:=3", "rt_priority:=50", "shared_scan_threads:=2")
+    for i in range(3):
+        assert cfg.params["/cell_%d/plc_node/rt_priority" % i].value == 50
+        assert cfg.params["/cell_%d/plc_node/shared_scan_threads" % i].value == 2

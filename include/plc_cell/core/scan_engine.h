@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "plc_cell/core/extension_slots.h"
@@ -36,6 +37,24 @@ class ScanHook {
   // STOP -> RUN, after the non-retentive memory is cleared: what must read right before
   // the first scan of the run (the clock registers) is put back here.
   virtual void on_run() {}
+
+  // The scan phases a hook of type T has code for. A phase T does not declare is
+  // ScanHook's empty one (its member pointer's type names ScanHook), and the engine does
+  // not call it: a unit with nothing to do before the inputs costs that phase nothing.
+  // Only a final T is read this way; through a pointer to a base a derived override
+  // could hide, so every phase is called.
+  enum Phase : unsigned { kBeforeInputs = 1u, kBeforeProgram = 2u, kAfterProgram = 4u, kEveryPhase = 7u };
+  template <class T>
+  static constexpr unsigned phases_of() {
+    if constexpr (!std::is_final<T>::value) {
+      return kEveryPhase;
+    } else {
+      using Step = void (ScanHook::*)(uint64_t);
+      return (std::is_same<decltype(&T::before_inputs), Step>::value ? 0u : kBeforeInputs) |
+             (std::is_same<decltype(&T::before_program), Step>::value ? 0u : kBeforeProgram) |
+             (std::is_same<decltype(&T::after_program), Step>::value ? 0u : kAfterProgram);
+    }
+  }
 };
 
 class ScanEngine {
@@ -85,7 +104,11 @@ class ScanEngine {
   const std::string& fault() const { return fault_; }
   bool watchdog_tripped() const { return watchdog_tripped_; }
 
-  void add_hook(ScanHook* h);
+  template <class T>
+  void add_hook(T* h) {
+    add_hook(h, ScanHook::phases_of<T>());
+  }
+  void add_hook(ScanHook* h, unsigned phases);
   void remove_hook(ScanHook* h);
   const std::vector<ScanHook*>& hooks() const { return hooks_; }
   // The subsystems' per-PLC objects, for the FUN handlers (core/extension_slots.h).
@@ -108,6 +131,8 @@ class ScanEngine {
   std::unique_ptr<Lockstep> lockstep_;  // the interpreter's copy, in lockstep only
   std::vector<AreaRange> retentive_;
   std::vector<ScanHook*> hooks_;
+  // The hooks each scan phase calls (ScanHook::phases_of), in the order they were added.
+  std::vector<ScanHook*> before_inputs_, before_program_, after_program_;
   ExtensionSlots extensions_;
   std::array<uint8_t, 256> inputs_{};  // 0/1, one byte each: the input image copies them branch-free
   RunMode mode_ = RunMode::Stop;

@@ -38,7 +38,7 @@ class McdcVectors {
 
 // Samples every network after each scan of the program (the seen bytes of that scan), then
 // adds them to acc and clears them for the next scan.
-class McdcSampler : public ScanHook {
+class McdcSampler final : public ScanHook {
  public:
   McdcSampler(std::vector<NetworkShape> shapes, uint8_t* seen, size_t n);
   void after_program(uint64_t now_us) override;

@@ -52,7 +52,7 @@ namespace hsc {
 // The interrupt source ids and labels (core/interrupt_sources.h), as the counters name them.
 using namespace irq;
 
-class HscUnit : public ScanHook, public timeline::EventSource {
+class HscUnit final : public ScanHook, public timeline::EventSource {
  public:
   // Installs itself as a hook of plc's engine; throws Error if the config does not fit.
   HscUnit(Plc& plc, HscConfig cfg);

@@ -20,7 +20,6 @@ struct InputPin {
   bool capture = false;         // a capture input
   EdgeSource* src = nullptr;    // its analytic driver, if any
   int phase = -1;               // which phase of src
-  bool raw = false;             // explicit level before the filter (what the terminal shows)
   uint64_t gen = 0;             // filter: a raw change voids the pending output
   bool latch = false;           // capture: ON at some instant since the last image
   int64_t cap_q = 0;            // capture of an analytic pin: quarter at the last image
@@ -43,6 +42,13 @@ class InputPins {
   InputPin& operator[](int x) { return pins_[x]; }
   const InputPin& operator[](int x) const { return pins_[x]; }
   bool driven(int x) const { return pins_[x].src != nullptr; }
+  // Explicit level of x before the filter (what the terminal shows).
+  bool raw(int x) const { return raw_[x] != 0; }
+  void set_raw(int x, bool v) { raw_[x] = v ? 1 : 0; }
+  // The pins with no analytic driver whose level in `inputs` (the engine's input
+  // terminals X0-X15, one 0/1 byte each) differs from the raw one, as bits.
+  uint16_t undriven_changes(const uint8_t* inputs) const;
+  uint16_t driven_mask() const { return driven_; }
   // Explicit levels after the filter (an analytic pin keeps its last explicit one).
   const InputLevels& levels() const { return term_; }
   InputLevels& levels() { return term_; }
@@ -62,6 +68,13 @@ class InputPins {
  private:
   std::array<InputPin, 16> pins_;
   InputLevels term_{};
+  // Kept packed apart from the pins, one byte per pin as the engine keeps its inputs: a
+  // scan compares all sixteen at once (most scans find none changed).
+  std::array<uint8_t, 16> raw_{};
+  uint16_t driven_ = 0;  // bit x: pins_[x].src is set
+  std::array<uint8_t, 16> undriven_bytes_;  // byte x: 0xFF while pins_[x].src is not set
+
+  void set_driven(int x, bool on);
   std::vector<int> imaged_;  // inputs with a filter or a capture
 };
 

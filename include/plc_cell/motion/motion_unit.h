@@ -54,7 +54,7 @@ namespace motion {
 class Interpolation;  // FUN147 (interpolation.h)
 class Mpg;            // FUN148 (mpg.h)
 
-class MotionUnit : public ScanHook, public timeline::EventSource {
+class MotionUnit final : public ScanHook, public timeline::EventSource {
  public:
   explicit MotionUnit(Plc& plc);
   ~MotionUnit() override;

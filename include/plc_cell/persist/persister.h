@@ -34,7 +34,7 @@ struct PersistStatus {
   std::string error;         // last I/O error, "" if none
 };
 
-class Persister : public Durability, public ScanHook {
+class Persister final : public Durability, public ScanHook {
  public:
   // Restores the newest valid image into plc's retentive ranges, then attaches itself
   // (scan hook + durability). Call before the first scan. log gets one line per event.

@@ -13,7 +13,7 @@ namespace hsc {
 class HscUnit;
 }
 
-class SimulatedCell : public ScanHook {
+class SimulatedCell final : public ScanHook {
  public:
   SimulatedCell(ScanEngine& engine, const Memory& mem) : engine_(engine), mem_(mem) {}
 

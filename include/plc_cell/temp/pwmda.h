@@ -29,7 +29,7 @@ double pwmda_voltage(double duty, bool trimmed);
 
 std::vector<PwmdaDef> parse_pwmda_config(const YAML::Node& node, const std::string& file);
 
-class PwmdaOutputs : public ScanHook {
+class PwmdaOutputs final : public ScanHook {
  public:
   explicit PwmdaOutputs(std::vector<PwmdaDef> defs);
   // The filters follow the pulse trains the last scan's FUN139 left (in STOP too:

@@ -33,7 +33,7 @@ struct RtcConfig {
 };
 RtcConfig parse_rtc_config(const YAML::Node& node, const std::string& file);
 
-class Rtc : public ScanHook {
+class Rtc final : public ScanHook {
  public:
   Rtc(RtcConfig cfg, Memory& mem);
   void before_inputs(uint64_t now_us) override;   // the clock runs, in RUN and STOP
@@ -64,6 +64,9 @@ class Rtc : public ScanHook {
   int64_t calendar_s_ = -1;  // the second calendar_ shows
   DateTime calendar_;
   int calendar_weekday_ = 0;  // of calendar_s_
+  // D4054 rarely changes: its rate is looked up in the table only when it does.
+  int calibration_code_ = -1;
+  double calibration_ = 0;  // what that code corrects, s/day
 };
 
 // The cell's RTC (every FBs MC/MN main unit has one), configured by modules.rtc.

@@ -57,7 +57,7 @@ struct ChannelReading {
   std::string state() const;
 };
 
-class TemperatureCell : public ScanHook {
+class TemperatureCell final : public ScanHook {
  public:
   TemperatureCell(TemperatureConfig cfg, Memory& mem);
   ~TemperatureCell() override;  // out of line: the FB modules are an incomplete type here

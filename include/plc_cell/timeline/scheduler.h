@@ -23,7 +23,7 @@
 namespace plc_cell {
 namespace timeline {
 
-class Scheduler : public ScanHook {
+class Scheduler final : public ScanHook {
  public:
   Scheduler() = default;  // made by of(), which binds it to its engine
   Scheduler(const Scheduler&) = delete;
