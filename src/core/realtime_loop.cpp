@@ -61,6 +61,12 @@ uint64_t overruns_off_cpu(uint64_t missed, uint64_t on_cpu_ns, uint64_t period_n
   return missed - std::min(missed, by_work);
 }
 
+uint64_t next_on_grid(uint64_t grid_ns, uint64_t now_ns, uint64_t period_ns) {
+  if (period_ns == 0) return now_ns;
+  if (now_ns < grid_ns) return grid_ns;
+  return grid_ns + ((now_ns - grid_ns) / period_ns + 1) * period_ns;
+}
+
 RealTimeLoop::RealTimeLoop(Plc& plc, std::chrono::nanoseconds period) : plc_(plc), period_(period) {}
 
 RealTimeLoop::~RealTimeLoop() { stop(); }
@@ -132,12 +138,22 @@ std::string SharedScanThread::priority_error() {
   return priority_error_;
 }
 
+uint64_t SharedScanThread::wakeups() {
+  std::lock_guard<std::mutex> lk(mu_);
+  return wakeups_;
+}
+
 uint64_t SharedScanThread::add(Plc& plc, std::chrono::nanoseconds period, std::function<void()> after_scan,
                                int priority) {
   const uint64_t base_us = plc.locked([](ScanEngine& e, Memory&) { return e.now_us(); });
   std::lock_guard<std::mutex> lk(mu_);
-  const uint64_t p = std::max<uint64_t>(1, uint64_t(period.count())), epoch = mono_ns();
-  entries_.push_back(Entry{next_id_, &plc, p, base_us, epoch, epoch + p, std::move(after_scan)});
+  const uint64_t p = std::max<uint64_t>(1, uint64_t(period.count())), now = mono_ns();
+  if (grid_ns_ == 0) grid_ns_ = now;
+  // Cells added a few milliseconds apart (nodelets loaded one by one) would otherwise each
+  // have a phase of their own: 100 cells at 1 ms woke the thread 100 times a millisecond,
+  // and the kernel's sleep and wake-up took more of it than the scans.
+  const uint64_t next = next_on_grid(grid_ns_, now, p);
+  entries_.push_back(Entry{next_id_, &plc, p, base_us, next - p, next, std::move(after_scan)});
   if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
   if (priority > priority_) {
     sched_param sp{};
@@ -174,6 +190,7 @@ void SharedScanThread::run() {
     sleep_until_ns(due);
     const uint64_t cpu_woke = thread_cpu_ns();
     lk.lock();
+    ++wakeups_;
     uint64_t now = mono_ns();  // read again after each cell's after-scan, its time unknown
     for (Entry& e : entries_) {
       if (e.next_ns > now) continue;

@@ -5,6 +5,8 @@
 #include <pthread.h>
 #include <sched.h>
 
+#include <algorithm>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 
@@ -74,4 +76,59 @@ TEST(SharedScanThreads, RunAtTheHighestPriorityTheirPlcsAskFor) {
     EXPECT_EQ(t.priority(), 0);
     EXPECT_EQ(policy, SCHED_OTHER);
   }
+}
+
+// Deadlines on one grid: the first grid point of the period after the moment of adding.
+TEST(SharedScanThreads, TheFirstDeadlineIsTheNextPointOfTheGrid) {
+  EXPECT_EQ(next_on_grid(1000, 1000, 1000), 2000u) << "added on a grid point: the next one";
+  EXPECT_EQ(next_on_grid(1000, 1001, 1000), 2000u);
+  EXPECT_EQ(next_on_grid(1000, 1999, 1000), 2000u);
+  EXPECT_EQ(next_on_grid(1000, 2000, 1000), 3000u);
+  EXPECT_EQ(next_on_grid(1000, 5500, 1000), 6000u);
+  EXPECT_EQ(next_on_grid(1000, 5500, 10000), 11000u) << "a longer period has its own points";
+  EXPECT_EQ(next_on_grid(1000, 400, 1000), 1000u) << "before the grid: its start";
+  EXPECT_EQ(next_on_grid(1000, 5500, 0), 5500u) << "no period: now";
+}
+
+// PLCs of one period added at different moments are scanned at the same instants: the
+// thread wakes once per period for all of them, not once per PLC (which 100 nodelets
+// loaded one by one cost before: their phases were the moments they were added).
+TEST(SharedScanThreads, PlcsOfOnePeriodAddedApartShareEachWakeUp) {
+  constexpr int kPlcs = 6;
+  Plc plcs[kPlcs];
+  std::mutex mu;
+  std::condition_variable cv;
+  int first_scans = 0;
+  SharedScanThread t;  // after plcs: stopped before they go
+  const auto period = std::chrono::milliseconds(1);
+  const uint64_t first = t.add(plcs[0], period, [&] {
+    std::lock_guard<std::mutex> lk(mu);
+    ++first_scans;
+    cv.notify_all();
+  });
+  for (int i = 1; i < kPlcs; ++i) {
+    // A phase apart from the others' (much longer than a scan): the stimulus, not a wait.
+    const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(150);
+    while (std::chrono::steady_clock::now() < until) {
+    }
+    t.add(plcs[i], period, nullptr);
+  }
+  const auto scans = [&](int i) {
+    return plcs[i].locked([](ScanEngine& e, Memory&) { return e.stats().scans; });
+  };
+  const uint64_t wakeups0 = t.wakeups(), scans0 = scans(0);
+  bool enough;
+  {
+    std::unique_lock<std::mutex> lk(mu);
+    const int target = first_scans + 30;
+    enough = cv.wait_for(lk, std::chrono::seconds(20), [&] { return first_scans >= target; });
+  }
+  const uint64_t wakeups = t.wakeups() - wakeups0, scanned = scans(0) - scans0;
+  uint64_t each[kPlcs];
+  for (int i = 0; i < kPlcs; ++i) each[i] = scans(i);
+  t.remove(first);  // first_scans' owner goes at the end of this test
+  ASSERT_TRUE(enough) << "the first PLC was not scanned 30 times";
+  EXPECT_LE(wakeups, scanned + 2) << "a wake-up per PLC and period, not one per period";
+  for (int i = 1; i < kPlcs; ++i)  // each wake-up scans them all: a later one misses at most its first period
+    EXPECT_LE(each[0] - std::min(each[0], each[i]), 2u) << "PLC " << i << ": " << each[i] << " scans, the first " << each[0];
 }

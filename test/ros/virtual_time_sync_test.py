@@ -74,6 +74,11 @@ class Driver(object):
         self.start = rospy.Publisher(NODE + "/inputs_stamped/start", Signal, queue_size=100)
         rospy.wait_for_service(NODE + "/reset", TIMEOUT)
         self.reset_srv = rospy.ServiceProxy(NODE + "/reset", Trigger)
+        # The progress after a ~reset is one message: it is lost if this subscriber is not
+        # connected yet when the first reset is called.
+        deadline = time.monotonic() + TIMEOUT
+        while self.progress_sub.get_num_connections() == 0 and time.monotonic() < deadline:
+            time.sleep(0.01)  # rospy has no event for "a connection is up"
 
     def _progress(self, m):
         with self.cond:

@@ -57,10 +57,16 @@ class RealTimeLoop {
   std::vector<uint64_t> latencies_;
 };
 
+// The first deadline of a period_ns scan added at now_ns on the grid that starts at grid_ns:
+// the first grid point of that period after now. PLCs of one period added at any moments
+// are then due at the same instants.
+uint64_t next_on_grid(uint64_t grid_ns, uint64_t now_ns, uint64_t period_ns);
+
 // Many PLCs scanned by one thread, each at its own period, with the same accounting as
-// RealTimeLoop: cells in one process (plc_node nodelets) then pay one wake-up per period
-// instead of one per cell. The scans of one instant run one after the other, so a cell
-// scanned after others sees their scan time as its wake latency.
+// RealTimeLoop. Their deadlines lie on one grid (next_on_grid, from the thread's first
+// PLC): PLCs of one period are due together, so cells in one process (plc_node nodelets)
+// pay one wake-up per period instead of one per cell. The scans of one instant run one
+// after the other, so a cell scanned after others sees their scan time as its wake latency.
 class SharedScanThread {
  public:
   // The process's threads (up to kMaxThreads, each started at its first add()): the one
@@ -69,7 +75,8 @@ class SharedScanThread {
   static SharedScanThread& process(unsigned threads = 1);
   ~SharedScanThread();
 
-  // plc scanned every period from one period from now on, continuing its engine's clock;
+  // plc scanned every period from the next point of the thread's grid for that period (within one
+  // period from now), continuing its engine's clock (the first scan advances it one period);
   // after_scan after each of its scans, outside the PLC lock. Returns the handle of remove().
   // priority: the cell's SCHED_FIFO priority (1..99; 0 none). The thread runs at the highest
   // priority of the PLCs it was given, as a cell's own loop would (RealTimeLoop::set_priority);
@@ -80,6 +87,8 @@ class SharedScanThread {
   size_t scanned_plcs();
   int priority();
   std::string priority_error();
+  // How many times the thread has woken to scan (each wake-up scans every PLC then due).
+  uint64_t wakeups();
 
  private:
   struct Entry {
@@ -97,6 +106,8 @@ class SharedScanThread {
   bool stopping_ = false;
   int priority_ = 0;
   std::string priority_error_;
+  uint64_t grid_ns_ = 0;  // the deadlines' grid: the monotonic clock at the first add()
+  uint64_t wakeups_ = 0;
   std::thread thread_;
 };
 
