@@ -58,6 +58,13 @@ def msg_type(topic):
     raise AssertionError("a topic this test does not know: %s" % topic)
 
 
+def wait_connected(pub_or_sub):
+    """Until it has a connection, at most TIMEOUT: rospy has no event for "a connection is up"."""
+    deadline = time.monotonic() + TIMEOUT
+    while pub_or_sub.get_num_connections() == 0 and time.monotonic() < deadline:
+        time.sleep(0.01)
+
+
 class Driver(object):
     """Counts the messages of every topic stamped at or after t0, and keeps the latest."""
 
@@ -76,9 +83,7 @@ class Driver(object):
         self.reset_srv = rospy.ServiceProxy(NODE + "/reset", Trigger)
         # The progress after a ~reset is one message: it is lost if this subscriber is not
         # connected yet when the first reset is called.
-        deadline = time.monotonic() + TIMEOUT
-        while self.progress_sub.get_num_connections() == 0 and time.monotonic() < deadline:
-            time.sleep(0.01)  # rospy has no event for "a connection is up"
+        wait_connected(self.progress_sub)
 
     def _progress(self, m):
         with self.cond:
@@ -99,9 +104,7 @@ class Driver(object):
             if mt is not None and t not in self.subs:
                 self.subs[t] = rospy.Subscriber(t, mt, self._msg, t, queue_size=10000)
         for pub_or_sub in list(self.subs.values()) + [self.progress_sub, self.clock, self.start]:
-            deadline = time.monotonic() + TIMEOUT
-            while pub_or_sub.get_num_connections() == 0 and time.monotonic() < deadline:
-                time.sleep(0.01)  # rospy has no event for "a connection is up"
+            wait_connected(pub_or_sub)
 
     def wait(self, pred):
         return wait_until(self.cond, pred, TIMEOUT)
