@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "plc_cell/core/image_loop.h"
+
 namespace plc_cell {
 
 ScanEngine::ScanEngine(Memory& mem, const FunctionTable& functions)
@@ -96,11 +98,12 @@ void ScanEngine::remove_hook(ScanHook* h) {
 }
 
 void ScanEngine::update_special_relays() {
-  // Clock pulses with 50 % duty: on for the second half of each period.
-  mem_.set_bit(Area::M, special::kClock10ms, (now_us_ % 10000) >= 5000);
-  mem_.set_bit(Area::M, special::kClock100ms, (now_us_ % 100000) >= 50000);
-  mem_.set_bit(Area::M, special::kClock1s, (now_us_ % 1000000) >= 500000);
-  mem_.set_bit(Area::M, special::kClock1min, (now_us_ % 60000000) >= 30000000);
+  // Clock pulses with 50 % duty: on for the second half of each period, that is in the
+  // odd half periods ((t mod P) >= P/2 is (t / (P/2)) odd: one division, not two).
+  mem_.set_bit(Area::M, special::kClock10ms, (now_us_ / 5000) & 1);
+  mem_.set_bit(Area::M, special::kClock100ms, (now_us_ / 50000) & 1);
+  mem_.set_bit(Area::M, special::kClock1s, (now_us_ / 500000) & 1);
+  mem_.set_bit(Area::M, special::kClock1min, (now_us_ / 30000000) & 1);
   mem_.set_bit(Area::M, special::kFirstScan, first_scan_);
   mem_.set_bit(Area::M, special::kAlwaysOn, true);
 }
@@ -110,18 +113,23 @@ void ScanEngine::fault_stop(const std::string& why) {
   set_mode(RunMode::Stop);
 }
 
+namespace {
+// Memory::set_bit for each input, as arithmetic the compiler vectorises (a fixed cost of
+// every scan): a disabled (forced) point keeps its byte.
+PLC_CELL_IMAGE_LOOP void take_input_image(uint8_t* __restrict x_bits, const uint8_t* __restrict inputs) {
+  for (uint32_t x = 0; x < 256; ++x) {
+    const uint8_t keep = (x_bits[x] & kBitDisabled) ? 0xFF : 0;
+    x_bits[x] = static_cast<uint8_t>((x_bits[x] & keep) | (inputs[x] & ~keep));
+  }
+}
+}  // namespace
+
 void ScanEngine::scan(uint64_t now_us) {
   const uint32_t dt = have_time_ && now_us > now_us_ ? static_cast<uint32_t>(std::min<uint64_t>(now_us - now_us_, UINT32_MAX)) : 0;
   have_time_ = true;
   now_us_ = now_us;
   for (auto* h : before_inputs_) h->before_inputs(now_us);
-  // Memory::set_bit for each input, as arithmetic the compiler vectorises (a fixed cost of
-  // every scan): a disabled (forced) point keeps its byte.
-  uint8_t* const x_bits = mem_.bits(Area::X);
-  for (uint32_t x = 0; x < 256; ++x) {
-    const uint8_t keep = static_cast<uint8_t>(-((x_bits[x] & kBitDisabled) >> 1));  // 0xFF if disabled
-    x_bits[x] = static_cast<uint8_t>((x_bits[x] & keep) | (inputs_[x] & ~keep));
-  }
+  take_input_image(mem_.bits(Area::X), inputs_.data());
   ++stats_.scans;
   if (mode_ != RunMode::Run) return;
   update_special_relays();

@@ -61,10 +61,10 @@ void HstaTimer::write_chip(bool pv) {
 }
 
 int TimeBaseInterrupt::active() const {
-  const uint16_t mask = ctx_.mem.reg(Area::R, kTimeBaseMask);
-  for (int i = 0; i < 8; ++i)
-    if (!((mask >> i) & 1) && ctx_.irq().present(irq::kTimeBase0 + i)) return i;  // the smallest unmasked
-  return -1;
+  const uint32_t mask = ctx_.mem.reg(Area::R, kTimeBaseMask);
+  const uint32_t routines = static_cast<uint32_t>(ctx_.irq().present_mask() >> irq::kTimeBase0) & 0xFF;
+  const uint32_t unmasked = routines & ~mask;
+  return unmasked ? __builtin_ctz(unmasked) : -1;  // the smallest unmasked
 }
 
 uint64_t TimeBaseInterrupt::next_event_ns() {

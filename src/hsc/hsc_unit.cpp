@@ -72,14 +72,19 @@ void HscUnit::compose() {
   }
   for (int n = 0; n < 8; ++n) {
     const CounterDef& d = cfg_.counters[n];
-    if (d.used) parts_.push_back(d.timer ? static_cast<Component*>(&timers_[n]) : &counters_[n]);
-    if (d.used && !d.timer) scanned_.push_back(&counters_[n]);
+    if (!d.used) continue;
+    if (d.timer) {
+      add_part(&timers_[n]);
+    } else {
+      add_part(&counters_[n]);
+      scanned_.push_back(&counters_[n]);
+    }
   }
-  parts_.push_back(&hsta_);
-  parts_.push_back(&time_base_);
-  if (!cfg_.edge_interrupts.empty()) parts_.push_back(&edge_irq_);
-  for (auto& m : meters_) parts_.push_back(&m);
-  parts_.push_back(&terminal_);
+  add_part(&hsta_);
+  add_part(&time_base_);
+  if (!cfg_.edge_interrupts.empty()) add_part(&edge_irq_);
+  for (auto& m : meters_) add_part(&m);
+  add_part(&terminal_);
 }
 
 // Which source drives each counter's counting inputs (again after attach_source).
@@ -130,7 +135,7 @@ void HscUnit::start(uint64_t t) {
 void HscUnit::stop() { refresh_outputs(0, OutputImage::kOutputs); }
 
 void HscUnit::settle() {
-  for (Component* p : parts_) p->settle();
+  for (Component* p : settling_) p->settle();
 }
 
 uint64_t HscUnit::next_event_ns() {
@@ -140,7 +145,7 @@ uint64_t HscUnit::next_event_ns() {
 }
 
 void HscUnit::advance_to(uint64_t t) {
-  for (Component* p : parts_) p->advance_to(t);
+  for (Component* p : advancing_) p->advance_to(t);
 }
 
 void HscUnit::at(uint64_t t) {
@@ -177,8 +182,7 @@ void HscUnit::add_pulse_train(int x, uint64_t period_ns, uint64_t width_ns, uint
 void HscUnit::before_inputs(uint64_t) {
   if (!running()) return;  // the scheduler's hook, before this one, has brought the clock to now
   // Levels that the simulation or a ROS topic set since the last scan change now.
-  uint8_t terminals[16];
-  for (int x = 0; x < 16; ++x) terminals[x] = ctx_.engine.input(x) ? 1 : 0;
+  const uint8_t* const terminals = ctx_.engine.inputs();
   for (uint16_t c = pins_.undriven_changes(terminals); c != 0; c = static_cast<uint16_t>(c & (c - 1))) {
     const int x = __builtin_ctz(c);
     terminal_.external(x, terminals[x] != 0);

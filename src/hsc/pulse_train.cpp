@@ -4,11 +4,7 @@ namespace plc_cell {
 namespace hsc {
 
 // Rising at delay + k*period, falling width later.
-uint64_t PulseTrain::next_after(uint64_t t, bool* rising) const {
-  if (t >= asked && t < edge) {
-    *rising = edge_rising;
-    return edge;
-  }
+uint64_t PulseTrain::find_next_after(uint64_t t, bool* rising) const {
   asked = t;
   edge = next_edge(t, &edge_rising);
   *rising = edge_rising;

@@ -29,6 +29,7 @@ void AxisWiring::attach() {
       attach(AxisSignal::pins(d.name + ".pins", ax, d.mode, d.polarity, d.stepspeed.used), d.wired[0], d.wired[1],
              d.wiring_line);
       pins_[n] = signals_.back().get();
+      any_pins_ = true;
       if (hsc_) {  // the pulse generator drives these pins, not the Y relays
         hsc_->own_output(static_cast<uint32_t>(2 * n));
         hsc_->own_output(static_cast<uint32_t>(2 * n + 1));
@@ -53,9 +54,10 @@ void AxisWiring::detach() {
   }
   signals_.clear();
   pins_.fill(nullptr);
+  any_pins_ = false;
 }
 
-void AxisWiring::write_pins(uint64_t t) const {
+void AxisWiring::write_owned_pins(uint64_t t) const {
   for (int n = 0; n < kAxes; ++n) {
     if (!pins_[n]) continue;
     const PinLevels l = pins_[n]->levels(t);

@@ -13,8 +13,6 @@ namespace plc_cell {
 namespace motion {
 
 namespace {
-constexpr uint32_t kGroupDoneRelay = 1934; // M1934+gp: the group finished its last step
-constexpr uint32_t kVectorReg = 4068;      // DR4068+2gp: vector speed (R4068..R4071)
 constexpr uint32_t kGroupErrReg = 4060;    // D4060+gp
 constexpr uint32_t kGroupStepReg = 4062;   // D4062+gp
 using flow::kTimeUnitNs;
@@ -366,12 +364,22 @@ double Interpolation::vector_speed(int gp, uint64_t t) const {
 }
 
 void Interpolation::write_status(uint64_t t) {
+  const bool idle = groups_.empty();  // then the speeds are 0
+  // Element by element: std::array's == calls memcmp, a call for two bytes.
+  if (idle && finished_[0] == written_finished_[0] && finished_[1] == written_finished_[1] && written_.holds(mem_))
+    return;
   for (int gp = 0; gp < 2; ++gp) {
     const double speed = vector_speed(gp, t);  // 0 without a moving group: no rounding to do
     const uint32_t v = speed == 0 ? 0 : static_cast<uint32_t>(std::llround(speed));
     mem_.set_reg(Area::R, kVectorReg + 2 * gp, static_cast<uint16_t>(v & 0xFFFF));
     mem_.set_reg(Area::R, kVectorReg + 2 * gp + 1, static_cast<uint16_t>(v >> 16));
     mem_.set_bit(Area::M, kGroupDoneRelay + gp, finished_[gp]);
+  }
+  if (idle) {
+    written_finished_ = finished_;
+    written_.take(mem_);
+  } else {
+    written_.forget();
   }
 }
 

@@ -46,12 +46,21 @@ MotionUnit* MotionUnit::of(ScanEngine* engine) { return engine ? engine->extensi
 void MotionUnit::attached(ScanEngine& e) { e.extensions().attach(this); }
 void MotionUnit::detached(ScanEngine& e) { e.extensions().detach(this); }
 
+bool MotionUnit::find_quiet() const {
+  if (wired_) return false;
+  for (const AxisState& a : axes_)
+    if (a.axis.moving()) return false;
+  return positioning_.idle() && interp_->idle() && mpg_->idle();
+}
+
 uint64_t MotionUnit::next_event_ns() {
+  if (quiet()) return kNever;
   return std::min({positioning_.next_event_ns(), interp_->next_event_ns(), mpg_->next_event_ns()});
 }
 
 void MotionUnit::at(uint64_t t) {
   if (next_event_ns() > t) return;  // another subsystem's instant
+  touch();
   status_.adopt_ladder_positions();
   advance(t);
   write_status(t);  // the routines of this instant read its position, frequency, ...
@@ -63,6 +72,17 @@ void MotionUnit::before_program(uint64_t now_us) {
     preloaded_ = true;
     preload_tables(mem_, cfg_);
   }
+  if (quiet()) {  // what advance, the unit's tables, the pins and the switches come to then
+    now_ns_ = std::max(now_ns_, t);
+    // FUN147's block the same way: its done relays change only through the unit.
+    if (revision_ != interp_revision_ || !interp_->status_holds()) {
+      interp_->write_status(t);
+      interp_revision_ = revision_;
+    }
+    write_quiet_status(t);
+    return;
+  }
+  touch();
   status_.adopt_ladder_positions();
   advance(t);
   positioning_.run_unit_programs(now_us);
@@ -70,9 +90,26 @@ void MotionUnit::before_program(uint64_t now_us) {
   switches_.write(t);
 }
 
-void MotionUnit::after_program(uint64_t now_us) { write_status(now_us * 1000); }
+void MotionUnit::after_program(uint64_t now_us) {
+  const uint64_t t = now_us * 1000;
+  if (quiet()) {
+    write_quiet_status(t);
+    return;
+  }
+  // A ladder write of DR4088 in this scan sets an idle axis's position before the status
+  // is written over it (homing by ladder: the manual's methods 1 and 2 write 0 there).
+  if (status_.adopt_ladder_positions()) touch();
+  write_status(t);
+}
+
+void MotionUnit::rewrite_quiet_status(uint64_t t) {
+  if (status_.adopt_ladder_positions()) touch();
+  write_status(t);
+  status_revision_ = revision_;
+}
 
 void MotionUnit::on_stop() {
+  touch();
   preloaded_ = false;
   for (auto& a : axes_) {
     a.axis.cut(now_ns_);
@@ -91,15 +128,20 @@ void MotionUnit::advance(uint64_t t) {
 }
 
 void MotionUnit::configure(const AxesConfig& cfg) {
+  touch();
   wiring_.detach();
+  wired_ = true;  // until the new wiring is known: a failed attach leaves the full scan path
   cfg_ = cfg;
   // The YAML's parameters configure the axis from the start: a move through ROS, FUN147
   // or FUN148 ramps with them before (or without) any ladder MPARA.
   for (int n = 0; n < kAxes; ++n) axes_[n].params = cfg_.axes[n].has_params ? cfg_.axes[n].params : AxisParams();
   wiring_.attach();
+  wired_ = false;
+  for (int n = 0; n < kAxes; ++n) wired_ = wired_ || wiring_.pins(n) || !cfg_.axes[n].switches.empty();
 }
 
 bool MotionUnit::fun141(int ps, const Address& sr) {
+  touch();
   if (ps < 0 || ps >= kAxes) return false;
   if (sr.index + kParamWords > Memory::word_count(sr.area)) return false;
   const AxisParams p = AxisParams::from_registers(mem_.words(sr.area) + sr.index);
@@ -113,6 +155,7 @@ bool MotionUnit::fun141(int ps, const Address& sr) {
 }
 
 void MotionUnit::fun142(int ps, uint64_t now_us) {
+  touch();
   if (ps < 0 || ps >= kAxes) return;
   const uint64_t t = now_us * 1000;
   positioning_.psoff(ps, t);

@@ -112,6 +112,12 @@ uint64_t Mpg::next_event_ns() const {
   return next;
 }
 
+bool Mpg::holding() const {
+  for (const auto& kv : st_)
+    if (kv.second.holding) return true;
+  return false;
+}
+
 void Mpg::advance(uint64_t t) {
   for (auto& kv : st_) {
     State& s = kv.second;

@@ -157,7 +157,9 @@ void Rtc::publish() {
   r[rtcreg::kDay] = static_cast<uint16_t>(t.day);
   r[rtcreg::kMonth] = static_cast<uint16_t>(t.month);
   r[rtcreg::kYear] = static_cast<uint16_t>(t.year - 2000);
-  r[rtcreg::kWeek] = static_cast<uint16_t>((calendar_weekday_ + week_offset_) % 7);  // week()
+  // week(): both terms are 0-6, so one subtraction does the modulo (no division a scan).
+  const int week = calendar_weekday_ + week_offset_;
+  r[rtcreg::kWeek] = static_cast<uint16_t>(week >= 7 ? week - 7 : week);
   r[rtcreg::kHourMinute] = static_cast<uint16_t>(t.hour << 8 | t.minute);
 }
 

@@ -11,12 +11,14 @@ InterruptController::InterruptController() {
 }
 
 void InterruptController::bind(const Program& program) {
+  present_ = 0;
   for (int s = 0; s < kSourceCount; ++s) {
     label_[s].clear();
     for (const auto& l : source_labels(s)) {
       auto it = program.labels.find(l);
       if (it != program.labels.end() && it->second >= program.main_end) {
         label_[s] = l;
+        present_ |= uint64_t(1) << s;
         break;
       }
     }
@@ -32,7 +34,7 @@ void InterruptController::reset() {
 }
 
 void InterruptController::request(int s) {
-  if (label_[s].empty() || !enabled_[s] || failed_) return;
+  if (!present(s) || !enabled_[s] || failed_) return;
   if (!pending_[s]) {
     pending_[s] = true;  // a second request before it runs is the same request
     ++pending_count_;

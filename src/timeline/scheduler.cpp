@@ -24,13 +24,15 @@ Scheduler* Scheduler::find(ScanEngine* engine) {
   return s && s->engine_ ? s : nullptr;
 }
 
-void Scheduler::add_source(EventSource* s) {
+void Scheduler::add_source(EventSource* s, unsigned steps) {
   sources_.push_back(s);
+  if (steps & EventSource::kSettles) settling_.push_back(s);
+  if (steps & EventSource::kAdvances) advancing_.push_back(s);
   if (running_) s->start(now_ns_);
 }
 
 void Scheduler::remove_source(EventSource* s) {
-  sources_.erase(std::remove(sources_.begin(), sources_.end(), s), sources_.end());
+  for (auto* list : {&sources_, &settling_, &advancing_}) list->erase(std::remove(list->begin(), list->end(), s), list->end());
 }
 
 void Scheduler::start(uint64_t t) {
@@ -45,7 +47,7 @@ void Scheduler::start(uint64_t t) {
 void Scheduler::advance(uint64_t to) {
   while (running_) {
     in_instant_ = true;
-    for (EventSource* s : sources_) s->settle();
+    for (EventSource* s : settling_) s->settle();
     in_instant_ = false;
     if (!requested_.empty()) {  // e.g. a CV=PV reached by a source's jump interrupts at its instant
       dispatch();
@@ -54,7 +56,7 @@ void Scheduler::advance(uint64_t to) {
     uint64_t due = EventSource::kNever;
     for (EventSource* s : sources_) due = std::min(due, std::max(s->next_event_ns(), now_ns_));
     const uint64_t t = std::min(to, due);
-    for (EventSource* s : sources_) s->advance_to(t);
+    for (EventSource* s : advancing_) s->advance_to(t);
     now_ns_ = t;
     // Most scans fall between events: at `to` no source has anything to do (EventSource::at)
     // and no request waits (dispatch drains them all), so the instant ends here.

@@ -90,6 +90,7 @@ class ScanEngine {
   // The input terminals: what the cell or its simulation presents on X0..X255.
   void set_input(uint32_t x, bool v) { inputs_[x] = v; }
   bool input(uint32_t x) const { return inputs_[x]; }
+  const uint8_t* inputs() const { return inputs_.data(); }  // 256 bytes, 0 or 1 each
 
   // One scan at time now_us (microseconds on the engine's clock, virtual or steady).
   void scan(uint64_t now_us);

@@ -9,6 +9,7 @@
 // interrupt requests and match observers see the same sequence at one instant.
 #include <array>
 #include <cstdint>
+#include <type_traits>
 
 #include "plc_cell/timeline/event_source.h"
 
@@ -35,6 +36,20 @@ class Component {
   // ---- the scan ----
   virtual void before_inputs() {}
   virtual void after_program() {}
+
+  // The scheduler's optional steps a part of type T has code for (as
+  // EventSource::steps_of): the unit calls settle and advance_to only on those parts.
+  template <class T>
+  static constexpr unsigned steps_of() {
+    using timeline::EventSource;
+    if constexpr (!std::is_final<T>::value) {
+      return EventSource::kEveryStep;
+    } else {
+      return (std::is_same<decltype(&T::settle), void (Component::*)()>::value ? 0u : EventSource::kSettles) |
+             (std::is_same<decltype(&T::advance_to), void (Component::*)(uint64_t)>::value ? 0u
+                                                                                           : EventSource::kAdvances);
+    }
+  }
 };
 
 }  // namespace hsc

@@ -13,7 +13,7 @@
 namespace plc_cell {
 namespace hsc {
 
-class EdgeInterrupts : public Component {
+class EdgeInterrupts final : public Component {
  public:
   // edges: 2*x + (falling ? 1 : 0), as HscConfig::edge_interrupts.
   EdgeInterrupts(UnitContext& ctx, const InputPins& pins, std::vector<int> edges);

@@ -21,7 +21,7 @@ struct TimerState {
   void restart(uint64_t t_ns) { *this = TimerState{0, 0, t_ns}; }
 };
 
-class HsTimer : public Component {
+class HsTimer final : public Component {
  public:
   HsTimer(UnitContext& ctx, int n) : ctx_(ctx), n_(n) {}
 
@@ -41,7 +41,7 @@ class HsTimer : public Component {
   uint64_t match_ = kNever;
 };
 
-class HstaTimer : public Component {
+class HstaTimer final : public Component {
  public:
   explicit HstaTimer(UnitContext& ctx) : ctx_(ctx) {}
 
@@ -60,7 +60,7 @@ class HstaTimer : public Component {
 
 // The time-base interrupts 1MSI ... 100MSI: the smallest one present and not masked in
 // R4162 ticks from RUN.
-class TimeBaseInterrupt : public Component {
+class TimeBaseInterrupt final : public Component {
  public:
   explicit TimeBaseInterrupt(UnitContext& ctx) : ctx_(ctx) {}
 

@@ -19,7 +19,7 @@ namespace hsc {
 
 int counter_source(int n);  // HSC0I ... HSC7I
 
-class HscCounter : public Component {
+class HscCounter final : public Component {
  public:
   HscCounter(UnitContext& ctx, const InputPins& pins, int n, const CounterDef& def, uint64_t window_us);
 

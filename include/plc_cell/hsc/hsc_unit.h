@@ -130,6 +130,12 @@ class HscUnit final : public ScanHook, public timeline::EventSource {
   bool running() const { return ctx_.running(); }
   void bind_counters();
   void compose();
+  template <class T>
+  void add_part(T* p) {
+    parts_.push_back(p);
+    if (Component::steps_of<T>() & timeline::EventSource::kSettles) settling_.push_back(p);
+    if (Component::steps_of<T>() & timeline::EventSource::kAdvances) advancing_.push_back(p);
+  }
   void act(uint64_t t, const std::vector<std::pair<int, bool>>& group);  // explicit edges at t
   void refresh_outputs(uint32_t first, uint32_t n) { outputs_.refresh(first, n, now()); }
 
@@ -149,6 +155,8 @@ class HscUnit final : public ScanHook, public timeline::EventSource {
   std::array<int, 16> meter_of_{};    // index in meters_ of input x, -1: not measured
   std::vector<std::pair<int, ScanDebounce>> scan_filters_;  // the filtered ones of X16-X35
   std::vector<Component*> parts_;     // the configured parts, in the order they act
+  // Those with code for settle / advance_to (Component::steps_of), in the same order.
+  std::vector<Component*> settling_, advancing_;
   std::vector<Component*> scanned_;   // those with work at the scans: the counters
 };
 

@@ -13,7 +13,7 @@
 namespace plc_cell {
 namespace hsc {
 
-class MeasuredInput : public Component {
+class MeasuredInput final : public Component {
  public:
   MeasuredInput(UnitContext& ctx, const InputPins& pins, int x, uint64_t timeout_ns)
       : ctx_(ctx), pins_(pins), x_(x), meter_(timeout_ns) {}

@@ -12,7 +12,14 @@ struct PulseTrain {
   uint64_t period, width, delay;
 
   // First edge strictly after t; *rising tells which.
-  uint64_t next_after(uint64_t t, bool* rising) const;
+  uint64_t next_after(uint64_t t, bool* rising) const {
+    if (t >= asked && t < edge) {  // most scans: no call
+      *rising = edge_rising;
+      return edge;
+    }
+    return find_next_after(t, rising);
+  }
+  uint64_t find_next_after(uint64_t t, bool* rising) const;
   uint64_t next_edge(uint64_t t, bool* rising) const;  // the same, computed
   bool level_at(uint64_t t) const { return t >= delay && (t - delay) % period < width; }
 

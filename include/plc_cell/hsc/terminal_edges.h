@@ -17,7 +17,7 @@
 namespace plc_cell {
 namespace hsc {
 
-class TerminalEdges : public Component {
+class TerminalEdges final : public Component {
  public:
   TerminalEdges(UnitContext& ctx, InputPins& pins) : ctx_(ctx), pins_(pins) {}
 

@@ -33,17 +33,22 @@ class AxisWiring {
   void attach();
   void detach();
   // The Y image of the owned pins shows their level at t.
-  void write_pins(uint64_t t) const;
+  void write_pins(uint64_t t) const {
+    if (any_pins_) write_owned_pins(t);  // most cells have none: twice a scan, no call
+  }
   const AxisSignal* pins(int ps) const { return pins_[ps]; }
   hsc::HscUnit* counters() const { return hsc_; }
 
  private:
+  void write_owned_pins(uint64_t t) const;
+
   const AxesConfig& cfg_;
   const AxisStates& axes_;
   Memory& mem_;
   hsc::HscUnit* hsc_;  // the counters' unit (pins, encoders), if any
   std::vector<std::unique_ptr<AxisSignal>> signals_;  // owned; the counters hold pointers
   std::array<const AxisSignal*, kAxes> pins_{};
+  bool any_pins_ = false;
 };
 
 }  // namespace motion

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "plc_cell/core/address.h"
+#include "plc_cell/core/status_block.h"
 #include "plc_cell/motion/axis.h"
 #include "plc_cell/motion/lin_table.h"
 #include "plc_cell/motion/profile.h"
@@ -42,6 +43,9 @@ class Interpolation {
   uint64_t next_event_ns() const;
   void write_status(uint64_t t);  // M1934/M1935, DR4068/DR4070, D4062/D4063
   void on_stop();
+  bool idle() const { return groups_.empty(); }  // no FUN147 group to advance
+  // The status block holds what the last write with no group left there.
+  bool status_holds() const { return written_.holds(mem_); }
   // FUN142 PSOFF on axis ps: the group driving it stops as on EN off (M1991 decides how).
   void psoff(int ps, uint64_t t);
 
@@ -92,6 +96,11 @@ class Interpolation {
   Memory& mem_;
   std::map<uint32_t, Group> groups_;  // by FUN147 instance
   std::array<bool, 2> finished_{};    // M1934 / M1935
+  // The block as last written with no group: skipped while it still holds (status_block.h).
+  static constexpr uint32_t kVectorReg = 4068;       // DR4068+2gp: vector speed (R4068..R4071)
+  static constexpr uint32_t kGroupDoneRelay = 1934;  // M1934+gp: the group finished its last step
+  StatusBlock<4, 2> written_{Area::R, kVectorReg, Area::M, kGroupDoneRelay};
+  std::array<bool, 2> written_finished_{};
   std::vector<StepObserver> obs_;
 };
 

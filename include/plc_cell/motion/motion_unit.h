@@ -74,7 +74,10 @@ class MotionUnit final : public ScanHook, public timeline::EventSource {
   void at(uint64_t t_ns) override;
 
   // ---- instructions (lock held) ----
-  Fun140Outputs fun140(const Fun140Call& c, uint64_t now_us) { return positioning_.fun140(c, now_us); }
+  Fun140Outputs fun140(const Fun140Call& c, uint64_t now_us) {
+    touch();
+    return positioning_.fun140(c, now_us);
+  }
   bool fun141(int ps, const Address& sr);  // false: invalid, code in R4060+ps
   void fun142(int ps, uint64_t now_us);    // PSOFF: stop the output (M1991 decides how)
   int64_t fun143(int ps) const;            // PSCNV: position in Ut
@@ -82,10 +85,16 @@ class MotionUnit final : public ScanHook, public timeline::EventSource {
   // ---- control without a ladder FUN140 (ROS services and actions; lock held) ----
   // A table run by the unit itself on axis ps, as if by a FUN140 whose EN/PAU/ABT
   // are the commands below. False (with *why) if a ladder FUN140 holds the axis.
-  bool load_table(int ps, const Table& t, std::string* why) { return positioning_.load_table(ps, t, why); }
+  bool load_table(int ps, const Table& t, std::string* why) {
+    touch();
+    return positioning_.load_table(ps, t, why);
+  }
   using Command = ProgramCommand;
   // Abort decelerates to P5 whatever M1991 says (an operator's stop).
-  bool command(int ps, Command c, std::string* why) { return positioning_.command(ps, c, why); }
+  bool command(int ps, Command c, std::string* why) {
+    touch();
+    return positioning_.command(ps, c, why);
+  }
   bool has_table(int ps) const { return positioning_.has_table(ps); }
   // State of the unit-run program: running, done (last step finished), error code.
   bool program_running(int ps) const { return positioning_.program_running(ps); }
@@ -101,7 +110,10 @@ class MotionUnit final : public ScanHook, public timeline::EventSource {
   // ---- observation and control (lock held) ----
   const Axis& axis(int ps) const { return axes_[ps].axis; }
   const AxisParams& params(int ps) const { return axes_[ps].params; }
-  void set_params(int ps, const AxisParams& p) { axes_[ps].params = p; }
+  void set_params(int ps, const AxisParams& p) {
+    touch();
+    axes_[ps].params = p;
+  }
   int64_t position(int ps) const { return axes_[ps].axis.position(now_ns_); }
   double frequency(int ps) const { return axes_[ps].axis.frequency(now_ns_); }
   int step(int ps) const { return positioning_.step(ps); }  // step being run (WR+0), 0 if none
@@ -110,15 +122,31 @@ class MotionUnit final : public ScanHook, public timeline::EventSource {
   int error(int ps) const;           // R4060+ps
   uint64_t now_ns() const { return now_ns_; }
   // ---- FUN147 / FUN148 (interpolation.h, mpg.h): they hold axes as a FUN140 does ----
-  Interpolation& interpolation() { return *interp_; }
-  Mpg& mpg() { return *mpg_; }
+  Interpolation& interpolation() {
+    touch();
+    return *interp_;
+  }
+  Mpg& mpg() {
+    touch();
+    return *mpg_;
+  }
   uint32_t owner(int ps) const { return axes_[ps].owner; }  // kFree (UINT32_MAX): free (M1992+ps on)
-  void take_axis(int ps, uint32_t owner) { axes_[ps].owner = owner; }
+  void take_axis(int ps, uint32_t owner) {
+    touch();
+    axes_[ps].owner = owner;
+  }
   void release_axis(int ps, uint32_t owner) {
+    touch();
     if (axes_[ps].owner == owner) axes_[ps].owner = kFree;
   }
-  Axis& drive(int ps) { return axes_[ps].axis; }
-  void set_rest(int ps, int64_t rest) { axes_[ps].rest = rest; }  // DR4072 while idle
+  Axis& drive(int ps) {
+    touch();
+    return axes_[ps].axis;
+  }
+  void set_rest(int ps, int64_t rest) {  // DR4072 while idle
+    touch();
+    axes_[ps].rest = rest;
+  }
   // Every step completion, with its exact instant (tests, ROS feedback).
   using StepObserver = std::function<void(int ps, int step, uint64_t t_ns)>;
   void on_step_done(StepObserver f) { positioning_.on_step_done(std::move(f)); }
@@ -130,6 +158,29 @@ class MotionUnit final : public ScanHook, public timeline::EventSource {
  private:
   void advance(uint64_t t);
   void write_status(uint64_t t) { status_.write(t); }
+  // Nothing to advance between scans or at a scan: no program, group or handwheel holds
+  // an axis, no axis moves, and no pin or switch follows one. Most cells, most scans.
+  // Kept for the revision it was found at.
+  bool quiet() const {
+    if (quiet_revision_ != revision_) {
+      quiet_ = find_quiet();
+      quiet_revision_ = revision_;
+    }
+    return quiet_;
+  }
+  bool find_quiet() const;
+  // Every member that may change an axis, a program, a group or a handwheel counts
+  // one: a quiet unit whose revision stands still has the state it had at its last
+  // status write, so while the status block holds what was written, that write stands
+  // (docs/motion.md "Status").
+  void touch() { ++revision_; }
+  // The status of a quiet unit, written only if its revision or the block changed.
+  void write_quiet_status(uint64_t t) {
+    // The block as written at this revision: DR4088 holds what was written, so there is
+    // no ladder position to adopt, and the status would be written again unchanged.
+    if (revision_ != status_revision_ || !status_.holds()) rewrite_quiet_status(t);
+  }
+  void rewrite_quiet_status(uint64_t t);
 
   Plc& plc_;
   ScanEngine& engine_;
@@ -139,6 +190,12 @@ class MotionUnit final : public ScanHook, public timeline::EventSource {
   AxesConfig cfg_;
   uint64_t now_ns_ = 0;
   bool preloaded_ = false;  // the YAML's tables written since RUN
+  bool wired_ = false;      // the YAML gives some axis pins or switches
+  uint64_t revision_ = 0;
+  mutable uint64_t quiet_revision_ = UINT64_MAX;  // quiet_ was found at this revision
+  mutable bool quiet_ = false;
+  uint64_t status_revision_ = UINT64_MAX;  // the last status written while quiet
+  uint64_t interp_revision_ = UINT64_MAX;  // the last FUN147 status written while quiet
   AxisStates axes_;
   Ramps ramps_{cfg_, axes_, mem_};
   Switches switches_{cfg_, axes_, mem_};

@@ -39,6 +39,7 @@ class Mpg {
   void advance(uint64_t t);                         // frees an axis whose MPG output has ended
   uint64_t next_event_ns() const;
   void on_stop() { st_.clear(); }
+  bool idle() const { return st_.empty() || !holding(); }  // no FUN148 output holds an axis
   // FUN142 PSOFF on axis ps: an MPG output on it stops (M1991: decelerating to P5) and
   // its undelivered input is dropped.
   void psoff(int ps, uint64_t t);
@@ -51,6 +52,7 @@ class Mpg {
     int ps = -1;
     bool holding = false;
   };
+  bool holding() const;
   uint32_t owner(uint32_t instance) const { return 0x20000000u | instance; }
   uint32_t counter_value(int sc) const;
   void output(State& s, const Fun148Call& c, int64_t pulses, uint64_t t);

@@ -53,6 +53,7 @@ class Positioning {
   void advance(uint64_t t);  // every program, event by event
   uint64_t next_event_ns() const;
   void on_stop() { programs_.clear(); }
+  bool idle() const { return programs_.empty(); }  // no FUN140 or unit-run table to advance
 
   // ---- a table run without a ladder FUN140 (unit_programs.cpp) ----
   bool load_table(int ps, const Table& t, std::string* why);

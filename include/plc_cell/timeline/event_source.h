@@ -3,6 +3,7 @@
 // and input edges; the pulse axes' step ends): the scheduler (scheduler.h) asks each for
 // its next instant, moves the cell's clock to the earliest, and lets each act there.
 #include <cstdint>
+#include <type_traits>
 
 namespace plc_cell {
 namespace timeline {
@@ -28,6 +29,20 @@ class EventSource {
   // At the chosen instant t, in registration order: act if something of this source
   // falls there. Interrupt requests made here are dispatched together after all acted.
   virtual void at(uint64_t t_ns) = 0;
+
+  // Which of the optional steps a source of type T has code for, as ScanHook::phases_of
+  // reads a hook's phases: a step T does not declare is EventSource's empty one, and the
+  // scheduler does not call it at every scan. Only a final T is read this way.
+  enum Step : unsigned { kSettles = 1u, kAdvances = 2u, kEveryStep = 3u };
+  template <class T>
+  static constexpr unsigned steps_of() {
+    if constexpr (!std::is_final<T>::value) {
+      return kEveryStep;
+    } else {
+      return (std::is_same<decltype(&T::settle), void (EventSource::*)()>::value ? 0u : kSettles) |
+             (std::is_same<decltype(&T::advance_to), void (EventSource::*)(uint64_t)>::value ? 0u : kAdvances);
+    }
+  }
 };
 
 }  // namespace timeline

@@ -30,7 +30,9 @@ class InterruptController {
 
   // Which routines the program has (and under which label), from its labels.
   void bind(const Program& program);
-  bool present(int s) const { return !label_[s].empty(); }
+  bool present(int s) const { return (present_ >> s) & 1; }
+  // Bit s set: the program has a routine for source s (a scan asks for several at once).
+  uint64_t present_mask() const { return present_; }
   const std::string& label(int s) const { return label_[s]; }
 
   void set_priority(int s, int p) { priority_[s] = p; }
@@ -54,6 +56,8 @@ class InterruptController {
 
  private:
   std::array<std::string, kSourceCount> label_{};
+  uint64_t present_ = 0;
+  static_assert(kSourceCount <= 64, "present_ has a bit per source");
   std::array<int, kSourceCount> priority_{};
   std::array<bool, kSourceCount> enabled_{};
   std::array<bool, kSourceCount> pending_{};

@@ -37,7 +37,11 @@ class Scheduler final : public ScanHook {
   static Scheduler* find(ScanEngine* engine);
 
   // Sources act at an instant in the order they were added.
-  void add_source(EventSource* s);
+  template <class T>
+  void add_source(T* s) {
+    add_source(s, EventSource::steps_of<T>());
+  }
+  void add_source(EventSource* s, unsigned steps);
   void remove_source(EventSource* s);
 
   // Runs the event loop up to to_ns (inclusive). Does nothing unless running.
@@ -67,6 +71,8 @@ class Scheduler final : public ScanHook {
   ScanEngine* engine_ = nullptr;
   InterruptController irq_;
   std::vector<EventSource*> sources_;
+  // The sources with code for settle / advance_to (EventSource::steps_of), in order.
+  std::vector<EventSource*> settling_, advancing_;
   std::vector<int> requested_;  // raised at the present instant, not yet dispatched
   std::vector<IsrObserver> isr_obs_;
   const void* bound_code_ = nullptr;
