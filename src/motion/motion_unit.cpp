@@ -74,11 +74,7 @@ void MotionUnit::before_program(uint64_t now_us) {
   }
   if (quiet()) {  // what advance, the unit's tables, the pins and the switches come to then
     now_ns_ = std::max(now_ns_, t);
-    // FUN147's block the same way: its done relays change only through the unit.
-    if (revision_ != interp_revision_ || !interp_->status_holds()) {
-      interp_->write_status(t);
-      interp_revision_ = revision_;
-    }
+    interp_->write_status(t);  // with no group it compares first (interpolation.cpp)
     write_quiet_status(t);
     return;
   }

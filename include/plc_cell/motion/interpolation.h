@@ -44,8 +44,6 @@ class Interpolation {
   void write_status(uint64_t t);  // M1934/M1935, DR4068/DR4070, D4062/D4063
   void on_stop();
   bool idle() const { return groups_.empty(); }  // no FUN147 group to advance
-  // The status block holds what the last write with no group left there.
-  bool status_holds() const { return written_.holds(mem_); }
   // FUN142 PSOFF on axis ps: the group driving it stops as on EN off (M1991 decides how).
   void psoff(int ps, uint64_t t);
 

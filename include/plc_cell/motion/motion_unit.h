@@ -195,7 +195,6 @@ class MotionUnit final : public ScanHook, public timeline::EventSource {
   mutable uint64_t quiet_revision_ = UINT64_MAX;  // quiet_ was found at this revision
   mutable bool quiet_ = false;
   uint64_t status_revision_ = UINT64_MAX;  // the last status written while quiet
-  uint64_t interp_revision_ = UINT64_MAX;  // the last FUN147 status written while quiet
   AxisStates axes_;
   Ramps ramps_{cfg_, axes_, mem_};
   Switches switches_{cfg_, axes_, mem_};
