@@ -191,6 +191,7 @@ void Interpreter::use_native(bool on) {
 }
 
 void Interpreter::bind_native() {
+  whole_main_ = nullptr;
   native_.reset();
   native_code_.clear();
   if (!want_native_) {
@@ -213,6 +214,7 @@ void Interpreter::bind_native() {
   for (const native::Run& r : nc->runs()) {
     native_code_[r.first].handler = native_handler_of_[kNativeEntry];
     native_code_[r.first].run = &r;
+    if (r.first == 0 && bound_op_[r.length] == Op::End) whole_main_ = &r;
   }
   char line[200];
   std::snprintf(line, sizeof line, "native: %u of %zu instructions in %zu machine-code runs (%zu bytes, %.2f ms)",
@@ -278,7 +280,20 @@ void Interpreter::set_fault(size_t pc, const std::string& why) {
 
 bool Interpreter::run_main(uint64_t now_us, uint32_t dt_us, ScanEngine* engine) {
   if (code_.empty()) return true;
+  if (whole_main_ && native_ && !seen_) return run_whole_main(now_us, dt_us, engine);
   return execute(0, now_us, dt_us, engine, false);
+}
+
+// What run_native does for such a program, without its loop's frame: the run from the
+// first instruction (block stack empty, rung result 0), then END.
+bool Interpreter::run_whole_main(uint64_t now_us, uint32_t dt_us, ScanEngine* engine) {
+  uint8_t stack[kMaxStack];
+  ExecContext ctx(mem_);
+  ctx.engine = engine;
+  ctx.now_us = now_us;
+  ctx.dt_us = dt_us;
+  native::Frame frame{this, &ctx, stack, dt_us};
+  return !(whole_main_->fn(0, &frame) & native::kFault);  // a FUN handler threw: the fault is set
 }
 
 bool Interpreter::run_routine(const std::string& label, uint64_t now_us, ScanEngine* engine) {

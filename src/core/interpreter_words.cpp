@@ -1,6 +1,7 @@
 // Load-time binding of the word forms (docs/native-engine.md, "FUN calls"): a FUN whose
 // operands are all plain registers, constants and flags gets its word form and their
-// pointers; a TMR whose preset is a register or a constant gets the preset's word.
+// pointers; a TMR or 16-bit CTR whose preset is a register or a constant gets the preset's
+// word.
 #include <array>
 #include <cstdint>
 
@@ -33,7 +34,7 @@ void* Interpreter::word_pointer(const BoundOperand& o, OperandRole role, bool is
 }
 
 void Interpreter::bind_words(const Instruction& in, Extra* x) {
-  if (in.op == Op::Tmr) {
+  if (in.op == Op::Tmr || (in.op == Op::Ctr && x->number < kFirst32BitCounter)) {
     x->preset = static_cast<const uint16_t*>(word_pointer(ops_[x->first_op], OperandRole::Source, false));
     return;
   }

@@ -14,7 +14,7 @@ void Plc::load_program_text(const std::string& text, const std::string& file) {
 void Plc::load_program_file(const std::string& path) { load_program(plc_cell::load_program_file(path, functions_)); }
 
 void Plc::load_program(const Program& program) {
-  std::lock_guard<std::mutex> lk(mu_);
+  std::lock_guard<HandoffMutex> lk(mu_);
   engine_.load(program);
 }
 
@@ -24,7 +24,7 @@ std::vector<uint32_t> Plc::read(const Address& start, uint32_t count) const {
   out.reserve(count);
   Address a = start;
   const uint32_t stride = element_stride(a);
-  std::lock_guard<std::mutex> lk(mu_);
+  std::lock_guard<HandoffMutex> lk(mu_);
   for (uint32_t i = 0; i < count; ++i, a.index += stride) out.push_back(memory_.read(a));
   return out;
 }
@@ -50,7 +50,7 @@ void Plc::write(const Address& start, const std::vector<uint32_t>& values) {
   std::vector<Address> targets;
   for (uint32_t i = 0; i < values.size(); ++i) targets.push_back(offset_address(start, i));
   {
-    std::lock_guard<std::mutex> lk(mu_);
+    std::lock_guard<HandoffMutex> lk(mu_);
     for (size_t i = 0; i < values.size(); ++i) write_unlocked(targets[i], values[i]);
   }
   commit();
@@ -61,7 +61,7 @@ void Plc::commit() {
   if (!d) return;
   uint64_t ticket;
   {
-    std::lock_guard<std::mutex> lk(mu_);
+    std::lock_guard<HandoffMutex> lk(mu_);
     ticket = d->capture(engine_, memory_);
   }
   d->wait(ticket);
@@ -74,7 +74,7 @@ void Plc::force(const Address& a, ForceAction action) {
 }
 
 void Plc::force_apply(const Address& a, ForceAction action) {
-  std::lock_guard<std::mutex> lk(mu_);
+  std::lock_guard<HandoffMutex> lk(mu_);
   switch (action) {
     case ForceAction::Disable: memory_.set_disabled(a.area, a.index, true); break;
     case ForceAction::Enable: memory_.set_disabled(a.area, a.index, false); break;
@@ -89,23 +89,23 @@ void Plc::force_apply(const Address& a, ForceAction action) {
 }
 
 bool Plc::set_mode(RunMode m) {
-  std::lock_guard<std::mutex> lk(mu_);
+  std::lock_guard<HandoffMutex> lk(mu_);
   return engine_.set_mode(m);
 }
 
 RunMode Plc::mode() const {
-  std::lock_guard<std::mutex> lk(mu_);
+  std::lock_guard<HandoffMutex> lk(mu_);
   return engine_.mode();
 }
 
 void Plc::set_input(uint32_t x, bool v) {
   if (x >= area_size(Area::X)) throw Error("input X" + std::to_string(x) + " out of range (X0..X255)");
-  std::lock_guard<std::mutex> lk(mu_);
+  std::lock_guard<HandoffMutex> lk(mu_);
   engine_.set_input(x, v);
 }
 
 void Plc::scan(uint64_t now_us) {
-  std::lock_guard<std::mutex> lk(mu_);
+  std::lock_guard<HandoffMutex> lk(mu_);
   engine_.scan(now_us);
 }
 

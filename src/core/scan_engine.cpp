@@ -1,6 +1,7 @@
 #include "plc_cell/core/scan_engine.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "plc_cell/core/image_loop.h"
 
@@ -57,11 +58,20 @@ std::string ScanEngine::engine_status() const {
   return s;
 }
 
-bool ScanEngine::run_program(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why) {
-  if (lockstep_) lockstep_->sync(mem_, interp_);
+bool ScanEngine::run_engine(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why) {
   const bool ok = routine.empty() ? interp_.run_main(now_us, dt_us, this) : interp_.run_routine(routine, now_us, this);
   if (!ok) *why = interp_.fault();
-  if (!lockstep_) return ok;
+  return ok;
+}
+
+bool ScanEngine::run_program(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why) {
+  if (lockstep_) return run_in_lockstep(routine, now_us, dt_us, why);
+  return run_engine(routine, now_us, dt_us, why);
+}
+
+bool ScanEngine::run_in_lockstep(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why) {
+  lockstep_->sync(mem_, interp_);
+  const bool ok = run_engine(routine, now_us, dt_us, why);
   const bool shadow_ok = lockstep_->run(routine, now_us, dt_us);
   if (ok != shadow_ok || (!ok && interp_.fault() != lockstep_->fault())) {
     *why = "lockstep: the native engine " + (ok ? std::string("ran") : "faulted (" + interp_.fault() + ")") +
@@ -98,14 +108,28 @@ void ScanEngine::remove_hook(ScanHook* h) {
 }
 
 void ScanEngine::update_special_relays() {
+  static_assert(special::kClock100ms == special::kClock10ms + 1 && special::kClock1s == special::kClock10ms + 2 &&
+                    special::kClock1min == special::kClock10ms + 3 && special::kFirstScan == special::kClock10ms + 4 &&
+                    special::kAlwaysOn == special::kClock10ms + 5,
+                "M1920-M1925 are one block of six bytes");
   // Clock pulses with 50 % duty: on for the second half of each period, that is in the
-  // odd half periods ((t mod P) >= P/2 is (t / (P/2)) odd: one division, not two).
-  mem_.set_bit(Area::M, special::kClock10ms, (now_us_ / 5000) & 1);
-  mem_.set_bit(Area::M, special::kClock100ms, (now_us_ / 50000) & 1);
-  mem_.set_bit(Area::M, special::kClock1s, (now_us_ / 500000) & 1);
-  mem_.set_bit(Area::M, special::kClock1min, (now_us_ / 30000000) & 1);
-  mem_.set_bit(Area::M, special::kFirstScan, first_scan_);
-  mem_.set_bit(Area::M, special::kAlwaysOn, true);
+  // odd half periods. Every half period (5 ms, 50 ms, 0.5 s, 30 s) is a whole number of
+  // the fastest one's, so the four bytes change only when the 5 ms count does.
+  const uint64_t half = now_us_ / 5000;
+  if (half != clock_half_) {
+    clock_half_ = half;
+    clock_bytes_ = (half & 1) | ((half / 10) & 1) << 8 | ((half / 100) & 1) << 16 | ((half / 6000) & 1) << 24;
+  }
+  const uint64_t want = clock_bytes_ | uint64_t(first_scan_) << 32 | uint64_t(1) << 40;
+  // Memory::set_bit for the six bytes at once: a disabled (forced) point keeps its byte,
+  // and M1926-M1927 (the two bytes after them) are kept whole.
+  uint8_t* const m = mem_.bits(Area::M) + special::kClock10ms;
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "M1920 is the first byte of the word");
+  uint64_t bytes;
+  std::memcpy(&bytes, m, sizeof bytes);
+  const uint64_t keep = ((bytes >> 1) & 0x0101010101010101ull) * 0xFF | 0xFFFF000000000000ull;
+  bytes = (bytes & keep) | (want & ~keep);
+  std::memcpy(m, &bytes, sizeof bytes);
 }
 
 void ScanEngine::fault_stop(const std::string& why) {
@@ -114,6 +138,9 @@ void ScanEngine::fault_stop(const std::string& why) {
 }
 
 namespace {
+// The routine name of the main program, made once rather than at every scan.
+const std::string kMainProgram;
+
 // Memory::set_bit for each input, as arithmetic the compiler vectorises (a fixed cost of
 // every scan): a disabled (forced) point keeps its byte.
 PLC_CELL_IMAGE_LOOP void take_input_image(uint8_t* __restrict x_bits, const uint8_t* __restrict inputs) {
@@ -135,7 +162,7 @@ void ScanEngine::scan(uint64_t now_us) {
   update_special_relays();
   for (auto* h : before_program_) h->before_program(now_us);
   std::string why;
-  const bool ok = run_program({}, now_us, dt, &why);
+  const bool ok = run_program(kMainProgram, now_us, dt, &why);
   first_scan_ = false;
   if (!ok) {
     fault_stop(why);

@@ -43,7 +43,10 @@ HscUnit::HscUnit(Plc& plc, HscConfig cfg)
   for (const auto& e : cfg_.edges) schedule_edge(e.x, e.t_ns, e.level);
   plc_.locked([this](ScanEngine& e, Memory&) {
     e.add_hook(this);  // after the scheduler's: each scan finds the clock at the scan's instant
-    ctx_.sched.add_source(this);
+    // The scheduler calls settle and advance_to only if some part of this unit has them
+    // (the parts are composed once, above).
+    ctx_.sched.add_source(this, (settling_.empty() ? 0u : timeline::EventSource::kSettles) |
+                                    (advancing_.empty() ? 0u : timeline::EventSource::kAdvances));
     return 0;
   });
 }
@@ -80,8 +83,8 @@ void HscUnit::compose() {
       scanned_.push_back(&counters_[n]);
     }
   }
-  add_part(&hsta_);
-  add_part(&time_base_);
+  add_part(&hsta_, uint64_t(1) << irq::kHstaI);
+  add_part(&time_base_, uint64_t(0xFF) << irq::kTimeBase0);  // 1MSI ... 100MSI
   if (!cfg_.edge_interrupts.empty()) add_part(&edge_irq_);
   for (auto& m : meters_) add_part(&m);
   add_part(&terminal_);
@@ -132,15 +135,22 @@ void HscUnit::start(uint64_t t) {
   for (auto& f : scan_filters_) f.second.reset();
 }
 
-void HscUnit::stop() { refresh_outputs(0, OutputImage::kOutputs); }
+void HscUnit::stop() { outputs_.refresh_all(now()); }
 
 void HscUnit::settle() {
   for (Component* p : settling_) p->settle();
 }
 
 uint64_t HscUnit::next_event_ns() {
+  const uint64_t routines = ctx_.irq().present_mask();
+  if (routines != timed_for_) {
+    timed_.clear();
+    for (size_t i = 0; i < parts_.size(); ++i)
+      if (routines_of_[i] == 0 || (routines_of_[i] & routines) != 0) timed_.push_back(parts_[i]);
+    timed_for_ = routines;
+  }
   uint64_t t = kNever;
-  for (Component* p : parts_) t = std::min(t, p->next_event_ns());
+  for (Component* p : timed_) t = std::min(t, p->next_event_ns());
   return t;
 }
 
@@ -149,7 +159,9 @@ void HscUnit::advance_to(uint64_t t) {
 }
 
 void HscUnit::at(uint64_t t) {
-  for (Component* p : parts_) p->at(t);
+  // The parts asked for their next instant just before (the scheduler's loop): a part left
+  // out there has nothing at t, and what it kept from an earlier program is void.
+  for (Component* p : timed_) p->at(t);
   const std::vector<std::pair<int, bool>> group = terminal_.take(t);
   if (!group.empty()) act(t, group);
 }
@@ -208,7 +220,7 @@ void HscUnit::before_program(uint64_t now_us) {
 void HscUnit::after_program(uint64_t) {
   if (!running()) return;
   for (Component* p : scanned_) p->after_program();
-  refresh_outputs(0, OutputImage::kOutputs);
+  outputs_.refresh_all(now());
 }
 
 // ---- instructions ------------------------------------------------------------------
@@ -232,7 +244,7 @@ bool HscUnit::set_enabled(const std::string& label, bool on) {
 
 void HscUnit::immediate_io(const Address& first, uint32_t n) {
   if (first.area == Area::Y) {
-    refresh_outputs(first.index, n);
+    outputs_.refresh(first.index, n, now());
   } else if (first.area == Area::X) {
     for (uint32_t x = first.index; x < first.index + n && x < 256; ++x)
       ctx_.mem.set_bit(Area::X, x, x < 16 ? pins_.level(static_cast<int>(x), now()) : ctx_.engine.input(x));

@@ -35,13 +35,11 @@ void OutputImage::changed(uint32_t y, bool v, uint64_t t) {
     if (f.y == y) f.src->set_rate(t, v ? f.hz : 0);
 }
 
-// The scan's refresh of the whole image usually finds nothing changed: one pass with no
-// branch, vectorised (AVX2 where the CPU has it: core/image_loop.h), answers that.
+// Vectorised (AVX2 where the CPU has it: core/image_loop.h).
 bool OutputImage::unchanged() const { return same_outputs(mem_.bits(Area::Y), phys_.data(), owned_.data()); }
 
 void OutputImage::refresh(uint32_t first, uint32_t n, uint64_t t) {
   const uint32_t end = first + n < kOutputs ? first + n : kOutputs;
-  if (first == 0 && end == kOutputs && unchanged()) return;
   const uint8_t* y_bits = mem_.bits(Area::Y);
   uint32_t y = first;
   while (y < end) {

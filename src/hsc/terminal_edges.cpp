@@ -54,6 +54,7 @@ void TerminalEdges::add_train(int x, uint64_t period_ns, uint64_t width_ns, uint
 }
 
 uint64_t TerminalEdges::next_event_ns() {
+  prev_ns_ = ctx_.now();
   uint64_t t = kNever;
   if (!edges_.empty()) t = std::max(edges_.top().t, ctx_.now());
   for (const auto& tr : trains_) {

@@ -363,11 +363,8 @@ double Interpolation::vector_speed(int gp, uint64_t t) const {
   return std::sqrt(s2);
 }
 
-void Interpolation::write_status(uint64_t t) {
+void Interpolation::rewrite_status(uint64_t t) {
   const bool idle = groups_.empty();  // then the speeds are 0
-  // Element by element: std::array's == calls memcmp, a call for two bytes.
-  if (idle && finished_[0] == written_finished_[0] && finished_[1] == written_finished_[1] && written_.holds(mem_))
-    return;
   for (int gp = 0; gp < 2; ++gp) {
     const double speed = vector_speed(gp, t);  // 0 without a moving group: no rounding to do
     const uint32_t v = speed == 0 ? 0 : static_cast<uint32_t>(std::llround(speed));

@@ -74,7 +74,7 @@ void MotionUnit::before_program(uint64_t now_us) {
   }
   if (quiet()) {  // what advance, the unit's tables, the pins and the switches come to then
     now_ns_ = std::max(now_ns_, t);
-    interp_->write_status(t);  // with no group it compares first (interpolation.cpp)
+    interp_->write_status(t);  // with no group it compares first (interpolation.h)
     write_quiet_status(t);
     return;
   }

@@ -93,29 +93,34 @@ void VirtualRun::trace_events() {
 void VirtualRun::run_for(uint64_t duration_us, const std::function<void(const WatchChange&)>& on_change,
                          const std::function<void(const SimEvent&)>& on_event) {
   const uint64_t end = now_us_ + duration_us;
-  while (now_us_ < end) {
-    plc_.locked([&](ScanEngine& e, Memory& m) {
-      e.scan(now_us_);
-      // Observers report in the order things happen; a unit catching up late may
-      // report an earlier instant after a later one, so order by time (stable).
-      std::stable_sort(events_->begin(), events_->end(),
-                       [](const SimEvent& x, const SimEvent& y) { return x.t_ns < y.t_ns; });
-      if (on_event)
-        for (const auto& ev : *events_) on_event(ev);
-      events_->clear();
-      for (size_t i = 0; i < watches_.size(); ++i) {
-        const uint32_t v = m.read(watches_[i]);
-        if (!seen_[i] || v != last_[i]) {
-          seen_[i] = true;
-          last_[i] = v;
-          if (on_change) on_change({now_us_, i, v});
-        }
+  if (now_us_ >= end) return;
+  // Scan after scan under one hold of the lock; a client waiting for it comes in between
+  // two scans (Plc::locked_steps).
+  plc_.locked_steps([&](ScanEngine& e, Memory& m) {
+    e.scan(now_us_);
+    if (!events_->empty()) report_events(on_event);
+    for (size_t i = 0; i < watches_.size(); ++i) {
+      const uint32_t v = m.read(watches_[i]);
+      if (!seen_[i] || v != last_[i]) {
+        seen_[i] = true;
+        last_[i] = v;
+        if (on_change) on_change({now_us_, i, v});
       }
-      return 0;
-    });
+    }
     ++scans_;
     now_us_ += period_us_;
-  }
+    return now_us_ < end;
+  });
+}
+
+void VirtualRun::report_events(const std::function<void(const SimEvent&)>& on_event) {
+  // Observers report in the order things happen; a unit catching up late may report an
+  // earlier instant after a later one, so order by time (stable).
+  std::stable_sort(events_->begin(), events_->end(),
+                   [](const SimEvent& x, const SimEvent& y) { return x.t_ns < y.t_ns; });
+  if (on_event)
+    for (const auto& ev : *events_) on_event(ev);
+  events_->clear();
 }
 
 std::vector<uint32_t> VirtualRun::values() const {

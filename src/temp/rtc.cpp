@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <ctime>
 
 #include "plc_cell/config/yaml_reader.h"
@@ -45,16 +46,6 @@ RtcConfig parse_rtc_config(const YAML::Node& node, const std::string& file) {
 
 Rtc::Rtc(RtcConfig cfg, Memory& mem) : cfg_(cfg), mem_(mem) {
   us_ = to_seconds(cfg_.has_start ? cfg_.start : host_local_time()) * kUsPerS;
-}
-
-const DateTime& Rtc::calendar() {
-  // The calendar walks years and months: only when the second changes.
-  if (seconds() != calendar_s_) {
-    calendar_s_ = seconds();
-    calendar_ = from_seconds(calendar_s_);
-    calendar_weekday_ = weekday(calendar_s_);
-  }
-  return calendar_;
 }
 
 int Rtc::week() const { return (weekday(seconds()) + week_offset_) % 7; }
@@ -115,6 +106,7 @@ void Rtc::set_from_registers() {
   residual_us_ = 0;
   // The chip keeps the week it is given and counts it on at midnight.
   week_offset_ = (week - weekday(seconds()) + 7) % 7;
+  published_s_ = -1;
 }
 
 void Rtc::round_to_minute() {
@@ -147,20 +139,24 @@ void Rtc::on_run() {
   publish();  // STOP -> RUN cleared R4128-R4135 (and M1952)
 }
 
-// Every scan: through one pointer (Memory::set_reg finds the area's storage again each time).
 void Rtc::publish() {
-  const DateTime& t = calendar();
-  uint16_t* const r = mem_.words(Area::R);
-  r[rtcreg::kSecond] = static_cast<uint16_t>(t.second);
-  r[rtcreg::kMinute] = static_cast<uint16_t>(t.minute);
-  r[rtcreg::kHour] = static_cast<uint16_t>(t.hour);
-  r[rtcreg::kDay] = static_cast<uint16_t>(t.day);
-  r[rtcreg::kMonth] = static_cast<uint16_t>(t.month);
-  r[rtcreg::kYear] = static_cast<uint16_t>(t.year - 2000);
-  // week(): both terms are 0-6, so one subtraction does the modulo (no division a scan).
-  const int week = calendar_weekday_ + week_offset_;
-  r[rtcreg::kWeek] = static_cast<uint16_t>(week >= 7 ? week - 7 : week);
-  r[rtcreg::kHourMinute] = static_cast<uint16_t>(t.hour << 8 | t.minute);
+  if (seconds() != published_s_) find_registers();
+  // Every scan, whatever a client or the program wrote there since.
+  static_assert(rtcreg::kHourMinute == rtcreg::kSecond + 7, "R4128-R4135 are one block");
+  std::memcpy(mem_.words(Area::R) + rtcreg::kSecond, registers_, sizeof registers_);
+}
+
+void Rtc::find_registers() {
+  published_s_ = seconds();
+  const DateTime t = from_seconds(published_s_);
+  registers_[0] = static_cast<uint16_t>(t.second);
+  registers_[1] = static_cast<uint16_t>(t.minute);
+  registers_[2] = static_cast<uint16_t>(t.hour);
+  registers_[3] = static_cast<uint16_t>(t.day);
+  registers_[4] = static_cast<uint16_t>(t.month);
+  registers_[5] = static_cast<uint16_t>(t.year - 2000);
+  registers_[6] = static_cast<uint16_t>((weekday(published_s_) + week_offset_) % 7);
+  registers_[7] = static_cast<uint16_t>(t.hour << 8 | t.minute);
 }
 
 std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem) {

@@ -26,6 +26,60 @@ TEST_F(ScanEngineTest, ClockPulsesHaveTheirPeriods) {
   EXPECT_EQ(get("R2"), 1u);
 }
 
+TEST_F(ScanEngineTest, TheMinuteClockIsOnForTheSecondHalfOfEachMinute) {
+  load("ORG TU M1923\nINC R0\nORG TD M1923\nINC R1\nEND\n");
+  scans(29999, 1000);  // t = 0 .. 29.998 s: off
+  EXPECT_EQ(get("R0"), 0u);
+  scans(1, 1000);  // t = 29.999 s
+  EXPECT_EQ(get("M1923"), 0u);
+  scans(1, 1000);  // t = 30 s
+  EXPECT_EQ(get("M1923"), 1u);
+  EXPECT_EQ(get("R0"), 1u);
+  // Scan periods that are no divisor of 5 ms land anywhere in the half periods.
+  now_us = 59999999;
+  scans(1, 7);
+  EXPECT_EQ(get("M1923"), 1u);
+  scans(1, 7);  // 60.000006 s
+  EXPECT_EQ(get("M1923"), 0u);
+  EXPECT_EQ(get("R1"), 1u);
+  EXPECT_EQ(get("M1920"), 0u);  // 60.000006 s is in an even 5 ms half period: 10 ms clock off
+  now_us = 60005000;
+  scans(1);
+  EXPECT_EQ(get("M1920"), 1u);
+  EXPECT_EQ(get("M1921"), 0u);
+  now_us = 60050000;  // the 100 ms clock's second half
+  scans(1);
+  EXPECT_EQ(get("M1921"), 1u);
+}
+
+TEST_F(ScanEngineTest, AForcedSpecialRelayKeepsItsStateAndItsNeighboursAreTheirOwn) {
+  load("ORG M1922\nOUT Y0\nORG M1925\nOUT Y1\nORG M1926\nOUT Y2\nEND\n");
+  plc.force(parse_address("M1925"), ForceAction::Disable);
+  plc.force(parse_address("M1925"), ForceAction::Reset);
+  plc.force(parse_address("M1922"), ForceAction::Disable);
+  plc.force(parse_address("M1922"), ForceAction::Set);
+  put("M1926", 1);
+  put("M1927", 1);
+  scans(3);  // t = 0 .. 2 ms: the 1 s clock is off, M1925 is always on
+  EXPECT_EQ(get("M1922"), 1u);
+  EXPECT_EQ(get("Y0"), 1u);
+  EXPECT_EQ(get("M1925"), 0u);
+  EXPECT_EQ(get("Y1"), 0u);
+  EXPECT_EQ(get("M1926"), 1u);
+  EXPECT_EQ(get("M1927"), 1u);
+  EXPECT_EQ(get("Y2"), 1u);
+  plc.force(parse_address("M1925"), ForceAction::Enable);
+  plc.force(parse_address("M1922"), ForceAction::Enable);
+  scans(1);
+  EXPECT_EQ(get("M1925"), 1u);
+  EXPECT_EQ(get("M1922"), 0u);
+  put("M1920", 1);  // a client's write between scans is overwritten at the next
+  put("M1924", 1);
+  scans(1);
+  EXPECT_EQ(get("M1920"), 0u);
+  EXPECT_EQ(get("M1924"), 0u);
+}
+
 TEST_F(ScanEngineTest, InputImageIsTakenOncePerScan) {
   load("ORG X0\nOUT Y0\nEND\n");
   input(0, true);

@@ -157,6 +157,29 @@ TEST(Interrupts, ReservedLabelsAreNoJumpTargets) {
             "");
 }
 
+// An online change brings or takes away a time-base routine without STOP: the ticks
+// (1 ms from RUN, manual §9.2) run it from the next scan, and stop with the program that
+// has none.
+TEST(Interrupts, ATimeBaseRoutineComesAndGoesWithAnOnlineChange) {
+  const std::string without = "ORG M1925\nFUN 15 INC D=R1\nEND\n";
+  const std::string with = without + "LBL 1MSI\nORG M1925\nFUN 15 INC D=R0\nRTI\n";
+  HscCell cell("", without);
+  cell.run(10000);  // scans at 0 .. 9 ms
+  EXPECT_EQ(cell.get("R0"), 0u);
+  cell.plc.load_program_text(with, "with.il");
+  ASSERT_EQ(cell.plc.mode(), RunMode::Run);
+  cell.run(10000);  // scans at 10 .. 19 ms: the ticks 10 .. 19 ms
+  EXPECT_EQ(cell.get("R0"), 10u);
+  EXPECT_EQ(cell.runs_of(kTimeBase0).size(), 10u);
+  cell.plc.load_program_text(without, "without.il");
+  cell.run(10000);
+  EXPECT_EQ(cell.get("R0"), 10u);
+  cell.plc.load_program_text(with, "with.il");  // and back
+  cell.run(5000);
+  EXPECT_EQ(cell.get("R0"), 15u);
+  EXPECT_EQ(cell.get("R1"), 35u);  // the main program scanned throughout
+}
+
 }  // namespace
 }  // namespace hsc
 }  // namespace plc_cell

@@ -133,6 +133,23 @@ TEST_F(RtcTest, TheRegistersHoldTheClockBeforeTheFirstScan) {
   EXPECT_EQ(get("R4131"), 1u);
 }
 
+TEST_F(RtcTest, AWriteToTheClockRegistersIsOverwrittenAtTheNextScanInTheSameSecond) {
+  setup(kStart, "ORG X0\nMOV S=99 D=R4129\nEND\n");
+  scans(1, 1000);  // 23:59:58.000
+  put("R4128", 7);  // a client, between two scans of one second
+  put("R4135", 0);
+  scans(1, 1000);
+  EXPECT_EQ(get("R4128"), 58u);
+  EXPECT_EQ(get("R4135"), 0x173Bu);
+  input(0, true);  // the program writes the minute: the next scan shows the clock again
+  scans(1, 1000);
+  EXPECT_EQ(get("R4129"), 99u);
+  input(0, false);
+  scans(1, 1000);
+  EXPECT_EQ(get("R4129"), 59u);
+  EXPECT_EQ(get("R4128"), 58u);
+}
+
 TEST_F(RtcTest, KeepsRunningInStop) {
   setup(kStart, kIdle);
   scans(1, 1000000);

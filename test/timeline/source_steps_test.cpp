@@ -55,7 +55,7 @@ static_assert(EventSource::steps_of<hsc::HscUnit>() == EventSource::kEveryStep, 
 // The counters' parts.
 static_assert(hsc::Component::steps_of<hsc::HscCounter>() == EventSource::kEveryStep, "a counter settles and advances");
 static_assert(hsc::Component::steps_of<hsc::MeasuredInput>() == EventSource::kEveryStep, "so does a pulse measurement");
-static_assert(hsc::Component::steps_of<hsc::TerminalEdges>() == EventSource::kAdvances, "the edges advance only");
+static_assert(hsc::Component::steps_of<hsc::TerminalEdges>() == 0u, "the edges act at instants only");
 static_assert(hsc::Component::steps_of<hsc::TimeBaseInterrupt>() == 0u, "the time base acts at instants only");
 static_assert(hsc::Component::steps_of<hsc::HstaTimer>() == 0u, "so does HSTA");
 

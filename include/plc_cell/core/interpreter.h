@@ -103,7 +103,7 @@ class Interpreter {
     const FunctionSpec* fn;
     WordHandler words;         // FUN: its word form for these operands, or null (fn->handler)
     void* const* word_ops;     // its six operand pointers (function_table.h, WordHandler)
-    const uint16_t* preset;    // TMR: the preset's word (a register or a constant's slot), or null
+    const uint16_t* preset;    // TMR, 16-bit CTR: the preset's word (a register or a constant), or null
   };
   struct Bound {
     int32_t handler;  // offset of this opcode's handler from the first one (direct threading)
@@ -121,6 +121,8 @@ class Interpreter {
   bool run_plain(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   bool run_recording(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
   bool run_native(uint32_t pc, uint64_t now_us, uint32_t dt_us, ScanEngine* engine, bool routine);
+  // The main program when one machine-code run covers it up to its END (whole_main_).
+  bool run_whole_main(uint64_t now_us, uint32_t dt_us, ScanEngine* engine);
   void bind_native();
   void native_step(size_t i, native::Step* s);
   // The bodies of register RST, TMR, CTR and FUN (interpreter_steps.inc): the run loops and
@@ -165,6 +167,9 @@ class Interpreter {
   bool want_native_ = false;
   std::unique_ptr<native::NativeCode> native_;
   std::vector<Bound> native_code_;  // code_ bound to run_native, native runs at their first instruction
+  // The run from the first instruction when the main program's END comes right after it:
+  // the scan enters it with no dispatch loop around it (most programs of straight rungs).
+  const native::Run* whole_main_ = nullptr;
   std::string engine_status_ = "interpreter";
   std::vector<Extra> extras_;
   std::vector<BoundOperand> ops_;

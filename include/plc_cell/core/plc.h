@@ -11,6 +11,7 @@
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/durability.h"
 #include "plc_cell/core/function_table.h"
+#include "plc_cell/core/handoff_mutex.h"
 #include "plc_cell/core/memory.h"
 #include "plc_cell/core/scan_engine.h"
 
@@ -45,14 +46,23 @@ class Plc {
   // Runs fn with the lock held; for anything that must see one consistent state.
   template <typename F>
   auto locked(F&& fn) -> decltype(fn(std::declval<ScanEngine&>(), std::declval<Memory&>())) {
-    std::lock_guard<std::mutex> lk(mu_);
+    std::lock_guard<HandoffMutex> lk(mu_);
     return fn(engine_, memory_);
   }
   template <typename F>
   auto locked(F&& fn) const -> decltype(fn(std::declval<const ScanEngine&>(), std::declval<const Memory&>())) {
-    std::lock_guard<std::mutex> lk(mu_);
+    std::lock_guard<HandoffMutex> lk(mu_);
     return fn(engine_, memory_);
   }
+  // Runs step with the lock held while it returns true: a virtual-time run, scan after
+  // scan. Between two steps a waiting client has the lock first (handoff_mutex.h).
+  template <typename F>
+  void locked_steps(F&& step) {
+    std::lock_guard<HandoffMutex> lk(mu_);
+    while (step(engine_, memory_)) mu_.let_waiters_in();
+  }
+  // Clients waiting for the lock (tests).
+  uint64_t waiting_clients() const { return mu_.waiting(); }
 
   const FunctionTable& functions() const { return functions_; }
 
@@ -68,7 +78,7 @@ class Plc {
   void write_unlocked(const Address& a, uint32_t v);
   void force_apply(const Address& a, ForceAction action);  // takes the lock, no commit
 
-  mutable std::mutex mu_;
+  mutable HandoffMutex mu_;
   FunctionTable functions_;
   Memory memory_;
   ScanEngine engine_;

@@ -122,6 +122,10 @@ class ScanEngine {
   void update_special_relays();
   // Runs the main program (routine empty) or a routine; in lockstep also the shadow, then compares.
   bool run_program(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why);
+  // The same with the shadow run and the comparison: out of line, so that the usual scan
+  // does not pay for its frame.
+  bool run_in_lockstep(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why);
+  bool run_engine(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why);
   void fault_stop(const std::string& why);
 
   Memory& mem_;
@@ -140,6 +144,10 @@ class ScanEngine {
   bool first_scan_ = false;
   bool have_time_ = false;
   uint64_t now_us_ = 0;
+  // The four clock relays hold for a 5 ms half period of the fastest: their bytes, found
+  // once per half period (update_special_relays).
+  uint64_t clock_half_ = UINT64_MAX;
+  uint64_t clock_bytes_ = 0;
   uint64_t watchdog_us_ = 200000;
   ScanStats stats_;
   std::string fault_;

@@ -130,14 +130,17 @@ class HscUnit final : public ScanHook, public timeline::EventSource {
   bool running() const { return ctx_.running(); }
   void bind_counters();
   void compose();
+  // routines: the interrupt sources (bits) without whose routines the part never has an
+  // event; while the bound program has none of them, the scheduler's loop does not ask
+  // it (0: always asked).
   template <class T>
-  void add_part(T* p) {
+  void add_part(T* p, uint64_t routines = 0) {
     parts_.push_back(p);
+    routines_of_.push_back(routines);
     if (Component::steps_of<T>() & timeline::EventSource::kSettles) settling_.push_back(p);
     if (Component::steps_of<T>() & timeline::EventSource::kAdvances) advancing_.push_back(p);
   }
   void act(uint64_t t, const std::vector<std::pair<int, bool>>& group);  // explicit edges at t
-  void refresh_outputs(uint32_t first, uint32_t n) { outputs_.refresh(first, n, now()); }
 
   Plc& plc_;
   UnitContext ctx_;
@@ -155,6 +158,11 @@ class HscUnit final : public ScanHook, public timeline::EventSource {
   std::array<int, 16> meter_of_{};    // index in meters_ of input x, -1: not measured
   std::vector<std::pair<int, ScanDebounce>> scan_filters_;  // the filtered ones of X16-X35
   std::vector<Component*> parts_;     // the configured parts, in the order they act
+  std::vector<uint64_t> routines_of_;  // of each part (add_part)
+  // The parts that may have events under the routines of the bound program (in order),
+  // made again when the program's routines change.
+  std::vector<Component*> timed_;
+  uint64_t timed_for_ = UINT64_MAX;  // the routines timed_ was made for
   // Those with code for settle / advance_to (Component::steps_of), in the same order.
   std::vector<Component*> settling_, advancing_;
   std::vector<Component*> scanned_;   // those with work at the scans: the counters

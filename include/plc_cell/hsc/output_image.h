@@ -29,6 +29,11 @@ class OutputImage {
   void follow(uint32_t y, PulseSource* s, double hz) { followers_.push_back({y, s, hz}); }
   // The refresh of Y first ... first+n-1 at t.
   void refresh(uint32_t first, uint32_t n, uint64_t t_ns);
+  // The scan's refresh of the whole image, which usually finds nothing changed: one pass
+  // with no branch answers that, and only a change walks the image.
+  void refresh_all(uint64_t t_ns) {
+    if (!unchanged()) refresh(0, kOutputs, t_ns);
+  }
 
  private:
   struct Follower {

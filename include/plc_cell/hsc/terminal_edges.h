@@ -32,8 +32,8 @@ class TerminalEdges final : public Component {
   bool due(uint64_t t_ns) const { return !edges_.empty() && edges_.top().t <= t_ns; }
 
   void start(uint64_t t_ns) override { prev_ns_ = t_ns; }
+  // Keeps the present instant for take(): the loop asks just before it moves the clock.
   uint64_t next_event_ns() override;
-  void advance_to(uint64_t) override { prev_ns_ = ctx_.now(); }
   // The edges acting at t after the filter: (input, level), in the order they come.
   std::vector<std::pair<int, bool>> take(uint64_t t_ns);
 

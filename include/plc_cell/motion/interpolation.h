@@ -41,7 +41,16 @@ class Interpolation {
   Fun147Outputs fun147(const Fun147Call& c, uint64_t t_ns);
   void advance(uint64_t t);  // to t, event by event (step ends, WAIT times)
   uint64_t next_event_ns() const;
-  void write_status(uint64_t t);  // M1934/M1935, DR4068/DR4070, D4062/D4063
+  // M1934/M1935, DR4068/DR4070, D4062/D4063. With no group, and the block as it was last
+  // written, the write would store the same bytes: inline, so that an idle unit's scan
+  // compares without a call.
+  void write_status(uint64_t t) {
+    // Element by element: std::array's == calls memcmp, a call for two bytes.
+    if (groups_.empty() && finished_[0] == written_finished_[0] && finished_[1] == written_finished_[1] &&
+        written_.holds(mem_))
+      return;
+    rewrite_status(t);
+  }
   void on_stop();
   bool idle() const { return groups_.empty(); }  // no FUN147 group to advance
   // FUN142 PSOFF on axis ps: the group driving it stops as on EN off (M1991 decides how).
@@ -89,6 +98,7 @@ class Interpolation {
   void release(Group& g);
   bool load(Group& g);
   void write_wr(Group& g);
+  void rewrite_status(uint64_t t);
 
   MotionUnit& unit_;
   Memory& mem_;

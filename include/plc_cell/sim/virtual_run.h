@@ -55,6 +55,8 @@ class VirtualRun {
   uint64_t scans() const { return scans_; }
 
  private:
+  void report_events(const std::function<void(const SimEvent&)>& on_event);
+
   Plc& plc_;
   uint64_t period_us_;
   uint64_t now_us_ = 0;

@@ -50,7 +50,7 @@ class Rtc final : public ScanHook {
   void set_from_registers();
   void round_to_minute();
   void publish();  // the clock into R4128-R4135
-  const DateTime& calendar();
+  void find_registers();  // registers_ for the present second
 
   RtcConfig cfg_;
   Memory& mem_;
@@ -61,9 +61,11 @@ class Rtc final : public ScanHook {
   int week_offset_ = 0;     // the program's week minus the calendar's
   bool prev_stop_read_ = false;
   bool prev_round_ = false;
-  int64_t calendar_s_ = -1;  // the second calendar_ shows
-  DateTime calendar_;
-  int calendar_weekday_ = 0;  // of calendar_s_
+  // R4128-R4135 as publish() writes them. The calendar walks years and months: it is
+  // found again only when the second or the week's offset changes (published_s_ = -1),
+  // and a scan within the second copies 16 bytes.
+  int64_t published_s_ = -1;
+  uint16_t registers_[8] = {};
   // D4054 rarely changes: its rate is looked up in the table only when it does.
   int calibration_code_ = -1;
   double calibration_ = 0;  // what that code corrects, s/day
