@@ -38,8 +38,12 @@ class HandoffMutex {
     mu_.lock();
   }
 
-  // Clients counted in lock() that do not yet hold the lock (tests, diagnostics).
-  uint64_t waiting() const { return arrivals_.load() - admitted_.load(); }
+  // Clients counted in lock() that do not yet hold the lock (tests, diagnostics). The
+  // admissions are read first: arrivals only grow, so the difference is never negative.
+  uint64_t waiting() const {
+    const uint64_t admitted = admitted_.load();
+    return arrivals_.load() - admitted;
+  }
 
  private:
   std::mutex mu_;
