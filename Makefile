@@ -47,14 +47,16 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 all: build
 
 # One dpkg-query for the whole list: on a built machine this check takes well under a second.
+# The phases of make test say how long they took (scripts/phase.sh: "== phase NAME: N s, N CPU s").
+PHASE := scripts/phase.sh
 define install_missing
 @missing=$$( { dpkg-query -W -f='$${Package} $${Status}\n' $(1) 2>/dev/null || true; } \
   | awk '$$NF == "installed" {ok[$$1] = 1} END {n = split("$(1)", p, " "); \
          for (i = 1; i <= n; i++) if (!(p[i] in ok)) printf " %s", p[i]}'); \
 if [ -n "$$missing" ]; then \
   echo "== installing Debian packages:$$missing"; \
-  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq; \
-  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing < /dev/null; \
+  $(PHASE) apt "$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
+    $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing < /dev/null"; \
 fi
 endef
 
@@ -84,10 +86,16 @@ SOURCES := $(shell find CMakeLists.txt package.xml src include msg srv action cm
   -type f -not -name '*.pyc' 2>/dev/null)
 BUILT      := $(WS)/.built
 DEMO_BUILT := $(WS)/.built-demo
-CATKIN_FILTER := grep -v -E '^-- (Using|Found|Looking|Detecting|Check|Performing|Configuring done|Generating done)'
+CATKIN_FILTER := { grep -v -E "^-- (Using|Found|Looking|Detecting|Check|Performing|Configuring done|Generating done)" || true; }
 
+# In three phases, each timed: the product (the libraries, nodes and tool, in unity batches),
+# the clang fuzz builds (ASan+UBSan and TSan sub-builds of the library sources, test/fuzz)
+# and the test executables.
+CATKIN := cd $(WS) && catkin_make -j$(JOBS) $(CMAKE_ARGS) -DCATKIN_ENABLE_TESTING=ON
 build: deps ws-src
-	cd $(WS) && catkin_make -j$(JOBS) $(CMAKE_ARGS) -DCATKIN_ENABLE_TESTING=ON all tests 2>&1 | $(CATKIN_FILTER) ; exit $${PIPESTATUS[0]}
+	@$(PHASE) "build: product" '$(CATKIN) all 2>&1 | $(CATKIN_FILTER)'
+	@$(PHASE) "build: fuzzers" '$(CATKIN) plc_cell_fuzzers 2>&1 | $(CATKIN_FILTER)'
+	@$(PHASE) "build: tests" '$(CATKIN) tests 2>&1 | $(CATKIN_FILTER)'
 	touch $(BUILT) $(DEMO_BUILT)
 
 $(BUILT): $(SOURCES)
@@ -109,7 +117,8 @@ $(DEMO_BUILT): $(SOURCES)
 	$(MAKE) --no-print-directory demo-build
 
 test: build
-	$(PY) scripts/run_tests.py --workspace $(WS) --jobs $(JOBS)
+	@$(PHASE) "tests" '$(PY) scripts/run_tests.py --workspace $(WS) --jobs $(JOBS)'
+
 
 # The demo runs on loopback: ROS_HOSTNAME=localhost unless ROS_HOSTNAME or ROS_IP is set,
 # and a hint instead of roslaunch's stack trace when the master could not reach itself

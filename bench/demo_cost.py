@@ -21,6 +21,9 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, '..', 'scripts'))
+from process_tree import exit_on_sigterm  # noqa: E402
+
 CONFIG = os.path.join(HERE, '..', 'examples', 'conveyor', 'conveyor.yaml')
 PERIOD_S = 0.001  # the demo's scan period
 
@@ -38,7 +41,12 @@ def environment(ws):
 
 def user_time(ws, seconds):
     proc = subprocess.Popen(command(ws, seconds), env=environment(ws), stdout=subprocess.DEVNULL)
-    _, status, usage = os.wait4(proc.pid, 0)
+    try:
+        _, status, usage = os.wait4(proc.pid, 0)
+    except BaseException:  # Ctrl-C or SIGTERM of this script: the run goes too
+        proc.kill()
+        proc.wait()
+        raise
     if status != 0:
         sys.exit('%s: the demo run failed (status %d)' % (ws, status))
     return usage.ru_utime
@@ -64,6 +72,7 @@ def main():
     ap.add_argument('--seconds', type=float, default=600)
     ap.add_argument('--no-instructions', action='store_true', help='the times only (no valgrind)')
     a = ap.parse_args()
+    exit_on_sigterm()
     for ws in a.workspaces:
         if not os.path.exists(command(ws, 1)[0]):
             sys.exit('%s: no built plc_cell tool in devel/lib/plc_cell' % ws)

@@ -7,17 +7,17 @@
 #include <arpa/inet.h>
 #include <modbus.h>
 #include <netinet/in.h>
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <optional>
 #include <thread>
 #include <vector>
 
+#include "../test/harness/pty_pair.h"
 #include "latency_counters.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/fatek/client.h"
@@ -125,20 +125,15 @@ static void BM_FatekSerialPty46x64(benchmark::State& st) {
     st.SkipWithError("mkdtemp");
     return;
   }
-  const std::string a = std::string(dir) + "/A", b = std::string(dir) + "/B";
-  int errp[2];
-  if (::pipe(errp) != 0) return;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::dup2(errp[1], 2);
-    ::execlp("socat", "socat", "-d", "-d", ("pty,raw,echo=0,link=" + a).c_str(), ("pty,raw,echo=0,link=" + b).c_str(),
-             static_cast<char*>(nullptr));
-    _exit(127);
+  // The pair is stopped on the way out of this scope, whatever throws in it.
+  std::optional<plc_cell::testing::PtyPair> pty;
+  try {
+    pty.emplace(dir, "");
+  } catch (const std::exception& e) {
+    st.SkipWithError(e.what());
+    return;
   }
-  ::close(errp[1]);
-  std::string log;
-  char ch;
-  while (log.find("starting data transfer loop") == std::string::npos && ::read(errp[0], &ch, 1) == 1) log += ch;
+  const std::string a = pty->a, b = pty->b;
   {
     Plc plc;
     SerialServerOptions so;
@@ -161,9 +156,7 @@ static void BM_FatekSerialPty46x64(benchmark::State& st) {
     st.counters["line_bound_us"] = bytes * 10.0 / 921600.0 * 1e6;
     server.stop();
   }
-  ::kill(pid, SIGTERM);
-  ::waitpid(pid, nullptr, 0);
-  ::close(errp[0]);
+  pty.reset();
   std::string rm = std::string("rm -rf ") + dir;
   if (std::system(rm.c_str()) != 0) st.SkipWithError("cleanup");
 }

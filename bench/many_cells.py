@@ -19,14 +19,17 @@ cells" when it does (the scans and after-scan work ran past the period).
 
 prints a Markdown table (docs/performance.md, "Many cells")."""
 import argparse
+import contextlib
 import os
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 
 HERE = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
 sys.path.insert(0, os.path.join(HERE, "scripts"))
+from process_tree import Started, wait_until  # noqa: E402
 from ros_loopback import loopback_env  # noqa: E402
 
 TICKS = os.sysconf("SC_CLK_TCK")
@@ -74,22 +77,29 @@ class Overruns:
                     self.cycle[st.name] = float(values["cycle avg (us)"])
 
 
-def start_nodes(ws, cell, n, scan, prio, env):
+def workspace_env(ws):
+    """The environment of a shell that sourced ws's devel space: the nodelet manager finds
+    plc_cell/PlcNodelet through its ROS_PACKAGE_PATH, whatever the caller had sourced."""
+    setup = os.path.join(ws, "devel", "setup.bash")
+    if not os.path.exists(setup):
+        raise SystemExit("%s: no devel space (no devel/setup.bash); build it with make build" % ws)
+    out = subprocess.run(["bash", "-c", 'source "$0" >/dev/null && env -0', setup], stdout=subprocess.PIPE,
+                         stdin=subprocess.DEVNULL, timeout=60, check=True).stdout
+    return dict(kv.split("=", 1) for kv in out.decode().split("\0") if "=" in kv)
+
+
+def start_nodes(stack, ws, cell, n, scan, prio, env, log):
     exe = os.path.join(ws, "devel/lib/plc_cell/plc_node")
-    procs = []
-    for i in range(n):
-        procs.append(subprocess.Popen(
-            [exe, "__name:=plc_node", "__ns:=/cell_%d" % i, "_cell:=" + cell, "_scan_period:=%g" % scan,
-             "_rt_priority:=%d" % prio],
-            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
-    return procs, procs
+    return [stack.enter_context(Started(
+        [exe, "__name:=plc_node", "__ns:=/cell_%d" % i, "_cell:=" + cell, "_scan_period:=%g" % scan,
+         "_rt_priority:=%d" % prio], env=env, stdout=subprocess.DEVNULL, stderr=log)) for i in range(n)]
 
 
-def start_nodelets(ws, cell, n, scan, prio, env, shared=0):
+def start_nodelets(stack, cell, n, scan, prio, env, log, shared=0):
     import rospy
     from nodelet.srv import NodeletLoad
-    manager = subprocess.Popen(["/usr/lib/nodelet/nodelet", "manager", "__name:=cells"], env=env,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    manager = stack.enter_context(Started(["/usr/lib/nodelet/nodelet", "manager", "__name:=cells"], env=env,
+                                          stdout=subprocess.DEVNULL, stderr=log))
     rospy.wait_for_service("/cells/load_nodelet", timeout=30)
     load = rospy.ServiceProxy("/cells/load_nodelet", NodeletLoad)
     for i in range(n):
@@ -99,22 +109,38 @@ def start_nodelets(ws, cell, n, scan, prio, env, shared=0):
         rospy.set_param(name + "/rt_priority", prio)
         rospy.set_param(name + "/shared_scan", shared > 0)
         rospy.set_param(name + "/shared_scan_threads", max(1, shared))
-        if not load(name, "plc_cell/PlcNodelet", [], [], [], "").success:
-            raise SystemExit("the manager did not load %s" % name)
-    return [manager], [manager]
+        why = "it answered no"
+        try:
+            loaded = load(name, "plc_cell/PlcNodelet", [], [], [], "").success
+        except rospy.ServiceException as e:  # the nodelet threw while it loaded
+            loaded, why = False, str(e)
+        if not loaded:
+            raise SystemExit("the manager did not load %s (%s); its log:\n%s" % (name, why, tail(log)))
+    return [manager]
+
+
+def tail(log, lines=20):
+    log.flush()
+    log.seek(0)
+    return "".join(log.read().decode(errors="replace").splitlines(True)[-lines:])
 
 
 def measure(way, ws, cell, n, scan, prio, settle, seconds, env, overruns):
-    if way == "nodes":
-        procs, measured = start_nodes(ws, cell, n, scan, prio, env)
-    else:
-        procs, measured = start_nodelets(ws, cell, n, scan, prio, env, shared=SHARED_THREADS.get(way, 0))
-    try:
-        deadline = time.time() + 60 + n
-        while len(overruns.last) < n and time.time() < deadline:
-            time.sleep(0.5)
-        if len(overruns.last) < n:
-            raise SystemExit("%s: %d of %d cells on /diagnostics" % (way, len(overruns.last), n))
+    # Whatever was started stops when the window ends, or when anything fails on the way
+    # (a cell that does not load, Ctrl-C, SIGTERM): nothing is left running.
+    with contextlib.ExitStack() as stack:
+        log = stack.enter_context(tempfile.TemporaryFile())
+        stack.callback(overruns.last.clear)
+        stack.callback(overruns.off_cpu.clear)
+        stack.callback(time.sleep, 2)  # after the stop: the last /diagnostics of the stopped cells
+        if way == "nodes":
+            measured = start_nodes(stack, ws, cell, n, scan, prio, env, log)
+        else:
+            measured = start_nodelets(stack, cell, n, scan, prio, env, log, shared=SHARED_THREADS.get(way, 0))
+        try:
+            wait_until(lambda: len(overruns.last) >= n, 60 + n, "%s: all %d cells on /diagnostics" % (way, n))
+        except RuntimeError as e:
+            raise SystemExit("%s (%d are); the cells' log:\n%s" % (e, len(overruns.last), tail(log)))
         time.sleep(settle)
         before, before_off = dict(overruns.last), dict(overruns.off_cpu)
         cpu0, t0 = sum(cpu_seconds(p.pid) for p in measured), time.time()
@@ -129,18 +155,6 @@ def measure(way, ws, cell, n, scan, prio, settle, seconds, env, overruns):
         cycle = sum(overruns.cycle.values()) / max(1, len(overruns.cycle))
         return {"cpu": cpu, "rss_kb": rss, "threads": threads, "overruns": over, "off_cpu": off, "load": os.getloadavg()[0],
                 "cycle": cycle}
-    finally:
-        for p in procs:
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                p.kill()
-                p.wait()
-        overruns.last.clear()
-        overruns.off_cpu.clear()
-        time.sleep(2)  # the last /diagnostics of the stopped cells
 
 
 def main():
@@ -158,15 +172,15 @@ def main():
     ap.add_argument("--seconds", type=float, default=10, help="s of the measuring window")
     ap.add_argument("--cell", default=os.path.join(HERE, "examples/conveyor/conveyor.yaml"))
     a = ap.parse_args()
+    a.workspace = os.path.abspath(a.workspace)
     port = free_port()
-    env = loopback_env(os.environ)
+    env = loopback_env(workspace_env(a.workspace))
     env["ROS_MASTER_URI"] = "http://localhost:%d" % port
     os.environ.update(env)
-    master = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=env,
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
+    with Started(["rosmaster", "--core", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
+                 stderr=subprocess.DEVNULL) as master:
         import rospy
-        time.sleep(1)
+        wait_until(lambda: master_up(port), 30, "ROS master on port %d" % port, master)
         rospy.init_node("many_cells_bench", anonymous=True, disable_signals=True)
         overruns = Overruns()
         print("| cells | way | CPU per cell (%% of a core) | RSS per cell (MB) | threads | scan (us) "
@@ -178,9 +192,11 @@ def main():
                 print("| %d | %s | %.2f | %.1f | %d | %.1f | %d | %d | %d | %.1f |" % (
                     n, way, r["cpu"] / n, r["rss_kb"] / 1024.0 / n, r["threads"], r["cycle"], r["overruns"],
                     r["off_cpu"], r["overruns"] - r["off_cpu"], r["load"]), flush=True)
-    finally:
-        master.terminate()
-        master.wait()
+
+
+def master_up(port):
+    with socket.socket() as s:
+        return s.connect_ex(("127.0.0.1", port)) == 0
 
 
 if __name__ == "__main__":

@@ -19,6 +19,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from process_tree import exit_on_sigterm  # noqa: E402
+
 TARGET_NS_PER_INSTR = 5.0
 TARGET_SCAN_US = 50.0
 TARGET_P99_US = 200.0
@@ -80,7 +83,7 @@ def run_realtime_bench(binary, seconds):
     cmd = [binary, str(seconds)]
     print("$ " + " ".join(cmd), flush=True)
     text = subprocess.run(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                          universal_newlines=True).stdout
+                          universal_newlines=True, timeout=seconds + 300).stdout
     sys.stdout.write(text)
     figures = {}
     for line in text.splitlines():
@@ -100,6 +103,7 @@ def main():
     ap.add_argument("--min-time", type=float, default=0.5, help="seconds per repetition")
     ap.add_argument("--realtime-seconds", type=float, default=10)
     args = ap.parse_args()
+    exit_on_sigterm()  # a SIGTERM ends the running benchmark too (subprocess kills it on the way out)
     ws = os.path.abspath(args.workspace)
 
     scan = run_scan_bench(find_binary(ws, "bench_scan"), args.repetitions, args.min_time)

@@ -1,23 +1,42 @@
 #!/usr/bin/python3
-"""Runs every test of the package (gtest and rostest, through catkin's run_tests
-target) and totals the test cases from the JUnit XML files.
+"""Runs every test of the package (gtest, rostest and pytest, as catkin declares them) and
+totals the test cases from the JUnit XML files.
 
-The last line is "N passed, N failed"; the exit status is non-zero on any failure,
-and a test target that produced no results counts as a failure (a crash)."""
+Each test executable or file runs in a session of its own, --jobs at a time, the longest
+first (by the last run's times where known), with a time limit: past it, the test and
+everything it started are killed, and it counts as a failure that names it and the limit.
+The rest of the suite goes on. Each test's output goes to a log beside its results; a
+failing test's last lines are printed.
+
+The last line is "N passed, N failed"; the exit status is non-zero on any failure, and a
+test that produced no results counts as a failure (a crash)."""
 import argparse
 import glob
+import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
 
-# Its neighbour, also when a test loads this file as a module from elsewhere.
+# Its neighbours, also when a test loads this file as a module from elsewhere.
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from process_tree import signal_tree, stop  # noqa: E402
 from ros_loopback import loopback_env  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# Seconds a test may take before it is killed: about three times its time on a loaded
+# 2-core machine (docs/testing.md, "The suite's own time"), so that only a hang reaches it.
+LIMIT = 900
+LIMITS = {"gtest_fuzz_tests": 1800, "gtest_core_tests": 1800}
+# Known to be long, started first on a machine that has no times of its own yet.
+LONG_FIRST = ["gtest_fuzz_tests", "gtest_core_tests", "pytest_docs", "pytest_monitor_page", "gtest_reliability_tests"]
+TIMES_FILE = "durations.json"  # beside the results: each test's seconds in the last run
+PREFIX = "_ctest_plc_cell_"
 
 
 def expected_results():
@@ -66,25 +85,106 @@ def count(xml_path):
     return passed, failed, names
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--workspace", required=True)
-    ap.add_argument("--jobs", default="2")
-    args = ap.parse_args()
-    ws = os.path.abspath(args.workspace)
-    results = os.path.join(ws, "build", "test_results", "plc_cell")
-    shutil.rmtree(results, ignore_errors=True)
-    cmd = ("source %s/devel/setup.bash && cd %s && catkin_make -j1 run_tests"
-           % (ws, ws))
-    # Every node and master of the tests is on loopback: no test depends on the hostname.
-    env = loopback_env(dict(os.environ, ROS_HOME=os.path.join(ws, "ros_home"), PYTHONUNBUFFERED="1"))
-    rc = subprocess.call(["bash", "-c", cmd], env=env, stdin=subprocess.DEVNULL)
+def result_file(name):
+    """The JUnit file catkin's wrapper checks for: gtest_core_tests -> gtest-core_tests.xml,
+    rostest_test_ros_plc_node.test -> rostest-test_ros_plc_node.xml."""
+    kind, rest = name.split("_", 1)
+    return "%s-%s.xml" % (kind, rest[:-5] if rest.endswith(".test") else rest)
 
+
+class Test:
+    def __init__(self, name, argv, cwd, limit):
+        self.name, self.argv, self.cwd, self.limit = name, argv, cwd, limit
+        self.proc = self.log = None
+        self.started = self.seconds = 0.0
+        self.status = None
+        self.timed_out = False
+
+
+def discover(build_dir, limit=None):
+    """The tests catkin declared, as CTest knows them: each one's command (catkin's wrapper,
+    which checks that the test wrote its results) and working directory."""
+    out = subprocess.run(["ctest", "--show-only=json-v1"], cwd=build_dir, stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, universal_newlines=True, timeout=120)
+    if out.returncode != 0:
+        raise SystemExit("ctest could not list the tests in %s:\n%s" % (build_dir, out.stderr))
+    tests = []
+    for t in json.loads(out.stdout).get("tests", []):
+        if not t["name"].startswith(PREFIX):
+            continue
+        name = t["name"][len(PREFIX):]
+        props = {p["name"]: p["value"] for p in t.get("properties", [])}
+        tests.append(Test(name, t["command"], props.get("WORKING_DIRECTORY", build_dir),
+                          limit or LIMITS.get(name, LIMIT)))
+    return tests
+
+
+def order(tests, times):
+    """Longest first (LPT): the last run's seconds, else the known long ones first."""
+    def key(t):
+        if t.name in times:
+            return (0, -times[t.name])
+        return (1, LONG_FIRST.index(t.name) if t.name in LONG_FIRST else len(LONG_FIRST), t.name)
+    return sorted(tests, key=key)
+
+
+def tail(path, lines=60):
+    try:
+        with open(path, errors="replace") as f:
+            return "".join(f.readlines()[-lines:])
+    except OSError:
+        return ""
+
+
+def run_all(tests, jobs, log_dir, env, report=print):
+    """Runs tests, `jobs` at a time, each with its limit; fills in status, seconds, timed_out."""
+    os.makedirs(log_dir, exist_ok=True)
+    waiting, running, done = list(tests), [], []
+    try:
+        while waiting or running:
+            while waiting and len(running) < jobs:
+                t = waiting.pop(0)
+                t.log = os.path.join(log_dir, t.name + ".log")
+                with open(t.log, "wb") as log:
+                    t.proc = subprocess.Popen(t.argv, cwd=t.cwd, env=env, stdin=subprocess.DEVNULL, stdout=log,
+                                              stderr=subprocess.STDOUT, start_new_session=True)
+                t.started = time.monotonic()
+                running.append(t)
+            time.sleep(0.2)
+            for t in list(running):
+                elapsed = time.monotonic() - t.started
+                if t.proc.poll() is None and elapsed < t.limit:
+                    continue
+                if t.proc.returncode is None:
+                    t.timed_out = True
+                    stop(t.proc, grace=5, first=signal.SIGTERM)
+                else:  # whatever it left running in its group goes with it
+                    stop(t.proc)
+                t.status, t.seconds = t.proc.returncode, time.monotonic() - t.started
+                running.remove(t)
+                done.append(t)
+                verdict = "TIMEOUT" if t.timed_out else "ok" if t.status == 0 else "FAILED (status %s)" % t.status
+                report("[%3d/%d] %-45s %7.1f s  %s" % (len(done), len(tests), t.name, t.seconds, verdict))
+                if t.status != 0 or t.timed_out:
+                    report("---- last lines of %s ----\n%s----" % (t.log, tail(t.log)))
+    finally:  # Ctrl-C or SIGTERM of the runner: nothing it started stays behind
+        for t in running:
+            signal_tree(t.proc.pid, signal.SIGKILL)
+            t.proc.wait()
+    return done
+
+
+def total(results, done, expected):
+    """(passed, failed, lines naming each failure)."""
     passed = failed = 0
     broken = []
-    for name in expected_results():
-        path = os.path.join(results, name)
-        if not os.path.exists(path):
+    for t in done:
+        if t.timed_out:
+            failed += 1
+            broken.append("%s: killed after its time limit of %d s (log: %s)" % (t.name, t.limit, t.log))
+    timed_out_files = {result_file(t.name) for t in done if t.timed_out}
+    for name in expected:
+        if name not in timed_out_files and not os.path.exists(os.path.join(results, name)):
             failed += 1
             broken.append("%s: no results (the test crashed or did not run)" % name)
     for path in sorted(glob.glob(os.path.join(results, "*.xml"))):
@@ -97,13 +197,53 @@ def main():
         passed += p
         failed += f
         broken += ["%s: %s" % (os.path.basename(path), n) for n in names]
-    if rc != 0:
-        broken.append("catkin_make run_tests exited with %d" % rc)
+    return passed, failed, broken
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--workspace", required=True)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--limit", type=int, help="every test's time limit in seconds (default: per test, %d)" % LIMIT)
+    ap.add_argument("-k", dest="only", help="only the tests whose names contain this text")
+    args = ap.parse_args()
+    ws = os.path.abspath(args.workspace)
+    build = os.path.join(ws, "build")
+    results = os.path.join(build, "test_results", "plc_cell")
+    times_path = os.path.join(build, "test_results", TIMES_FILE)
+    try:
+        times = json.load(open(times_path))
+    except (OSError, ValueError):
+        times = {}
+    shutil.rmtree(results, ignore_errors=True)
+    os.makedirs(results)
+    tests = [t for t in discover(build, args.limit) if not args.only or args.only in t.name]
+    if not tests:
+        raise SystemExit("no tests found in %s (was it built with make build?)" % build)
+    # Every node and master of the tests is on loopback: no test depends on the hostname.
+    env = loopback_env(dict(os.environ, ROS_HOME=os.path.join(ws, "ros_home"), PYTHONUNBUFFERED="1"))
+    t0 = time.monotonic()
+    print("== %d tests, %d at a time (logs in %s)" % (len(tests), args.jobs, os.path.join(results, "logs")))
+    sys.stdout.flush()
+    done = run_all(order(tests, times), args.jobs, os.path.join(results, "logs"), env,
+                   report=lambda line: print(line, flush=True))
+    wall = time.monotonic() - t0
+    times.update({t.name: round(t.seconds, 1) for t in done if not t.timed_out})
+    with open(times_path, "w") as f:
+        json.dump(times, f, indent=1, sort_keys=True)
+    chosen = {result_file(t.name) for t in tests}
+    expected = [e for e in expected_results() if not args.only or e in chosen]
+    passed, failed, broken = total(results, done, expected)
+    busy = sum(t.seconds for t in done)
+    print("\n== the tests took %.0f s of wall time, %.0f s of test time on %d workers; the longest:"
+          % (wall, busy, args.jobs))
+    for t in sorted(done, key=lambda t: -t.seconds)[:12]:
+        print("   %-45s %7.1f s" % (t.name, t.seconds))
     print("")
     for b in broken:
         print("FAILED " + b)
     print("%d passed, %d failed" % (passed, failed))
-    return 1 if (failed or rc != 0 or passed == 0) else 0
+    return 1 if (failed or passed == 0) else 0
 
 
 if __name__ == "__main__":

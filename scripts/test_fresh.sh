@@ -152,6 +152,13 @@ chroot "$root" /usr/bin/env -i "${env_in_root[@]}" \
 rc=${PIPESTATUS[0]}
 set -e
 echo "== make $target in the fresh root: exit $rc after $(( $(date +%s) - t1 )) s (whole run $(( $(date +%s) - t0 )) s)"
+# The phases make marked (scripts/phase.sh), as the table of docs/testing.md.
+echo "== phases (load average now $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores):"
+echo "| phase | wall, s | CPU, s |"
+echo "|---|---|---|"
+echo "| root and clone | $(( t1 - t0 )) | |"
+sed -n -E 's/^== phase (.*): ([0-9]+) s, ([0-9]+) CPU s$/| \1 | \2 | \3 |/p' "$root/srv/make.log"
+echo "| whole run | $(( $(date +%s) - t0 )) | |"
 # The suite's own closing line, last, for whoever reads the run's last lines.
 grep -E '^[0-9]+ passed, [0-9]+ failed' "$root/srv/make.log" | tail -n 1 || true
 exit $rc

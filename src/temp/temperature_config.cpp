@@ -48,7 +48,7 @@ std::string fmt(double v) {
   std::snprintf(b, sizeof b, "%.4f", v);
   return b;
 }
-std::string degrees(double v) {
+std::string shortest(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%g", v);
   return b;
@@ -71,7 +71,7 @@ void check_signal(const YamlReader& r, const YAML::Node& n, const std::string& k
       lo = tc_emf_mv(m.tc, tc_min_c(m.tc)), hi = tc_emf_mv(m.tc, tc_max_c(m.tc));
       if (!(c.signal.value >= lo && c.signal.value <= hi))
         r.fail(v, k, "'" + given + "' out of range " + fmt(lo) + ".." + fmt(hi) + " mV (type " + to_string(m.tc) +
-                         ", NIST ITS-90 " + degrees(tc_min_c(m.tc)) + ".." + degrees(tc_max_c(m.tc)) + " C)");
+                         ", NIST ITS-90 " + shortest(tc_min_c(m.tc)) + ".." + shortest(tc_max_c(m.tc)) + " C)");
       return;
     case SensorKind::Pt100:
     case SensorKind::Pt1000: {

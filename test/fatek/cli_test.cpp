@@ -3,12 +3,8 @@
 
 #include "../core/run_tool.h"
 
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <array>
-#include <cstdio>
+#include <chrono>
+#include <stdexcept>
 #include <string>
 
 namespace {
@@ -19,46 +15,27 @@ Result sh(const std::string& cmd) { return plc_cell::testing::run_shell(cmd); }
 // `plc_cell run` serving FATEK on a free port; the port is read back from its log line.
 class RunServer {
  public:
-  RunServer() {
-    int pipe_fd[2];
-    if (::pipe(pipe_fd) != 0) throw std::runtime_error("pipe");
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::dup2(pipe_fd[1], 2);
-      ::close(pipe_fd[0]);
-      const std::string prog = std::string(PLC_CELL_SOURCE_DIR) + "/test/fatek/bridge_cell.il";
-      ::execl(PLC_CELL_TOOL, PLC_CELL_TOOL, "run", "--program", prog.c_str(), "--fatek-tcp", "127.0.0.1:0",
-              "--station", "2", static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    ::close(pipe_fd[1]);
-    fd_ = pipe_fd[0];
-    std::string log;
-    char c;
-    // Blocks until "serving FATEK TCP 127.0.0.1:PORT station 2" appears.
-    while (::read(fd_, &c, 1) == 1) {
-      log.push_back(c);
-      const auto k = log.find("FATEK TCP 127.0.0.1:");
-      if (k != std::string::npos && log.find(" station", k) != std::string::npos) {
-        port = std::stoi(log.substr(k + 20));
-        break;
-      }
-    }
-    if (!port) throw std::runtime_error("plc_cell run did not start: " + log);
+  RunServer()
+      : proc_({PLC_CELL_TOOL, "run", "--program", std::string(PLC_CELL_SOURCE_DIR) + "/test/fatek/bridge_cell.il",
+               "--fatek-tcp", "127.0.0.1:0", "--station", "2"}) {
+    // "serving FATEK TCP 127.0.0.1:PORT station 2"
+    const bool up = proc_.read_until(
+        [](const std::string& log) {
+          const auto k = log.find("FATEK TCP 127.0.0.1:");
+          return k != std::string::npos && log.find(" station", k) != std::string::npos;
+        },
+        std::chrono::seconds(20));
+    if (!up) throw std::runtime_error("plc_cell run did not start: " + proc_.output());
+    port = std::stoi(proc_.output().substr(proc_.output().find("FATEK TCP 127.0.0.1:") + 20));
   }
-  ~RunServer() {
-    ::kill(pid_, SIGTERM);
-    ::waitpid(pid_, nullptr, 0);
-    ::close(fd_);
-  }
+  ~RunServer() { proc_.end(); }
   std::string fatek(const std::string& args) const {
     return std::string(PLC_CELL_TOOL) + " fatek --tcp 127.0.0.1:" + std::to_string(port) + " --station 2 " + args;
   }
   int port = 0;
 
  private:
-  pid_t pid_ = -1;
-  int fd_ = -1;
+  plc_cell::testing::ChildProcess proc_;
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../harness/pty_pair.h"
 #include "plc_cell/fatek/frame.h"
 #include "plc_cell/fatek/serial_port.h"
 
@@ -53,44 +54,7 @@ class TempDir {
   std::string path;
 };
 
-// socat pty pair: a <-> b. Started in the constructor, killed in the destructor.
-class PtyPair {
- public:
-  explicit PtyPair(const std::string& dir) {
-    a = dir + "/ttyA";
-    b = dir + "/ttyB";
-    int err_pipe[2];
-    if (::pipe(err_pipe) != 0) throw std::runtime_error("pipe");
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::dup2(err_pipe[1], 2);
-      ::close(err_pipe[0]);
-      ::execlp("socat", "socat", "-d", "-d", ("pty,raw,echo=0,link=" + a).c_str(),
-               ("pty,raw,echo=0,link=" + b).c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    ::close(err_pipe[1]);
-    // Block until socat reports that both ptys exist (its -d -d log), no sleeping.
-    std::string log;
-    char c;
-    while (log.find("starting data transfer loop") == std::string::npos && ::read(err_pipe[0], &c, 1) == 1)
-      log.push_back(c);
-    err_fd_ = err_pipe[0];
-    if (log.find("starting data transfer loop") == std::string::npos)
-      throw std::runtime_error("socat did not start: " + log);
-  }
-  ~PtyPair() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGTERM);
-      ::waitpid(pid_, nullptr, 0);
-    }
-    if (err_fd_ >= 0) ::close(err_fd_);
-  }
-  std::string a, b;
-
- private:
-  pid_t pid_ = -1;
-  int err_fd_ = -1;
-};
+// socat pty pair: a <-> b (dir/ttyA, dir/ttyB).
+using plc_cell::testing::PtyPair;
 
 }  // namespace fatek_test

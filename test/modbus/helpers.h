@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "../core/run_tool.h"
+#include "../harness/pty_pair.h"
 
 namespace plc_cell {
 namespace test {
@@ -40,73 +41,23 @@ inline std::string tmp_dir() {
   return d;
 }
 
-// A child process with its stderr on a pipe; killed (SIGTERM, by pid) on destruction.
-class Child {
+// A child process with its output on a pipe; stopped (SIGTERM, SIGKILL past 10 s) on
+// destruction.
+class Child : public testing::ChildProcess {
  public:
-  explicit Child(const std::vector<std::string>& argv) {
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("pipe");
-    pid_ = fork();
-    if (pid_ == 0) {
-      dup2(fds[1], 2);
-      dup2(fds[1], 1);
-      close(fds[0]);
-      std::vector<char*> a;
-      for (const auto& s : argv) a.push_back(const_cast<char*>(s.c_str()));
-      a.push_back(nullptr);
-      execvp(a[0], a.data());
-      _exit(127);
-    }
-    close(fds[1]);
-    err_ = fds[0];
-  }
-  ~Child() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      waitpid(pid_, nullptr, 0);
-    }
-    if (err_ >= 0) close(err_);
-  }
+  using ChildProcess::ChildProcess;
+  ~Child() { end(); }
   // Reads output until it contains needle (true) or timeout_ms passes / EOF (false).
   bool wait_for(const std::string& needle, int timeout_ms = 10000) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (seen_.find(needle) == std::string::npos) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now()).count();
-      if (left <= 0) return false;
-      pollfd p{err_, POLLIN, 0};
-      if (poll(&p, 1, int(left)) <= 0) return false;
-      char buf[1024];
-      const ssize_t n = read(err_, buf, sizeof buf);
-      if (n <= 0) return false;
-      seen_.append(buf, size_t(n));
-    }
-    return true;
+    return read_until(needle, std::chrono::milliseconds(timeout_ms));
   }
-  const std::string& seen() const { return seen_; }
-  pid_t pid() const { return pid_; }
-
- private:
-  pid_t pid_ = -1;
-  int err_ = -1;
-  std::string seen_;
+  const std::string& seen() const { return output(); }
 };
 
-// A socat pty pair: a and b are symlinks to the two ends.
-class PtyPair {
+// A socat pty pair: a and b are symlinks to the two ends, under tmp_dir().
+class PtyPair : public testing::PtyPair {
  public:
-  explicit PtyPair(const std::string& name) {
-    const std::string d = tmp_dir();
-    a = d + "/" + name + "_a";
-    b = d + "/" + name + "_b";
-    socat_ = std::make_unique<Child>(std::vector<std::string>{
-        "socat", "-d", "-d", "pty,raw,echo=0,link=" + a, "pty,raw,echo=0,link=" + b});
-    if (!socat_->wait_for("starting data transfer loop"))
-      throw std::runtime_error("socat did not start: " + socat_->seen());
-  }
-  std::string a, b;
-
- private:
-  std::unique_ptr<Child> socat_;
+  explicit PtyPair(const std::string& name) : testing::PtyPair(tmp_dir(), name + "_") {}
 };
 
 // Compiles a libmodbus example (the .c may be gzipped) after literal text edits;

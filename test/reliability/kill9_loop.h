@@ -8,8 +8,6 @@
 // file's newest slot corrupted): the documented fallback still holds every acknowledged write.
 // Used by reliability_tests (bounded) and by `make soak` (longer); no gtest in here.
 #include <modbus/modbus.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <atomic>
@@ -26,8 +24,6 @@
 #include "plc_cell/fatek/client.h"
 #include "plc_cell/persist/slot_file.h"
 #include "run_child.h"
-
-extern char** environ;
 
 namespace kill9 {
 
@@ -59,22 +55,11 @@ inline void spit(const std::string& p, const std::string& d) { std::ofstream(p, 
 
 // mbpoll writes holding register `reg` (PDU address) = v; exit status 0 is its acknowledgement.
 inline bool mbpoll_write(int port, int reg, int v) {
-  const std::vector<std::string> a = {"mbpoll", "-m", "tcp", "-p", std::to_string(port), "-a", "1", "-t", "4", "-0",
-                                      "-r", std::to_string(reg), "-1", "-o", "2", "-q", "127.0.0.1", std::to_string(v)};
-  std::vector<char*> av;
-  for (const auto& s : a) av.push_back(const_cast<char*>(s.c_str()));
-  av.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid;
-  const int rc = posix_spawnp(&pid, "mbpoll", &fa, nullptr, av.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return false;
-  int st = 0;
-  ::waitpid(pid, &st, 0);
-  return WIFEXITED(st) && WEXITSTATUS(st) == 0;
+  const auto r = plc_cell::testing::run_process({"mbpoll", "-m", "tcp", "-p", std::to_string(port), "-a", "1", "-t",
+                                                 "4", "-0", "-r", std::to_string(reg), "-1", "-o", "2", "-q",
+                                                 "127.0.0.1", std::to_string(v)},
+                                                30);
+  return r.status == 0;
 }
 
 class Loop {

@@ -50,3 +50,48 @@ def test_other_files_count_every_case_and_an_empty_one_fails():
     d = tempfile.mkdtemp()
     assert run_tests.count(junit(d, "gtest-core_tests.xml", [("a", "ok"), ("b", "ok")]))[:2] == (2, 0)
     assert run_tests.count(junit(d, "gtest-empty.xml", []))[:2] == (0, 1)
+
+
+def _test(d, name, script, limit):
+    t = run_tests.Test(name, ["bash", "-c", script], d, limit)
+    return t
+
+
+def _alive(pid):
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def test_a_hung_test_is_killed_at_its_limit_with_all_it_started_and_the_rest_runs():
+    d = tempfile.mkdtemp()
+    pids = os.path.join(d, "pids")
+    # A test that hangs, with a grandchild that left for a session of its own (as a server
+    # started with setsid does): both must go when the limit is reached.
+    hung = _test(d, "gtest_hangs", "setsid sleep 600 & echo $! >> %s; echo $$ >> %s; sleep 600" % (pids, pids), 2)
+    fine = _test(d, "gtest_fine", "echo fine", 60)
+    lines = []
+    done = run_tests.run_all([hung, fine], 1, os.path.join(d, "logs"), dict(os.environ), report=lines.append)
+    assert [t.name for t in done] == ["gtest_hangs", "gtest_fine"]
+    assert hung.timed_out and not fine.timed_out and fine.status == 0
+    assert 2 <= hung.seconds < 30
+    started = [int(p) for p in open(pids).read().split()]
+    assert len(started) == 2 and not any(_alive(p) for p in started), started
+    assert any("gtest_hangs" in line and "TIMEOUT" in line for line in lines), lines
+    passed, failed, broken = run_tests.total(d, done, ["gtest-hangs.xml"])
+    assert failed == 1
+    assert broken == ["gtest_hangs: killed after its time limit of 2 s (log: %s)" % hung.log]
+
+
+def test_result_files_are_named_as_catkin_names_them():
+    assert run_tests.result_file("gtest_core_tests") == "gtest-core_tests.xml"
+    assert run_tests.result_file("rostest_test_ros_plc_node.test") == "rostest-test_ros_plc_node.xml"
+    assert run_tests.result_file("pytest_docs") == "pytest-docs.xml"
+
+
+def test_the_longest_run_first_and_known_long_ones_before_unknown_ones():
+    tests = [run_tests.Test(n, [], "/", 1) for n in ("gtest_a", "gtest_b", "gtest_fuzz_tests", "gtest_c")]
+    assert [t.name for t in run_tests.order(tests, {"gtest_b": 5.0, "gtest_c": 50.0})] == \
+        ["gtest_c", "gtest_b", "gtest_fuzz_tests", "gtest_a"]

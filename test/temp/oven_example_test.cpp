@@ -2,24 +2,16 @@
 // it needs PLC_CELL_TOOL and PLC_CELL_SOURCE_DIR).
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <string>
+
+#include "../harness/child_process.h"
 
 namespace {
 
 std::string run(const std::string& args, int* status) {
-  const std::string cmd = std::string(PLC_CELL_TOOL) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  if (!p) return out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int st = pclose(p);
-  *status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return out;
+  const auto r = plc_cell::testing::run_shell(std::string(PLC_CELL_TOOL) + " " + args);
+  *status = r.status;
+  return r.out;
 }
 
 TEST(OvenExample, SimHoldsTheSetPoint) {

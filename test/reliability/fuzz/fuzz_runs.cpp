@@ -5,7 +5,6 @@
 // test runs, so a new example or refused cell seeds them without being copied.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -16,7 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "../../harness/child_process.h"
+
 namespace {
+
+constexpr int kLimitS = 900;  // one target's bounded run, with room for a loaded machine
 
 namespace fs = std::filesystem;
 
@@ -109,14 +112,9 @@ Run fuzz(const std::string& target, const std::string& corpus, int runs, int max
   const std::string seeds = std::string(PLC_CELL_SOURCE_DIR) + "/test/fuzz/corpus/" + corpus;
   const std::string cmd = bin + " -runs=" + std::to_string(runs) + " -seed=1 -max_len=" + std::to_string(max_len) + " -timeout=20 -rss_limit_mb=1024" +
                           " -artifact_prefix=" + tmp + "/ " + tmp + " " + seeds + " " + more_seeds + " 2>&1";
-  Run r{-1, ""};
-  if (FILE* p = ::popen(cmd.c_str(), "r")) {
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-    const int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  }
+  // A bounded run: a fuzzer that hangs fails here, killed after kLimitS.
+  const auto done = plc_cell::testing::run_shell(cmd, kLimitS);
+  Run r{done.status, done.out};
   (void)std::system(("rm -rf '" + tmp + "'").c_str());
   if (r.out.size() > 6000) r.out = "..." + r.out.substr(r.out.size() - 6000);
   return r;

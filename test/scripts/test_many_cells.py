@@ -1,0 +1,81 @@
+"""bench/many_cells.py stops what it started on every way out: a cell that does not load,
+and a SIGTERM in the middle of a measurement. It also sets up the ROS environment from
+--workspace itself, so it runs from a shell that sourced nothing.
+
+Every process it starts inherits a marker in its environment; after the bench has ended,
+no process with that marker may be left."""
+import os
+import signal
+import subprocess
+import sys
+import time
+import uuid
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+from pyutil import ROOT, devel  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from process_tree import stop, wait_until  # noqa: E402
+
+BENCH = os.path.join(ROOT, "bench", "many_cells.py")
+LIMIT = 180  # s: every wait here is bounded by this
+
+
+def marked(marker):
+    """pids of the live processes whose environment holds the marker (zombies excluded)."""
+    out = []
+    for d in os.listdir("/proc"):
+        if not d.isdigit() or int(d) == os.getpid():
+            continue
+        try:
+            with open("/proc/%s/environ" % d, "rb") as f:
+                if ("PLC_CELL_BENCH_MARK=" + marker).encode() not in f.read().split(b"\0"):
+                    continue
+            with open("/proc/%s/stat" % d) as f:
+                if f.read().rsplit(")", 1)[1].split()[0] == "Z":
+                    continue
+        except OSError:
+            continue
+        out.append(int(d))
+    return out
+
+
+def start(marker, *args):
+    # Nothing sourced: only what a fresh login shell has, and the marker.
+    env = {"PATH": "/usr/bin:/bin", "HOME": os.environ.get("HOME", "/root"), "PLC_CELL_BENCH_MARK": marker}
+    return subprocess.Popen(["/usr/bin/python3", BENCH, "--workspace", os.path.dirname(devel())] + list(args),
+                            env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            start_new_session=True)
+
+
+def finish(p):
+    try:
+        out, _ = p.communicate(timeout=LIMIT)
+    except subprocess.TimeoutExpired:
+        stop(p)
+        raise AssertionError("many_cells.py did not end within %d s" % LIMIT)
+    return out.decode(errors="replace")
+
+
+def test_a_cell_that_does_not_load_fails_with_its_reason_and_leaves_nothing():
+    marker = uuid.uuid4().hex
+    p = start(marker, "--cells", "1", "--ways", "nodelets", "--settle", "0", "--seconds", "1",
+              "--cell", "/nonexistent/cell.yaml")
+    out = finish(p)
+    assert p.returncode != 0, out
+    assert "the manager did not load /cell_0/plc_node" in out, out
+    assert "cannot open the cell config" in out, out  # the manager's own log says why
+    assert marked(marker) == [], out
+
+
+def test_a_sigterm_during_the_measurement_leaves_nothing():
+    marker = uuid.uuid4().hex
+    p = start(marker, "--cells", "2", "--ways", "nodes", "--settle", "0", "--seconds", "600")
+    # The master, the bench and two plc_node processes: the measurement is under way.
+    wait_until(lambda: len(marked(marker)) >= 4, LIMIT, "the bench's master and two cells", p)
+    p.send_signal(signal.SIGTERM)
+    out = finish(p)
+    assert p.returncode != 0, out
+    deadline = time.monotonic() + 10  # SIGKILLed processes may still be ending
+    while marked(marker) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert marked(marker) == [], out
