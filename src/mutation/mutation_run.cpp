@@ -72,17 +72,26 @@ void observe(std::vector<scenario::Probe>* observed, const scenario::Probe& p) {
   observed->push_back(p);
 }
 
-// The lines a case executed: every instruction that recorded a value, and every one of a
+// The lines a case executed: every instruction that recorded a value, every one of a
 // network whose ORG ran (a network runs through: ANDLD, ORLD and M1925's contacts record
-// nothing of their own).
+// nothing of their own), and a FOR (which records nothing) run into from the instruction
+// before it or whose body ran.
 void add_executed(const coverage::Recorder& rec, const std::string& name, ProgramResult* r) {
   const coverage::Report rep = coverage::report(rec);
   const plc_cell::Program& prog = rec.program();
+  std::vector<bool> ran(prog.code.size(), false);
   for (size_t i = 0; i < prog.code.size(); ++i) {
     const int line = prog.code[i].line;
-    bool ran = rec.seen()[i] != 0;
-    for (const auto& n : rep.networks) ran = ran || (n.evaluated && line >= n.line && line <= n.end_line);
-    if (!ran) continue;
+    ran[i] = rec.seen()[i] != 0;
+    for (const auto& n : rep.networks) ran[i] = ran[i] || (n.evaluated && line >= n.line && line <= n.end_line);
+  }
+  for (size_t i = 0; i < prog.code.size(); ++i)
+    if (prog.code[i].op == Op::For)
+      ran[i] = ran[i] || (i > 0 && ran[i - 1] && prog.code[i - 1].op != Op::Jmp) ||
+               (i + 1 < prog.code.size() && ran[i + 1]);
+  for (size_t i = 0; i < prog.code.size(); ++i) {
+    const int line = prog.code[i].line;
+    if (!ran[i]) continue;
     auto& by = r->executed_by[line];
     if (by.empty() || by.back() != name) by.push_back(name);
   }

@@ -8,11 +8,13 @@
 
 #include "../core/run_tool.h"
 #include "../core/tool_text.h"
+#include "program_lines.h"
 #include "plc_cell/core/il_parser.h"
 #include "plc_cell/mutation/mutant.h"
 
 using namespace plc_cell::mutation;
 using plc_cell::testing::has;
+using plc_cell::testing::program_lines;
 using plc_cell::testing::run_tool;
 using plc_cell::testing::slurp;
 using plc_cell::testing::ToolResult;
@@ -21,19 +23,12 @@ namespace {
 
 const std::string kSrc = PLC_CELL_SOURCE_DIR;
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  return lines;
-}
-
 // The mutants of a program's lines (from: the first line listed), "line operator: change".
 std::vector<std::string> changes(const std::string& text, int from = 1) {
   const plc_cell::FunctionTable fns = plc_cell::FunctionTable::with_core_functions();
   const plc_cell::Program p = plc_cell::parse_program(text, "t.il", fns);
   std::vector<std::string> out;
-  for (const Mutant& m : mutants(split(text), p, fns))
+  for (const Mutant& m : mutants(program_lines(text), p, fns))
     if (m.line >= from) out.push_back(std::to_string(m.line) + " " + m.op + ": " + m.change());
   return out;
 }

@@ -13,24 +13,19 @@
 
 #include "../core/run_tool.h"
 #include "../core/tool_text.h"
+#include "program_lines.h"
 #include "plc_cell/core/il_parser.h"
 #include "plc_cell/mutation/mutant.h"
 
 using namespace plc_cell;
 using namespace plc_cell::mutation;
 using plc_cell::testing::has;
+using plc_cell::testing::program_lines;
 using plc_cell::testing::run_tool;
 using plc_cell::testing::slurp;
 using plc_cell::testing::ToolResult;
 
 namespace {
-
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  return lines;
-}
 
 const FunctionTable& functions() {
   static const FunctionTable f = FunctionTable::with_core_functions();
@@ -43,10 +38,10 @@ std::vector<std::string> of(const std::string& line, const std::string& op, cons
   const std::string text = "ORG M1925\n" + line + "\n" + after + "END\n";
   const Program p = parse_program(text, "t.il", functions());
   std::vector<std::string> out;
-  for (const Mutant& m : mutants(split(text), p, functions())) {
+  for (const Mutant& m : mutants(program_lines(text), p, functions())) {
     if (m.line != 2 || m.op != op) continue;
     out.push_back(m.after);
-    EXPECT_NO_THROW(parse_program(mutation::apply(split(text), m), "m.il", functions())) << m.after;
+    EXPECT_NO_THROW(parse_program(mutation::apply(program_lines(text), m), "m.il", functions())) << m.after;
   }
   return out;
 }
@@ -143,9 +138,9 @@ TEST(ConstantOperator, RandomFormsEachConstantByOne) {
       if (in.operands[s].present && in.operands[s].kind == Operand::Kind::Const)
         for (int64_t v : {in.operands[s].k + 1, in.operands[s].k - 1})
           if (v >= -32768 && v <= 65535) expected.insert({s, v});
-    for (const Mutant& m : mutants(split(text), p, functions())) {
+    for (const Mutant& m : mutants(program_lines(text), p, functions())) {
       if (m.op != "constant") continue;
-      const Program q = parse_program(mutation::apply(split(text), m), "m.il", functions());
+      const Program q = parse_program(mutation::apply(program_lines(text), m), "m.il", functions());
       const Instruction& mi = q.code.at(1);
       ASSERT_EQ(mi.operands.size(), in.operands.size()) << line << " -> " << m.after;
       size_t changed = 0;
@@ -165,8 +160,8 @@ TEST(ConstantOperator, RandomFormsEachConstantByOne) {
 }
 
 // Through the tool: the constant mutants of each form are run (and killed by a case that
-// checks each sum), and the lines every scan runs, ORG M1925 and ANDLD among them, are
-// executed by the case.
+// checks each sum), and the lines every scan runs, ORG M1925, ANDLD and FOR among them,
+// are executed by the case.
 TEST(ConstantOperator, TheToolRunsThemAndEveryLineThatRanIsExecuted) {
   const std::string dir = ::testing::TempDir() + "/mutation_forms";
   std::system(("mkdir -p " + dir).c_str());
@@ -180,6 +175,10 @@ TEST(ConstantOperator, TheToolRunsThemAndEveryLineThatRanIsExecuted) {
                                      "OR X2\n"
                                      "ANDLD\n"
                                      "OUT Y0\n"
+                                     "FOR 2\n"
+                                     "ORG M1925\n"
+                                     "OUT Y5\n"
+                                     "NEXT\n"
                                      "END\n";
   std::ofstream(dir + "/cell.yaml") << "cell: {name: t, program: cell.il}\nplc: {scan_period: 0.001}\n";
   std::ofstream(dir + "/s.scenario.yaml") << "cell: cell.yaml\ncases:\n"
@@ -198,12 +197,15 @@ TEST(ConstantOperator, TheToolRunsThemAndEveryLineThatRanIsExecuted) {
   EXPECT_TRUE(has(j, mutant(3, "ADD Sa=R0 Sb=10 D=R2", "ADD Sa=R0 Sb=9 D=R2"))) << j;
   EXPECT_TRUE(has(j, mutant(4, "ADD Sa=R0 Sb=K10 D=R3", "ADD Sa=R0 Sb=K11 D=R3"))) << j;
   EXPECT_TRUE(has(j, mutant(5, "FUN 11 ADD R0 10 R4", "FUN 11 ADD R0 9 R4"))) << j;
-  // ORG M1925 (its contact records nothing: M1925 cannot change) and ANDLD (no value of
-  // its own) run in every scan of the case.
+  // ORG M1925 (its contact records nothing: M1925 cannot change) runs in every scan of the
+  // case.
   EXPECT_TRUE(has(j, "\"from\": \"ORG M1925\", \"to\": \"ORG NOT M1925\", \"status\": \"killed\", \"survival\": "
                               "null, \"killed_by\": \"sums\", \"told_apart\": null, \"searched\": null, "
                               "\"executed_by\": [\"sums\"]}")) << j;
-  const size_t andld = j.find("\"from\": \"ANDLD\", \"to\": \"ORLD\"");
-  ASSERT_NE(andld, std::string::npos) << j;
-  EXPECT_TRUE(has(j.substr(andld, j.find('}', andld) - andld), "\"executed_by\": [\"sums\"]")) << j;
+  // So do ANDLD (no value of its own) and FOR (none either).
+  for (const std::string from : {"\"from\": \"ANDLD\", \"to\": \"ORLD\"", "\"from\": \"FOR 2\", \"to\": \"FOR 3\""}) {
+    const size_t at = j.find(from);
+    ASSERT_NE(at, std::string::npos) << from << "\n" << j;
+    EXPECT_TRUE(has(j.substr(at, j.find('}', at) - at), "\"executed_by\": [\"sums\"]")) << from << "\n" << j;
+  }
 }

@@ -56,11 +56,13 @@ TEST(MutationScore, EquivalentIsEarnedOnThreeSmallNetworks) {
   EXPECT_FALSE(has(r.out, "55.6 %")) << r.out;
   EXPECT_TRUE(has(r.out, "  network 1 (line 1): 5/6 killed\n  network 2 (line 4): 0/7 killed\n"
                          "  network 3 (line 8): 0/2 killed, 5 equivalent-suspect\n")) << r.out;
+  // The lines docs/testing-your-cell.md shows.
   EXPECT_TRUE(has(r.out, "cell.il:2: AND X1 \u2192 OR X1 in network 1 (line 1): survived: executed (by every case), "
-                         "but no case sees a difference; an input search tells it apart: Y0 ON, the original's OFF"))
-      << r.out;
+                         "but no case sees a difference; an input search tells it apart: Y0 ON, the original's OFF at "
+                         "0.002 s of the exhaustive run over X0, X1 (one scan a step)\n")) << r.out;
   EXPECT_TRUE(has(r.out, "cell.il:9: TMR T0 3 \u2192 TMR T0 4 in network 3 (line 8): equivalent-suspect: no case and "
-                         "no input search tells it apart (every combination of X4")) << r.out;
+                         "no input search tells it apart (every combination of X4 (one scan a step, then 1.000 s), "
+                         "then 10 exploration runs of 10.000 s (inputs X0, X1, X2, X3, X4, seed 1))\n")) << r.out;
 }
 
 // Three cases test the first half of the program (a start/stop latch, a lamp, a delayed
