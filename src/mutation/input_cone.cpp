@@ -3,6 +3,8 @@
 #include <map>
 #include <set>
 
+#include "plc_cell/core/error.h"
+
 namespace plc_cell {
 namespace mutation {
 
@@ -53,10 +55,8 @@ std::vector<Element> elements(const Operand& o, uint8_t span) {
 void fun_access(const Instruction& in, const FunctionTable& functions, Access* a) {
   static const FunctionTable core = FunctionTable::with_core_functions();
   const FunctionSpec* spec = functions.find(in.fun);
-  if (!spec || !core.find(in.fun)) {  // an extension's FUN acts beyond its operands
-    a->open = true;
-    return;
-  }
+  if (!spec || !core.find(in.fun)) a->open = true;  // an extension's FUN acts beyond its operands
+  if (!spec) return;
   for (size_t s = 0; s < in.operands.size() && s < spec->operands.size(); ++s) {
     const Operand& o = in.operands[s];
     if (!o.present) continue;
@@ -95,7 +95,27 @@ void access(const Instruction& in, const FunctionTable& functions, Access* a) {
   }
 }
 
+Address address_of(Element e) {
+  const Area area = Area((e >> 32) & 0xFF);
+  return Address{area, (e >> 63) ? Width::Word : Width::Bit, index_of(e)};
+}
+
 }  // namespace
+
+std::vector<Address> written_by(const Program& program, const FunctionTable& functions) {
+  Access all;
+  for (const Instruction& in : program.code) access(in, functions, &all);
+  std::vector<Address> out;
+  for (Element e : all.writes) {
+    const Address a = address_of(e);
+    try {
+      check_span(a, 1);  // a 32-bit counter's high word is its own element
+      out.push_back(a);
+    } catch (const Error&) {
+    }
+  }
+  return out;
+}
 
 std::vector<NetworkInputs> network_inputs(const Program& program, const FunctionTable& functions) {
   // The networks as coverage divides them (coverage/report.cpp): an ORG starts one, and a

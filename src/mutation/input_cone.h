@@ -22,6 +22,11 @@ struct NetworkInputs {
   bool closed = true;
 };
 
+// Every memory element an instruction of the program writes, each once: the coils, each
+// timer's and counter's bit and value, the destinations and flags of its FUNs (a register
+// by its words, a W/DW view by its bits).
+std::vector<Address> written_by(const Program& program, const FunctionTable& functions);
+
 // The networks of the program (an ORG starts one), routines included, in program order.
 std::vector<NetworkInputs> network_inputs(const Program& program, const FunctionTable& functions);
 

@@ -129,7 +129,7 @@ std::string summary(const Score& s) {
   return "killed " + std::to_string(s.killed) + ", survived " + std::to_string(s.survived) + " (not executed " +
          std::to_string(s.not_executed) + ", not observed " + std::to_string(s.not_observed) + ", not checked " +
          std::to_string(s.not_checked) + "), equivalent-suspect " + std::to_string(s.equivalent) + ", not loaded " +
-         std::to_string(s.not_loaded) + ": score " + percent(s.score());
+         std::to_string(s.not_loaded) + (s.has_score() ? ": score " + percent(s.score()) : ": no score (no mutant counts)");
 }
 
 std::string json_or_null(const std::string& s) { return s.empty() ? "null" : json_string(s); }
@@ -165,7 +165,10 @@ void write_json(const std::vector<ProgramResult>& programs, std::ostream& out) {
         << ", \"survived\": " << s.survived << ", \"survived_not_executed\": " << s.not_executed
         << ", \"survived_not_observed\": " << s.not_observed << ", \"survived_not_checked\": " << s.not_checked
         << ", \"equivalent_suspect\": " << s.equivalent << ", \"not_loaded\": " << s.not_loaded
-        << ", \"score\": " << s.score() << ",\n   \"networks\": [";
+        << ", \"score\": ";
+    if (s.has_score()) out << s.score();
+    else out << "null";
+    out << ",\n   \"networks\": [";
     const auto nets = per_network(p);
     for (size_t k = 0; k < p.networks.size(); ++k) {
       const Score& ns = nets[p.networks[k].number];

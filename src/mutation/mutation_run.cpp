@@ -42,7 +42,8 @@ struct ProgramCases {
   std::vector<CaseRef> cases;
   plc_cell::Program parsed;
   FunctionTable functions;
-  std::vector<scenario::Probe> observed;  // the outputs, the cell's signals, every case's probes
+  // The outputs, the cell's signals, every case's probes, every element the program writes.
+  std::vector<scenario::Probe> observed;
 };
 
 std::vector<std::string> lines_of(const std::string& path) {
@@ -250,6 +251,9 @@ std::vector<ProgramResult> run_mutation(const std::vector<scenario::Scenario>& f
     r.generated = all.size();
     const size_t n = options.budget && options.budget < all.size() ? options.budget : all.size();
     for (size_t i = 0; i < n; ++i) r.results.push_back({all[i * all.size() / n], Verdict::Survived, "", false, "", ""});
+    // What a master or an HMI reads of the program's doing: every element it writes.
+    for (const Address& a : written_by(p.parsed, p.functions))
+      observe(&p.observed, scenario::parse_probe(format_address(a)));
     InputSearch search(search_file(p), p.file, p.parsed, p.functions, p.observed, make);
     run_all(p, lines, options, make, search, r.results);
     out.push_back(std::move(r));

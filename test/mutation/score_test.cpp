@@ -29,24 +29,25 @@ ToolResult mutate(const std::string& name, const std::string& program, const std
 
 // Three small networks and one case that checks the AND of the first.
 //
-//   network 1 (lines 1-3)  ORG X0 / AND X1 / OUT Y0        6 mutants
-//   network 2 (lines 4-7)  ORG X2 / OR X3 / OUT Y1 / OUT Y3  7 mutants
-//   network 3 (lines 8-11) ORG NOT X4 / TMR T0 3 / TMR T1 1 / OUT Y2  7 mutants
+//   network 1 (lines 1-3)   ORG X0 / AND X1 / OUT Y0                  6 mutants
+//   network 2 (lines 4-8)   ORG X2 / OR X3 / OUT Y1 / OUT Y1 / OUT Y3  8 mutants
+//   network 3 (lines 9-11)  ORG X4 / OR X4 / OUT Y2                   6 mutants
 //
 // The case sets X0 and X1 and expects Y0. Network 1: ORG NOT X0, ORG TU X0 (Y0 for one
 // scan), AND NOT X1, AND TU X1 and the deleted OUT Y0 fail it: 5 killed. AND -> OR gives
 // Y0 too: no case sees it, X0 alone tells it apart (not observed). Network 2 with X2, X3
 // OFF: ORG NOT X2 and OR NOT X3 turn Y1, Y3 on (seen, not checked); ORG TU X2, OR -> AND,
-// OR TU X3 and the two deleted coils change nothing until X2 or X3 is ON (not observed).
-// Network 3: ORG X4 and the deleted OUT Y2 turn Y2 off (not checked); the five presets of
-// T0 and T1, which nothing reads, change nothing any input shows: equivalent-suspect.
-// 15 of the 20 are told apart: 5 killed and 10 survivors, 5 / 15 = 33.3 %. Leaving out the
-// 6 that no case saw would have said 5 / 9 = 55.6 %.
+// OR TU X3 and the deleted OUT Y3 change nothing until X2 or X3 is ON (not observed);
+// either OUT Y1 deleted leaves the other driving Y1 (equivalent-suspect). Network 3:
+// ORG NOT X4 and OR NOT X4 turn Y2 on (not checked); the deleted OUT Y2 shows only with X4
+// ON (not observed); ORG TU X4, OR -> AND and OR TU X4 all still give Y2 = X4
+// (equivalent-suspect). 15 of the 20 are told apart: 5 killed and 10 survivors,
+// 5 / 15 = 33.3 %. Leaving out the 6 that no case saw would have said 5 / 9 = 55.6 %.
 TEST(MutationScore, EquivalentIsEarnedOnThreeSmallNetworks) {
   const ToolResult r = mutate("score_three",
                               "ORG X0\nAND X1\nOUT Y0\n"
-                              "ORG X2\nOR X3\nOUT Y1\nOUT Y3\n"
-                              "ORG NOT X4\nTMR T0 3\nTMR T1 1\nOUT Y2\nEND\n",
+                              "ORG X2\nOR X3\nOUT Y1\nOUT Y1\nOUT Y3\n"
+                              "ORG X4\nOR X4\nOUT Y2\nEND\n",
                               "cases:\n  - name: the AND\n    steps:\n"
                               "      - at: 100ms\n        set: {X0: on, X1: on}\n"
                               "      - after: 10ms\n        expect: Y0\n");
@@ -54,15 +55,17 @@ TEST(MutationScore, EquivalentIsEarnedOnThreeSmallNetworks) {
   EXPECT_TRUE(has(r.out, ": 20 mutants, 1 case each\n  killed 5, survived 10 (not executed 0, not observed 6, "
                          "not checked 4), equivalent-suspect 5, not loaded 0: score 33.3 %\n")) << r.out;
   EXPECT_FALSE(has(r.out, "55.6 %")) << r.out;
-  EXPECT_TRUE(has(r.out, "  network 1 (line 1): 5/6 killed\n  network 2 (line 4): 0/7 killed\n"
-                         "  network 3 (line 8): 0/2 killed, 5 equivalent-suspect\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "  network 1 (line 1): 5/6 killed\n  network 2 (line 4): 0/6 killed, 2 equivalent-suspect\n"
+                         "  network 3 (line 9): 0/3 killed, 3 equivalent-suspect\n")) << r.out;
   // The lines docs/testing-your-cell.md shows.
   EXPECT_TRUE(has(r.out, "cell.il:2: AND X1 \u2192 OR X1 in network 1 (line 1): survived: executed (by every case), "
                          "but no case sees a difference; an input search tells it apart: Y0 ON, the original's OFF at "
                          "0.002 s of the exhaustive run over X0, X1 (one scan a step)\n")) << r.out;
-  EXPECT_TRUE(has(r.out, "cell.il:9: TMR T0 3 \u2192 TMR T0 4 in network 3 (line 8): equivalent-suspect: no case and "
-                         "no input search tells it apart (every combination of X4 (one scan a step, then 1.000 s), "
-                         "then 10 exploration runs of 10.000 s (inputs X0, X1, X2, X3, X4, seed 1))\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "cell.il:4: ORG X2 \u2192 ORG NOT X2 in network 2 (line 4): survived: no case checks it "
+                         "(executed by every case)\n")) << r.out;
+  EXPECT_TRUE(has(r.out, "cell.il:10: OR X4 \u2192 AND X4 in network 3 (line 9): equivalent-suspect: no case and no "
+                         "input search tells it apart (every combination of X4 (one scan a step, then 1.000 s), then "
+                         "10 exploration runs of 10.000 s (inputs X0, X1, X2, X3, X4, seed 1))\n")) << r.out;
 }
 
 // Three cases test the first half of the program (a start/stop latch, a lamp, a delayed
@@ -134,4 +137,18 @@ TEST(MutationScore, ASuiteThatNeverReachesHalfTheProgram) {
                          "input search tells it apart: ")) << r.out;
   EXPECT_TRUE(has(r.out, "cell.il:10: TMR T0 10 \u2192 TMR T0 11 in network 3 (line 9): survived: no case checks it "
                          "(executed by every case)\n")) << r.out;
+}
+
+// A suite whose mutants are all equivalent-suspects (the ADC example copies a channel that
+// no case reads, and the search drives no analog input) killed nothing of nothing: no score,
+// not 100 %.
+TEST(MutationScore, NothingCountedIsNoScore) {
+  const std::string json = ::testing::TempDir() + "/score_none.json";
+  const ToolResult r = run_tool("test " + std::string(PLC_CELL_SOURCE_DIR) +
+                                "/examples/temp/adc_conditioning.scenario.yaml --mutate --mutate-json " + json);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(has(r.out, "  killed 0, survived 0 (not executed 0, not observed 0, not checked 0), equivalent-suspect 2, "
+                         "not loaded 0: no score (no mutant counts)\n")) << r.out;
+  EXPECT_FALSE(has(r.out, "100.0 %")) << r.out;
+  EXPECT_TRUE(has(plc_cell::testing::slurp(json), "\"not_loaded\": 0, \"score\": null,")) << plc_cell::testing::slurp(json);
 }

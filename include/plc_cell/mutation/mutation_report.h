@@ -25,8 +25,10 @@ struct Score {
   size_t killed = 0, survived = 0, equivalent = 0, not_loaded = 0;
   size_t not_executed = 0, not_observed = 0, not_checked = 0;  // the survivors by Survival
   // killed / (killed + survived): equivalent-suspects (no case and no input search tells
-  // them apart) and mutants that do not load left out.
-  double score() const { return killed + survived ? double(killed) / double(killed + survived) : 1.0; }
+  // them apart) and mutants that do not load left out. None when nothing counts: a suite
+  // that killed nothing of nothing has no score, not 100 %.
+  bool has_score() const { return killed + survived > 0; }
+  double score() const { return has_score() ? double(killed) / double(killed + survived) : 0.0; }
 };
 
 Score score(const ProgramResult& p);
