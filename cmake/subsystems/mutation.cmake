@@ -1,8 +1,9 @@
 # Mutation testing of IL programs (plc_cell test --mutate): mutants of the program, every
-# scenario case against each on a fresh cell. Sits on the scenario and coverage layers.
+# scenario case against each on a fresh cell; the input search that earns "equivalent-suspect"
+# runs explore's random runs. Sits on the explore, scenario and coverage layers.
 file(GLOB MUTATION_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/mutation/*.cpp)
 add_library(plc_cell_mutation STATIC ${MUTATION_SOURCES})
-target_link_libraries(plc_cell_mutation PUBLIC plc_cell_scenario plc_cell_coverage)
+target_link_libraries(plc_cell_mutation PUBLIC plc_cell_explore plc_cell_scenario plc_cell_coverage)
 
 list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/mutate_option.cpp)
 list(APPEND PLC_CELL_TOOL_LIBS plc_cell_mutation)

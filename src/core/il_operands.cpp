@@ -23,6 +23,7 @@ bool Parser::bit_address(const Token& t, Address* a) {
 
 bool Parser::value_operand(const Token& t, bool is32, OperandRole role, uint8_t span, Operand* o) {
   int64_t k;
+  o->column = t.column;
   if (role == OperandRole::Label) {  // a name; the function checks it when it runs
     o->kind = Operand::Kind::Const;
     o->text = upper(t.text);

@@ -11,18 +11,15 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/function_table.h"
+#include "plc_cell/core/il_parser.h"
 #include "plc_cell/core/program.h"
 
 namespace plc_cell {
 namespace il {
 
-struct Token {
-  std::string text;
-  int column;
-};
+using Token = IlToken;
 
 std::string upper(std::string s);
-std::vector<Token> tokenize(const std::string& line);
 
 struct FlowFun {
   uint16_t number;

@@ -20,8 +20,10 @@ std::string upper(std::string s) {
   return s;
 }
 
-std::vector<Token> tokenize(const std::string& line) {
-  std::vector<Token> out;
+}  // namespace il
+
+std::vector<IlToken> tokenize_il_line(const std::string& line) {
+  std::vector<IlToken> out;
   size_t end = line.size();
   for (size_t i = 0; i < line.size(); ++i) {
     if (line[i] == ';' || (line[i] == '/' && i + 1 < line.size() && line[i + 1] == '/')) {
@@ -41,6 +43,8 @@ std::vector<Token> tokenize(const std::string& line) {
   return out;
 }
 
+namespace il {
+
 Program Parser::run(std::string_view text) {
   std::istringstream in{std::string(text)};
   std::string line;
@@ -49,7 +53,7 @@ Program Parser::run(std::string_view text) {
     ++n;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     line_ = n;
-    auto toks = tokenize(line);
+    auto toks = tokenize_il_line(line);
     if (!toks.empty()) statement(toks);
   }
   finish();

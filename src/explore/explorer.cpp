@@ -6,8 +6,7 @@ namespace explore {
 Outcome explore(const scenario::ExploreSpec& spec, uint64_t period_us, const Runner& runner) {
   Outcome o;
   while (o.virtual_us < spec.budget_us) {
-    // Each run's own seed from the file's seed and the run's number.
-    const InputRun run = random_run(spec, spec.seed * 1000003 + o.runs, period_us);
+    const InputRun run = random_run(spec, run_seed(spec, o.runs), period_us);
     ++o.runs;
     const scenario::CaseResult r = runner(run);
     o.virtual_us += r.virtual_us;

@@ -150,6 +150,7 @@ ApiReply Api::get(const std::string& path, const std::string& query) {
     return json_reply({{"available", true}, {"seen", *seen}});
   }
   if (path == "/api/replay") return replay_get();
+  if (path == "/api/replay/history") return replay_history(query);
   if (path.rfind("/api/", 0) == 0) return error_reply(404, path + ": no such API endpoint");
   const auto file = static_file(path, settings_.asset_root.empty() ? default_asset_root() : settings_.asset_root,
                                 settings_.vendor_root);
@@ -176,13 +177,44 @@ ApiReply Api::read(const std::string& query) {
 ApiReply Api::replay_get() {
   Replay* r = source_.replay();
   if (!r) return error_reply(404, "/api/replay: this source is not a recording");
-  nlohmann::json failure = nullptr;
-  if (auto f = r->failure_us()) failure = *f;
+  nlohmann::json failure = nullptr, text = nullptr;
+  if (auto f = r->failure_us()) {
+    failure = *f;
+    text = r->failure_text();
+  }
   return json_reply({{"begin_us", r->begin_us()},
                      {"end_us", r->end_us()},
                      {"cursor_us", r->cursor_us()},
                      {"scans", r->scans()},
-                     {"failure_us", failure}});
+                     {"failure_us", failure},
+                     {"failure", text}});
+}
+
+// GET /api/replay/history?a=X3,R0&from_us=0&to_us=4500000: each name's recorded values.
+ApiReply Api::replay_history(const std::string& query) {
+  Replay* r = source_.replay();
+  if (!r) return error_reply(404, "/api/replay/history: this source is not a recording");
+  std::string list, from, to;
+  if (!query_value(query, "a", &list)) return error_reply(400, "/api/replay/history: no a= (a=D0,X1,start_pb)");
+  const auto names = split_names(list);
+  if (names.empty() || names.size() > kMaxWatch)
+    return error_reply(400, "/api/replay/history: a= names 1 to " + std::to_string(kMaxWatch) + " addresses");
+  uint64_t from_us = r->begin_us(), to_us = r->end_us();
+  try {
+    if (query_value(query, "from_us", &from)) from_us = std::stoull(from);
+    if (query_value(query, "to_us", &to)) to_us = std::stoull(to);
+  } catch (const std::exception&) {
+    return error_reply(400, "/api/replay/history: from_us and to_us are whole microseconds");
+  }
+  const auto program = source_.program();
+  std::vector<Address> addrs;
+  for (const auto& n : names) addrs.push_back(resolve(n, *program));
+  const History h = r->history(addrs, from_us, to_us);
+  nlohmann::json series = nlohmann::json::object();
+  for (size_t i = 0; i < names.size(); ++i) series[names[i]] = h.series.at(i);
+  nlohmann::json cut = nullptr;
+  if (h.cut_us) cut = *h.cut_us;
+  return json_reply({{"series", series}, {"cut_us", cut}});
 }
 
 }  // namespace monitor

@@ -61,6 +61,7 @@ class Api {
   ApiReply force(const nlohmann::json& body);
   ApiReply mode(const nlohmann::json& body);
   ApiReply replay_get();
+  ApiReply replay_history(const std::string& query);
   ApiReply replay_post(const nlohmann::json& body);
   ApiReply refuse_write(const std::string& what, const std::string& why);
   // "" when the elements from a may be written, else why not.

@@ -32,6 +32,20 @@ uint32_t elements(const Address& a, uint32_t count) {
   return count * per;
 }
 
+// The page's watch table, whose changes are events too: {"watch": ["D5", "tank_low"]}.
+std::vector<Address> watched_addresses(const nlohmann::json& body, const ProgramView& program) {
+  std::vector<Address> out;
+  if (!body.contains("watch")) return out;
+  const auto& w = body["watch"];
+  if (!w.is_array() || w.size() > kMaxWatch)
+    throw Error("replay: \"watch\" must be a list of up to " + std::to_string(kMaxWatch) + " names");
+  for (const auto& name : w) {
+    if (!name.is_string()) throw Error("replay: \"watch\" must be a list of names");
+    out.push_back(resolve(name.get<std::string>(), program));
+  }
+  return out;
+}
+
 }  // namespace
 
 ApiReply Api::refuse_write(const std::string& what, const std::string& why) {
@@ -118,7 +132,7 @@ ApiReply Api::replay_post(const nlohmann::json& body) {
     const auto& n = field(body, "n", "replay");
     if (!n.is_number_integer()) throw Error("replay: \"n\" must be an integer");
     if (step == "scan") r->step_scans(n.get<int64_t>());
-    else if (step == "event") r->step_events(n.get<int64_t>());
+    else if (step == "event") r->step_events(n.get<int64_t>(), watched_addresses(body, *source_.program()));
     else throw Error("replay: \"step\" must be scan or event, not '" + step + "'");
   } else {
     throw Error("replay: expected {\"seek_us\": N} or {\"step\": \"scan|event\", \"n\": K}");

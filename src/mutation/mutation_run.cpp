@@ -11,6 +11,7 @@
 #include "plc_cell/coverage/recorders.h"
 #include "plc_cell/coverage/report.h"
 #include "plc_cell/scenario/runner.h"
+#include "input_search.h"
 #include "tracing_target.h"
 
 namespace plc_cell {
@@ -34,10 +35,15 @@ struct CaseRef {
   uint64_t hash = 0;  // the original program's trace
 };
 
-// The cases of one program, in the order of the files and their cases.
-struct Program {
+// The cases of one program, in the order of the files and their cases, and the program as
+// the cells parse it.
+struct ProgramCases {
   std::string file;
   std::vector<CaseRef> cases;
+  plc_cell::Program parsed;
+  FunctionTable functions;
+  // The outputs, the cell's signals, every case's probes, every element the program writes.
+  std::vector<scenario::Probe> observed;
 };
 
 std::vector<std::string> lines_of(const std::string& path) {
@@ -48,46 +54,84 @@ std::vector<std::string> lines_of(const std::string& path) {
   return lines;
 }
 
-std::vector<Program> programs(const std::vector<scenario::Scenario>& files, const TargetFactory& make) {
-  std::vector<Program> out;
+std::vector<ProgramCases> programs(const std::vector<scenario::Scenario>& files, const TargetFactory& make) {
+  std::vector<ProgramCases> out;
   for (const auto& sc : files) {
     if (sc.cases.empty()) continue;  // none selected: nothing could kill a mutant
     const std::string file = sc.program.empty() ? make(sc, "")->cell().config().program : sc.program;
     auto it = out.begin();
     while (it != out.end() && it->file != file) ++it;
-    if (it == out.end()) it = out.insert(out.end(), Program{file, {}});
+    if (it == out.end()) it = out.insert(out.end(), ProgramCases{file, {}, {}, {}, output_words()});
     for (const auto& c : sc.cases) it->cases.push_back({&sc, &c});
   }
   return out;
 }
 
-// The original program: every case must pass; its traces, the lines each case evaluated.
-void baseline(Program& p, const TargetFactory& make, ProgramResult* r) {
+void observe(std::vector<scenario::Probe>* observed, const scenario::Probe& p) {
+  for (const auto& o : *observed)
+    if (o.text == p.text) return;
+  observed->push_back(p);
+}
+
+// The lines a case executed: every instruction that recorded a value, every one of a
+// network whose ORG ran (a network runs through: ANDLD, ORLD and M1925's contacts record
+// nothing of their own), and a FOR (which records nothing) run into from the instruction
+// before it or whose body ran.
+void add_executed(const coverage::Recorder& rec, const std::string& name, ProgramResult* r) {
+  const coverage::Report rep = coverage::report(rec);
+  const plc_cell::Program& prog = rec.program();
+  std::vector<bool> ran(prog.code.size(), false);
+  for (size_t i = 0; i < prog.code.size(); ++i) {
+    const int line = prog.code[i].line;
+    ran[i] = rec.seen()[i] != 0;
+    for (const auto& n : rep.networks) ran[i] = ran[i] || (n.evaluated && line >= n.line && line <= n.end_line);
+  }
+  for (size_t i = 0; i < prog.code.size(); ++i)
+    if (prog.code[i].op == Op::For)
+      ran[i] = ran[i] || (i > 0 && ran[i - 1] && prog.code[i - 1].op != Op::Jmp) ||
+               (i + 1 < prog.code.size() && ran[i + 1]);
+  for (size_t i = 0; i < prog.code.size(); ++i) {
+    const int line = prog.code[i].line;
+    if (!ran[i]) continue;
+    auto& by = r->executed_by[line];
+    if (by.empty() || by.back() != name) by.push_back(name);
+  }
+  if (r->networks.empty())
+    for (const auto& n : rep.networks) r->networks.push_back({n.number, n.line, n.end_line});
+}
+
+// The original program: every case must pass; its traces, the lines each case executed.
+void baseline(ProgramCases& p, const TargetFactory& make, ProgramResult* r) {
   for (auto& cr : p.cases) {
     const auto target = make(*cr.sc, p.file);
-    coverage::Recorders rec;
-    rec.attach(target->cell().plc(), target->cell().config().signals);
+    coverage::Recorders recs;
+    coverage::Recorder& rec = recs.attach(target->cell().plc(), target->cell().config().signals);
     TracingTarget t(*target, *cr.c);
     const scenario::CaseResult res = scenario::run_case(*cr.c, t);
-    rec.detach(target->cell().plc());
+    recs.detach(target->cell().plc());
     if (!res.passed)
       throw Error("mutation testing needs every case to pass on the original program: " + cr.c->name + ": " +
                   res.failure);
     cr.hash = t.hash();
-    const coverage::Report rep = rec.reports().at(0);
-    if (r->networks.empty())
-      for (const auto& n : rep.networks) r->networks.push_back({n.number, n.line, n.end_line});
-    for (const auto& n : rep.networks)
-      for (const auto& it : n.items)
-        if (it.evaluated()) {
-          auto& by = r->executed_by[it.line];
-          if (by.empty() || by.back() != cr.c->name) by.push_back(cr.c->name);
-        }
+    add_executed(rec, cr.c->name, r);
+    if (p.parsed.code.empty()) {
+      p.parsed = rec.program();
+      p.functions = target->cell().plc().functions();
+    }
+    for (const auto& sig : target->cell().config().signals) observe(&p.observed, scenario::parse_probe(sig.first));
+    for (const auto& probe : case_probes(*cr.c)) observe(&p.observed, probe);
   }
 }
 
-MutantResult run_mutant(const Program& p, const std::vector<std::string>& lines, const Mutant& m,
-                        const std::string& path, const TargetFactory& make) {
+// The file whose cell the search runs: the first with an explore: section, else the first.
+const scenario::Scenario& search_file(const ProgramCases& p) {
+  for (const auto& cr : p.cases)
+    if (cr.sc->explore.line) return *cr.sc;
+  return *p.cases.front().sc;
+}
+
+MutantResult run_mutant(const ProgramCases& p, const std::vector<std::string>& lines, const Mutant& m,
+                        const std::string& path, const TargetFactory& make, InputSearch& search) {
   MutantResult r;
   r.mutant = m;
   std::ofstream(path, std::ios::trunc) << apply(lines, m);
@@ -108,19 +152,49 @@ MutantResult run_mutant(const Program& p, const std::vector<std::string>& lines,
     }
     same = same && t.hash() == cr.hash;
   }
-  r.verdict = same ? Verdict::Equivalent : Verdict::Survived;
+  r.verdict = Verdict::Survived;
+  r.observed = !same;
+  if (r.observed) return r;
+  const Finding f = search.tell_apart(path, m.line);
+  if (f.found) {
+    r.told_apart = f.text();
+  } else {
+    r.verdict = Verdict::Equivalent;
+    r.searched = search.plan(m.line);
+  }
   return r;
 }
 
-// One line per result through a pipe: "index verdict killed_by".
+// A result through a pipe: its index, then each field as its length and its bytes.
 std::string encode(size_t i, const MutantResult& r) {
-  return std::to_string(i) + " " + std::to_string(int(r.verdict)) + " " + r.killed_by + "\n";
+  std::string o = std::to_string(i) + " " + std::to_string(int(r.verdict)) + " " + (r.observed ? "1" : "0");
+  for (const std::string* f : {&r.killed_by, &r.told_apart, &r.searched}) o += " " + std::to_string(f->size()) + ":" + *f;
+  return o + "\n";
+}
+
+// Decodes the results of one worker's output into results.
+void decode(const std::string& in, std::vector<MutantResult>& results) {
+  std::istringstream s(in);
+  size_t i;
+  int v, observed;
+  while (s >> i >> v >> observed) {
+    MutantResult& r = results.at(i);
+    r.verdict = Verdict(v);
+    r.observed = observed != 0;
+    for (std::string* f : {&r.killed_by, &r.told_apart, &r.searched}) {
+      size_t n;
+      char colon;
+      s >> n >> colon;
+      f->assign(n, '\0');
+      s.read(&(*f)[0], std::streamsize(n));
+    }
+  }
 }
 
 // The mutants split over jobs worker processes (mutant i to worker i % jobs); results in
 // mutant order, whichever worker finished first.
-void run_all(const Program& p, const std::vector<std::string>& lines, const Options& o, const TargetFactory& make,
-             std::vector<MutantResult>& results) {
+void run_all(const ProgramCases& p, const std::vector<std::string>& lines, const Options& o,
+             const TargetFactory& make, InputSearch& search, std::vector<MutantResult>& results) {
   char dir[] = "/tmp/plc_cell_mutants_XXXXXX";
   if (!mkdtemp(dir)) throw Error("mutation: cannot make a temporary folder");
   const int jobs = std::max(1, o.jobs);
@@ -136,7 +210,7 @@ void run_all(const Program& p, const std::vector<std::string>& lines, const Opti
       const std::string path = std::string(dir) + "/mutant" + std::to_string(w) + ".il";
       try {
         for (size_t i = size_t(w); i < results.size(); i += size_t(jobs)) {
-          const std::string line = encode(i, run_mutant(p, lines, results[i].mutant, path, make));
+          const std::string line = encode(i, run_mutant(p, lines, results[i].mutant, path, make, search));
           if (write(fd[1], line.data(), line.size()) < 0) _exit(2);
         }
       } catch (const std::exception& e) {
@@ -155,17 +229,7 @@ void run_all(const Program& p, const std::vector<std::string>& lines, const Opti
     close(fd);
     int status = 0;
     waitpid(pid, &status, 0);
-    std::istringstream lines_in(in);
-    for (std::string l; std::getline(lines_in, l);) {
-      std::istringstream f(l);
-      size_t i;
-      int v;
-      f >> i >> v;
-      std::string killer;
-      std::getline(f >> std::ws, killer);
-      results.at(i).verdict = Verdict(v);
-      results.at(i).killed_by = killer;
-    }
+    decode(in, results);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error("mutation: a worker process failed");
   }
   for (int w = 0; w < jobs; ++w) std::remove((std::string(dir) + "/mutant" + std::to_string(w) + ".il").c_str());
@@ -177,17 +241,21 @@ void run_all(const Program& p, const std::vector<std::string>& lines, const Opti
 std::vector<ProgramResult> run_mutation(const std::vector<scenario::Scenario>& files, const Options& options,
                                         const TargetFactory& make) {
   std::vector<ProgramResult> out;
-  for (Program& p : programs(files, make)) {
+  for (ProgramCases& p : programs(files, make)) {
     ProgramResult r;
     r.program = p.file;
     r.cases = p.cases.size();
     baseline(p, make, &r);
     const std::vector<std::string> lines = lines_of(p.file);
-    const std::vector<Mutant> all = mutants(lines);
+    const std::vector<Mutant> all = mutants(lines, p.parsed, p.functions);
     r.generated = all.size();
     const size_t n = options.budget && options.budget < all.size() ? options.budget : all.size();
-    for (size_t i = 0; i < n; ++i) r.results.push_back({all[i * all.size() / n], Verdict::Survived, ""});
-    run_all(p, lines, options, make, r.results);
+    for (size_t i = 0; i < n; ++i) r.results.push_back({all[i * all.size() / n], Verdict::Survived, "", false, "", ""});
+    // What a master or an HMI reads of the program's doing: every element it writes.
+    for (const Address& a : written_by(p.parsed, p.functions))
+      observe(&p.observed, scenario::parse_probe(format_address(a)));
+    InputSearch search(search_file(p), p.file, p.parsed, p.functions, p.observed, make);
+    run_all(p, lines, options, make, search, r.results);
     out.push_back(std::move(r));
   }
   return out;

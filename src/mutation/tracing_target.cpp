@@ -6,13 +6,19 @@
 namespace plc_cell {
 namespace mutation {
 
-TracingTarget::TracingTarget(scenario::Target& inner, const scenario::Case& c) : inner_(inner) {
-  for (int w = 0; w < 256; w += 16) probes_.push_back(scenario::parse_probe("WY" + std::to_string(w)));
+std::vector<scenario::Probe> output_words() {
+  std::vector<scenario::Probe> out;
+  for (int w = 0; w < 256; w += 16) out.push_back(scenario::parse_probe("WY" + std::to_string(w)));
+  return out;
+}
+
+std::vector<scenario::Probe> case_probes(const scenario::Case& c) {
+  std::vector<scenario::Probe> out;
   std::set<std::string> seen;
   auto add = [&](const scenario::Condition& cond) {
     for (const auto& cmp : cond.all)
       if (cmp.probe.kind != scenario::Probe::Kind::Analog && seen.insert(cmp.probe.text).second)
-        probes_.push_back(cmp.probe);
+        out.push_back(cmp.probe);
   };
   for (const auto& s : c.steps) {
     add(s.cond);
@@ -22,16 +28,28 @@ TracingTarget::TracingTarget(scenario::Target& inner, const scenario::Case& c) :
     add(p.when);
     add(p.cond);
   }
+  return out;
+}
+
+uint64_t fold(uint64_t hash, scenario::Target& t, const std::vector<scenario::Probe>& probes) {
+  auto byte = [&](uint64_t b) { hash = (hash ^ (b & 0xFF)) * 1099511628211ULL; };
+  for (const auto& p : probes) {
+    const scenario::Reading r = t.read(p);
+    uint64_t bits;
+    std::memcpy(&bits, &r.number, sizeof bits);
+    for (int i = 0; i < 8; ++i) byte(bits >> (8 * i));
+  }
+  return hash;
+}
+
+TracingTarget::TracingTarget(scenario::Target& inner, const scenario::Case& c)
+    : inner_(inner), probes_(output_words()) {
+  for (auto& p : case_probes(c)) probes_.push_back(p);
 }
 
 void TracingTarget::scan(uint64_t t_us) {
   inner_.scan(t_us);
-  for (const auto& p : probes_) {
-    const scenario::Reading r = inner_.read(p);
-    uint64_t bits;
-    std::memcpy(&bits, &r.number, sizeof bits);
-    for (int i = 0; i < 8; ++i) hash_ = (hash_ ^ ((bits >> (8 * i)) & 0xFF)) * 1099511628211ULL;
-  }
+  hash_ = fold(hash_, inner_, probes_);
 }
 
 }  // namespace mutation

@@ -10,6 +10,15 @@
 namespace plc_cell {
 namespace mutation {
 
+// The outputs as 16 words, WY0..WY240.
+std::vector<scenario::Probe> output_words();
+// Every probe c's steps and the file's properties read, each once (an analog input is
+// driven, not read).
+std::vector<scenario::Probe> case_probes(const scenario::Case& c);
+// One scan's values of probes folded into hash.
+uint64_t fold(uint64_t hash, scenario::Target& t, const std::vector<scenario::Probe>& probes);
+constexpr uint64_t kHashStart = 1469598103934665603ULL;  // FNV-1a
+
 class TracingTarget : public scenario::Target {
  public:
   TracingTarget(scenario::Target& inner, const scenario::Case& c);
@@ -30,7 +39,7 @@ class TracingTarget : public scenario::Target {
  private:
   scenario::Target& inner_;
   std::vector<scenario::Probe> probes_;
-  uint64_t hash_ = 1469598103934665603ULL;  // FNV-1a
+  uint64_t hash_ = kHashStart;
 };
 
 }  // namespace mutation

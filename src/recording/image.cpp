@@ -78,6 +78,38 @@ std::string word_cell_name(uint32_t n) {
   return "?";
 }
 
+std::vector<uint32_t> cells_of(const Address& a) {
+  check_span(a, 1);
+  std::vector<uint32_t> out;
+  uint32_t at = 0;
+  if (is_discrete(a.area)) {
+    for (Area x : kBitAreas) {
+      if (x == a.area) break;
+      at += area_size(x);
+    }
+    const uint32_t n = a.width == Width::Bit ? 1 : a.width == Width::Word ? 16 : 32;
+    for (uint32_t k = 0; k < n; ++k) out.push_back(at + a.index + k);
+    return out;
+  }
+  at = bit_cells();
+  for (Area x : kWordAreas) {
+    if (x == a.area) break;
+    at += Memory::word_count(x);
+  }
+  out.push_back(at + Memory::word_index(a.area, a.index));
+  if (a.width == Width::DWord) out.push_back(out[0] + 1);
+  return out;
+}
+
+uint32_t value_of(const Address& a, const std::vector<uint16_t>& v) {
+  if (is_discrete(a.area)) {
+    uint32_t x = 0;
+    for (size_t k = 0; k < v.size(); ++k) x |= uint32_t(v[k] & kBitState) << k;
+    return x;
+  }
+  return v.size() > 1 ? uint32_t(v[0]) | (uint32_t(v[1]) << 16) : v.at(0);
+}
+
 std::vector<Address> forced_points(const Image& img) {
   std::vector<Address> out;
   uint32_t at = 0;

@@ -142,12 +142,19 @@ size_t Reader::scan_at(uint64_t t_us) const {
   return it == scans_.begin() ? 0 : size_t(it - scans_.begin()) - 1;
 }
 
-size_t Reader::next_event(size_t from, int dir) const {
+size_t Reader::next_change(size_t from, int dir, const std::vector<bool>& cells) const {
   for (size_t i = from; dir > 0 ? i + 1 < scans_.size() : i > 0;) {
     i = dir > 0 ? i + 1 : i - 1;
-    if (changes(i)) return i;
+    for (size_t k = scans_[i].begin; k < scans_[i].end; ++k)
+      if (changes_[k].cell < cells.size() && cells[changes_[k].cell]) return i;
   }
   return from;
+}
+
+void Reader::each_change(size_t first, size_t last, const std::function<bool(size_t, uint32_t, uint16_t)>& f) const {
+  for (size_t i = first; i <= last && i < scans_.size(); ++i)
+    for (size_t k = scans_[i].begin; k < scans_[i].end; ++k)
+      if (!f(i, changes_[k].cell, changes_[k].value)) return;
 }
 
 void Reader::image_after(size_t i, Image* out) const {

@@ -6,6 +6,7 @@
 #include "../monitor/client.h"
 #include "../reliability/run_child.h"
 #include "helpers.h"
+#include "plc_cell/recording/reader.h"
 
 namespace plc_cell {
 namespace {
@@ -27,6 +28,15 @@ TEST(MonitorCommand, ARecordingOpensAtItsFailureAndIsReadOnly) {
   EXPECT_EQ(replay["cursor_us"], 2000000u) << replay.dump();
   EXPECT_EQ(replay["failure_us"], 2000000u);
   EXPECT_EQ(replay["scans"], 2001u);
+  // The failing check's text, as the report printed it and the file keeps it.
+  const std::string failure = recording::Reader::load(file).info().failure;
+  EXPECT_NE(failure.find("stopper_lower"), std::string::npos) << failure;
+  EXPECT_EQ(replay["failure"], failure) << replay.dump();
+  // The recorded history of a trend: the robot called once, at 1 s.
+  const nlohmann::json history = http_get(port, "/api/replay/history?a=pick_request&from_us=0&to_us=2000000").json();
+  EXPECT_EQ(history["series"]["pick_request"], nlohmann::json::parse("[[0, 0], [1000000, 1]]")) << history.dump();
+  EXPECT_TRUE(history["cut_us"].is_null());
+  EXPECT_EQ(http_get(port, "/api/replay/history?a=no_such_name").status, 400);
   const nlohmann::json values = http_get(port, "/api/read?a=stopper_lower,pick_request").json()["values"];
   EXPECT_EQ(values["stopper_lower"], 0);
   EXPECT_EQ(values["pick_request"], 1);
@@ -37,6 +47,11 @@ TEST(MonitorCommand, ARecordingOpensAtItsFailureAndIsReadOnly) {
   EXPECT_EQ(http_get(port, "/api/read?a=pick_request").json()["values"]["pick_request"], 1);
   replay = http_post(port, "/api/replay", R"({"step": "scan", "n": -1})", token).json();
   EXPECT_EQ(http_get(port, "/api/read?a=pick_request").json()["values"]["pick_request"], 0);  // before the part
+  // A step by event refused for a name it cannot watch moves nothing.
+  EXPECT_EQ(http_post(port, "/api/replay", R"({"step": "event", "n": 1, "watch": ["no_such_name"]})", token).status, 400);
+  EXPECT_EQ(http_get(port, "/api/replay").json()["cursor_us"], 999000u);
+  replay = http_post(port, "/api/replay", R"({"step": "event", "n": 1, "watch": ["D0"]})", token).json();
+  EXPECT_EQ(replay["cursor_us"], 1000000u) << replay.dump();  // the part, not the 0.01 s clock relay
   const monitor_test::HttpReply w = http_post(port, "/api/write", R"({"address": "D0", "values": [5]})", token);
   EXPECT_GE(w.status, 400);
   EXPECT_NE(w.body.find("a recording is read-only"), std::string::npos) << w.body;

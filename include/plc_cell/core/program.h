@@ -30,6 +30,7 @@ struct Operand {
   std::string name;  // the operand name it was given for (S, D, EQ, ...)
   bool present = true;  // optional operands may be absent
   std::string text;     // a Label operand's name (upper case)
+  int column = 0;       // where its value starts on its line (1-based): tools that rewrite it
 };
 
 struct Instruction {

@@ -39,6 +39,9 @@ InputRun shrink(const scenario::ExploreSpec& spec, InputRun run, const Runner& r
 // The shrinker's runs at most: enough for runs of a few hundred changes.
 constexpr uint64_t kMaxShrinkRuns = 2000;
 
+// The seed of run n (0, 1, ...) of an exploration: from the file's seed and the run's number.
+inline uint64_t run_seed(const scenario::ExploreSpec& spec, uint64_t n) { return spec.seed * 1000003 + n; }
+
 // Random runs from spec.seed until spec.budget_us of virtual time; the first that fails is
 // shrunk. period_us: the cell's scan period.
 Outcome explore(const scenario::ExploreSpec& spec, uint64_t period_us, const Runner& runner);

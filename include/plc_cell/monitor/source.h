@@ -48,6 +48,13 @@ struct CellStatus {
   std::string note;             // e.g. "power flow computed from polled values"
 };
 
+// Recorded values over time (Replay::history): per address, its value at the first instant
+// and then at each scan that changed it, as (t_us, value).
+struct History {
+  std::vector<std::vector<std::pair<uint64_t, uint32_t>>> series;
+  std::optional<uint64_t> cut_us;  // too many changes: the series stop at this instant
+};
+
 // A recorded run's cursor (Source::replay()).
 class Replay {
  public:
@@ -56,13 +63,19 @@ class Replay {
   virtual uint64_t end_us() const = 0;
   virtual uint64_t cursor_us() const = 0;
   virtual uint64_t scans() const = 0;
-  // The failing check's instant of a failed scenario case, when the recording has one.
+  // The failing check's instant and text of a failed scenario case, when the recording
+  // has one.
   virtual std::optional<uint64_t> failure_us() const = 0;
+  virtual std::string failure_text() const = 0;
   // Moves the cursor to the last scan at or before t_us (clamped to the run).
   virtual void seek(uint64_t t_us) = 0;
-  // n scans (negative: back), or to the n-th next/previous change of any recorded value.
+  // n scans (negative: back), or to the n-th next/previous event: a change of the
+  // program's own addresses (what its ladder draws, the outputs, the named signals) or of
+  // watched (the page's watch table); the clock relays and the real-time clock are none.
   virtual void step_scans(int64_t n) = 0;
-  virtual void step_events(int64_t n) = 0;
+  virtual void step_events(int64_t n, const std::vector<Address>& watched) = 0;
+  // addrs from the last scan at or before from_us to the last at or before to_us.
+  virtual History history(const std::vector<Address>& addrs, uint64_t from_us, uint64_t to_us) const = 0;
 };
 
 class Source {

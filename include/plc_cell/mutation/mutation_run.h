@@ -1,9 +1,10 @@
 #pragma once
 // Mutation testing (docs/testing-your-cell.md, "Mutation testing"): every case of the
 // scenario files against every mutant of their programs, each on a fresh cell in virtual
-// time. A mutant is killed when a case fails (a fault fails it too), equivalent-suspect
-// when every case passes and every probed value is the same as on the original program at
-// every scan, else it survived.
+// time. A mutant is killed when a case fails (a fault fails it too). One that passes every
+// case is equivalent-suspect only when no case saw an observed value differ from the
+// original program's and a search over the inputs finds no difference either
+// (input_search.h); every other one survived.
 #include <functional>
 #include <map>
 #include <memory>
@@ -23,7 +24,10 @@ const char* verdict_name(Verdict v);  // "killed", "survived", "equivalent-suspe
 struct MutantResult {
   Mutant mutant;
   Verdict verdict = Verdict::Survived;
-  std::string killed_by;  // the first case that failed
+  std::string killed_by;   // the first case that failed
+  bool observed = false;   // survived: a case saw an observed value differ
+  std::string told_apart;  // survived, no case saw it: the input search's first difference
+  std::string searched;    // equivalent-suspect: what the search tried
 };
 
 struct NetworkSpan {
@@ -37,7 +41,7 @@ struct ProgramResult {
   size_t generated = 0; // the mutants before the budget
   std::vector<NetworkSpan> networks;
   std::vector<MutantResult> results;                      // in line order
-  std::map<int, std::vector<std::string>> executed_by;  // line: the cases that evaluated it
+  std::map<int, std::vector<std::string>> executed_by;  // line: the cases that executed it
 };
 
 struct Options {

@@ -29,6 +29,14 @@ void restore(const Image& img, Memory* m);
 std::string bit_cell_name(uint32_t n);
 std::string word_cell_name(uint32_t n);
 
+// The cells that hold a, numbered as a recording's changes number them (the bit cells, then
+// bit_cells() + the word cell), in the order Memory::read combines them: lowest bit first,
+// low word first. Throws Error naming an address outside the memory.
+std::vector<uint32_t> cells_of(const Address& a);
+// a's value as Memory::read gives it, from its cells' values (cells_of order; a bit cell's
+// value is its byte, state and DISABLE flag).
+uint32_t value_of(const Address& a, const std::vector<uint16_t>& cell_values);
+
 // The forced (disabled) discretes of an image, in area order.
 std::vector<Address> forced_points(const Image& img);
 

@@ -6,6 +6,7 @@
 // every byte: a file that is not a recording, of another version, cut short or damaged is
 // a RecordingError naming the file, the offset and why; nothing is half-read.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,13 @@ class Reader {
   size_t changes(size_t i) const { return scans_[i].end - scans_[i].begin; }
   // The last scan at or before t_us (0 when t_us is before the first; scans() > 0).
   size_t scan_at(uint64_t t_us) const;
-  // The next (dir > 0) or previous (dir < 0) scan after from that changed something, or
-  // from itself when there is none.
-  size_t next_event(size_t from, int dir) const;
+  // The next (dir > 0) or previous (dir < 0) scan after from that changed one of the cells
+  // marked in `cells` (bit_cells() + word_cells() flags, numbered as image.h's cells_of),
+  // or from itself when there is none.
+  size_t next_change(size_t from, int dir, const std::vector<bool>& cells) const;
+  // Calls f(scan, cell, value) for every change of scans first..last (indices, both
+  // included), in order; f returns false to stop.
+  void each_change(size_t first, size_t last, const std::function<bool(size_t, uint32_t, uint16_t)>& f) const;
   // The memory after scan i; the memory before the first scan is initial().
   void image_after(size_t i, Image* out) const;
   const Image& initial() const { return keyframes_.front(); }

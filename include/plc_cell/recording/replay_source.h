@@ -1,8 +1,9 @@
 #pragma once
 // A recorded run as the monitor's source (monitor/source.h): the page shows the memory
 // after the scan at the cursor, and moves the cursor through monitor::Replay (seek, step
-// by scans or by change events). A recording is read-only: every write, force and RUN/STOP
-// is refused with "a recording is read-only".
+// by scans or by events: changes of the program's own addresses), and draws trends from
+// the recorded history. A recording is read-only: every write, force and RUN/STOP is
+// refused with "a recording is read-only".
 #include <memory>
 #include <mutex>
 #include <string>
@@ -38,11 +39,15 @@ class ReplaySource : public monitor::Source, public monitor::Replay {
   uint64_t cursor_us() const override;
   uint64_t scans() const override { return reader_.scans(); }
   std::optional<uint64_t> failure_us() const override { return reader_.info().failure_us; }
+  std::string failure_text() const override { return reader_.info().failure; }
   void seek(uint64_t t_us) override;
   void step_scans(int64_t n) override;
-  void step_events(int64_t n) override;
+  void step_events(int64_t n, const std::vector<Address>& watched) override;
+  monitor::History history(const std::vector<Address>& addrs, uint64_t from_us, uint64_t to_us) const override;
 
   const Reader& reader() const { return reader_; }
+  // The cells whose change is an event without a watch table (cells_of numbering).
+  const std::vector<bool>& event_cells() const { return events_; }
 
  private:
   void move_to(size_t scan);  // with mu_ held
@@ -51,6 +56,7 @@ class ReplaySource : public monitor::Source, public monitor::Replay {
   const Reader reader_;
   const std::string name_;
   std::shared_ptr<const monitor::ProgramView> program_;
+  std::vector<bool> events_;
   mutable std::mutex mu_;
   size_t cursor_ = 0;
   Image image_;

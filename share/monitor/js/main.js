@@ -80,7 +80,7 @@ async function loadSession() {
   if (session.rate_hz && !page.rateSet) $("rate").value = String(session.rate_hz);
   describeSource(session, page.status);
   if (session.kind === "replay") {
-    if (!page.replay) page.replay = new ReplayBar($("replay"), addLog);
+    if (!page.replay) page.replay = new ReplayBar($("replay"), addLog, () => [...watch.addresses(), ...trends.addresses()]);
     await page.replay.start();
   }
 }
