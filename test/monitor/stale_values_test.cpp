@@ -72,7 +72,9 @@ TEST_F(MonitorTest, ALostLinkGivesStaleValuesNoFlowAndOneLogLineEachWay) {
     ASSERT_FALSE(m.is_null());
     if (m["type"] == "log" && m["text"].get<std::string>().find("values read again") != std::string::npos) ++up_lines;
     fresh = m["type"] == "frame" && m["stale"].is_null();
-    if (fresh) EXPECT_GT(energised(m), 0u);
+    if (fresh) {
+      EXPECT_GT(energised(m), 0u);
+    }
   }
   EXPECT_TRUE(fresh);
   for (int i = 0; i < 5; ++i) {  // a few more frames: the up line came once
