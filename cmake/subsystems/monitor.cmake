@@ -18,7 +18,7 @@ list(APPEND PLC_CELL_SUBSYSTEM_LIBS plc_cell_monitor)
 if(CATKIN_ENABLE_TESTING)
   file(GLOB MONITOR_TESTS CONFIGURE_DEPENDS test/monitor/*_test.cpp)
   catkin_add_gtest(monitor_tests test/core/test_main.cpp ${MONITOR_TESTS} test/monitor/client.cpp WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(monitor_tests plc_cell_monitor plc_cell_runtime)
+  target_link_libraries(monitor_tests plc_cell_monitor plc_cell_runtime plc_cell_remote)
   target_compile_definitions(monitor_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")

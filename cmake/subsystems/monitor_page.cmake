@@ -8,7 +8,9 @@ install(DIRECTORY ${PLC_CELL_MONITOR_PAGE}/ DESTINATION ${CATKIN_PACKAGE_SHARE_D
 if(CATKIN_ENABLE_TESTING)
   include(${PROJECT_SOURCE_DIR}/cmake/pytest.cmake)
   # The page in headless chromium (chromium-driver, python3-selenium) against plc_node and the
-  # plc_cell tool serving the demo cell, and a recording.
-  plc_cell_add_pytest(monitor_page FILES test/browser/test_monitor_page.py test/browser/test_monitor_replay.py
+  # plc_cell tool serving the demo cell, a cell switched to STOP, a recording, and a real PLC
+  # (plc_cell monitor --fatek on a plc_cell run) that goes away and comes back.
+  plc_cell_add_pytest(monitor_page FILES test/browser/test_monitor_page.py test/browser/test_monitor_stop.py
+    test/browser/test_monitor_replay.py test/browser/test_monitor_remote.py
     DEPENDENCIES plc_node plc_cell_tool)
 endif()

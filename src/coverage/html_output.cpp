@@ -107,7 +107,7 @@ void line_html(const Report& r, size_t p, int n, const Item* item, std::ostream&
 void network_head(const Network& n, std::ostream& out) {
   const char* cls = !n.evaluated ? "off" : n.energised ? "ok" : "bad";
   out << "<div class=\"net " << cls << "\" data-network=\"" << n.number << "\"><div class=\"head\">network "
-      << n.number;
+      << n.number << " (line " << n.line << ")";
   if (!n.routine.empty()) out << " in " << escape(n.routine);
   out << ": " << (!n.evaluated ? "not evaluated" : n.energised ? "energised" : "never energised") << "</div>\n";
 }

@@ -25,7 +25,7 @@ void write_text(const std::vector<Report>& reports, std::ostream& out) {
       for (const Item& it : n.items)
         if (it.kind == ItemKind::Contact && it.exercised() && !it.mcdc)
           out << r.file << ':' << it.line << " contact " << label(it) << " never decided network " << n.number
-              << " alone (MC/DC)\n";
+              << " (line " << n.line << ") alone (MC/DC)\n";
   }
 }
 

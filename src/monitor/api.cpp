@@ -1,9 +1,10 @@
 #include "api.h"
 
+#include <cstdio>
+
 #include "feed.h"
 #include "json_views.h"
 #include "plc_cell/core/error.h"
-#include "plc_cell/monitor/live_source.h"
 #include "static_files.h"
 
 namespace plc_cell {
@@ -63,9 +64,24 @@ std::vector<std::string> split_names(const std::string& s) {
   return out;
 }
 
-std::string source_kind(Source& s) {
-  if (s.replay()) return "replay";
-  return dynamic_cast<LiveSource*>(&s) ? "live" : "remote";
+// The addresses of a=... (names or addresses), and the names as given.
+std::vector<Address> resolve_all(const std::string& what, const std::string& query, const ProgramView& program,
+                                 std::vector<std::string>* names) {
+  std::string list;
+  if (!query_value(query, "a", &list)) throw Error(what + ": no a= (a=D0,X1,start_pb)");
+  *names = split_names(list);
+  if (names->empty()) throw Error(what + ": a= names nothing");
+  if (names->size() > kMaxWatch)
+    throw Error(what + ": " + std::to_string(names->size()) + " names, the limit is " + std::to_string(kMaxWatch));
+  std::vector<Address> addrs;
+  for (const auto& n : *names) addrs.push_back(resolve(n, program));
+  return addrs;
+}
+
+std::string signal_name(const Address& a, const ProgramView& program) {
+  for (const auto& [name, at] : program.signals)
+    if (at == a) return name;
+  return "";
 }
 
 }  // namespace
@@ -84,8 +100,26 @@ std::shared_ptr<const LadderView> Api::ladder() {
 nlohmann::json Api::status_json_now() {
   CellStatus s = source_.status();
   // The page may switch RUN/STOP only where this server lets it (api_control.cpp).
-  s.mode_switchable = s.mode_switchable && settings_.writable.everything();
-  return status_json(s);
+  std::string refusal = cannot(Change::Mode);
+  if (refusal.empty() && !s.mode_switchable) refusal = "this source cannot switch RUN/STOP";
+  if (refusal.empty()) refusal = cannot_switch_mode();
+  s.mode_switchable = refusal.empty();
+  nlohmann::json j = status_json(s);
+  j["mode_refusal"] = refusal;
+  // Each forced point with its name and the state it is held in.
+  std::vector<uint32_t> state;
+  try {
+    if (!s.forced.empty()) state = source_.read(s.forced).values;
+  } catch (const std::exception&) {
+    // A source that cannot be read now: the states are not known (null).
+  }
+  const auto program = source_.program();
+  j["forced"] = nlohmann::json::array();
+  for (size_t i = 0; i < s.forced.size(); ++i)
+    j["forced"].push_back({{"address", format_address(s.forced[i])},
+                           {"name", signal_name(s.forced[i], *program)},
+                           {"state", i < state.size() ? nlohmann::json(state[i]) : nlohmann::json(nullptr)}});
+  return j;
 }
 
 nlohmann::json Api::status_message() {
@@ -101,13 +135,33 @@ nlohmann::json Api::status_message() {
 }
 
 void Api::log(const std::string& text) {
-  uint64_t t_us = 0;
+  nlohmann::json t_us = nullptr;  // null: the source's clock cannot be read now
   try {
-    t_us = source_.read({}).t_us;
+    t_us = source_.now_us();
   } catch (const std::exception&) {
-    // A source that cannot be read now still logs, at t 0.
   }
   if (events_.log) events_.log(dump({{"type", "log"}, {"t_us", t_us}, {"text", text}}));
+}
+
+void Api::note_read(const std::string& failure) {
+  std::string text;
+  {
+    std::lock_guard<std::mutex> lk(read_mu_);
+    const auto now = std::chrono::steady_clock::now();
+    if (!failure.empty() && read_state_ != ReadState::Down) {
+      read_state_ = ReadState::Down;
+      down_since_ = now;
+      text = failure;
+    } else if (failure.empty() && read_state_ == ReadState::Down) {
+      read_state_ = ReadState::Up;
+      char down[32];
+      std::snprintf(down, sizeof down, "%.1f", std::chrono::duration<double>(now - down_since_).count());
+      text = source_.describe() + ": values read again, after " + down + " s without";
+    } else if (failure.empty()) {
+      read_state_ = ReadState::Up;
+    }
+  }
+  if (!text.empty()) log(text);
 }
 
 ApiReply Api::handle(const ApiRequest& r) {
@@ -139,11 +193,12 @@ ApiReply Api::get(const std::string& path, const std::string& query) {
     return json_reply({{"token", token_},
                        {"writable", settings_.writable.describe()},
                        {"source", source_.describe()},
-                       {"kind", source_kind(source_)},
+                       {"kind", kind_text(source_.kind())},
                        {"rate_hz", kDefaultRateHz}});
   if (path == "/api/ladder") return json_reply(ladder()->json());
   if (path == "/api/status") return json_reply(status_json_now());
   if (path == "/api/read") return read(query);
+  if (path == "/api/access") return access(query);
   if (path == "/api/coverage") {
     auto seen = source_.coverage();
     if (!seen) return json_reply({{"available", false}, {"seen", nlohmann::json::array()}});
@@ -158,20 +213,21 @@ ApiReply Api::get(const std::string& path, const std::string& query) {
 }
 
 ApiReply Api::read(const std::string& query) {
-  std::string list;
-  if (!query_value(query, "a", &list)) return error_reply(400, "/api/read: no a= (a=D0,X1,start_pb)");
-  const auto names = split_names(list);
-  if (names.empty()) return error_reply(400, "/api/read: a= names nothing");
-  if (names.size() > kMaxWatch)
-    return error_reply(400, "/api/read: " + std::to_string(names.size()) + " names, the limit is " +
-                                std::to_string(kMaxWatch));
-  const auto program = source_.program();
-  std::vector<Address> addrs;
-  for (const auto& n : names) addrs.push_back(resolve(n, *program));
+  std::vector<std::string> names;
+  const std::vector<Address> addrs = resolve_all("/api/read", query, *source_.program(), &names);
   const Frame f = source_.read(addrs);
   nlohmann::json values = nlohmann::json::object();
   for (size_t i = 0; i < names.size(); ++i) values[names[i]] = f.values.at(i);
   return json_reply({{"scan", f.scan}, {"t_us", f.t_us}, {"mode", mode_text(f.mode)}, {"values", values}});
+}
+
+ApiReply Api::access(const std::string& query) {
+  std::vector<std::string> names;
+  const std::vector<Address> addrs = resolve_all("/api/access", query, *source_.program(), &names);
+  nlohmann::json out = nlohmann::json::object();
+  for (size_t i = 0; i < names.size(); ++i)
+    out[names[i]] = {{"write", cannot_write(addrs[i], 1)}, {"force", cannot_force(addrs[i])}};
+  return json_reply(out);
 }
 
 ApiReply Api::replay_get() {

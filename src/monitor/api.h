@@ -49,6 +49,8 @@ class Api {
   // The layout of the source's current program (rebuilt when its version changes).
   std::shared_ptr<const LadderView> ladder();
   nlohmann::json status_message();  // {"type":"status", ...}
+  // A page's read of the source went ("" ) or failed (why): a change is logged once.
+  void note_read(const std::string& failure);
   Source& source() { return source_; }
   const std::string& token() const { return token_; }
 
@@ -57,6 +59,7 @@ class Api {
   ApiReply get(const std::string& path, const std::string& query);
   ApiReply post(const std::string& path, const nlohmann::json& body);
   ApiReply read(const std::string& query);
+  ApiReply access(const std::string& query);
   ApiReply write(const nlohmann::json& body);
   ApiReply force(const nlohmann::json& body);
   ApiReply mode(const nlohmann::json& body);
@@ -66,6 +69,11 @@ class Api {
   ApiReply refuse_write(const std::string& what, const std::string& why);
   // "" when the elements from a may be written, else why not.
   std::string not_writable(const Address& a, uint32_t elements) const;
+  // Why a page may not make this change at all here ("" = it may, within the ranges).
+  std::string cannot(Change c) const;
+  std::string cannot_write(const Address& a, uint32_t count) const;
+  std::string cannot_force(const Address& a) const;
+  std::string cannot_switch_mode() const;
   // A change the page asked for: refused (refusal not empty, or change throws) or done;
   // logged to every page either way.
   ApiReply apply(const std::string& what, const std::string& refusal, const std::function<void()>& change);
@@ -81,7 +89,14 @@ class Api {
   std::mutex status_mu_;
   nlohmann::json status_;  // the last status message, and when it was gathered
   std::chrono::steady_clock::time_point status_at_;
+  std::mutex read_mu_;
+  enum class ReadState { Unknown, Up, Down } read_state_ = ReadState::Unknown;
+  std::chrono::steady_clock::time_point down_since_;
 };
+
+// The elements of the memory a write of count values at a covers: WY8 x1 is Y8..Y23,
+// DR0 x1 is R0 and R1.
+uint32_t elements(const Address& a, uint32_t count);
 
 }  // namespace monitor
 }  // namespace plc_cell

@@ -23,13 +23,10 @@ std::string text_field(const nlohmann::json& body, const std::string& key, const
   return v.get<std::string>();
 }
 
-// The elements of the memory a write of count values at a covers: WY8 x1 is Y8..Y23,
-// DR0 x1 is R0 and R1.
-uint32_t elements(const Address& a, uint32_t count) {
-  uint32_t per = 1;
-  if (is_discrete(a.area)) per = a.width == Width::Bit ? 1 : a.width == Width::Word ? 16 : 32;
-  else if (a.width == Width::DWord && a.area != Area::RC) per = 2;
-  return count * per;
+// What a change the page asked for is called in the log: "write D0", "force Y0", "mode".
+std::string change_name(const char* verb, const nlohmann::json& body, const char* key) {
+  const auto it = body.find(key);
+  return it != body.end() && it->is_string() ? std::string(verb) + " " + it->get<std::string>() : verb;
 }
 
 // The page's watch table, whose changes are events too: {"watch": ["D5", "tank_low"]}.
@@ -47,6 +44,37 @@ std::vector<Address> watched_addresses(const nlohmann::json& body, const Program
 }
 
 }  // namespace
+
+uint32_t elements(const Address& a, uint32_t count) {
+  uint32_t per = 1;
+  if (is_discrete(a.area)) per = a.width == Width::Bit ? 1 : a.width == Width::Word ? 16 : 32;
+  else if (a.width == Width::DWord && a.area != Area::RC) per = 2;
+  return count * per;
+}
+
+std::string Api::cannot(Change c) const {
+  // A recording shows what happened; nothing on it can be changed.
+  if (source_.kind() == SourceKind::Replay) return "a recording cannot be changed";
+  return source_.refusal(c);
+}
+
+std::string Api::cannot_write(const Address& a, uint32_t count) const {
+  if (std::string why = cannot(Change::Write); !why.empty()) return why;
+  return not_writable(a, elements(a, count));
+}
+
+std::string Api::cannot_force(const Address& a) const {
+  if (a.width != Width::Bit || !is_discrete(a.area)) return format_address(a) + " is not a single discrete";
+  if (std::string why = cannot(Change::Force); !why.empty()) return why;
+  return not_writable(a, 1);
+}
+
+std::string Api::cannot_switch_mode() const {
+  if (std::string why = cannot(Change::Mode); !why.empty()) return why;
+  // RUN/STOP reaches every address: only a server writable everywhere switches it.
+  if (!settings_.writable.everything()) return "RUN/STOP needs writable: all (writable: " + settings_.writable.describe() + ")";
+  return "";
+}
 
 ApiReply Api::refuse_write(const std::string& what, const std::string& why) {
   log(what + " (refused: " + why + ")");
@@ -70,9 +98,19 @@ ApiReply Api::apply(const std::string& what, const std::string& refusal, const s
 }
 
 ApiReply Api::post(const std::string& path, const nlohmann::json& body) {
-  if (path == "/api/write") return write(body);
-  if (path == "/api/force") return force(body);
-  if (path == "/api/mode") return mode(body);
+  // A change refused for its form is logged as one refused for its place: every page
+  // sees every change asked for, once.
+  auto logged = [&](const std::string& what, ApiReply (Api::*change)(const nlohmann::json&)) {
+    try {
+      return (this->*change)(body);
+    } catch (const Error& e) {
+      log(what + " (refused: " + e.what() + ")");
+      return ApiReply{400, "application/json", error_body(e.what())};
+    }
+  };
+  if (path == "/api/write") return logged(change_name("write", body, "address"), &Api::write);
+  if (path == "/api/force") return logged(change_name("force", body, "address"), &Api::force);
+  if (path == "/api/mode") return logged(change_name("mode", body, "mode"), &Api::mode);
   if (path == "/api/replay") return replay_post(body);
   return {404, "application/json", error_body("POST " + path + ": no such API endpoint")};
 }
@@ -91,7 +129,7 @@ ApiReply Api::write(const nlohmann::json& body) {
     values.push_back(encode_element(offset_address(a, uint32_t(i)), vs[i].get<int64_t>()));
     shown += (i ? "," : "") + std::to_string(vs[i].get<int64_t>());
   }
-  return apply("write " + name + " = " + shown, not_writable(a, elements(a, uint32_t(values.size()))),
+  return apply("write " + name + " = " + shown, cannot_write(a, uint32_t(values.size())),
                [&] { source_.write(a, values); });
 }
 
@@ -101,8 +139,8 @@ ApiReply Api::force(const nlohmann::json& body) {
   if (action != "on" && action != "off" && action != "release")
     throw Error("force: \"action\" must be on, off or release, not '" + action + "'");
   const Address a = resolve(name, *source_.program());
-  if (a.width != Width::Bit) throw Error("force: " + name + " is not a single discrete");
-  return apply("force " + name + " " + action, not_writable(a, 1), [&] {
+  if (a.width != Width::Bit || !is_discrete(a.area)) throw Error("force: " + name + " is not a single discrete");
+  return apply("force " + name + " " + action, cannot_force(a), [&] {
     if (action == "release") {
       source_.force(a, ForceAction::Enable);
     } else {
@@ -115,10 +153,8 @@ ApiReply Api::force(const nlohmann::json& body) {
 ApiReply Api::mode(const nlohmann::json& body) {
   const std::string m = text_field(body, "mode", "mode");
   if (m != "run" && m != "stop") throw Error("mode: \"mode\" must be run or stop, not '" + m + "'");
-  // RUN/STOP reaches every address: only a server writable everywhere switches it.
-  const std::string refusal =
-      settings_.writable.everything() ? "" : "RUN/STOP needs writable: all (writable: " + settings_.writable.describe() + ")";
-  return apply("mode " + m, refusal, [&] { source_.set_mode(m == "run" ? RunMode::Run : RunMode::Stop); });
+  return apply("mode " + m, cannot_switch_mode(),
+               [&] { source_.set_mode(m == "run" ? RunMode::Run : RunMode::Stop); });
 }
 
 ApiReply Api::replay_post(const nlohmann::json& body) {

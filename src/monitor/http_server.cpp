@@ -62,6 +62,7 @@ class HttpServer::Impl {
   void start();
   void stop();
   void accept();
+  void admit(tcp::socket socket);
   std::string url() const {
     const bool v6 = host_.find(':') != std::string::npos;
     return "http://" + (v6 ? "[" + host_ + "]" : host_) + ":" + std::to_string(port_) + "/";
@@ -133,9 +134,25 @@ void HttpServer::Impl::start() {
 void HttpServer::Impl::accept() {
   acceptor_->async_accept(net::make_strand(*ioc_), [this](beast::error_code ec, tcp::socket socket) {
     if (ec == net::error::operation_aborted || !acceptor_->is_open()) return;
-    if (!ec) std::make_shared<HttpSession>(std::move(socket), hub_)->run();
+    if (!ec) admit(std::move(socket));
     accept();
   });
+}
+
+// A full table gives the slot of the connection that has gone longest without completing a
+// request to the new one (io/connections.h); only when every connection is busy (a page
+// receiving frames, a request being answered) is the new one refused.
+void HttpServer::Impl::admit(tcp::socket socket) {
+  int evicted_fd = -1;
+  std::weak_ptr<Closable> evicted;
+  const auto how = hub_.table.admit(int(socket.native_handle()), std::chrono::steady_clock::now(), &evicted_fd, &evicted);
+  if (how == Connections<std::weak_ptr<Closable>>::Admit::Refused) {
+    std::make_shared<HttpSession>(std::move(socket), hub_, nullptr)->run();
+    return;
+  }
+  if (auto stale = evicted.lock()) stale->evict();
+  auto slot = std::make_unique<Slot>(hub_, hub_.table.all().back().id);
+  std::make_shared<HttpSession>(std::move(socket), hub_, std::move(slot))->run();
 }
 
 void HttpServer::Impl::stop() {

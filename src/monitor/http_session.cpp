@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include "json_views.h"
 #include "sessions.h"
 
@@ -20,22 +22,95 @@ void Hub::frames_now() {
     if (auto p = w.lock()) p->send_frame();
 }
 
-HttpSession::HttpSession(tcp::socket socket, Hub& hub)
-    : stream_(std::move(socket)), hub_(hub), slot_(std::make_unique<Slot>(hub)) {}
+Hub::Hub(const HttpSettings& s)
+    : settings(s),
+      table(ConnectionLimits{s.max_connections, int(s.idle_timeout_us / 1000),
+                             int(s.header_timeout_us / 1000), /*evict_after_ms=*/0}) {}
 
-void HttpSession::read() {
-  if (hub_.connections > uint64_t(hub_.settings.max_connections)) {
+Connections<std::weak_ptr<Closable>>::Conn* Hub::conn(uint64_t id) {
+  for (auto& c : table.all())
+    if (c.id == id) return &c;
+  return nullptr;
+}
+
+Slot::~Slot() {
+  auto& all = hub_.table.all();
+  all.erase(std::remove_if(all.begin(), all.end(), [this](const auto& c) { return c.id == id_; }), all.end());
+  --hub_.connections;
+}
+
+void Slot::owner(std::weak_ptr<Closable> c) {
+  if (auto* e = hub_.conn(id_)) e->x = std::move(c);
+}
+
+void Slot::partial() {
+  if (auto* e = hub_.conn(id_)) Connections<std::weak_ptr<Closable>>::partial(*e, std::chrono::steady_clock::now());
+}
+
+void Slot::complete() {
+  if (auto* e = hub_.conn(id_)) Connections<std::weak_ptr<Closable>>::complete(*e, std::chrono::steady_clock::now());
+}
+
+void Slot::waiting(bool w) {
+  if (auto* e = hub_.conn(id_)) e->waiting = w;
+}
+
+HttpSession::HttpSession(tcp::socket socket, Hub& hub, std::unique_ptr<Slot> slot)
+    : stream_(std::move(socket)), hub_(hub), slot_(std::move(slot)) {}
+
+void HttpSession::run() {
+  if (!slot_) {
     ++hub_.rejected;
     reply(503, "application/json",
-          error_body("too many connections (max_connections " + std::to_string(hub_.settings.max_connections) + ")"),
+          error_body("too many connections (max_connections " + std::to_string(hub_.settings.max_connections) +
+                     ", every one busy)"),
           false);
     return;
   }
+  slot_->owner(weak_from_this());
+  read();
+}
+
+void HttpSession::evict() {
+  beast::error_code ignored;
+  stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
+  stream_.socket().close(ignored);
+}
+
+// A request in three steps, so that the table knows where it is: its first byte (awaited
+// for the idle timeout), its headers (whole within header_timeout of the first byte), its
+// body (at most kMaxBody).
+void HttpSession::read() {
   parser_ = std::make_unique<http::request_parser<http::string_body>>();
   parser_->header_limit(16 * 1024);
   parser_->body_limit(kMaxBody);
+  if (buffer_.size()) return on_first_bytes();  // the next request came with the last
+  stream_.expires_after(hub_.idle());
+  stream_.async_read_some(buffer_.prepare(4096), [self = shared_from_this()](beast::error_code ec, size_t n) {
+    if (ec) return self->end(ec);
+    self->buffer_.commit(n);
+    self->on_first_bytes();
+  });
+}
+
+void HttpSession::on_first_bytes() {
+  slot_->partial();
+  stream_.expires_after(hub_.header_time());
+  http::async_read_header(stream_, buffer_, *parser_, [self = shared_from_this()](beast::error_code ec, size_t) {
+    self->on_header(ec);
+  });
+}
+
+void HttpSession::on_header(beast::error_code ec) {
+  if (ec) return on_read(ec, 0);
+  if (parser_->is_done()) return on_read({}, 0);
   stream_.expires_after(hub_.idle());
   http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_read, shared_from_this()));
+}
+
+void HttpSession::end(beast::error_code) {
+  beast::error_code ignored;
+  stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
 }
 
 namespace {
@@ -56,11 +131,10 @@ std::string header(const http::request<http::string_body>& r, http::field f) {
 
 void HttpSession::on_read(beast::error_code ec, size_t) {
   if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == net::error::eof ||
-      ec == net::error::connection_reset || ec == net::error::operation_aborted) {
-    beast::error_code ignored;
-    stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
-    return;
-  }
+      ec == net::error::connection_reset || ec == net::error::operation_aborted || ec == net::error::bad_descriptor)
+    return end(ec);
+  slot_->complete();
+  slot_->waiting(true);  // answering: not a stale connection
   if (ec) {
     ++hub_.rejected;
     const std::string why = ec == http::error::body_limit ? "request body over the limit of 65536 bytes"
@@ -114,6 +188,10 @@ void HttpSession::reply(int status, const std::string& type, std::string body, b
   res_.prepare_payload();
   stream_.expires_after(hub_.idle());
   http::async_write(stream_, res_, [self = shared_from_this(), keep_alive](beast::error_code ec, size_t) {
+    if (self->slot_) {
+      self->slot_->complete();  // the idle time counts from the answer
+      self->slot_->waiting(false);
+    }
     if (!ec && keep_alive) return self->read();
     beast::error_code ignored;
     self->stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);

@@ -15,12 +15,16 @@ const char* level_text(ExtensionStatus::Level l) {
   return "error";
 }
 
+// A duration never measured (a scan in virtual time has no cycle time) is null, not 0.
+nlohmann::json avg_json(const DurationStats& d) { return d.count ? nlohmann::json(uint64_t(d.avg_ns())) : nullptr; }
+nlohmann::json max_json(const DurationStats& d) { return d.count ? nlohmann::json(d.max_ns) : nullptr; }
+
 nlohmann::json scan_json(const ScanStats& s) {
   return {{"scans", s.scans},
-          {"cycle_avg_ns", uint64_t(s.cycle.avg_ns())},
-          {"cycle_max_ns", s.cycle.max_ns},
-          {"wake_avg_ns", uint64_t(s.wake_latency.avg_ns())},
-          {"wake_max_ns", s.wake_latency.max_ns},
+          {"cycle_avg_ns", avg_json(s.cycle)},
+          {"cycle_max_ns", max_json(s.cycle)},
+          {"wake_avg_ns", avg_json(s.wake_latency)},
+          {"wake_max_ns", max_json(s.wake_latency)},
           {"overruns", s.overruns},
           {"overruns_off_cpu", s.overruns_off_cpu}};
 }
@@ -30,9 +34,15 @@ nlohmann::json scan_json(const ScanStats& s) {
 const char* mode_text(RunMode m) { return m == RunMode::Run ? "run" : "stop"; }
 
 nlohmann::json status_json(const CellStatus& s) {
-  nlohmann::json j = {{"mode", mode_text(s.mode)}, {"mode_switchable", s.mode_switchable},
-                      {"engine", s.engine},        {"scan", scan_json(s.scan)},
+  nlohmann::json j = {{"mode", s.mode_known ? mode_text(s.mode) : "unknown"},
+                      {"mode_switchable", s.mode_switchable},
+                      {"engine", s.engine},
                       {"note", s.note}};
+  // A source without the PLC's own scan figures gives none rather than figures of something else.
+  if (s.scan_note.empty()) j["scan"] = scan_json(s.scan);
+  else j["scan"] = nullptr;
+  j["scan_note"] = s.scan_note;
+  j["forced_note"] = s.forced_note;
   j["extensions"] = nlohmann::json::array();
   for (const auto& e : s.extensions) {
     nlohmann::json values = nlohmann::json::array();
@@ -52,6 +62,15 @@ nlohmann::json status_json(const CellStatus& s) {
   j["forced"] = nlohmann::json::array();
   for (const auto& a : s.forced) j["forced"].push_back(format_address(a));
   return j;
+}
+
+const char* kind_text(SourceKind k) {
+  switch (k) {
+    case SourceKind::Live: return "live";
+    case SourceKind::Remote: return "remote";
+    case SourceKind::Replay: return "replay";
+  }
+  return "remote";
 }
 
 std::string dump(const nlohmann::json& j) { return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace); }

@@ -23,7 +23,22 @@ LadderView::~LadderView() = default;
 
 size_t LadderView::networks() const { return impl_->layout.networks.size(); }
 
-nlohmann::json LadderView::json() const { return ladder::to_json(impl_->layout); }
+// Each network's number as a person reads it: counted from 1 over the networks that start
+// with ORG, as coverage and mutation testing count them, so that "network 5" is the same
+// network everywhere. A flow instruction drawn alone (LBL, RTS, END, ...) and IL that does
+// not start with ORG are no network: they have none (null).
+nlohmann::json LadderView::json() const {
+  nlohmann::json j = ladder::to_json(impl_->layout);
+  const auto& code = program_->program.code;
+  uint32_t number = 0;
+  for (size_t k = 0; k < impl_->layout.networks.size(); ++k) {
+    const uint32_t first = impl_->layout.networks[k].first;
+    const Op op = first < code.size() ? code[first].op : Op::End;
+    const bool org = op == Op::Org || op == Op::OrgNot || op == Op::OrgUp || op == Op::OrgDown;
+    j["networks"][k]["number"] = org ? nlohmann::json(++number) : nlohmann::json(nullptr);
+  }
+  return j;
+}
 
 std::vector<Address> LadderView::addresses(size_t n) const {
   if (n >= impl_->layout.networks.size()) return {};

@@ -22,7 +22,7 @@ class LadderView {
 
   const ProgramView& program() const { return *program_; }
   size_t networks() const;
-  nlohmann::json json() const;  // GET /api/ladder
+  nlohmann::json json() const;  // GET /api/ladder, each network with its "number"
   // What must be read to draw network n.
   std::vector<Address> addresses(size_t n) const;
   // The energised element and wire ids of network n; value(a) gives the frame's value of

@@ -66,11 +66,15 @@ Frame LiveSource::read(const std::vector<Address>& addrs) {
   for (const auto& a : addrs) check_span(a, 1);
   Frame f;
   f.values.reserve(addrs.size());
+  f.forced.reserve(addrs.size());
   plc_.locked([&](const ScanEngine& se, const Memory& m) {
     f.scan = se.stats().scans;
     f.t_us = se.now_us();
     f.mode = se.mode();
-    for (const auto& a : addrs) f.values.push_back(m.read(a));
+    for (const auto& a : addrs) {
+      f.values.push_back(m.read(a));
+      f.forced.push_back(a.width == Width::Bit && is_discrete(a.area) && m.disabled(a.area, a.index));
+    }
     return 0;
   });
   return f;

@@ -27,6 +27,9 @@ void PageSession::run(http::request<http::string_body> upgrade) {
 void PageSession::on_accept(beast::error_code ec) {
   if (ec) return;
   hub_.pages.push_back(weak_from_this());
+  // Not waiting until it subscribes: a page that never does may lose its slot to a new client.
+  slot_->owner(weak_from_this());
+  slot_->waiting(false);
   try {
     program_version_ = hub_.api->ladder()->program().version;
   } catch (const std::exception& e) {
@@ -48,13 +51,15 @@ void PageSession::on_message(beast::error_code ec, size_t) {
     return close();
   }
   last_heard_ = std::chrono::steady_clock::now();
+  slot_->complete();
   const std::string text = beast::buffers_to_string(in_.data());
   in_.consume(in_.size());
   const auto j = nlohmann::json::parse(text, nullptr, false);
   try {
     if (j.is_discarded()) throw Error("the message is not JSON");
     const bool first = !feed_;
-    feed_ = std::make_unique<Feed>(parse_subscription(j, *hub_.api->ladder()), hub_.api->ladder());
+    feed_ = std::make_unique<Feed>(parse_subscription(j, *hub_.api->ladder()), hub_.api->ladder(), feed_.get());
+    slot_->waiting(true);  // it receives frames: it keeps its slot
     ++hub_.requests;
     if (first) tick_frames();
     else send_frame();  // the new subscription at once; the timer keeps its new rate
@@ -76,6 +81,7 @@ void PageSession::send_frame() {
   if (!feed_ || closed_ || !out_.empty()) return;  // a slow page gets fewer frames, not a backlog
   try {
     send(dump(feed_->frame(hub_.api->source())));
+    hub_.api->note_read(feed_->failure());
   } catch (const std::exception& e) {
     send(dump({{"type", "error"}, {"error", e.what()}}));
   }

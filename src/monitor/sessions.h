@@ -14,6 +14,7 @@
 
 #include "api.h"
 #include "feed.h"
+#include "plc_cell/io/connections.h"
 
 namespace plc_cell {
 namespace monitor {
@@ -26,38 +27,63 @@ using tcp = net::ip::tcp;
 
 class PageSession;
 
-// What every session shares: the API, the limits, the counters and the open pages. Only
-// the io thread touches pages.
+// A connection the cap may close to make room for a new one (Connections::admit).
+class Closable {
+ public:
+  virtual ~Closable() = default;
+  virtual void evict() = 0;
+};
+
+// What every session shares: the API, the limits, the counters, the open pages and the
+// connections' table (io/connections.h: when every slot is taken, a new client takes the
+// slot of the connection that has gone longest without completing a request). Only the io
+// thread touches pages and the table.
 struct Hub {
-  Hub(const HttpSettings& s) : settings(s) {}
+  explicit Hub(const HttpSettings& s);
   const HttpSettings& settings;
   std::unique_ptr<Api> api;
   std::atomic<uint64_t> requests{0}, rejected{0}, connections{0};
   mutable std::mutex error_mu;
   std::string last_error;
   std::list<std::weak_ptr<PageSession>> pages;
+  Connections<std::weak_ptr<Closable>> table;
 
   std::chrono::steady_clock::duration idle() const { return std::chrono::microseconds(settings.idle_timeout_us); }
+  std::chrono::steady_clock::duration header_time() const {
+    return std::chrono::microseconds(settings.header_timeout_us);
+  }
   void note_error(const std::string& e) {
     std::lock_guard<std::mutex> lk(error_mu);
     last_error = e;
   }
   void broadcast(const std::string& message);  // to every open page
   void frames_now();                           // every subscribed page sends a frame
+  // The table's entry of a connection (nullptr once it is out of the table).
+  Connections<std::weak_ptr<Closable>>::Conn* conn(uint64_t id);
 };
 
-// Held by a session while its connection counts against max_connections.
-struct Slot {
-  explicit Slot(Hub& h) : hub(h) { ++hub.connections; }
-  ~Slot() { --hub.connections; }
+// A connection's place in the table, held by its session (the HTTP session, then the page
+// it became); leaving it frees the slot.
+class Slot {
+ public:
+  Slot(Hub& h, uint64_t id) : hub_(h), id_(id) { ++hub_.connections; }
+  ~Slot();
   Slot(const Slot&) = delete;
   Slot& operator=(const Slot&) = delete;
-  Hub& hub;
+  void owner(std::weak_ptr<Closable> c);  // who evict() reaches
+  void partial();                          // bytes of a request came: its deadline runs
+  void complete();                         // a whole request came
+  void waiting(bool w);                    // work is out for it (a reply, a page's frames)
+
+ private:
+  Hub& hub_;
+  uint64_t id_;
 };
 
-class PageSession : public std::enable_shared_from_this<PageSession> {
+class PageSession : public Closable, public std::enable_shared_from_this<PageSession> {
  public:
   PageSession(tcp::socket socket, Hub& hub, std::unique_ptr<Slot> slot);
+  void evict() override { close(); }
   void run(http::request<http::string_body> upgrade);
   void send(std::string message);  // queued; dropped and closed when the page reads nothing
   void send_frame();               // skipped while the page has not taken the last one
@@ -84,14 +110,19 @@ class PageSession : public std::enable_shared_from_this<PageSession> {
   net::steady_timer frame_timer_, status_timer_, idle_timer_;
 };
 
-class HttpSession : public std::enable_shared_from_this<HttpSession> {
+class HttpSession : public Closable, public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(tcp::socket socket, Hub& hub);
-  void run() { read(); }
+  // slot: its place in the table; nullptr when the table refused it (answered 503).
+  HttpSession(tcp::socket socket, Hub& hub, std::unique_ptr<Slot> slot);
+  void run();
+  void evict() override;
 
  private:
   void read();
+  void on_first_bytes();
+  void on_header(beast::error_code ec);
   void on_read(beast::error_code ec, size_t);
+  void end(beast::error_code ec);
   void reply(int status, const std::string& type, std::string body, bool keep_alive);
 
   beast::tcp_stream stream_;

@@ -1,5 +1,7 @@
 #include "plc_cell/remote/fatek_link.h"
 
+#include <algorithm>
+
 #include "plc_cell/fatek/poll_plan.h"
 #include "plc_cell/io/endpoint.h"
 
@@ -45,6 +47,44 @@ std::optional<RunMode> FatekLink::mode() {
 void FatekLink::write(const Address& start, const std::vector<uint32_t>& values) {
   ++frames_;
   client_->write(start, values);
+}
+
+namespace {
+
+// Points of one area closer than this are read in one 43 frame with the points between:
+// a frame's own bytes cost more than that many answer characters.
+constexpr uint32_t kReadThrough = 16;
+
+}  // namespace
+
+std::optional<std::vector<bool>> FatekLink::forced(const std::vector<Address>& bits) {
+  std::vector<bool> out(bits.size(), false);
+  std::vector<size_t> order(bits.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return std::make_pair(bits[a].area, bits[a].index) < std::make_pair(bits[b].area, bits[b].index);
+  });
+  const uint64_t retries = client_->retries_used();
+  try {
+    for (size_t k = 0; k < order.size();) {
+      const Address first = bits[order[k]];
+      size_t end = k + 1;
+      while (end < order.size() && bits[order[end]].area == first.area &&
+             bits[order[end]].index - bits[order[end - 1]].index <= kReadThrough &&
+             bits[order[end]].index - first.index < fatek::kMaxDiscretes)
+        ++end;
+      ++frames_;
+      const uint32_t n = bits[order[end - 1]].index - first.index + 1;
+      const std::vector<bool> run = client_->read_disabled(Address{first.area, Width::Bit, first.index}, n);
+      for (size_t j = k; j < end; ++j) out[order[j]] = run.at(bits[order[j]].index - first.index);
+      k = end;
+    }
+  } catch (...) {
+    frames_ += client_->retries_used() - retries;
+    throw;
+  }
+  frames_ += client_->retries_used() - retries;
+  return out;
 }
 
 void FatekLink::force(const Address& bit, ForceAction action) {

@@ -36,10 +36,11 @@ void TriLink::write(const Address& start, const std::vector<uint32_t>& values) {
   for (const tri::Request& r : tri::plan_write(start, values)) client_->transact(r);
 }
 
-void TriLink::force(const Address& bit, ForceAction) {
-  throw Error(format_address(bit) +
-              ": the TRi has no DISABLE flag, so its host link cannot hold a point (write it instead)");
+std::string TriLink::no_forcing() const {
+  return "the TRi has no DISABLE flag, so its host link cannot hold a point (write it instead)";
 }
+
+void TriLink::force(const Address& bit, ForceAction) { throw Error(format_address(bit) + ": " + no_forcing()); }
 
 void TriLink::set_run(bool run) {
   tri::Request r;

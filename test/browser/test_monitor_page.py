@@ -1,8 +1,11 @@
 """The monitor page on the demo conveyor (examples/conveyor) served by plc_node (roslaunch
 cell_sim.launch, the monitor and its writable ranges from the cell YAML's servers.http), in
 headless chromium: the networks drawn, power flow following an input set through plc_node's
-~write service, a watch value following the program, forcing inside and outside the writable
-ranges, a trend collecting points."""
+~write service, a watch value following the program, forcing inside the writable ranges and
+forced points marked with their state, the controls the ranges refuse disabled with the
+reason, the log of the page's actions (once each, on the cell's clock), a trend collecting
+points, the layout at 1400 and 1024 px, and the networks numbered as coverage numbers them."""
+import json
 import os
 import re
 import subprocess
@@ -183,12 +186,12 @@ def test_a_watch_row_writes_in_its_format(cell, browser):
     wait(browser, "the write in the log", lambda d: any("D10" in l for l in log_lines(d)))
 
 
-def test_forcing_inside_the_writable_ranges_and_outside(cell, browser):
+def test_forcing_inside_the_writable_ranges(cell, browser):
     open_page(browser, cell["base"])
     watch_add(browser, "X3")
     row_click(browser, "X3", "button.force-on")
     try:
-        wait(browser, "X3 forced on in the watch table", lambda d: watch_value(d, "X3") == "1")
+        wait(browser, "X3 forced on in the watch table", lambda d: watch_value(d, "X3") == "1 (forced ON)")
         tab(browser, "status-panel")
         wait(browser, "X3 among the forced points", lambda d: "X3" in d.find_element("id", "status-forced").text)
     finally:
@@ -196,14 +199,6 @@ def test_forcing_inside_the_writable_ranges_and_outside(cell, browser):
         row_click(browser, "X3", "button.force-release")
     tab(browser, "status-panel")
     wait(browser, "X3 no longer forced", lambda d: "none" in d.find_element("id", "status-forced").text)
-    tab(browser, "watch-panel")
-    # Y0 is outside the writable ranges: refused, with the server's reason on the page.
-    watch_add(browser, "Y0")
-    row_click(browser, "Y0", "button.force-on")
-    refused = wait(browser, "the refusal of forcing Y0", lambda d: [l for l in log_lines(d)
-                                                                    if l.startswith("error") and "Y0" in l])
-    writable = get_json(cell["base"] + "/api/session")["writable"]
-    assert "Y0 is not writable" in refused[0] and writable in refused[0], refused
 
 
 def test_a_trend_collects_points(cell, browser):
@@ -234,3 +229,141 @@ def test_the_coverage_overlay_colours_what_ran(cell, browser):
     wait(browser, "M0 energised", lambda d: "cov-on" in coverage_class(d, "M0", "no"))
     browser.find_element("id", "coverage-toggle").click()
     wait(browser, "the overlay off again", lambda d: "cov-" not in coverage_class(d, "X0", "no"))
+
+
+def status_forced(driver, address):
+    return js(driver, "const li = document.querySelector(`#status-forced li[data-address='${arguments[0]}']`);"
+                      "return li ? li.textContent : null", address)
+
+
+def force_tags(driver, address):
+    """The tags of the contacts and coils of address: '' where not forced."""
+    return js(driver, "return [...document.querySelectorAll(`#ladder g.el[data-address='${arguments[0]}']`)]"
+                      ".filter(g => g.querySelector('.forcetag')).map(g => g.querySelector('.forcetag').textContent)",
+              address)
+
+
+def test_forced_points_are_marked_with_their_state_on_the_ladder_in_the_table_and_in_status(cell, browser):
+    open_page(browser, cell["base"])
+    watch_add(browser, "part_present")  # X3, by the cell's name
+    try:
+        row_click(browser, "part_present", "button.force-on")
+        # Every contact of X3 on the ladder (networks 2 and 3), the watch row, the Status tab.
+        wait(browser, "X3's contacts tagged forced ON", lambda d: force_tags(d, "X3") == ["F ON", "F ON"])
+        wait(browser, "the watch row marked forced ON",
+             lambda d: "forced ON" in (watch_value(d, "part_present") or ""))
+        assert js(browser, "return document.querySelector(`#watch tr[data-address='part_present']`).dataset.forced") == "on"
+        tab(browser, "status-panel")
+        wait(browser, "X3 in Status with its name and state",
+             lambda d: status_forced(d, "X3") == "X3 part_present: forced ON")
+        tab(browser, "watch-panel")
+        row_click(browser, "part_present", "button.force-off")
+        wait(browser, "X3's contacts tagged forced OFF", lambda d: force_tags(d, "X3") == ["F OFF", "F OFF"])
+        wait(browser, "the watch row marked forced OFF",
+             lambda d: "forced OFF" in (watch_value(d, "part_present") or ""))
+        # Points not forced carry no tag.
+        assert set(force_tags(browser, "X4")) == {""}, force_tags(browser, "X4")
+    finally:
+        tab(browser, "watch-panel")
+        row_click(browser, "part_present", "button.force-release")
+    wait(browser, "X3's tags gone once released", lambda d: force_tags(d, "X3") == ["", ""])
+
+
+def control(driver, address, selector):
+    return js(driver, "const b = document.querySelector(`#watch tr[data-address='${arguments[0]}'] ${arguments[1]}`);"
+                      "return b ? [b.disabled, b.title] : null", address, selector)
+
+
+def test_controls_the_server_would_refuse_are_disabled_with_the_reason(cell, browser):
+    open_page(browser, cell["base"])
+    writable = get_json(cell["base"] + "/api/session")["writable"]
+    for a in ("Y0", "X5", "D10"):
+        watch_add(browser, a)
+    refused = [True, "Y0 is not writable (writable: %s)" % writable]
+    for selector in ("button.write-button", "input.write-value", "button.force-on", "button.force-off",
+                     "button.force-release"):
+        wait(browser, "Y0's %s disabled, the reason its tooltip" % selector,
+             lambda d: control(d, "Y0", selector) == refused)
+    for selector in ("button.write-button", "button.force-on", "button.force-release"):
+        assert control(browser, "X5", selector)[0] is False, selector
+    assert control(browser, "D10", "button.write-button")[0] is False
+    # RUN/STOP needs writable: all.
+    button = browser.find_element("id", "mode-switch")
+    wait(browser, "RUN/STOP disabled, the reason its tooltip", lambda d: button.get_attribute("disabled") and
+         button.get_attribute("title") == "RUN/STOP needs writable: all (writable: %s)" % writable)
+
+
+def log_entries(driver, text):
+    return js(driver, "return [...document.querySelectorAll('#log li')].filter(li => li.textContent.includes("
+                      "arguments[0])).map(li => [li.className, li.querySelector('.when').textContent,"
+                      " li.querySelector('.text').textContent])", text)
+
+
+def frames_pass(driver, n):
+    """Until the page has taken n more frames: time for anything still on its way to arrive."""
+    start = js(driver, "return window.plcMonitor.page.frames")
+    wait(driver, "%d more frames" % n, lambda d: js(d, "return window.plcMonitor.page.frames") >= start + n)
+
+
+def test_the_log_shows_each_action_of_the_page_once_on_the_cells_clock(cell, browser):
+    open_page(browser, cell["base"])
+    watch_add(browser, "D11")
+    page_write(browser, "D11", 5)
+    wait(browser, "D11 = 5 in the table", lambda d: watch_value(d, "D11") == "5")
+    wait(browser, "the write in the log", lambda d: log_entries(d, "D11 = 5"))
+    frames_pass(browser, 5)
+    entries = log_entries(browser, "D11 = 5")
+    assert len(entries) == 1, entries
+    assert re.match(r"^\d+\.\d{3} s$", entries[0][1]), entries  # the cell's clock, not the wall's
+    # Refused (a value out of range): once too, as an error.
+    page_write(browser, "D11", 70000)
+    refusal = lambda d: [e for e in log_entries(d, "D11") if "refused" in e[2]]  # noqa: E731
+    wait(browser, "the refusal in the log", refusal)
+    frames_pass(browser, 5)
+    entries = refusal(browser)
+    assert len(entries) == 1 and entries[0][0] == "error", entries
+    assert re.match(r"^\d+\.\d{3} s$", entries[0][1]), entries
+
+
+@pytest.mark.parametrize("width", [1400, 1024])
+def test_the_layout_keeps_every_column_and_draws_what_fits_without_scrollbars(cell, browser, width):
+    browser.set_window_size(width, 900)
+    open_page(browser, cell["base"])
+    for a in ("X0", "D10", "conveyor_run", "stopper_lower"):
+        watch_add(browser, a)
+    wait(browser, "values in the watch rows", lambda d: watch_value(d, "stopper_lower") not in (None, ""))
+    box = js(browser, """
+      const side = document.querySelector('.side'), r = side.getBoundingClientRect();
+      const right = r.left + side.clientLeft + side.clientWidth;
+      return {scroll: side.scrollWidth, client: side.clientWidth, right,
+              removes: [...document.querySelectorAll('#watch button.remove')].map(b => b.getBoundingClientRect().right),
+              headers: [...document.querySelectorAll('#watch th')].map(h => h.getBoundingClientRect().right)};""")
+    assert box["scroll"] <= box["client"], box
+    assert len(box["removes"]) == 4 and max(box["removes"] + box["headers"]) <= box["right"], box
+    # A network's drawing: the box of what is drawn in it (its strokes and texts).
+    nets = js(browser, """
+      return [...document.querySelectorAll('#ladder .net')].filter(n => n.querySelector('svg')).map(n => {
+        const s = getComputedStyle(n), box = n.querySelector('svg').getBBox();
+        const room = n.clientWidth - parseFloat(s.paddingLeft) - parseFloat(s.paddingRight);
+        return {id: n.id, drawing: box.x + box.width + 2, room, scroll: n.scrollWidth, client: n.clientWidth};});""")
+    fitting = [n for n in nets if n["drawing"] <= n["room"]]
+    assert len(fitting) >= len(nets) - 1, nets  # at 1024 px only the timer box of network 3 is wider
+    for n in fitting:
+        assert n["scroll"] <= n["client"], n  # no horizontal scrollbar on a drawing that fits
+    # A comment of two lines keeps them.
+    comment = js(browser, "return document.querySelector('#net-1 .comment').innerText")
+    assert "stopper,\nor while" in comment, repr(comment)
+
+
+def test_networks_are_numbered_as_coverage_numbers_them_with_their_line(cell, browser, scratch):
+    out = os.path.join(scratch, "coverage.json")
+    code, text = run("plc_cell test %s -k 'counts every part' --coverage-json %s" % (
+        os.path.join(ROOT, "examples", "conveyor", "conveyor.scenario.yaml"), out), cell["env"])
+    assert code == 0, text
+    coverage = [("network %d (line %d)" % (n["number"], n["line"]))
+                for n in json.load(open(out))["programs"][0]["networks"]]
+    open_page(browser, cell["base"])
+    shown = js(browser, "return [...document.querySelectorAll('#ladder .net .netno')].map(e => e.textContent)")
+    assert [s for s in shown if s.startswith("network")] == coverage, (shown, coverage)
+    # END is no network: its line alone.
+    assert shown[-1] == "line 45", shown

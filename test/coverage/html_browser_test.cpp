@@ -89,7 +89,7 @@ TEST_F(HtmlInBrowser, NetworksAndLinesAreColouredByCoverage) {
   // Summary: 1 run; networks 1-3 evaluated, 1 and 3 energised; of X0, X1, X2 only X0
   // changed, and decided its network alone (MC/DC); of OUT Y0-Y2 only Y0 switched; JMP enabled.
   EXPECT_NE(dom.find("<td>1</td><td>3/4</td><td>2/4</td><td>1/3</td><td>1/3</td><td>1/3</td><td>1/1</td>"), std::string::npos);
-  EXPECT_NE(dom.find("network 4: not evaluated"), std::string::npos);
+  EXPECT_NE(dom.find("network 4 (line 8): not evaluated"), std::string::npos);
   EXPECT_EQ(dom.find("M1925 always ON"), std::string::npos);
 }
 

@@ -85,17 +85,49 @@ std::string raw_exchange(uint16_t port, const std::string& bytes, std::chrono::m
   return got;
 }
 
-bool closed_when_silent(uint16_t port, std::chrono::milliseconds timeout) {
+bool closed_after_sending(uint16_t port, const std::string& bytes, std::chrono::milliseconds timeout) {
   net::io_context ioc;
   tcp::socket s(ioc);
   bool closed = false;
   std::array<char, 256> chunk{};
   s.async_connect(at(port), [&](beast::error_code ec) {
     if (ec) return;
-    s.async_read_some(net::buffer(chunk), [&](beast::error_code ec, size_t) { closed = bool(ec); });
+    if (!bytes.empty()) net::write(s, net::buffer(bytes), ec);
+    s.async_read_some(net::buffer(chunk), [&](beast::error_code ec, size_t) {
+      closed = bool(ec);
+      ioc.stop();
+    });
   });
   ioc.run_for(timeout);
   return closed;
+}
+
+struct Stallers::Impl {
+  net::io_context ioc;
+  std::vector<std::unique_ptr<tcp::socket>> sockets;
+};
+
+Stallers::Stallers(uint16_t port, size_t n, const std::string& bytes) : impl_(std::make_unique<Impl>()) {
+  for (size_t i = 0; i < n; ++i) {
+    auto s = std::make_unique<tcp::socket>(impl_->ioc);
+    s->connect(at(port));
+    net::write(*s, net::buffer(bytes));
+    s->non_blocking(true);
+    impl_->sockets.push_back(std::move(s));
+  }
+}
+
+Stallers::~Stallers() = default;
+
+size_t Stallers::open() {
+  size_t n = 0;
+  for (auto& s : impl_->sockets) {
+    std::array<char, 256> chunk{};
+    beast::error_code ec;
+    s->read_some(net::buffer(chunk), ec);
+    n += ec == net::error::would_block;
+  }
+  return n;
 }
 
 struct WsClient::Impl {
@@ -143,7 +175,7 @@ nlohmann::json WsClient::next(const std::string& type, std::chrono::milliseconds
     if (impl_->closed) return nullptr;
     auto j = nlohmann::json::parse(beast::buffers_to_string(impl_->buf.data()), nullptr, false);
     impl_->buf.consume(impl_->buf.size());
-    if (j.is_object() && j.value("type", "") == type) return j;
+    if (j.is_object() && (type.empty() || j.value("type", "") == type)) return j;
   }
   return nullptr;
 }

@@ -41,8 +41,24 @@ HttpReply http_post(uint16_t port, const std::string& target, const std::string&
 // Sends bytes as they are and returns what came back until the server closed or timeout.
 std::string raw_exchange(uint16_t port, const std::string& bytes,
                          std::chrono::milliseconds timeout = std::chrono::milliseconds(3000));
-// True when the server closes a connection that sends nothing within timeout.
-bool closed_when_silent(uint16_t port, std::chrono::milliseconds timeout);
+// True when the server closes a connection that sends bytes (and then nothing) within timeout.
+bool closed_after_sending(uint16_t port, const std::string& bytes, std::chrono::milliseconds timeout);
+inline bool closed_when_silent(uint16_t port, std::chrono::milliseconds timeout) {
+  return closed_after_sending(port, "", timeout);
+}
+
+// n connections that each send bytes (half a request, say) and then wait, reading nothing:
+// they stay open until the server closes them or this object goes.
+class Stallers {
+ public:
+  Stallers(uint16_t port, size_t n, const std::string& bytes);
+  ~Stallers();
+  size_t open();  // how many the server has not closed yet (looked at without waiting)
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 class WsClient {
  public:
@@ -53,6 +69,10 @@ class WsClient {
   // The next message whose "type" is type (others are skipped); null when none came
   // within timeout or the connection closed.
   nlohmann::json next(const std::string& type, std::chrono::milliseconds timeout = std::chrono::milliseconds(3000));
+  // The next message of any type ("" type: next(type) with this skips none).
+  nlohmann::json next_any(std::chrono::milliseconds timeout = std::chrono::milliseconds(3000)) {
+    return next("", timeout);
+  }
   // True when the server closed the connection within timeout.
   bool closed_within(std::chrono::milliseconds timeout);
 

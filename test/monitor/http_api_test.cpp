@@ -55,6 +55,9 @@ TEST_F(MonitorTest, LadderListsTheNetworks) {
   EXPECT_EQ(j["file"], "belt.il");
   EXPECT_EQ(j["version"], 1);
   ASSERT_EQ(j["networks"].size(), 3u);  // the latch, the move, END
+  EXPECT_EQ(j["networks"][0]["number"], 1);
+  EXPECT_EQ(j["networks"][1]["number"], 2);
+  EXPECT_TRUE(j["networks"][2]["number"].is_null());  // END is no network
   EXPECT_EQ(j["networks"][0]["line"], 1);
   EXPECT_EQ(j["networks"][1]["line"], 5);
   EXPECT_EQ(j["networks"][2]["line"], 7);
@@ -63,8 +66,11 @@ TEST_F(MonitorTest, LadderListsTheNetworks) {
 }
 
 TEST_F(MonitorTest, StatusReportsModeScansAndForcedPoints) {
+  config.signals = {{"stop_pb", parse_address("X1")}};
   serve();
   plc.force(parse_address("X1"), ForceAction::Disable);
+  plc.force(parse_address("X1"), ForceAction::Set);
+  plc.force(parse_address("Y3"), ForceAction::Disable);  // held in the state it had: off
   for (int i = 0; i < 3; ++i) scan();
   const auto r = http_get(port, "/api/status");
   ASSERT_EQ(r.status, 200);
@@ -72,8 +78,14 @@ TEST_F(MonitorTest, StatusReportsModeScansAndForcedPoints) {
   EXPECT_EQ(j["mode"], "run");
   EXPECT_EQ(j["scan"]["scans"], 3);
   EXPECT_EQ(j["scan"]["overruns_off_cpu"], 0);  // virtual scans: none missed, none off the CPU
-  ASSERT_EQ(j["forced"].size(), 1u);
-  EXPECT_EQ(j["forced"][0], "X1");
+  // Virtual scans are not timed: no cycle figures rather than 0 µs.
+  EXPECT_TRUE(j["scan"]["cycle_avg_ns"].is_null()) << j["scan"].dump();
+  EXPECT_TRUE(j["scan"]["cycle_max_ns"].is_null()) << j["scan"].dump();
+  EXPECT_EQ(j["scan_note"], "");
+  // Each forced point with the cell's name for it and the state it is held in.
+  ASSERT_EQ(j["forced"].size(), 2u) << j["forced"].dump();
+  EXPECT_EQ(j["forced"][0], nlohmann::json({{"address", "X1"}, {"name", "stop_pb"}, {"state", 1}}));
+  EXPECT_EQ(j["forced"][1], nlohmann::json({{"address", "Y3"}, {"name", ""}, {"state", 0}}));
   EXPECT_FALSE(j["mode_switchable"]);  // read-only server
 }
 
@@ -169,7 +181,7 @@ TEST_F(MonitorTest, ForceOffAndReleaseWithinTheRanges) {
   ASSERT_EQ(http_post(port, "/api/force", R"({"address":"Y0","action":"off"})", t).status, 200);
   scan();
   EXPECT_EQ(value(plc, "Y0"), 0u);  // forced: the program's OUT leaves it
-  EXPECT_EQ(http_get(port, "/api/status").json()["forced"][0], "Y0");
+  EXPECT_EQ(http_get(port, "/api/status").json()["forced"][0]["address"], "Y0");
   ASSERT_EQ(http_post(port, "/api/force", R"({"address":"Y0","action":"release"})", t).status, 200);
   scan();
   EXPECT_EQ(value(plc, "Y0"), 1u);
@@ -177,6 +189,48 @@ TEST_F(MonitorTest, ForceOffAndReleaseWithinTheRanges) {
   EXPECT_EQ(http_post(port, "/api/force", R"({"address":"Y1","action":"on"})", t).status, 403);
   EXPECT_EQ(http_post(port, "/api/force", R"({"address":"Y0","action":"maybe"})", t).status, 400);
   EXPECT_EQ(http_post(port, "/api/force", R"({"address":"R0","action":"on"})", t).status, 400);
+}
+
+TEST_F(MonitorTest, AccessSaysBeforeAnyClickWhatTheServerWouldRefuse) {
+  settings.writable = WritableRanges::parse("D0-D99,X0-X7");
+  config.signals = {{"start_pb", parse_address("X0")}};
+  serve();
+  const auto j = http_get(port, "/api/access?a=D5,D100,DD98,DD99,X3,start_pb,Y0,R0").json();
+  const std::string none = "", ranges = " is not writable (writable: D0-D99,X0-X7)";
+  const std::map<std::string, std::pair<std::string, std::string>> expected = {
+      {"D5", {none, "D5 is not a single discrete"}},
+      {"D100", {"D100" + ranges, "D100 is not a single discrete"}},
+      {"DD98", {none, "DD98 is not a single discrete"}},
+      {"DD99", {"DD99" + ranges, "DD99 is not a single discrete"}},  // D99 and D100
+      {"X3", {none, none}},
+      {"start_pb", {none, none}},
+      {"Y0", {"Y0" + ranges, "Y0" + ranges}},
+      {"R0", {"R0" + ranges, "R0 is not a single discrete"}}};
+  ASSERT_EQ(j.size(), expected.size()) << j.dump();
+  for (const auto& [name, why] : expected) {
+    EXPECT_EQ(j[name]["write"], why.first) << name;
+    EXPECT_EQ(j[name]["force"], why.second) << name;
+  }
+  // What it says is what a POST then does.
+  const auto t = token();
+  EXPECT_EQ(http_post(port, "/api/write", R"({"address":"DD98","values":[5]})", t).status, 200);
+  EXPECT_EQ(http_post(port, "/api/write", R"({"address":"DD99","values":[5]})", t).status, 403);
+  EXPECT_EQ(http_post(port, "/api/force", R"({"address":"start_pb","action":"on"})", t).status, 200);
+  EXPECT_EQ(http_get(port, "/api/access").status, 400);
+  EXPECT_EQ(http_get(port, "/api/access?a=no_such").status, 400);
+  // RUN/STOP: its reason in the status.
+  EXPECT_EQ(http_get(port, "/api/status").json()["mode_refusal"],
+            "RUN/STOP needs writable: all (writable: D0-D99,X0-X7)");
+}
+
+TEST_F(MonitorTest, AReadOnlyServerSaysWhyEveryControlIsOff) {
+  serve();
+  const auto j = http_get(port, "/api/access?a=D0,X0").json();
+  EXPECT_EQ(j["D0"]["write"], "D0 is not writable (writable: none)");
+  EXPECT_EQ(j["X0"]["force"], "X0 is not writable (writable: none)");
+  const auto s = http_get(port, "/api/status").json();
+  EXPECT_FALSE(s["mode_switchable"]);
+  EXPECT_EQ(s["mode_refusal"], "RUN/STOP needs writable: all (writable: none)");
 }
 
 TEST_F(MonitorTest, ModeNeedsWritableAll) {
@@ -190,6 +244,7 @@ TEST_F(MonitorTest, ModeNeedsWritableAll) {
   EXPECT_EQ(http_post(port, "/api/mode", R"({"mode":"stop"})", token()).status, 200);
   EXPECT_EQ(plc.mode(), RunMode::Stop);
   EXPECT_TRUE(http_get(port, "/api/status").json()["mode_switchable"]);
+  EXPECT_EQ(http_get(port, "/api/status").json()["mode_refusal"], "");
 }
 
 TEST_F(MonitorTest, CoverageIsRecordedOnceAsked) {
@@ -255,14 +310,20 @@ TEST_F(MonitorTest, MalformedBodiesAre400) {
   EXPECT_EQ(value(plc, "D0"), 0u);
 }
 
-TEST_F(MonitorTest, ConnectionsOverTheCapAreRefused) {
+TEST_F(MonitorTest, ConnectionsOverTheCapAreRefusedWhenEveryOneIsBusy) {
   settings.max_connections = 2;
   serve();
+  // Two pages receiving frames: neither gives up its slot.
   WsClient a(port), b(port);
+  for (WsClient* p : {&a, &b}) {
+    p->send(R"({"subscribe":{"watch":["R0"],"rate_hz":20}})");
+    ASSERT_FALSE(p->next("frame").is_null());
+  }
   const auto r = http_get(port, "/api/session");
   EXPECT_EQ(r.status, 503);
   EXPECT_NE(r.json().value("error", "").find("max_connections 2"), std::string::npos) << r.body;
   EXPECT_GE(server->status().rejected, 1u);
+  for (WsClient* p : {&a, &b}) EXPECT_FALSE(p->next("frame").is_null());
 }
 
 TEST_F(MonitorTest, SilentConnectionsAreClosedAfterTheIdleTimeout) {

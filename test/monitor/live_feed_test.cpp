@@ -6,15 +6,6 @@ namespace plc_cell {
 namespace monitor_test {
 namespace {
 
-// The next frame at or after scan n (frames come at the page's rate; scans are the test's).
-nlohmann::json frame_at(WsClient& page, uint64_t n) {
-  for (int i = 0; i < 100; ++i) {
-    auto f = page.next("frame");
-    if (f.is_null() || f["scan"].get<uint64_t>() >= n) return f;
-  }
-  return nullptr;
-}
-
 TEST_F(MonitorTest, FramesCarryTheSubscribedValuesAfterEachScan) {
   serve();
   WsClient page(port);
@@ -71,6 +62,29 @@ TEST_F(MonitorTest, EveryWriteIsLoggedToEveryPage) {
     ASSERT_FALSE(l.is_null());
     EXPECT_EQ(l["text"], "write D50 = 6 (refused: D50 is not writable (writable: D0-D9))");
   }
+}
+
+TEST_F(MonitorTest, AChangeRefusedForItsFormIsLoggedOnceOnTheCellsClock) {
+  settings.writable = WritableRanges::parse("D0-D9");
+  serve();
+  for (int i = 0; i < 7; ++i) scan();
+  WsClient page(port);
+  page.next("status");
+  const auto t = token();
+  EXPECT_EQ(http_post(port, "/api/write", R"({"address":"D1","values":[70000]})", t).status, 400);
+  EXPECT_EQ(http_post(port, "/api/force", R"({"address":"D1","action":"on"})", t).status, 400);
+  EXPECT_EQ(http_post(port, "/api/mode", R"({"mode":"pause"})", t).status, 400);
+  EXPECT_EQ(http_post(port, "/api/write", R"({"address":"D1","values":[3]})", t).status, 200);
+  const char* expected[] = {"write D1 (refused: ", "force D1 (refused: force: D1 is not a single discrete)",
+                            "mode pause (refused: mode: \"mode\" must be run or stop, not 'pause')",
+                            "write D1 = 3 (accepted)"};
+  for (const char* text : expected) {
+    const auto l = page.next("log");
+    ASSERT_FALSE(l.is_null()) << text;
+    EXPECT_EQ(l["text"].get<std::string>().rfind(text, 0), 0u) << l.dump();
+    EXPECT_EQ(l["t_us"], 7000) << l.dump();  // the cell's clock: 7 scans of 1 ms
+  }
+  EXPECT_TRUE(page.next("log", std::chrono::milliseconds(300)).is_null());  // each once
 }
 
 TEST_F(MonitorTest, AProgramChangeIsAnnounced) {

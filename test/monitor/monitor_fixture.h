@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "client.h"
+#include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/monitor/http_server.h"
 #include "plc_cell/monitor/live_source.h"
@@ -27,6 +28,22 @@ constexpr const char* kProgram =
     "ORG Y0\n"
     "MOV S=7 D=R0\n"
     "END\n";
+
+// The next frame at or after scan n (frames come at the page's rate; scans are the test's).
+inline nlohmann::json frame_at(WsClient& page, uint64_t n) {
+  for (int i = 0; i < 100; ++i) {
+    auto f = page.next("frame");
+    if (f.is_null() || f["scan"].get<uint64_t>() >= n) return f;
+  }
+  return nullptr;
+}
+
+// How many elements and wires of a frame's networks it draws carrying power.
+inline size_t energised(const nlohmann::json& frame) {
+  size_t n = 0;
+  for (const auto& net : frame["flow"]) n += net["on"].size();
+  return n;
+}
 
 class MonitorTest : public ::testing::Test {
  protected:
@@ -46,11 +63,13 @@ class MonitorTest : public ::testing::Test {
     std::remove((assets_ + "/index.html").c_str());
     ::rmdir(assets_.c_str());
   }
-  // Starts the server; call after changing settings.
+  // Starts the server; call after changing settings (and config.signals, the names).
   void serve() {
     settings.endpoint = "127.0.0.1:0";
     settings.asset_root = assets_;
-    source = std::make_unique<monitor::LiveSource>(ServerContext(plc), "cell test");
+    ServerContext context(plc);
+    context.config = &config;
+    source = std::make_unique<monitor::LiveSource>(context, "cell test");
     server = std::make_unique<monitor::HttpServer>(*source, settings);
     server->start();
     port = server->port();
@@ -59,6 +78,7 @@ class MonitorTest : public ::testing::Test {
   std::string token() { return http_get(port, "/api/session").json().value("token", ""); }
 
   Plc plc;
+  CellConfig config;
   monitor::HttpSettings settings;
   std::unique_ptr<monitor::LiveSource> source;
   std::unique_ptr<monitor::HttpServer> server;

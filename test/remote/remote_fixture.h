@@ -36,12 +36,15 @@ Options on_loopback(int port, int timeout_ms = 1000) {
 }
 
 // The monitor's source over a Link made from its options, the ladder drawn from the conveyor.
+// Its forced points are read again only every forced_every (an hour: not during a test
+// unless it says so).
 template <class Link, class Options>
 std::unique_ptr<remote::RemoteSource> conveyor_source(const Options& o,
-                                                      std::chrono::milliseconds retry_after = std::chrono::seconds(1)) {
+                                                      std::chrono::milliseconds retry_after = std::chrono::seconds(1),
+                                                      std::chrono::milliseconds forced_every = std::chrono::hours(1)) {
   return std::make_unique<remote::RemoteSource>(std::make_unique<Link>(o),
                                                 remote::load_program_view(kConveyorIl, SoftCell::functions()),
-                                                retry_after);
+                                                retry_after, forced_every);
 }
 
 }  // namespace remote_test

@@ -9,8 +9,9 @@
 //    keep a connection alive;
 //  - slots: when all max_connections are taken, a new client takes the slot of the
 //    connection that has gone longest without completing a request, provided that
-//    is longer than frame_timeout; otherwise the new client is refused. A client
-//    that keeps completing requests is never evicted.
+//    is longer than frame_timeout (evict_after_ms when given: the monitor's HTTP
+//    server gives 0); otherwise the new client is refused. A client that keeps
+//    completing requests is never evicted.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -22,6 +23,7 @@ struct ConnectionLimits {
   int max_connections = 16;
   int idle_timeout_ms = 60000;
   int frame_timeout_ms = 1000;
+  int evict_after_ms = -1;  // how stale a connection must be to lose its slot (-1: frame_timeout_ms)
 };
 
 // Extra: what the server keeps per connection (buffers, decoder).
@@ -47,16 +49,19 @@ class Connections {
 
   enum class Admit { Accepted, Evicted, Refused };
   // A new client. On Evicted, *evicted_fd is the connection to close (already out
-  // of the table); on Refused the caller closes fd.
-  Admit admit(int fd, Clock::time_point now, int* evicted_fd) {
+  // of the table), and *evicted (if given) what the server kept for it; on Refused
+  // the caller closes fd.
+  Admit admit(int fd, Clock::time_point now, int* evicted_fd, Extra* evicted = nullptr) {
     *evicted_fd = -1;
     Admit how = Admit::Accepted;
     if (int(conns_.size()) >= lim_.max_connections) {
       auto oldest = conns_.end();
       for (auto it = conns_.begin(); it != conns_.end(); ++it)
         if (!it->waiting && (oldest == conns_.end() || it->last_request < oldest->last_request)) oldest = it;
-      if (oldest == conns_.end() || now - oldest->last_request < ms(lim_.frame_timeout_ms)) return Admit::Refused;
+      const int grace = lim_.evict_after_ms >= 0 ? lim_.evict_after_ms : lim_.frame_timeout_ms;
+      if (oldest == conns_.end() || now - oldest->last_request < ms(grace)) return Admit::Refused;
       *evicted_fd = oldest->fd;
+      if (evicted) *evicted = std::move(oldest->x);
       conns_.erase(oldest);
       how = Admit::Evicted;
     }

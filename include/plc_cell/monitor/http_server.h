@@ -21,6 +21,9 @@ struct HttpSettings {
   WritableRanges writable = WritableRanges::parse("none");
   int max_connections = 16;
   uint64_t idle_timeout_us = 60'000'000;
+  // A request's headers must be whole this long after its first byte, or the connection is
+  // closed (a client that sends half a request and waits holds no slot for long).
+  uint64_t header_timeout_us = 2'000'000;
   std::vector<std::string> allowed_hosts;  // Host names accepted besides loopback and the bound address
   std::string asset_root;                  // the page's files ("" = default_asset_root())
   std::string vendor_root = "/usr/share/javascript";  // /vendor/<lib>/... (Debian's libjs-*)

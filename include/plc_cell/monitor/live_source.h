@@ -21,6 +21,7 @@ class LiveSource : public Source {
   explicit LiveSource(const ServerContext& context, std::string name = "cell");
   ~LiveSource() override;
 
+  SourceKind kind() const override { return SourceKind::Live; }
   std::string describe() const override { return name_; }
   std::shared_ptr<const ProgramView> program() const override;
   Frame read(const std::vector<Address>& addrs) override;

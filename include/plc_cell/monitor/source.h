@@ -29,12 +29,22 @@ struct ProgramView {
   uint64_t version = 0;  // changes when the program is reloaded (online change)
 };
 
+// What a page shows: the cell in this process, a real PLC over its host link, a recording.
+enum class SourceKind { Live, Remote, Replay };
+const char* kind_text(SourceKind k);  // "live", "remote", "replay"
+
+// What a page may ask a source to change (Source::refusal).
+enum class Change { Write, Force, Mode };
+
 // One consistent instant: every value read between the same two scans.
 struct Frame {
   uint64_t scan = 0;  // scans since start
   uint64_t t_us = 0;  // the cell's clock: virtual time in sim and replay
   RunMode mode = RunMode::Stop;
   std::vector<uint32_t> values;  // one per address asked for, as Plc::read gives them
+  // One per address: 1 when that discrete is forced (its DISABLE flag set). Empty when the
+  // source cannot tell; a word address is never marked.
+  std::vector<uint8_t> forced;
 };
 
 struct CellStatus {
@@ -46,6 +56,9 @@ struct CellStatus {
   std::vector<Address> forced;  // disabled (forced) discretes
   std::string engine;           // "interpreter", "native", ... ("" when unknown)
   std::string note;             // e.g. "power flow computed from polled values"
+  bool mode_known = true;       // false: RUN or STOP cannot be told now (a link that is down)
+  std::string scan_note;        // why `scan` holds no scan figures of the PLC ("" = it does)
+  std::string forced_note;      // where `forced` comes from, or why it cannot be known
 };
 
 // Recorded values over time (Replay::history): per address, its value at the first instant
@@ -81,6 +94,7 @@ class Replay {
 class Source {
  public:
   virtual ~Source() = default;
+  virtual SourceKind kind() const = 0;
   virtual std::string describe() const = 0;  // "cell demo_conveyor", "FATEK 10.0.0.5:500"
   virtual std::shared_ptr<const ProgramView> program() const = 0;
   // Reads addrs at one instant. Throws plc_cell::Error saying why (link down, address
@@ -94,6 +108,11 @@ class Source {
   virtual void write(const Address& start, const std::vector<uint32_t>& values) = 0;
   virtual void force(const Address& bit, ForceAction action) = 0;
   virtual void set_mode(RunMode mode) = 0;
+  // Why a page may never make this change here, whatever the writable ranges ("" = it
+  // may): what the page greys out before a click rather than refuses after it.
+  virtual std::string refusal(Change) const { return ""; }
+  // The source's clock now (Frame::t_us's), without waiting on a link: the log's instants.
+  virtual uint64_t now_us() { return read({}).t_us; }
   // Per instruction, Interpreter::kSeenOff | kSeenOn since the coverage was started;
   // nullopt when this source has no coverage.
   virtual std::optional<std::vector<uint8_t>> coverage() { return std::nullopt; }

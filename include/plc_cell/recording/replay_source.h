@@ -24,6 +24,7 @@ class ReplaySource : public monitor::Source, public monitor::Replay {
   ReplaySource(Reader reader, const std::string& name, const FunctionTable& functions);
 
   // monitor::Source
+  monitor::SourceKind kind() const override { return monitor::SourceKind::Replay; }
   std::string describe() const override { return "recording " + name_; }
   std::shared_ptr<const monitor::ProgramView> program() const override { return program_; }
   monitor::Frame read(const std::vector<Address>& addrs) override;

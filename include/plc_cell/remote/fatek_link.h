@@ -2,7 +2,8 @@
 // A FATEK FBs-PLC over its host link (fatek/client.h), as a remote monitor link: reads
 // coalesced by fatek/poll_plan.h (runs of one area in 44/46 block frames, the rest in 48
 // mixed frames), RUN/STOP read with command 40 and set with 41, forcing with 42
-// (DISABLE/ENABLE, SET/RESET).
+// (DISABLE/ENABLE, SET/RESET) and the forced points read with 43 (runs of one area, up to
+// 256 points a frame, short gaps read through).
 #include <memory>
 #include <string>
 
@@ -29,6 +30,7 @@ class FatekLink : public Link {
   std::optional<RunMode> mode() override;
   void write(const Address& start, const std::vector<uint32_t>& values) override;
   void force(const Address& bit, ForceAction action) override;
+  std::optional<std::vector<bool>> forced(const std::vector<Address>& bits) override;
   void set_run(bool run) override { client_->set_run(run); }
   bool can_set_mode() const override { return true; }
   uint64_t frames() const override { return frames_; }

@@ -25,6 +25,11 @@ class Link {
   virtual std::optional<RunMode> mode() = 0;
   virtual void write(const Address& start, const std::vector<uint32_t>& values) = 0;
   virtual void force(const Address& bit, ForceAction action) = 0;
+  // Which of bits (single discretes) are forced (DISABLEd) in the PLC, read in as few frames
+  // as the protocol allows; nullopt when the protocol cannot tell.
+  virtual std::optional<std::vector<bool>> forced(const std::vector<Address>& bits) = 0;
+  // Why force() cannot work on this protocol ("" = it can).
+  virtual std::string no_forcing() const { return ""; }
   virtual void set_run(bool run) = 0;
   // Whether set_run and force can work on this protocol (the page offers them or not).
   virtual bool can_set_mode() const = 0;

@@ -31,6 +31,8 @@ class TriLink : public Link {
   std::optional<RunMode> mode() override { return mode_; }
   void write(const Address& start, const std::vector<uint32_t>& values) override;
   void force(const Address& bit, ForceAction action) override;
+  std::optional<std::vector<bool>> forced(const std::vector<Address>&) override { return std::nullopt; }
+  std::string no_forcing() const override;
   void set_run(bool run) override;
   bool can_set_mode() const override { return true; }
   uint64_t frames() const override { return client_->requests(); }

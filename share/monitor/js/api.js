@@ -53,6 +53,8 @@ export const coverage = () => get("/api/coverage");
 export const replayState = () => get("/api/replay");
 export const replayMove = (body) => post("/api/replay", body);
 export const read = (names) => get(`/api/read?a=${encodeURIComponent(names.join(","))}`);
+// {name: {write, force}}: why the server would refuse each ("" = it would not).
+export const access = (names) => get(`/api/access?a=${encodeURIComponent(names.join(","))}`);
 export const write = (address, values) => post("/api/write", {address, values});
 export const force = (address, action) => post("/api/force", {address, action});
 export const setMode = (mode) => post("/api/mode", {mode});

@@ -1,6 +1,9 @@
 // The ladder: every network of GET /api/ladder drawn as SVG from its grid (docs/ladder.md),
-// energised elements and wires marked from each frame's flow, live values in the boxes.
-// A network that cannot be drawn shows its IL and the reason.
+// energised elements and wires marked from each frame's flow, live values in the boxes,
+// forced contacts and coils tagged with the state they are held in. A network that cannot
+// be drawn shows its IL and the reason. Networks are numbered from 1, as coverage and
+// mutation testing number them, with their IL line beside the number; the API's 0-based
+// index is never shown.
 
 import {html, svg} from "./dom.js";
 import * as sym from "./symbols.js";
@@ -29,6 +32,7 @@ export class Ladder {
     this.onAddress = onAddress;
     this.nets = [];       // {net, div, parts: Map id -> [svg nodes], lines: Map line -> [nodes]}
     this.valueNodes = new Map();  // address -> [tspan]
+    this.points = new Map();      // address -> [{g, tag}] of its contacts and coils
     this.signals = {};
   }
 
@@ -36,6 +40,8 @@ export class Ladder {
     this.container.textContent = "";
     this.nets = [];
     this.valueNodes.clear();
+    this.points.clear();
+    this.note = html("p", {class: "flow-note", id: "flow-note", hidden: ""}, this.container);
     this.signals = data.signals || {};
     const networks = data.networks || [];
     if (!networks.length) html("p", {class: "empty"}, this.container, "The program has no networks.");
@@ -46,9 +52,9 @@ export class Ladder {
     const div = html("section", {class: "net", id: `net-${net.index}`}, this.container);
     div.dataset.network = net.index;
     const head = html("header", {}, div);
-    html("span", {class: "netno"}, head, `${net.index}`);
+    const line = net.line ? `line ${net.line}` : "";
+    html("span", {class: "netno"}, head, net.number ? `network ${net.number}${line ? ` (${line})` : ""}` : line);
     html("span", {class: "comment"}, head, net.comment || "");
-    html("span", {class: "lineno"}, head, net.line ? `line ${net.line}` : "");
     const entry = {net, div, parts: new Map(), lines: new Map(), instructions: new Map(), on: new Set(),
                    text: this.searchText(net)};
     if (net.drawable === false) this.renderIl(entry);
@@ -82,7 +88,9 @@ export class Ladder {
     const net = entry.net;
     const tops = rowTops(net);
     const cols = net.cols || 0;
-    const width = colX(cols) + sym.OUTPUT_W + 10;
+    // As wide as the drawing and no wider: a network that fits its column gets no scrollbar.
+    const boxes = (net.elements || []).some((el) => el.col >= cols && el.type !== "coil");
+    const width = colX(cols) + (boxes ? sym.OUTPUT_W - sym.BOX_MARGIN + 2 : sym.COIL_W);
     const height = tops[tops.length - 1] + 4;
     const root = svg("svg", {class: "rung", width, height, viewBox: `0 0 ${width} ${height}`}, entry.div);
     svg("line", {x1: LEFT, y1: 2, x2: LEFT, y2: height - 2, class: "rail"}, root);
@@ -111,6 +119,10 @@ export class Ladder {
     else if (el.type === "not") sym.not(g, named, colX(el.col), sym.CELL_W, y);
     else sym.inline(g, named, colX(el.col), sym.CELL_W, y, this.onAddress);
     this.remember(entry.parts, el.id, g);
+    if (el.address && (el.type === "contact" || el.type === "coil")) {
+      const cx = el.col >= cols ? colX(cols) + sym.COIL_X : colX(el.col) + sym.CELL_W / 2;
+      this.remember(this.points, el.address, {g, tag: sym.forceTag(g, cx, y)});
+    }
     if (Number.isInteger(el.instruction)) this.remember(entry.instructions, el.instruction, g);
     else if (el.line) this.remember(entry.lines, el.line, g);
   }
@@ -144,6 +156,29 @@ export class Ladder {
       const text = ` = ${format(values[address])}`;
       for (const n of nodes) if (n.textContent !== text) n.textContent = text;
     }
+  }
+
+  // The frame's forced points (its keys among the networks' addresses): each contact and
+  // coil of one tagged with the state it is held in.
+  applyForced(forced, values) {
+    const held = new Set(forced || []);
+    for (const [address, marks] of this.points) {
+      const on = held.has(address);
+      const text = on ? `F ${Number(values[address]) ? "ON" : "OFF"}` : "";
+      for (const {g, tag} of marks) {
+        g.classList.toggle("forced", on);
+        if (tag.textContent !== text) tag.textContent = text;
+        g.dataset.forced = on ? (Number(values[address]) ? "on" : "off") : "";
+      }
+    }
+  }
+
+  // Why the frame draws no power flow (STOP, values not current), or null when it draws it.
+  applyFlowNote(text, stale) {
+    this.note.hidden = !text;
+    this.note.textContent = text || "";
+    this.container.classList.toggle("not-scanned", Boolean(text));
+    this.container.classList.toggle("stale", Boolean(stale));
   }
 
   // Coverage: per instruction (elements) and per IL line (the listing of an undrawable

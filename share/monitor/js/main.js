@@ -2,7 +2,9 @@
 // WebSocket. Subscribes to the networks in view (IntersectionObserver) and to what the watch
 // table and the trends show. After a drop it says so in a banner, keeps the last picture and
 // starts again from the session when the server is back (a restarted cell has a new token
-// and maybe a new program).
+// and maybe a new program). A frame the server marks stale (a real PLC's link is down) gets
+// the same banner, its values marked with their age and no power flow; a frame of a
+// stopped cell draws no power flow either.
 
 import * as api from "./api.js";
 import {coverage} from "./coverage.js";
@@ -16,7 +18,8 @@ import {Trends} from "./trends.js";
 import {Watch} from "./watch.js";
 
 const $ = (id) => document.getElementById(id);
-const page = {session: null, ladderData: null, status: null, visible: new Set(), coverage: false, replay: null};
+const page = {session: null, ladderData: null, status: null, visible: new Set(), coverage: false, replay: null,
+              t_us: null, lost: "", stale: "", frames: 0};
 
 const log = new Log($("log"));
 
@@ -25,7 +28,8 @@ function signalAddress(name) {
   const signals = (page.ladderData && page.ladderData.signals) || {};
   return Object.keys(signals).find((a) => signals[a] === name) || name;
 }
-const addLog = (text, level) => log.add(text, level);
+// What the page logs itself (what never reached the server), on the cell's clock as last seen.
+const addLog = (text, level) => log.add(text, level, page.t_us);
 const watch = new Watch($("watch-panel"), {changed: () => resubscribe(), log: addLog, resolve: signalAddress});
 const trends = new Trends($("trends-panel"), {changed: () => resubscribe(), log: addLog});
 const ladder = new Ladder($("ladder"), async (address) => {
@@ -101,23 +105,38 @@ async function loadStatus() {
   onStatus(await api.status());
 }
 
+function staleText(stale) {
+  const age = stale.age_ms === null || stale.age_ms === undefined
+    ? "no values have been read yet" : `the values shown are ${(stale.age_ms / 1000).toFixed(1)} s old`;
+  return `No current values: ${stale.error}. ${age}; no power flow is drawn from them.`;
+}
+
 function onFrame(frame) {
+  page.frames++;
   const values = frame.values || {};
   ladder.applyValues(values, (v) => show(v, "signed"));
   ladder.applyFlow(frame.flow);
-  watch.applyValues(values);
-  trends.addFrame(frame);
+  ladder.applyForced(frame.forced, values);
+  ladder.applyFlowNote(frame.stale ? `Not current: ${staleText(frame.stale)}` : frame.no_flow || null, frame.stale);
+  watch.applyValues(values, frame);
+  if (!frame.stale) trends.addFrame(frame);
   if (page.replay) page.replay.frame(frame);
+  page.stale = frame.stale ? staleText(frame.stale) : "";
+  showBanner();
   if (frame.mode) setMode(frame.mode);
+  if (!frame.stale) page.t_us = frame.t_us ?? page.t_us;
   const clock = $("clock");
-  clock.textContent = `scan ${frame.scan ?? "–"}  t ${frame.t_us !== undefined ? (frame.t_us / 1e6).toFixed(3) : "–"} s`;
+  // A real PLC's scans are not seen: what its frames count are the monitor's polls.
+  const counted = page.session && page.session.kind === "remote" ? "poll" : "scan";
+  clock.textContent = `${counted} ${frame.scan ?? "–"}  t ${frame.t_us !== undefined ? (frame.t_us / 1e6).toFixed(3) : "–"} s`;
   clock.dataset.scan = frame.scan;
   clock.dataset.tUs = frame.t_us;
 }
 
 function setMode(mode) {
   const m = $("mode");
-  m.textContent = mode.toUpperCase();
+  m.textContent = mode === "unknown" ? "RUN/STOP ?" : mode.toUpperCase();
+  m.title = mode === "unknown" ? "not known: the source cannot be read now" : "";
   m.className = `mode mode-${mode}`;
 }
 
@@ -125,10 +144,11 @@ function onStatus(status) {
   const {type, ...rest} = status;
   page.status = rest;
   renderStatus($("status-panel"), rest);
-  if (rest.mode) setMode(rest.mode);
+  // A stale frame says the mode is not known; a status gathered meanwhile says no better.
+  if (rest.mode && !page.stale) setMode(rest.mode);
   if (page.session) describeSource(page.session, rest);
   const button = $("mode-switch");
-  const why = modeRefusal(rest, page.session);
+  const why = modeRefusal(rest);
   button.disabled = why !== "";
   button.title = why || `switch the cell to ${rest.mode === "run" ? "STOP" : "RUN"}`;
   button.textContent = rest.mode === "run" ? "STOP" : "RUN";
@@ -136,14 +156,22 @@ function onStatus(status) {
 }
 
 function onLogEvent(msg) {
-  log.add(msg.text, "server", msg.t_us ?? null);
+  log.add(msg.text, /\(refused/.test(msg.text) ? "error" : "server", msg.t_us ?? null);
+}
+
+// One banner for what keeps the page from showing current values: its own connection lost,
+// or the source's (a real PLC's link down).
+function showBanner() {
+  const text = page.lost || page.stale;
+  const b = $("banner");
+  if (b.textContent !== text) b.textContent = text;
+  b.hidden = !text;
+  document.body.classList.toggle("disconnected", Boolean(text));
 }
 
 function banner(text) {
-  const b = $("banner");
-  b.textContent = text;
-  b.hidden = !text;
-  document.body.classList.toggle("disconnected", Boolean(text));
+  page.lost = text;
+  showBanner();
 }
 
 async function onOpen() {
@@ -189,10 +217,9 @@ async function toggleCoverage() {
 async function switchMode() {
   const to = page.status && page.status.mode === "run" ? "stop" : "run";
   try {
-    await api.setMode(to);
-    addLog(`mode ${to}: accepted`, "own");
+    await api.setMode(to);  // the server logs it, accepted or refused, to every page
   } catch (e) {
-    addLog(`mode ${to} refused: ${e.message}`, "error");
+    if (e.status === undefined) addLog(`mode ${to} (${e.message})`, "error");
     toast(e.message);
   }
 }

@@ -26,27 +26,34 @@ function panel(parent, title, level = "ok", id = null) {
   return div;
 }
 
-// Why RUN/STOP is not offered, or "" when it is.
-export function modeRefusal(status, session) {
-  if (session && session.kind === "replay") return "a recording cannot change mode";
+// Why RUN/STOP is not offered, or "" when it is: the server's reason (it knows the source
+// and the writable ranges).
+export function modeRefusal(status) {
   if (!status) return "the cell's status is not known yet";
-  if (!status.mode_switchable) return "this source does not allow RUN/STOP from the page";
-  // RUN/STOP reaches every address: the server switches it only when everything is writable.
-  const writable = (session && session.writable) || "none";
-  if (writable === "none") return "the server is read-only (writable: none)";
-  if (writable !== "all") return `RUN/STOP needs writable: all (writable: ${writable})`;
-  return "";
+  if (typeof status.mode_refusal === "string") return status.mode_refusal;
+  return status.mode_switchable ? "" : "the server does not allow RUN/STOP from the page";
+}
+
+function forcedText(f) {
+  const state = f.state === null || f.state === undefined ? "state not known" : `forced ${f.state ? "ON" : "OFF"}`;
+  return `${f.address}${f.name ? ` ${f.name}` : ""}: ${state}`;
 }
 
 export function renderStatus(root, status) {
   root.textContent = "";
-  const scan = status.scan || {};
   const cell = panel(root, "Scan", status.mode === "fault" ? "error" : "ok", "status-scan");
-  keyValues(cell, [["mode", (status.mode || "").toUpperCase()], ["engine", status.engine || "–"],
-                   ["scans", scan.scans], ["cycle avg", us(scan.cycle_avg_ns)], ["cycle max", us(scan.cycle_max_ns)],
-                   ["wake avg", us(scan.wake_avg_ns)], ["wake max", us(scan.wake_max_ns)],
-                   ...(scan.wake_p99_ns !== undefined ? [["wake p99", us(scan.wake_p99_ns)]] : []),
-                   ["overruns", scan.overruns]]);
+  const mode = [["mode", (status.mode || "").toUpperCase()], ["engine", status.engine || "–"]];
+  const scan = status.scan;
+  if (scan) {
+    keyValues(cell, [...mode, ["scans", scan.scans], ["cycle avg", us(scan.cycle_avg_ns)],
+                     ["cycle max", us(scan.cycle_max_ns)], ["wake avg", us(scan.wake_avg_ns)],
+                     ["wake max", us(scan.wake_max_ns)],
+                     ...(scan.wake_p99_ns !== undefined ? [["wake p99", us(scan.wake_p99_ns)]] : []),
+                     ["overruns", scan.overruns]]);
+  } else {
+    keyValues(cell, mode);
+    html("p", {class: "scan-note"}, cell, `scan figures: ${status.scan_note || "not known"}`);
+  }
   if (status.note) html("p", {class: "note"}, cell, status.note);
   const exts = status.extensions || [];
   const faults = exts.filter((e) => e.level === "error");
@@ -56,7 +63,10 @@ export function renderStatus(root, status) {
   if (!faults.length && !status.fault) html("p", {class: "muted"}, fp, "none");
   const forced = status.forced || [];
   const fo = panel(root, "Forced points", forced.length ? "warn" : "ok", "status-forced");
-  html("p", {class: forced.length ? "" : "muted"}, fo, forced.length ? forced.join(", ") : "none");
+  if (!forced.length) html("p", {class: "muted"}, fo, "none");
+  const list = html("ul", {class: "forced"}, fo);
+  for (const f of forced) html("li", {"data-address": f.address}, list, forcedText(f));
+  if (status.forced_note) html("p", {class: "note"}, fo, status.forced_note);
   for (const ext of exts) {
     const p = panel(root, ext.name, ext.level || "ok");
     p.classList.add("extension");

@@ -9,6 +9,7 @@ export const OUTPUT_W = 230;   // the output column (coils, boxes)
 export const RUNG_Y = 30;      // the rung line's offset from the row's top
 export const ROW_H = 62;       // a row with no box
 const STUB = 28;               // the wire into a box, room for an input's name
+export const BOX_MARGIN = 10;  // what a box leaves free at the right of its column
 
 const CONTACT_MARK = {no: "", nc: "/", up: "↑", down: "↓"};
 const COIL_MARK = {out: "", out_not: "/", set: "S", rst: "R"};
@@ -46,8 +47,17 @@ export function not(g, el, x0, w, y) {
   svg("text", {x: cx, y: y + 4, class: "mark small", "text-anchor": "middle"}, g, "NOT");
 }
 
+export const COIL_X = 50;      // a coil's centre in the output column
+export const COIL_W = 110;     // the output column when it holds coils only (name and tag included)
+
+// The tag of a forced contact or coil ("F ON", "F OFF"), right of its symbol; empty until
+// the point is forced.
+export function forceTag(g, cx, y) {
+  return svg("text", {x: cx + 11, y: y + 11, class: "forcetag"}, g, "");
+}
+
 export function coil(g, el, x0, w, y, onAddress) {
-  const cx = x0 + 50;
+  const cx = x0 + COIL_X;
   line(g, x0, y, cx - 12, y);
   svg("path", {d: `M ${cx - 6} ${y - 12} A 14 14 0 0 0 ${cx - 6} ${y + 12}`, class: "sym"}, g);
   svg("path", {d: `M ${cx + 6} ${y - 12} A 14 14 0 0 1 ${cx + 6} ${y + 12}`, class: "sym"}, g);
@@ -69,7 +79,7 @@ export function box(g, el, x0, w, y, title, rows, onAddress) {
     if (input.name) svg("text", {x: x0 + 2, y: iy - 3, class: "input"}, g, input.name);
   }
   const h = Math.max(boxHeight(rows.length), reach + 26);
-  svg("rect", {x: x0 + STUB, y: y - 14, width: w - STUB - 10, height: h, rx: 3, class: "sym box"}, g);
+  svg("rect", {x: x0 + STUB, y: y - 14, width: w - STUB - BOX_MARGIN, height: h, rx: 3, class: "sym box"}, g);
   svg("text", {x: x0 + STUB + 8, y: y + 4, class: "boxtitle"}, g, title);
   rows.forEach((r, i) => {
     const t = svg("text", {x: x0 + STUB + 8, y: y + 22 + 16 * i, class: "boxrow"}, g);

@@ -1,9 +1,12 @@
 // Watch tables: named lists of addresses or signal names, one format per row, with writing
-// and forcing through the API. The tables are kept in localStorage and can be downloaded
-// and loaded again as a JSON file: {"tables": [{"name", "rows": [{"address", "format"}]}]}.
+// and forcing through the API. A row's write and force controls are disabled, the reason in
+// their tooltip, where the server would refuse them (GET /api/access); a forced point is
+// marked with the state it is held in, and values that are not current with their age. The
+// tables are kept in localStorage and can be downloaded and loaded again as a JSON file:
+// {"tables": [{"name", "rows": [{"address", "format"}]}]}.
 
 import * as api from "./api.js";
-import {FORMATS, isBit, isWide, parse, readAddress, show} from "./format.js";
+import {FORMATS, isBit, parse, readAddress, show} from "./format.js";
 import {addForm, download, html} from "./dom.js";
 
 const STORE = "plc_cell.monitor.watch";
@@ -25,7 +28,9 @@ export class Watch {
     this.changed = changed;  // the subscription must change
     this.log = log;          // (text, level) into the log panel
     this.values = {};
+    this.frame = {forced: [], stale: null};
     this.bad = new Map();  // read address -> why the cell cannot read it
+    this.access = new Map();  // read address -> {write, force}: why not ("" = allowed)
     this.tables = this.load();
     this.current = 0;
     this.build();
@@ -63,6 +68,7 @@ export class Watch {
     const table = html("table", {class: "watch", id: "watch"}, this.root);
     const head = html("tr", {}, html("thead", {}, table));
     for (const h of ["address", "format", "value", "write", "force", ""]) html("th", {}, head, h);
+    head.lastChild.title = "remove";
     this.body = html("tbody", {}, table);
     this.redraw();
   }
@@ -74,7 +80,8 @@ export class Watch {
     this.body.textContent = "";
     this.cells = [];
     this.table().rows.forEach((row, i) => this.cells.push(this.renderRow(row, i)));
-    this.applyValues(this.values);
+    this.applyAccess();
+    this.applyValues(this.values, this.frame);
   }
 
   renderRow(row, i) {
@@ -93,20 +100,36 @@ export class Watch {
     const value = html("td", {class: "value"}, tr);
     const wcell = html("td", {}, tr);
     const form = html("form", {class: "write"}, wcell);
-    const input = html("input", {class: "write-value", size: 8, placeholder: "value"}, form);
-    html("button", {type: "submit", class: "write-button"}, form, "Write");
+    const input = html("input", {class: "write-value", size: 6, placeholder: "value"}, form);
+    const wbutton = html("button", {type: "submit", class: "write-button"}, form, "Write");
     form.addEventListener("submit", (ev) => {
       ev.preventDefault();
       this.write(row, input.value);
     });
     const fcell = html("td", {class: "force"}, tr);
+    const force = [];
     if (isBit(row.address) || !/^[A-Z]+\d+$/i.test(row.address)) {
       for (const [action, label] of [["on", "on"], ["off", "off"], ["release", "free"]])
-        html("button", {class: `force-${action}`, title: `force ${action}`, onclick: () => this.force(row.address, action)},
-             fcell, label);
+        force.push(html("button", {class: `force-${action}`, title: `force ${action}`,
+                                   onclick: () => this.force(row.address, action)}, fcell, label));
     }
     html("button", {class: "remove", title: "remove the row", onclick: () => this.remove(i)}, html("td", {}, tr), "×");
-    return {row, value};
+    return {row, tr, value, write: [input, wbutton], force};
+  }
+
+  // Greys out what the server would refuse, with its reason as the tooltip.
+  applyAccess() {
+    for (const {row, write, force} of this.cells) {
+      const a = this.access.get(this.read(row));
+      const set = (nodes, why, title) => {
+        for (const n of nodes) {
+          n.disabled = Boolean(why);
+          n.title = why || title(n);
+        }
+      };
+      set(write, a ? a.write : "", () => "write the value in the row's format");
+      set(force, a ? a.force : "", (n) => n.className.replace("force-", "force "));
+    }
   }
 
   // A name or address the cell cannot read is refused here, with the server's reason: in
@@ -120,6 +143,7 @@ export class Watch {
     const rows = this.table().rows;
     if (!rows.some((r) => r.address === address)) rows.push({address, format: "unsigned"});
     this.commit();
+    await this.checkAccess([address]);
     return true;
   }
 
@@ -134,11 +158,23 @@ export class Watch {
         if (why) bad.set(a, why);
       }
     }
+    await this.checkAccess(wanted.filter((a) => !bad.has(a)));
     // Redrawn only when the verdict changed: a redraw replaces the rows being typed in.
     if (JSON.stringify([...bad]) === JSON.stringify([...this.bad])) return;
     this.bad = bad;
     this.redraw();
     this.changed();
+  }
+
+  async checkAccess(addresses) {
+    if (!addresses.length) return;
+    try {
+      const answer = await api.access(addresses);
+      for (const [a, why] of Object.entries(answer)) this.access.set(a, why);
+    } catch (e) {
+      this.log(`watch: ${e.message}`, "error");
+    }
+    this.applyAccess();
   }
 
   remove(i) {
@@ -203,13 +239,25 @@ export class Watch {
     return this.table().rows.map((r) => this.read(r)).filter((a) => !this.bad.has(a));
   }
 
-  applyValues(values) {
+  // A frame's values, its forced points and whether it is stale ({age_ms, error}).
+  applyValues(values, frame = {}) {
     this.values = values;
-    for (const {row, value} of this.cells) {
+    this.frame = frame;
+    const forced = new Set(frame.forced || []);
+    const stale = frame.stale || null;
+    const age = stale ? (stale.age_ms === null ? "never read" : `${(stale.age_ms / 1000).toFixed(1)} s old`) : "";
+    for (const {row, tr, value} of this.cells) {
       const key = this.read(row);
-      if (!(key in values)) continue;
-      const text = show(values[key], row.format);
-      if (value.textContent !== text) value.textContent = text;
+      const held = forced.has(key);
+      const on = Number(values[key]) ? "ON" : "OFF";
+      const text = key in values ? show(values[key], row.format) : "";
+      const note = [held ? `forced ${on}` : "", age].filter(Boolean).join(", ");
+      const shown = note ? `${text} (${note})` : text;
+      if (value.textContent !== shown) value.textContent = shown;
+      tr.classList.toggle("forced", held);
+      tr.dataset.forced = held ? on.toLowerCase() : "";
+      value.classList.toggle("stale", Boolean(stale));
+      value.title = stale ? `not current: ${age} (${stale.error})` : "";
     }
   }
 
@@ -219,23 +267,23 @@ export class Watch {
     try {
       v = parse(text, row.format);
     } catch (e) {
-      this.log(`write ${address}: ${e.message}`, "error");
+      this.log(`write ${address} (refused here: ${e.message})`, "error");
       return;
     }
-    try {
-      await api.write(address, [v]);
-      this.log(`write ${address} = ${text.trim()}${isWide(row.format) ? ` (${row.format})` : ""}: accepted`, "own");
-    } catch (e) {
-      this.log(`write ${address} = ${text.trim()} refused: ${e.message}`, "error");
-    }
+    await this.ask(`write ${address} = ${text.trim()}`, () => api.write(address, [v]));
   }
 
   async force(address, action) {
+    await this.ask(`force ${address} ${action}`, () => api.force(address, action));
+  }
+
+  // The server logs every change it is asked for, to every page: only a request it never
+  // answered is logged here.
+  async ask(what, request) {
     try {
-      await api.force(address, action);
-      this.log(`force ${address} ${action}: accepted`, "own");
+      await request();
     } catch (e) {
-      this.log(`force ${address} ${action} refused: ${e.message}`, "error");
+      if (e.status === undefined) this.log(`${what} (${e.message})`, "error");
     }
   }
 }
