@@ -4,6 +4,7 @@
 
 #include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/sim/lockstep_cells.h"
 
 namespace plc_cell {
 namespace {
@@ -27,6 +28,12 @@ const std::string* run_value(const std::vector<SettingOverride>& run, const std:
     out = checked;
   }
   return out;
+}
+
+// Where the last override of key came from ("--engine", "~engine").
+std::string origin_of(const std::vector<SettingOverride>& run, const std::string& key) {
+  const auto at = std::find_if(run.rbegin(), run.rend(), [&](const SettingOverride& x) { return x.key == key; });
+  return at == run.rend() ? key : at->origin;
 }
 
 // The servers: section, read with the cell's other sections so that its errors are listed
@@ -86,14 +93,16 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
   if (run_value(o.run, "persist_file", &v)) persist_.file = v;  // "" turns the store off
   if (run_value(o.run, "persist_interval", &v)) persist_.interval_us = parse_duration_us(v);
   EngineChoice engine = cfg.engine;
-  if (const std::string* e = run_value(o.run, "engine", &v); e && !parse_engine_choice(*e, &engine)) {
-    const auto at = std::find_if(o.run.rbegin(), o.run.rend(), [](const SettingOverride& x) { return x.key == "engine"; });
-    throw Error(at->origin + " " + *e + ": expected native, interpreter or lockstep");
+  if (const std::string* e = run_value(o.run, "engine", &v); e && !parse_engine_choice(*e, &engine))
+    throw Error(origin_of(o.run, "engine") + " " + *e + ": expected native, interpreter or lockstep");
+  if (engine == EngineChoice::Lockstep) {
+    run_in_lockstep(config_path);
+  } else {
+    plc().locked([&](ScanEngine& se, Memory&) {
+      se.set_engine(engine);
+      return 0;
+    });
   }
-  plc().locked([&](ScanEngine& se, Memory&) {
-    se.set_engine(engine);
-    return 0;
-  });
 
   ServerContext context(plc());
   context.config = &cfg;
@@ -109,6 +118,17 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
   // Retentive memory from the last run, before the first scan and the first request.
   if (purpose == Purpose::Serve && !persist_.file.empty())
     persister_ = std::make_unique<persist::Persister>(plc(), persist_, std::move(log));
+}
+
+// The twin is the same cell built again, FUN150/151 with no port (one line has one owner):
+// a program that talks on the cell's COM ports cannot run twice, and is refused.
+void Cell::run_in_lockstep(const std::string& config_path) {
+  for (const auto& x : soft_->extensions())
+    if (x->name() == "protocol functions" && !x->status(plc()).empty())
+      throw Error("lockstep: the cell's FUN150/FUN151 own its COM ports (ports:), which its interpreter twin "
+                  "cannot share; run it on one engine");
+  twin_ = std::make_unique<SoftCell>(config_path, soft_->program_path(), runtime_extensions(Purpose::Check));
+  plc_cell::run_in_lockstep(*soft_, *twin_);
 }
 
 Cell::~Cell() { stop(); }

@@ -16,8 +16,9 @@ namespace {
 constexpr int64_t kUsPerS = 1000000;
 constexpr int64_t kEnd = int64_t(36525) * 86400 * kUsPerS;  // 2100-01-01: 100 years, 25 of them leap
 
-DateTime host_local_time() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+DateTime host_local_time(int64_t given) {
+  const std::time_t t =
+      given ? std::time_t(given) : std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm tm{};
   localtime_r(&t, &tm);
   DateTime d;
@@ -45,7 +46,7 @@ RtcConfig parse_rtc_config(const YAML::Node& node, const std::string& file) {
 }
 
 Rtc::Rtc(RtcConfig cfg, Memory& mem) : cfg_(cfg), mem_(mem) {
-  us_ = to_seconds(cfg_.has_start ? cfg_.start : host_local_time()) * kUsPerS;
+  us_ = to_seconds(cfg_.has_start ? cfg_.start : host_local_time(0)) * kUsPerS;
 }
 
 int Rtc::week() const { return (weekday(seconds()) + week_offset_) % 7; }
@@ -55,7 +56,7 @@ void Rtc::before_inputs(uint64_t now_us) {
     started_ = true;
     last_us_ = now_us;
     // The host's time when the cell starts scanning, not when it was built.
-    if (!cfg_.has_start) us_ = to_seconds(host_local_time()) * kUsPerS;
+    if (!cfg_.has_start) us_ = to_seconds(host_local_time(host_time_)) * kUsPerS;
     return;
   }
   if (now_us <= last_us_) return;

@@ -42,6 +42,10 @@ class Rtc final : public ScanHook {
   void attached(ScanEngine& engine) override;     // the registers hold the clock at once
   void on_run() override;                          // and again once STOP -> RUN cleared them
 
+  // A clock that starts from the host's local time takes it from here (Unix seconds) rather
+  // than reading it at the first scan: the two halves of a lockstep cell read it once.
+  void set_host_time(int64_t unix_s) { host_time_ = unix_s; }
+
   int64_t seconds() const { return us_ / 1000000; }  // since 2000-01-01 00:00:00
   DateTime now() const { return from_seconds(seconds()); }
   int week() const;  // R4134: 0 = Sunday, or what the program set
@@ -54,6 +58,7 @@ class Rtc final : public ScanHook {
 
   RtcConfig cfg_;
   Memory& mem_;
+  int64_t host_time_ = 0;  // 0: read the host's clock
   bool started_ = false;
   uint64_t last_us_ = 0;
   int64_t us_ = 0;          // the clock, microseconds since 2000-01-01 00:00:00
