@@ -5,6 +5,7 @@
 #include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/sim/lockstep_cells.h"
+#include "plc_cell/temp/rtc_calendar.h"
 
 namespace plc_cell {
 namespace {
@@ -34,6 +35,20 @@ const std::string* run_value(const std::vector<SettingOverride>& run, const std:
 std::string origin_of(const std::vector<SettingOverride>& run, const std::string& key) {
   const auto at = std::find_if(run.rbegin(), run.rend(), [&](const SettingOverride& x) { return x.key == key; });
   return at == run.rend() ? key : at->origin;
+}
+
+// Virtual time unless served in real time; the calendar's start as rtc_start says.
+CellClock cell_clock(const CellOverrides& o, Cell::Purpose purpose) {
+  CellClock c;
+  c.virtual_time = purpose != Cell::Purpose::Serve || o.virtual_time;
+  std::string v;
+  if (const std::string* start = run_value(o.run, "rtc_start", &v)) {
+    if (*start != "host" && !temp::parse_date_time(*start))
+      throw Error(origin_of(o.run, "rtc_start") + " " + *start +
+                  ": expected host or a date-time 2000-01-01T00:00:00 .. 2099-12-31T23:59:59");
+    c.calendar_start = *start;
+  }
+  return c;
 }
 
 // The servers: section, read with the cell's other sections so that its errors are listed
@@ -75,6 +90,9 @@ const std::vector<SettingSpec>& Cell::run_settings() {
       setting("persist_file", SettingType::Text, "retentive store (default plc.persist.file)"),
       duration_setting("persist_interval", "", 1000, 60000000, "store flush interval (default plc.persist.interval)"),
       setting("engine", SettingType::Text, "native, interpreter or lockstep (default plc.engine)"),
+      setting("rtc_start", SettingType::Text,
+              "the RTC's start, a date-time or host (default modules.rtc.start, else 2024-01-01T00:00:00 in "
+              "virtual time and the host's local time in real time)"),
   };
   return specs;
 }
@@ -82,7 +100,8 @@ const std::vector<SettingSpec>& Cell::run_settings() {
 Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpose,
            std::function<void(const std::string&)> log) {
   const auto& kinds = server_kinds();
-  soft_ = std::make_unique<SoftCell>(config_path, o.program, runtime_extensions(purpose));
+  const CellClock clock = cell_clock(o, purpose);
+  soft_ = std::make_unique<SoftCell>(config_path, o.program, runtime_extensions(purpose), clock);
   const CellConfig& cfg = soft_->config();
   server_settings_ = merge_server_settings(kinds, cfg, o.servers);
 
@@ -96,7 +115,7 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
   if (const std::string* e = run_value(o.run, "engine", &v); e && !parse_engine_choice(*e, &engine))
     throw Error(origin_of(o.run, "engine") + " " + *e + ": expected native, interpreter or lockstep");
   if (engine == EngineChoice::Lockstep) {
-    run_in_lockstep(config_path);
+    run_in_lockstep(config_path, o, clock);
   } else {
     plc().locked([&](ScanEngine& se, Memory&) {
       se.set_engine(engine);
@@ -122,12 +141,12 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
 
 // The twin is the same cell built again, FUN150/151 with no port (one line has one owner):
 // a program that talks on the cell's COM ports cannot run twice, and is refused.
-void Cell::run_in_lockstep(const std::string& config_path) {
+void Cell::run_in_lockstep(const std::string& config_path, const CellOverrides& o, const CellClock& clock) {
   for (const auto& x : soft_->extensions())
     if (x->name() == "protocol functions" && !x->status(plc()).empty())
       throw Error("lockstep: the cell's FUN150/FUN151 own its COM ports (ports:), which its interpreter twin "
                   "cannot share; run it on one engine");
-  twin_ = std::make_unique<SoftCell>(config_path, soft_->program_path(), runtime_extensions(Purpose::Check));
+  twin_ = std::make_unique<SoftCell>(config_path, soft_->program_path(), runtime_extensions(Purpose::Check), clock);
   plc_cell::run_in_lockstep(*soft_, *twin_);
 }
 

@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "plc_cell/config/yaml_reader.h"
+#include "plc_cell/core/error.h"
 #include "plc_cell/core/area.h"
 #include "plc_cell/temp/rtc_calibration.h"
 
@@ -160,10 +161,35 @@ void Rtc::find_registers() {
   registers_[7] = static_cast<uint16_t>(t.hour << 8 | t.minute);
 }
 
-std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem) {
+namespace {
+
+// The start the cell's clock gives (its calendar_start, else kVirtualCalendarStart in
+// virtual time) over what modules.rtc said.
+void apply_cell_clock(const CellClock& clock, RtcConfig* c) {
+  if (clock.calendar_start == "host") {
+    c->has_start = false;
+  } else if (!clock.calendar_start.empty()) {
+    const auto t = parse_date_time(clock.calendar_start);
+    if (!t)
+      throw Error("RTC start " + clock.calendar_start +
+                  ": expected host or a date-time 2000-01-01T00:00:00 .. 2099-12-31T23:59:59");
+    c->has_start = true;
+    c->start = *t;
+  } else if (!c->has_start && clock.virtual_time) {
+    c->has_start = true;
+    c->start = *parse_date_time(kVirtualCalendarStart);
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem,
+                              const CellClock& clock) {
   const YAML::Node modules = document.IsMap() ? document["modules"] : YAML::Node();
   const YAML::Node node = modules && modules.IsMap() ? modules["rtc"] : YAML::Node();
-  return std::make_unique<Rtc>(parse_rtc_config(node, file), mem);
+  RtcConfig c = parse_rtc_config(node, file);
+  apply_cell_clock(clock, &c);
+  return std::make_unique<Rtc>(c, mem);
 }
 
 }  // namespace temp

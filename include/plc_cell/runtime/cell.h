@@ -26,8 +26,11 @@ namespace plc_cell {
 struct CellOverrides {
   std::string program;  // overrides cell.program
   // Run settings, keys of Cell::run_settings(): scan_period, rt_priority, persist_file,
-  // persist_interval, engine (kind is ignored).
+  // persist_interval, engine, rtc_start (kind is ignored).
   std::vector<SettingOverride> run;
+  // A served cell scanned in virtual time (plc_node ~virtual_time). Every other purpose
+  // than Serve is virtual time anyway.
+  bool virtual_time = false;
   // Server settings, keys of Cell::server_kinds(): {"modbus", "id", {"7"}, "--modbus-id"}.
   std::vector<SettingOverride> servers;
 };
@@ -84,7 +87,7 @@ class Cell {
   void stop();
 
  private:
-  void run_in_lockstep(const std::string& config_path);
+  void run_in_lockstep(const std::string& config_path, const CellOverrides& o, const CellClock& clock);
 
   // Before soft_: the cell's engine, which scans the twin, goes first.
   std::unique_ptr<SoftCell> twin_;
