@@ -113,7 +113,7 @@ void CellTarget::set(const Probe& p, const Value& v) {
   }
   const ProbeFacet* f = facet(s, p);
   if (!f) throw Error(p.text + ": no extension of the cell reads '" + p.family + ".'");
-  const ProbeInput in{v.number, v.has_unit, v.quantity.value, temp::unit_name(v.quantity.unit), v.text};
+  const ProbeInput in{v.number, v.has_unit, v.number, v.unit, v.text};
   f->drive(plc(), p.ref(), in);
   // A stimulus acts on the extension, not on memory or the inputs: the lockstep twin's too.
   if (SoftCell* twin = cell_->twin()) facet(*twin, p)->drive(twin->plc(), p.ref(), in);
