@@ -90,6 +90,16 @@ class Skew : public CellExtension {
   static bool on_interpreter(const ExecContext& c) { return c.engine && c.engine->engine() == EngineChoice::Interpreter; }
 };
 
+// The fault of cfg's cell in lockstep, run in RUN for duration_us: it must have stopped.
+std::string fault_after(const std::string& cfg, uint64_t duration_us) {
+  Cell cell(cfg, in_lockstep(), Cell::Purpose::Simulate);
+  EXPECT_TRUE(cell.plc().set_mode(RunMode::Run));
+  VirtualRun run(cell.plc(), cell.scan_period_us());
+  run.run_for(duration_us);
+  EXPECT_EQ(cell.plc().mode(), RunMode::Stop);
+  return fault_of(cell.plc());
+}
+
 std::string write_cell(const TempDir& d, const std::string& yaml, const std::string& il) {
   std::ofstream(d.path() + "/skew.il") << il;
   std::ofstream(d.path() + "/cell.yaml") << "cell: {name: skew, program: skew.il}\n" << yaml;
@@ -127,12 +137,7 @@ TEST(Lockstep, AWrongNativeResultInTheMainProgramStopsTheCell) {
   TempDir d;
   // T0 (0.01 s base) reaches 0.5 s at the scan at 0.5 s, the 501st.
   const std::string cfg = write_cell(d, "", "ORG M1925\nTMR T0 50\nORG T0\nFUN 962 SKEW D=D5\nEND\n");
-  Cell cell(cfg, in_lockstep(), Cell::Purpose::Simulate);
-  ASSERT_TRUE(cell.plc().set_mode(RunMode::Run));
-  VirtualRun run(cell.plc(), cell.scan_period_us());
-  run.run_for(1000000);
-  EXPECT_EQ(cell.plc().mode(), RunMode::Stop);
-  EXPECT_EQ(fault_of(cell.plc()),
+  EXPECT_EQ(fault_after(cfg, 1000000),
             "lockstep: D5 is 2 on the native engine and 1 on the interpreter after scan 501 at 0.500000 s "
             "(written by " + d.path() + "/skew.il:4)");
 }
@@ -148,12 +153,7 @@ TEST(Lockstep, AWrongNativeResultInAnInterruptRoutineStopsTheCellThere) {
                                      "ORG M1924\nFUN 8D MOV S=0 D=DR4096\nFUN 93 HSCTW CN=0 D=0\n"
                                      "FUN 8D MOV S=10 D=DR4098\nFUN 93 HSCTW CN=0 D=1\nEND\n"
                                      "LBL HSC0I\nORG M1925\nFUN 962 SKEW D=D6\nRTI\n");
-  Cell cell(cfg, in_lockstep(), Cell::Purpose::Simulate);
-  ASSERT_TRUE(cell.plc().set_mode(RunMode::Run));
-  VirtualRun run(cell.plc(), cell.scan_period_us());
-  run.run_for(1000000);
-  EXPECT_EQ(cell.plc().mode(), RunMode::Stop);
-  EXPECT_EQ(fault_of(cell.plc()),
+  EXPECT_EQ(fault_after(cfg, 1000000),
             "interrupt HSC0I: lockstep: D6 is 2 on the native engine and 1 on the interpreter after routine HSC0I "
             "at 0.400000 s (written by " + d.path() + "/skew.il:9)");
 }
@@ -162,12 +162,7 @@ TEST(Lockstep, AFaultOnOneEngineOnlyStopsTheCell) {
   ExtensionRegistration skew("skew", [] { return std::make_unique<Skew>(); });
   TempDir d;
   const std::string cfg = write_cell(d, "", "ORG M1925\nTMR T0 2\nORG T0\nFUN 963 FAILN\nEND\n");
-  Cell cell(cfg, in_lockstep(), Cell::Purpose::Simulate);
-  ASSERT_TRUE(cell.plc().set_mode(RunMode::Run));
-  VirtualRun run(cell.plc(), cell.scan_period_us());
-  run.run_for(100000);
-  EXPECT_EQ(cell.plc().mode(), RunMode::Stop);
-  EXPECT_EQ(fault_of(cell.plc()),
+  EXPECT_EQ(fault_after(cfg, 100000),
             "lockstep: the native engine faulted (" + d.path() +
                 "/skew.il:4: FUN 963 FAILN failed: not on the interpreter), the interpreter ran in scan 21 at "
                 "0.020000 s");

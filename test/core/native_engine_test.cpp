@@ -49,6 +49,28 @@ struct Pair {
   }
 };
 
+void in_lockstep(Plc& plc) {
+  plc.locked([](ScanEngine& e, Memory&) {
+    e.set_engine(EngineChoice::Lockstep);
+    return 0;
+  });
+}
+
+// A FUN whose result depends on the engine that runs it (never so in the product): the
+// interpreter writes 1, any other engine 2, into its operand.
+FunctionTable skew_table() {
+  FunctionTable t = FunctionTable::with_core_functions();
+  FunctionSpec s;
+  s.number = 961;
+  s.mnemonic = "SKEW";
+  s.operands = {{"D", OperandRole::Dest}};
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    c.put(o[0], c.engine && c.engine->engine() == EngineChoice::Interpreter ? 1 : 2);
+  };
+  t.add(s);
+  return t;
+}
+
 }  // namespace
 
 TEST(NativeEngine, CompilesTheNetworksBetweenFlowInstructionsAndSaysSo) {
@@ -122,10 +144,7 @@ TEST(Lockstep, NamesTheAddressBothValuesTheInstructionAndTheScan) {
 TEST(Lockstep, RunsBothEnginesAndStaysInRunWhileTheyAgree) {
   Plc plc;
   plc.load_program_text("ORG X0\nAND X1\nOUT Y0\nORG TU X0\nCTR C0 3\nORG C0\nOUT Y1\nEND\n", "l.il");
-  plc.locked([](ScanEngine& e, Memory&) {
-    e.set_engine(EngineChoice::Lockstep);
-    return 0;
-  });
+  in_lockstep(plc);
   ASSERT_TRUE(plc.set_mode(RunMode::Run));
   for (int s = 0; s < 20; ++s) {
     plc.set_input(0, s % 2);
@@ -168,10 +187,7 @@ TEST(Lockstep, ABareTwinIsRefusedBesideSubsystems) {
 TEST(Lockstep, ABarePlcsTwinFollowsWhatThePlcIsGiven) {
   Plc plc;
   plc.load_program_text("ORG X0\nOUT Y0\nORG TU X1\nCTR C0 100\nEND\n", "a.il");
-  plc.locked([](ScanEngine& e, Memory&) {
-    e.set_engine(EngineChoice::Lockstep);
-    return 0;
-  });
+  in_lockstep(plc);
   ASSERT_TRUE(plc.set_mode(RunMode::Run));
   uint64_t t = 0;
   for (int s = 0; s < 10; ++s, t += 1000) {
@@ -191,28 +207,10 @@ TEST(Lockstep, ABarePlcsTwinFollowsWhatThePlcIsGiven) {
   EXPECT_EQ(plc.read(parse_address("RC0"), 1).at(0), 5u);  // counted again from the STOP -> RUN
 }
 
-// A FUN whose result depends on the engine that runs it (never so in the product): the
-// interpreter writes 1, any other engine 2, into its operand.
-FunctionTable skew_table() {
-  FunctionTable t = FunctionTable::with_core_functions();
-  FunctionSpec s;
-  s.number = 961;
-  s.mnemonic = "SKEW";
-  s.operands = {{"D", OperandRole::Dest}};
-  s.handler = [](ExecContext& c, const BoundOperand* o) {
-    c.put(o[0], c.engine && c.engine->engine() == EngineChoice::Interpreter ? 1 : 2);
-  };
-  t.add(s);
-  return t;
-}
-
 TEST(Lockstep, AnEngineSpecificResultStopsABarePlcWithItsAddress) {
   Plc plc(skew_table());
   plc.load_program_text("ORG X0\nOUT Y0\nORG X1\nFUN 961 SKEW D=D5\nEND\n", "skew.il");
-  plc.locked([](ScanEngine& e, Memory&) {
-    e.set_engine(EngineChoice::Lockstep);
-    return 0;
-  });
+  in_lockstep(plc);
   ASSERT_TRUE(plc.set_mode(RunMode::Run));
   for (uint64_t s = 0; s < 5; ++s) plc.scan(s * 1000);  // X1 off: SKEW does not run
   ASSERT_EQ(plc.mode(), RunMode::Run);

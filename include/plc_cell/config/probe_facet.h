@@ -9,11 +9,10 @@
 // family is also declared once for the whole program (ProbeFamilyRegistration): its name,
 // and the stimuli its probes take, the units a step drives them in (a temperature channel:
 // C, mV, ohm, kohm), with the units its readings may be compared in ("200 C").
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <cstdint>
 
 #include "plc_cell/core/plc.h"
 
