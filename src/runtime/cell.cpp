@@ -5,7 +5,7 @@
 #include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/sim/lockstep_cells.h"
-#include "plc_cell/temp/rtc_calendar.h"
+#include "plc_cell/temp/rtc.h"
 
 namespace plc_cell {
 namespace {
@@ -43,9 +43,8 @@ CellClock cell_clock(const CellOverrides& o, Cell::Purpose purpose) {
   c.virtual_time = purpose != Cell::Purpose::Serve || o.virtual_time;
   std::string v;
   if (const std::string* start = run_value(o.run, "rtc_start", &v)) {
-    if (*start != "host" && !temp::parse_date_time(*start))
-      throw Error(origin_of(o.run, "rtc_start") + " " + *start +
-                  ": expected host or a date-time 2000-01-01T00:00:00 .. 2099-12-31T23:59:59");
+    const std::string why = temp::calendar_start_problem(*start);
+    if (!why.empty()) throw Error(origin_of(o.run, "rtc_start") + " " + *start + ": " + why);
     c.calendar_start = *start;
   }
   return c;

@@ -169,12 +169,10 @@ void apply_cell_clock(const CellClock& clock, RtcConfig* c) {
   if (clock.calendar_start == "host") {
     c->has_start = false;
   } else if (!clock.calendar_start.empty()) {
-    const auto t = parse_date_time(clock.calendar_start);
-    if (!t)
-      throw Error("RTC start " + clock.calendar_start +
-                  ": expected host or a date-time 2000-01-01T00:00:00 .. 2099-12-31T23:59:59");
+    const std::string why = calendar_start_problem(clock.calendar_start);
+    if (!why.empty()) throw Error("RTC start " + clock.calendar_start + ": " + why);
     c->has_start = true;
-    c->start = *t;
+    c->start = *parse_date_time(clock.calendar_start);
   } else if (!c->has_start && clock.virtual_time) {
     c->has_start = true;
     c->start = *parse_date_time(kVirtualCalendarStart);
@@ -182,6 +180,11 @@ void apply_cell_clock(const CellClock& clock, RtcConfig* c) {
 }
 
 }  // namespace
+
+std::string calendar_start_problem(const std::string& text) {
+  if (text == "host" || parse_date_time(text)) return "";
+  return "expected host or a date-time 2000-01-01T00:00:00 .. 2099-12-31T23:59:59";
+}
 
 std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem,
                               const CellClock& clock) {

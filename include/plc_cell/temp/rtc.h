@@ -84,6 +84,9 @@ class Rtc final : public ScanHook {
   double calibration_ = 0;  // what that code corrects, s/day
 };
 
+// Why text is no calendar start (CellClock::calendar_start: "host" or a date-time), or "".
+std::string calendar_start_problem(const std::string& text);
+
 // The cell's RTC (every FBs MC/MN main unit has one), configured by modules.rtc and the
 // cell's clock (whose calendar_start wins over modules.rtc.start). Throws Error for a
 // calendar_start that is neither "host" nor a date-time.

@@ -128,7 +128,7 @@ void Lockstep::before_scan(uint64_t now_us) {
   reported_ = false;
   const ScanEngine& p = *primary_;
   twin_.locked([&](ScanEngine& t, Memory& m) {
-    if (p.program_loads() != loads_seen_ && p.program().code.size() > 0) {
+    if (p.program_loads() != loads_seen_) {
       t.load(p.program());  // an online change, at the same scan boundary
       loads_seen_ = p.program_loads();
     }
