@@ -40,7 +40,7 @@ CellOverrides cell_overrides(const Args& args) {
   o.program = args.get("program");
   const std::pair<const char*, const char*> run[] = {
       {"scan", "scan_period"}, {"rt-priority", "rt_priority"}, {"persist", "persist_file"},
-      {"persist-interval", "persist_interval"}, {"engine", "engine"}};
+      {"persist-interval", "persist_interval"}, {"engine", "engine"}, {"rtc-start", "rtc_start"}};
   for (const auto& r : run) {
     if (!args.has(r.first)) continue;
     const auto& specs = Cell::run_settings();

@@ -79,12 +79,9 @@ std::optional<EngineChoice> engine_option(const Args& args) {
 
 std::unique_ptr<scenario::CellTarget> fresh_target(const scenario::Scenario& sc, std::optional<EngineChoice> engine,
                                                    const std::string& program) {
-  auto target = std::make_unique<scenario::CellTarget>(sc.cell, program.empty() ? sc.program : program);
-  if (engine) target->cell().plc().locked([&](ScanEngine& e, Memory&) {
-    e.set_engine(*engine);
-    return 0;
-  });
-  return target;
+  std::vector<SettingOverride> run;
+  if (engine) run.push_back({"", "engine", {engine_choice_name(*engine)}, "--engine"});
+  return std::make_unique<scenario::CellTarget>(sc.cell, program.empty() ? sc.program : program, run);
 }
 
 }  // namespace cli

@@ -74,7 +74,7 @@ Watches watches(const Args& args, Cell& cell, VirtualRun& run) {
 }  // namespace
 
 int cmd_sim(const std::vector<std::string>& argv) {
-  Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace", "engine", "record"});
+  Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace", "engine", "record", "rtc-start"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   const uint64_t duration = parse_duration_us(args.require("duration"));
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Simulate);
@@ -140,7 +140,7 @@ Command sim_command() {
   return {"sim",
           "--program FILE [--config FILE] --duration 2.5s [--scan 1ms] [--engine E]\n"
           "         [--set ADDR=VALUE ...] [--watch ADDR,...] [--trace FILE.csv]\n"
-          "         [--record FILE.plcrec]\n"
+          "         [--record FILE.plcrec] [--rtc-start 2024-01-01T00:00:00|host]\n"
           "         run the program in virtual time and print the watched values;\n"
           "         --record: every change of memory with its instant (docs/recordings.md)\n",
           cmd_sim};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "plc_cell/core/error.h"
 #include "plc_cell/core/image_loop.h"
 
 namespace plc_cell {
@@ -14,7 +15,7 @@ ScanEngine::ScanEngine(Memory& mem, const FunctionTable& functions)
 
 void ScanEngine::load(const Program& program) {
   interp_.load(program);
-  if (lockstep_) lockstep_->load(program);
+  ++program_loads_;
   first_scan_ = true;  // a new program sees the first-scan pulse, as after a download
 }
 
@@ -24,7 +25,7 @@ bool ScanEngine::set_mode(RunMode m) {
     if (!interp_.loaded()) return false;
     mem_.clear_non_retentive(retentive_);
     interp_.reset_state();
-    if (lockstep_) lockstep_->reset_state();
+    ++run_starts_;
     fault_.clear();
     watchdog_tripped_ = false;
     first_scan_ = true;
@@ -39,22 +40,40 @@ bool ScanEngine::set_mode(RunMode m) {
 }
 
 void ScanEngine::set_engine(EngineChoice e) {
-  if (e == engine_) return;
-  engine_ = e;
-  interp_.use_native(e != EngineChoice::Interpreter);
-  if (e != EngineChoice::Lockstep) {
-    lockstep_.reset();
+  if (e == EngineChoice::Lockstep) {
+    if (lockstep_) return;
+    // A twin without the subsystems would differ wherever they write: refused, not compared.
+    if (!hooks_.empty())
+      throw Error("lockstep: this PLC has " + std::to_string(hooks_.size()) +
+                  " subsystem hook(s), so its twin must be the whole cell: build the cell with plc.engine: "
+                  "lockstep or --engine lockstep");
+    set_lockstep(std::make_unique<Lockstep>(functions_));
     return;
   }
-  // The shadow starts where the native engine is: same program, fresh edges and timers
-  // only if the native engine's are fresh too (a STOP -> RUN resets both).
-  lockstep_ = std::make_unique<Lockstep>(functions_);
-  if (interp_.loaded()) lockstep_->load(interp_.program());
+  if (lockstep_) {
+    runs_ = nullptr;
+    lockstep_.reset();
+  } else if (e == engine_) {
+    return;
+  }
+  engine_ = e;
+  interp_.use_native(e != EngineChoice::Interpreter);
+}
+
+void ScanEngine::set_lockstep(std::unique_ptr<Lockstep> twin) {
+  const bool native = engine_ != EngineChoice::Interpreter;
+  lockstep_ = std::move(twin);
+  lockstep_->bind(*this, mem_);
+  runs_ = lockstep_.get();
+  engine_ = EngineChoice::Lockstep;
+  if (!native) interp_.use_native(true);
 }
 
 std::string ScanEngine::engine_status() const {
   std::string s = interp_.engine_status();
-  if (engine_ == EngineChoice::Lockstep) s = "lockstep: " + s + ", compared with the interpreter after every scan and routine";
+  if (lockstep_)
+    s = "lockstep: " + s + ", compared with the interpreter on " + lockstep_->twin_kind() +
+        " after every scan and routine";
   return s;
 }
 
@@ -65,25 +84,23 @@ bool ScanEngine::run_engine(const std::string& routine, uint64_t now_us, uint32_
 }
 
 bool ScanEngine::run_program(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why) {
-  if (lockstep_) return run_in_lockstep(routine, now_us, dt_us, why);
+  if (runs_) return run_observed(routine, now_us, dt_us, why);
   return run_engine(routine, now_us, dt_us, why);
 }
 
-bool ScanEngine::run_in_lockstep(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why) {
-  lockstep_->sync(mem_, interp_);
+bool ScanEngine::run_observed(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why) {
   const bool ok = run_engine(routine, now_us, dt_us, why);
-  const bool shadow_ok = lockstep_->run(routine, now_us, dt_us);
-  if (ok != shadow_ok || (!ok && interp_.fault() != lockstep_->fault())) {
-    *why = "lockstep: the native engine " + (ok ? std::string("ran") : "faulted (" + interp_.fault() + ")") +
-           ", the interpreter " + (shadow_ok ? std::string("ran") : "faulted (" + lockstep_->fault() + ")");
-    return false;
-  }
-  const std::string what = (routine.empty() ? std::string("scan ") : "routine " + routine + " in scan ") +
-                           std::to_string(stats_.scans);
-  const std::string diff = lockstep_->compare(mem_, what);
-  if (diff.empty()) return ok;
-  *why = diff;
+  std::string stop = runs_->after_run(routine, now_us, ok, ok ? std::string() : *why);
+  if (stop.empty()) return ok;
+  *why = std::move(stop);
   return false;
+}
+
+void ScanEngine::scan_observed(uint64_t now_us) {
+  runs_->before_scan(now_us);
+  cycle(now_us);
+  const std::string why = runs_->after_scan();
+  if (!why.empty()) fault_stop(why);
 }
 
 bool ScanEngine::run_routine(const std::string& label, uint64_t now_us, std::string* why) {
@@ -151,7 +168,7 @@ PLC_CELL_IMAGE_LOOP void take_input_image(uint8_t* __restrict x_bits, const uint
 }
 }  // namespace
 
-void ScanEngine::scan(uint64_t now_us) {
+void ScanEngine::cycle(uint64_t now_us) {
   const uint32_t dt = have_time_ && now_us > now_us_ ? static_cast<uint32_t>(std::min<uint64_t>(now_us - now_us_, UINT32_MAX)) : 0;
   have_time_ = true;
   now_us_ = now_us;

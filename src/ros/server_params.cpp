@@ -36,6 +36,8 @@ std::vector<std::string> texts(const XmlRpc::XmlRpcValue& v, const std::string& 
 CellOverrides cell_overrides(const ros::NodeHandle& pnh) {
   CellOverrides o;
   pnh.param<std::string>("program", o.program, "");
+  // A cell in virtual time reads nothing of the host's clock (its RTC starts at a fixed instant).
+  pnh.param("virtual_time", o.virtual_time, false);
   XmlRpc::XmlRpcValue v;
   for (const auto& spec : Cell::run_settings())
     if (pnh.getParam(spec.key, v)) o.run.push_back({"", spec.key, texts(v, "~" + spec.key), "~" + spec.key});

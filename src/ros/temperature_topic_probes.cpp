@@ -63,12 +63,12 @@ class TemperatureTopicProbes : public TopicProbes {
     const auto it = inputs_.find(p.name);
     if (p.family != "temperature" || it == inputs_.end())
       throw Error(check(p, true, [this](const std::string&) { return false; }));
-    if (v.has_unit && v.quantity.unit != temp::Unit::Celsius)
+    if (v.has_unit && v.unit != "C")
       throw Error(p.text + ": " + v.text + ": plc_node's ~temperature_inputs/" + p.name +
                   " takes degrees C (a sensor's mV or ohm only with `plc_cell test`)");
     sensor_msgs::Temperature m;
     m.header.stamp = feed.next_input_stamp();
-    m.temperature = v.has_unit ? v.quantity.value : v.number;
+    m.temperature = v.number;
     it->second.publish(m);
   }
 

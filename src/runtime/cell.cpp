@@ -4,6 +4,8 @@
 
 #include "plc_cell/comm/protocol_functions.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/sim/lockstep_cells.h"
+#include "plc_cell/temp/rtc.h"
 
 namespace plc_cell {
 namespace {
@@ -27,6 +29,25 @@ const std::string* run_value(const std::vector<SettingOverride>& run, const std:
     out = checked;
   }
   return out;
+}
+
+// Where the last override of key came from ("--engine", "~engine").
+std::string origin_of(const std::vector<SettingOverride>& run, const std::string& key) {
+  const auto at = std::find_if(run.rbegin(), run.rend(), [&](const SettingOverride& x) { return x.key == key; });
+  return at == run.rend() ? key : at->origin;
+}
+
+// Virtual time unless served in real time; the calendar's start as rtc_start says.
+CellClock cell_clock(const CellOverrides& o, Cell::Purpose purpose) {
+  CellClock c;
+  c.virtual_time = purpose != Cell::Purpose::Serve || o.virtual_time;
+  std::string v;
+  if (const std::string* start = run_value(o.run, "rtc_start", &v)) {
+    const std::string why = temp::calendar_start_problem(*start);
+    if (!why.empty()) throw Error(origin_of(o.run, "rtc_start") + " " + *start + ": " + why);
+    c.calendar_start = *start;
+  }
+  return c;
 }
 
 // The servers: section, read with the cell's other sections so that its errors are listed
@@ -68,6 +89,9 @@ const std::vector<SettingSpec>& Cell::run_settings() {
       setting("persist_file", SettingType::Text, "retentive store (default plc.persist.file)"),
       duration_setting("persist_interval", "", 1000, 60000000, "store flush interval (default plc.persist.interval)"),
       setting("engine", SettingType::Text, "native, interpreter or lockstep (default plc.engine)"),
+      setting("rtc_start", SettingType::Text,
+              "the RTC's start, a date-time or host (default modules.rtc.start, else 2024-01-01T00:00:00 in "
+              "virtual time and the host's local time in real time)"),
   };
   return specs;
 }
@@ -75,7 +99,8 @@ const std::vector<SettingSpec>& Cell::run_settings() {
 Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpose,
            std::function<void(const std::string&)> log) {
   const auto& kinds = server_kinds();
-  soft_ = std::make_unique<SoftCell>(config_path, o.program, runtime_extensions(purpose));
+  const CellClock clock = cell_clock(o, purpose);
+  soft_ = std::make_unique<SoftCell>(config_path, o.program, runtime_extensions(purpose), clock);
   const CellConfig& cfg = soft_->config();
   server_settings_ = merge_server_settings(kinds, cfg, o.servers);
 
@@ -86,14 +111,16 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
   if (run_value(o.run, "persist_file", &v)) persist_.file = v;  // "" turns the store off
   if (run_value(o.run, "persist_interval", &v)) persist_.interval_us = parse_duration_us(v);
   EngineChoice engine = cfg.engine;
-  if (const std::string* e = run_value(o.run, "engine", &v); e && !parse_engine_choice(*e, &engine)) {
-    const auto at = std::find_if(o.run.rbegin(), o.run.rend(), [](const SettingOverride& x) { return x.key == "engine"; });
-    throw Error(at->origin + " " + *e + ": expected native, interpreter or lockstep");
+  if (const std::string* e = run_value(o.run, "engine", &v); e && !parse_engine_choice(*e, &engine))
+    throw Error(origin_of(o.run, "engine") + " " + *e + ": expected native, interpreter or lockstep");
+  if (engine == EngineChoice::Lockstep) {
+    run_in_lockstep(config_path, o, clock);
+  } else {
+    plc().locked([&](ScanEngine& se, Memory&) {
+      se.set_engine(engine);
+      return 0;
+    });
   }
-  plc().locked([&](ScanEngine& se, Memory&) {
-    se.set_engine(engine);
-    return 0;
-  });
 
   ServerContext context(plc());
   context.config = &cfg;
@@ -109,6 +136,17 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
   // Retentive memory from the last run, before the first scan and the first request.
   if (purpose == Purpose::Serve && !persist_.file.empty())
     persister_ = std::make_unique<persist::Persister>(plc(), persist_, std::move(log));
+}
+
+// The twin is the same cell built again, FUN150/151 with no port (one line has one owner):
+// a program that talks on the cell's COM ports cannot run twice, and is refused.
+void Cell::run_in_lockstep(const std::string& config_path, const CellOverrides& o, const CellClock& clock) {
+  for (const auto& x : soft_->extensions())
+    if (x->name() == "protocol functions" && !x->status(plc()).empty())
+      throw Error("lockstep: the cell's FUN150/FUN151 own its COM ports (ports:), which its interpreter twin "
+                  "cannot share; run it on one engine");
+  twin_ = std::make_unique<SoftCell>(config_path, soft_->program_path(), runtime_extensions(Purpose::Check), clock);
+  plc_cell::run_in_lockstep(*soft_, *twin_);
 }
 
 Cell::~Cell() { stop(); }

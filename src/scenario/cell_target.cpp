@@ -32,9 +32,11 @@ uint32_t raw(const Address& a, ValueFormat f, const Value& v, const std::string&
 
 }  // namespace
 
-CellTarget::CellTarget(const std::string& cell_yaml, const std::string& program) {
+CellTarget::CellTarget(const std::string& cell_yaml, const std::string& program,
+                       const std::vector<SettingOverride>& run) {
   CellOverrides o;
   o.program = program;
+  o.run = run;
   cell_ = std::make_unique<Cell>(cell_yaml, o, Cell::Purpose::Simulate);
   if (!cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
 }
@@ -54,9 +56,8 @@ void CellTarget::scan(uint64_t t_us) {
   if (after_scan_) after_scan_(t_us);
 }
 
-// The extension that answers for p's family, or nullptr.
-const ProbeFacet* CellTarget::facet(const Probe& p) const {
-  for (const auto& x : cell_->soft().extensions()) {
+const ProbeFacet* CellTarget::facet(SoftCell& cell, const Probe& p) {
+  for (const auto& x : cell.extensions()) {
     const ProbeFacet* f = x->get<ProbeFacet>();
     if (!f) continue;
     const auto fs = f->families();
@@ -72,7 +73,7 @@ std::string CellTarget::check(const Probe& p, bool writing) {
       check_format(a, p.format, p.text);
       return "";
     }
-    const ProbeFacet* f = facet(p);
+    const ProbeFacet* f = facet(cell_->soft(), p);
     if (!f) return p.text + ": no extension of the cell reads '" + p.family + ".'";
     return f->check(plc(), p.ref(), writing);
   } catch (const Error& e) {
@@ -86,7 +87,7 @@ Reading CellTarget::read(const Probe& p) {
     const uint32_t v = plc().locked([&](ScanEngine&, Memory& m) { return m.read(a); });
     return address_reading(a, v, p.format);
   }
-  if (const ProbeFacet* f = facet(p)) return f->read(plc(), p.ref());
+  if (const ProbeFacet* f = facet(cell_->soft(), p)) return f->read(plc(), p.ref());
   Reading r;
   r.valid = false;
   r.text = "?";
@@ -110,9 +111,12 @@ void CellTarget::set(const Probe& p, const Value& v) {
     plc().write(a, {x});
     return;
   }
-  const ProbeFacet* f = facet(p);
+  const ProbeFacet* f = facet(s, p);
   if (!f) throw Error(p.text + ": no extension of the cell reads '" + p.family + ".'");
-  f->drive(plc(), p.ref(), ProbeInput{v.number, v.has_unit, v.quantity.value, temp::unit_name(v.quantity.unit), v.text});
+  const ProbeInput in{v.number, v.has_unit, v.number, v.unit, v.text};
+  f->drive(plc(), p.ref(), in);
+  // A stimulus acts on the extension, not on memory or the inputs: the lockstep twin's too.
+  if (SoftCell* twin = cell_->twin()) facet(*twin, p)->drive(twin->plc(), p.ref(), in);
 }
 
 void CellTarget::write(const Probe& p, const Value& v) {

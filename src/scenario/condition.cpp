@@ -1,5 +1,6 @@
 #include "plc_cell/scenario/condition.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -58,6 +59,12 @@ Comparison comparison(const std::vector<std::string>& w, const std::string& text
   if (i >= w.size()) throw Error("'" + text + "': 'not' of what?");
   c.probe = parse_probe(negated && i == 0 ? w[0].substr(1) : w[i]);
   ++i;
+  // The units the probe's family reads in (config/probe_facet.h), the longest first.
+  std::vector<std::string> units;
+  if (c.probe.kind != Probe::Kind::Address)
+    if (const auto f = registered_probe_family(c.probe.family)) units = f->reading_units;
+  std::sort(units.begin(), units.end(), [](const std::string& a, const std::string& b) { return a.size() > b.size(); });
+  const auto is_unit = [&](const std::string& x) { return std::find(units.begin(), units.end(), x) != units.end(); };
   if (i == w.size()) {
     if (c.probe.kind == Probe::Kind::AxisState)
       throw Error("'" + text + "': an axis state is compared with a word (== idle, moving or error)");
@@ -79,20 +86,16 @@ Comparison comparison(const std::vector<std::string>& w, const std::string& text
     ++i;
   } else {
     std::string num = v;
-    // A temperature may carry its unit: "200 C", "200C", "200 degC".
-    for (const char* unit : {"degC", "°C", "C"}) {
-      const std::string u = unit;
-      if (c.probe.kind == Probe::Kind::Temperature && num.size() > u.size() &&
-          num.compare(num.size() - u.size(), u.size(), u) == 0) {
+    // A reading may carry its family's unit: "200 C", "200C", "200 degC" for a temperature.
+    for (const std::string& u : units) {
+      if (num.size() > u.size() && num.compare(num.size() - u.size(), u.size(), u) == 0) {
         num.resize(num.size() - u.size());
         break;
       }
     }
     if (!parse_number(num, &c.value)) throw Error("'" + text + "': '" + v + "' is not a number");
     ++i;
-    if (i < w.size() && c.probe.kind == Probe::Kind::Temperature &&
-        (w[i] == "C" || w[i] == "degC" || w[i] == "°C"))
-      ++i;
+    if (i < w.size() && is_unit(w[i])) ++i;
   }
   if (i < w.size() && (w[i] == "+-" || w[i] == "±")) {
     if (c.op != Comparison::Op::Eq && c.op != Comparison::Op::Ne)
@@ -100,7 +103,7 @@ Comparison comparison(const std::vector<std::string>& w, const std::string& text
     if (++i == w.size() || !parse_number(w[i], &c.tolerance) || c.tolerance < 0)
       throw Error("'" + text + "': +- takes a number >= 0");
     ++i;
-    if (i < w.size() && c.probe.kind == Probe::Kind::Temperature && (w[i] == "C" || w[i] == "degC")) ++i;
+    if (i < w.size() && is_unit(w[i])) ++i;
   }
   if (i < w.size()) throw Error("'" + text + "': unexpected '" + w[i] + "' (join comparisons with 'and')");
   return c;

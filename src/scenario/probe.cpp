@@ -4,8 +4,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <mutex>
-#include <set>
 
 #include "plc_cell/core/error.h"
 
@@ -21,29 +19,12 @@ bool is_name(const std::string& s) {
   return true;
 }
 
-struct Families {
-  std::mutex mu;
-  std::multiset<std::string> names;
-};
-
-Families& families() {
-  static Families f;
-  return f;
-}
-
-bool registered_family(const std::string& name) {
-  Families& f = families();
-  std::lock_guard<std::mutex> lk(f.mu);
-  return f.names.count(name) > 0;
-}
+bool registered_family(const std::string& name) { return registered_probe_family(name).has_value(); }
 
 std::string listed_families() {
   std::vector<std::string> all = {"counter", "axis", "temperature", "analog", "pulse"};
-  {
-    Families& f = families();
-    std::lock_guard<std::mutex> lk(f.mu);
-    for (const auto& n : f.names) all.push_back(n);
-  }
+  for (const auto& n : registered_probe_families())
+    if (std::find(all.begin(), all.end(), n) == all.end()) all.push_back(n);
   std::string out;
   for (size_t i = 0; i < all.size(); ++i) out += (i == 0 ? "" : i + 1 == all.size() ? " or " : ", ") + all[i] + ".";
   return out;
@@ -64,19 +45,6 @@ Probe extension_probe(const std::string& text, const std::string& family, const 
 }
 
 }  // namespace
-
-ProbeFamilyRegistration::ProbeFamilyRegistration(std::string family) : family_(std::move(family)) {
-  Families& f = families();
-  std::lock_guard<std::mutex> lk(f.mu);
-  f.names.insert(family_);
-}
-
-ProbeFamilyRegistration::~ProbeFamilyRegistration() {
-  Families& f = families();
-  std::lock_guard<std::mutex> lk(f.mu);
-  const auto it = f.names.find(family_);
-  if (it != f.names.end()) f.names.erase(it);
-}
 
 std::string probe_label(const Probe& p, const CellConfig& cell) {
   if (p.kind != Probe::Kind::Address) return p.text;

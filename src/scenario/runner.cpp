@@ -135,7 +135,6 @@ class CaseRun {
         Value v = a.value;
         v.number = a.from.number + (a.value.number - a.from.number) * f;
         if (!v.has_unit) v.number = double(llround(v.number));  // a register holds whole counts
-        v.quantity.value = v.number;
         drive(a.target, v);
         if (f >= 1.0) {
           it = background_.erase(it);

@@ -8,6 +8,7 @@
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
+#include "plc_cell/config/probe_facet.h"
 #include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/unreadable.h"
 #include "sections.h"
@@ -71,12 +72,18 @@ class Reader {
     return r_.checked(n, key, [&] { return parse_probe(s); });
   }
 
-  // What a step may drive: an address or signal, an analog input, a temperature channel.
+  // What a step may drive: an address or signal, or a probe whose family takes stimuli (an
+  // analog input, a temperature channel: config/probe_facet.h).
   Probe drivable(const YAML::Node& n, const std::string& key) const {
     Probe p = probe(n, key);
-    if (p.kind != Probe::Kind::Address && p.kind != Probe::Kind::Analog && p.kind != Probe::Kind::Temperature)
+    if (p.kind != Probe::Kind::Address && stimuli(p).stimuli.empty())
       r_.fail(n, key, p.text + " cannot be driven: write the registers behind it (an address or signal)");
     return p;
+  }
+
+  // The family of p as its extension declared it (no stimuli when none did).
+  static ProbeFamily stimuli(const Probe& p) {
+    return registered_probe_family(p.family).value_or(ProbeFamily{p.family, "", {}, {}});
   }
 
   Value value(const Probe& p, const YAML::Node& n, const std::string& key) const {
@@ -87,14 +94,10 @@ class Reader {
       v.number = c.all[0].value;
       return v;
     }
-    v.quantity = r_.checked(n, key, [&] { return temp::parse_quantity(v.text); });
+    const ProbeInput in = r_.checked(n, key, [&] { return parse_stimulus(stimuli(p), v.text); });
     v.has_unit = true;
-    v.number = v.quantity.value;
-    const temp::Unit u = v.quantity.unit;
-    if (p.kind == Probe::Kind::Analog && u != temp::Unit::Volt && u != temp::Unit::Milliamp)
-      r_.fail(n, key, "an analog input takes V or mA, not " + std::string(temp::unit_name(u)));
-    if (p.kind == Probe::Kind::Temperature && (u == temp::Unit::Volt || u == temp::Unit::Milliamp))
-      r_.fail(n, key, "a temperature channel takes C, mV, ohm or kohm, not " + std::string(temp::unit_name(u)));
+    v.number = in.value;
+    v.unit = in.unit;
     return v;
   }
 
@@ -147,7 +150,7 @@ class Reader {
         if (!kv.second[req]) r_.fail(kv.second, kk, std::string("missing '") + req + "'");
       as.from = value(as.target, kv.second["from"], kk + ".from");
       as.value = value(as.target, kv.second["to"], kk + ".to");
-      if (as.from.has_unit && as.from.quantity.unit != as.value.quantity.unit)
+      if (as.from.has_unit && as.from.unit != as.value.unit)
         r_.fail(kv.second["to"], kk + ".to", "from and to must have the same unit");
       as.duration_us = duration(kv.second["over"], kk + ".over");
       s->assignments.push_back(as);

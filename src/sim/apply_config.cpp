@@ -11,7 +11,9 @@ void apply_cell_config(const CellConfig& cfg, Plc& plc, SimulatedCell& sim) {
   plc.locked([&](ScanEngine& e, Memory&) {
     e.set_retentive(cfg.retentive);
     e.set_watchdog_us(cfg.watchdog_us);
-    e.set_engine(cfg.engine);
+    // Lockstep's twin is a whole second cell, which whoever builds two makes
+    // (run_in_lockstep, as the Cell of runtime/cell.h does): until then, the native engine.
+    e.set_engine(cfg.engine == EngineChoice::Lockstep ? EngineChoice::Native : cfg.engine);
     for (const auto& tb : cfg.timer_bases)
       for (uint32_t t = tb.first; t <= tb.last; ++t) e.interpreter().set_timer_base(t, tb.base_us);
     return 0;

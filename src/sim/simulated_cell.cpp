@@ -16,12 +16,16 @@ void SimulatedCell::drop(uint32_t x) {
 }
 
 void SimulatedCell::override_input(uint32_t x) {
+  overridden_.set(x);
+  ++overrides_;
   for (auto& d : drivers_)
     if (d.x == x) d.overridden = true;
   if (exact_ && x < 16) exact_->mute_simulation(int(x), true);
 }
 
 bool SimulatedCell::resume(uint32_t x) {
+  overridden_.reset(x);
+  ++overrides_;
   bool any = false;
   for (auto& d : drivers_)
     if (d.x == x) {
@@ -33,6 +37,17 @@ bool SimulatedCell::resume(uint32_t x) {
     any = true;
   }
   return any;
+}
+
+void SimulatedCell::follow(const SimulatedCell& other) {
+  if (other.overrides_ == followed_) return;
+  followed_ = other.overrides_;
+  const std::bitset<256> changed = overridden_ ^ other.overridden_;
+  for (uint32_t x = 0; x < 256; ++x)
+    if (changed[x]) {
+      if (other.overridden_[x]) override_input(x);
+      else resume(x);
+    }
 }
 
 bool SimulatedCell::simulates(uint32_t x) const {

@@ -55,11 +55,15 @@ CellExtensions SoftCell::with_builtins(CellExtensions more) {
 }
 
 // The file's sections are the core's and those the extensions claim.
-CellConfig SoftCell::load(const std::string& path) {
-  if (path.empty()) return CellConfig();
-  std::set<std::string> sections;
-  add_claims(extensions_, &sections);
-  return load_cell_config(path, &errors_, sections);
+CellConfig SoftCell::load(const std::string& path, const CellClock& clock) {
+  CellConfig c;
+  if (!path.empty()) {
+    std::set<std::string> sections;
+    add_claims(extensions_, &sections);
+    c = load_cell_config(path, &errors_, sections);
+  }
+  c.clock = clock;
+  return c;
 }
 
 FunctionTable SoftCell::install() {
@@ -69,9 +73,10 @@ FunctionTable SoftCell::install() {
   return t;
 }
 
-SoftCell::SoftCell(const std::string& config_path, const std::string& program_path, CellExtensions more)
+SoftCell::SoftCell(const std::string& config_path, const std::string& program_path, CellExtensions more,
+                   CellClock clock)
     : extensions_(with_builtins(std::move(more))),
-      config_(load(config_path)),
+      config_(load(config_path, clock)),
       counters_(static_cast<hsc::CountersExtension*>(extensions_[1].get())),
       plc_(install()) {
   try {

@@ -9,6 +9,15 @@ namespace plc_cell {
 namespace temp {
 namespace {
 
+// What a scenario step may write for the two families (docs/testing-your-cell.md): a
+// sensor's signal in the units of sensor_signal.h, and a temperature read in degrees C.
+const ProbeFamilyRegistration temperature_probes{ProbeFamily{
+    "temperature",
+    "a temperature channel",
+    {{"C", {"C", "degC", "\u00b0C"}}, {"mV", {"mV"}}, {"ohm", {"ohm", "\u03a9"}}, {"ohm", {"kohm", "k\u03a9"}, 1000}},
+    {"C", "degC", "\u00b0C"}}};
+const ProbeFamilyRegistration analog_probes{ProbeFamily{"analog", "an analog input", {{"V", {"V"}}, {"mA", {"mA"}}}, {}}};
+
 Quantity quantity_of(const ProbeInput& v) {
   Quantity q{v.value, Unit::Celsius};
   for (Unit u : {Unit::Celsius, Unit::Millivolt, Unit::Ohm, Unit::Volt, Unit::Milliamp})

@@ -17,7 +17,7 @@ void ModulesExtension::attach(const CellConfig& cfg, Plc& plc, ErrorList& errors
   plc.locked([&](ScanEngine& e, Memory& m) {
     errors.collect([&] { temperature_ = make_temperature_cell(cfg.document, file, m); }, file, modules);
     if (temperature_) e.add_hook(temperature_.get());
-    errors.collect([&] { rtc_ = make_rtc(cfg.document, file, m); }, file, modules);
+    errors.collect([&] { rtc_ = make_rtc(cfg.document, file, m, cfg.clock); }, file, modules);
     if (rtc_) e.add_hook(rtc_.get());
     errors.collect([&] { pwmda_ = make_pwmda_outputs(cfg.document, file); }, file, modules);
     if (pwmda_) e.add_hook(pwmda_.get());

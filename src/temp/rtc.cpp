@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "plc_cell/config/yaml_reader.h"
+#include "plc_cell/core/error.h"
 #include "plc_cell/core/area.h"
 #include "plc_cell/temp/rtc_calibration.h"
 
@@ -16,8 +17,9 @@ namespace {
 constexpr int64_t kUsPerS = 1000000;
 constexpr int64_t kEnd = int64_t(36525) * 86400 * kUsPerS;  // 2100-01-01: 100 years, 25 of them leap
 
-DateTime host_local_time() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+DateTime host_local_time(int64_t given) {
+  const std::time_t t =
+      given ? std::time_t(given) : std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm tm{};
   localtime_r(&t, &tm);
   DateTime d;
@@ -45,7 +47,7 @@ RtcConfig parse_rtc_config(const YAML::Node& node, const std::string& file) {
 }
 
 Rtc::Rtc(RtcConfig cfg, Memory& mem) : cfg_(cfg), mem_(mem) {
-  us_ = to_seconds(cfg_.has_start ? cfg_.start : host_local_time()) * kUsPerS;
+  us_ = to_seconds(cfg_.has_start ? cfg_.start : host_local_time(0)) * kUsPerS;
 }
 
 int Rtc::week() const { return (weekday(seconds()) + week_offset_) % 7; }
@@ -55,7 +57,7 @@ void Rtc::before_inputs(uint64_t now_us) {
     started_ = true;
     last_us_ = now_us;
     // The host's time when the cell starts scanning, not when it was built.
-    if (!cfg_.has_start) us_ = to_seconds(host_local_time()) * kUsPerS;
+    if (!cfg_.has_start) us_ = to_seconds(host_local_time(host_time_)) * kUsPerS;
     return;
   }
   if (now_us <= last_us_) return;
@@ -159,10 +161,38 @@ void Rtc::find_registers() {
   registers_[7] = static_cast<uint16_t>(t.hour << 8 | t.minute);
 }
 
-std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem) {
+namespace {
+
+// The start the cell's clock gives (its calendar_start, else kVirtualCalendarStart in
+// virtual time) over what modules.rtc said.
+void apply_cell_clock(const CellClock& clock, RtcConfig* c) {
+  if (clock.calendar_start == "host") {
+    c->has_start = false;
+  } else if (!clock.calendar_start.empty()) {
+    const std::string why = calendar_start_problem(clock.calendar_start);
+    if (!why.empty()) throw Error("RTC start " + clock.calendar_start + ": " + why);
+    c->has_start = true;
+    c->start = *parse_date_time(clock.calendar_start);
+  } else if (!c->has_start && clock.virtual_time) {
+    c->has_start = true;
+    c->start = *parse_date_time(kVirtualCalendarStart);
+  }
+}
+
+}  // namespace
+
+std::string calendar_start_problem(const std::string& text) {
+  if (text == "host" || parse_date_time(text)) return "";
+  return "expected host or a date-time 2000-01-01T00:00:00 .. 2099-12-31T23:59:59";
+}
+
+std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem,
+                              const CellClock& clock) {
   const YAML::Node modules = document.IsMap() ? document["modules"] : YAML::Node();
   const YAML::Node node = modules && modules.IsMap() ? modules["rtc"] : YAML::Node();
-  return std::make_unique<Rtc>(parse_rtc_config(node, file), mem);
+  RtcConfig c = parse_rtc_config(node, file);
+  apply_cell_clock(clock, &c);
+  return std::make_unique<Rtc>(c, mem);
 }
 
 }  // namespace temp

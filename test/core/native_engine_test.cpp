@@ -1,18 +1,16 @@
 // The native engine against the interpreter (docs/native-engine.md): machine-code runs,
-// the fallback, the lockstep engine and every example cell, run side by side.
+// the fallback, and the lockstep engine of a bare PLC (whole cells: lockstep_cells_test.cpp).
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "plc_cell/core/error.h"
 #include "plc_cell/core/il_parser.h"
 #include "plc_cell/core/native/lockstep.h"
 #include "plc_cell/core/plc.h"
-#include "plc_cell/runtime/cell.h"
-#include "plc_cell/sim/virtual_run.h"
 
 using namespace plc_cell;
 
@@ -50,6 +48,28 @@ struct Pair {
     return native.locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
   }
 };
+
+void in_lockstep(Plc& plc) {
+  plc.locked([](ScanEngine& e, Memory&) {
+    e.set_engine(EngineChoice::Lockstep);
+    return 0;
+  });
+}
+
+// A FUN whose result depends on the engine that runs it (never so in the product): the
+// interpreter writes 1, any other engine 2, into its operand.
+FunctionTable skew_table() {
+  FunctionTable t = FunctionTable::with_core_functions();
+  FunctionSpec s;
+  s.number = 961;
+  s.mnemonic = "SKEW";
+  s.operands = {{"D", OperandRole::Dest}};
+  s.handler = [](ExecContext& c, const BoundOperand* o) {
+    c.put(o[0], c.engine && c.engine->engine() == EngineChoice::Interpreter ? 1 : 2);
+  };
+  t.add(s);
+  return t;
+}
 
 }  // namespace
 
@@ -124,10 +144,7 @@ TEST(Lockstep, NamesTheAddressBothValuesTheInstructionAndTheScan) {
 TEST(Lockstep, RunsBothEnginesAndStaysInRunWhileTheyAgree) {
   Plc plc;
   plc.load_program_text("ORG X0\nAND X1\nOUT Y0\nORG TU X0\nCTR C0 3\nORG C0\nOUT Y1\nEND\n", "l.il");
-  plc.locked([](ScanEngine& e, Memory&) {
-    e.set_engine(EngineChoice::Lockstep);
-    return 0;
-  });
+  in_lockstep(plc);
   ASSERT_TRUE(plc.set_mode(RunMode::Run));
   for (int s = 0; s < 20; ++s) {
     plc.set_input(0, s % 2);
@@ -138,53 +155,69 @@ TEST(Lockstep, RunsBothEnginesAndStaysInRunWhileTheyAgree) {
   EXPECT_EQ(plc.read(parse_address("Y1"), 1).at(0), 1u);
   const std::string status = plc.locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
   EXPECT_EQ(status.rfind("lockstep: native: ", 0), 0u) << status;
+  EXPECT_NE(status.find("compared with the interpreter on a bare PLC after every scan and routine"), std::string::npos)
+      << status;
 }
 
-// Every example program, with its cell and simulated inputs, on both engines side by side
-// for 60 virtual seconds: the two whole memories are compared after every scan.
-TEST(NativeEngine, EveryExampleEqualsTheInterpreterFor60VirtualSeconds) {
-  namespace fs = std::filesystem;
-  std::vector<fs::path> programs;
-  for (const auto& e : fs::recursive_directory_iterator(fs::path(PLC_CELL_SOURCE_DIR) / "examples"))
-    if (e.path().extension() == ".il") programs.push_back(e.path());
-  std::sort(programs.begin(), programs.end());
-  ASSERT_GE(programs.size(), 17u);  // every .il of examples/ at the time of writing
-  for (const fs::path& il : programs) {
-    // Its own cell, or else (a variant of a program, as broken_interlock.il) the cell of its
-    // folder, named as the folder, running it in place of its program.
-    fs::path yaml = il;
-    yaml.replace_extension(".yaml");
-    CellOverrides interp_engine;
-    if (!fs::exists(yaml)) {
-      yaml = il.parent_path() / (il.parent_path().filename().string() + ".yaml");
-      interp_engine.program = il.string();
+// A bare twin has no subsystem: beside a PLC that has some, it would differ wherever they
+// write. Such a PLC needs its whole cell as the twin (lockstep_cells_test.cpp).
+TEST(Lockstep, ABareTwinIsRefusedBesideSubsystems) {
+  struct Hook final : ScanHook {} hook;
+  Plc plc;
+  plc.load_program_text("ORG X0\nOUT Y0\nEND\n", "h.il");
+  const std::string why = plc.locked([&](ScanEngine& e, Memory&) {
+    e.add_hook(&hook);
+    std::string out;
+    try {
+      e.set_engine(EngineChoice::Lockstep);
+    } catch (const Error& x) {
+      out = x.what();
     }
-    SCOPED_TRACE(il.string());
-    ASSERT_TRUE(fs::exists(yaml)) << yaml;
-    CellOverrides native_engine = interp_engine;
-    interp_engine.run.push_back({"", "engine", {"interpreter"}, "test"});
-    native_engine.run.push_back({"", "engine", {"native"}, "test"});
-    Cell interp(yaml.string(), interp_engine, Cell::Purpose::Check);
-    ASSERT_EQ(interp.plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); }), "interpreter");
-    Cell native(yaml.string(), native_engine, Cell::Purpose::Check);
-    const std::string status = native.plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
-    ASSERT_EQ(status.rfind("native: ", 0), 0u) << status;
-    ASSERT_TRUE(interp.plc().set_mode(RunMode::Run));
-    ASSERT_TRUE(native.plc().set_mode(RunMode::Run));
-    const uint64_t period = interp.scan_period_us();
-    VirtualRun ri(interp.plc(), period), rn(native.plc(), period);
-    uint64_t scans = 0;
-    for (uint64_t t = 0; t < 60000000; t += period) {
-      ri.run_for(period);
-      rn.run_for(period);
-      ++scans;
-      const std::string d = native.plc().locked([&](ScanEngine&, Memory& nm) {
-        return interp.plc().locked([&](ScanEngine& ie, Memory& im) {
-          return first_difference(nm, im, ie.program(), "scan " + std::to_string(scans));
-        });
-      });
-      ASSERT_EQ(d, "");
-    }
-    EXPECT_EQ(native.plc().mode(), interp.plc().mode());
+    e.remove_hook(&hook);
+    return out;
+  });
+  EXPECT_EQ(why, "lockstep: this PLC has 1 subsystem hook(s), so its twin must be the whole cell: build the cell "
+                 "with plc.engine: lockstep or --engine lockstep");
+  EXPECT_EQ(plc.locked([](ScanEngine& e, Memory&) { return e.engine(); }), EngineChoice::Native);
+}
+
+// A bare PLC's twin follows its online change, a STOP -> RUN between two scans, a client's
+// write and the inputs: had it missed one, Y0 (the new program's), RC0 (counted again from
+// the RUN) or R7 would differ, and the PLC would stop.
+TEST(Lockstep, ABarePlcsTwinFollowsWhatThePlcIsGiven) {
+  Plc plc;
+  plc.load_program_text("ORG X0\nOUT Y0\nORG TU X1\nCTR C0 100\nEND\n", "a.il");
+  in_lockstep(plc);
+  ASSERT_TRUE(plc.set_mode(RunMode::Run));
+  uint64_t t = 0;
+  for (int s = 0; s < 10; ++s, t += 1000) {
+    plc.set_input(1, s % 2);
+    plc.scan(t);
   }
+  plc.load_program_text("ORG X0\nOUT NOT Y0\nORG TU X1\nCTR C0 100\nOUT Y1\nEND\n", "b.il");
+  plc.set_mode(RunMode::Stop);
+  plc.write(parse_address("R7"), {77});
+  ASSERT_TRUE(plc.set_mode(RunMode::Run));
+  for (int s = 0; s < 10; ++s, t += 1000) {
+    plc.set_input(1, s % 2);
+    plc.scan(t);
+  }
+  ASSERT_EQ(plc.mode(), RunMode::Run) << plc.locked([](ScanEngine& e, Memory&) { return e.fault(); });
+  EXPECT_EQ(plc.read(parse_address("Y0"), 1).at(0), 1u);  // b.il's OUT NOT
+  EXPECT_EQ(plc.read(parse_address("RC0"), 1).at(0), 5u);  // counted again from the STOP -> RUN
+}
+
+TEST(Lockstep, AnEngineSpecificResultStopsABarePlcWithItsAddress) {
+  Plc plc(skew_table());
+  plc.load_program_text("ORG X0\nOUT Y0\nORG X1\nFUN 961 SKEW D=D5\nEND\n", "skew.il");
+  in_lockstep(plc);
+  ASSERT_TRUE(plc.set_mode(RunMode::Run));
+  for (uint64_t s = 0; s < 5; ++s) plc.scan(s * 1000);  // X1 off: SKEW does not run
+  ASSERT_EQ(plc.mode(), RunMode::Run);
+  plc.set_input(1, true);
+  plc.scan(5000);  // the 6th scan
+  EXPECT_EQ(plc.mode(), RunMode::Stop);
+  EXPECT_EQ(plc.locked([](ScanEngine& e, Memory&) { return e.fault(); }),
+            "lockstep: D5 is 2 on the native engine and 1 on the interpreter after scan 6 at 0.005000 s "
+            "(written by skew.il:4)");
 }

@@ -1,8 +1,9 @@
 #pragma once
 // A made-up subsystem, written as a new subsystem is (docs/architecture.md, "How to add an
-// extension"): a `ticker: {start: N}` section, FUN 901 TICKS that counts its enabled scans,
-// the probe ticker.count (its facet), its status, and registered for every cell built while a
-// TickerRegistration lives. Its ROS side (a topic) is test/extension/ticker_ros.h.
+// extension"): a `ticker: {start: N}` section, FUN 901 TICKS that adds its step (1 unless
+// driven) at each enabled scan, the probes ticker.count (read) and ticker.step (driven by a
+// scenario in its own stimuli, ticks or kticks), its status, and registered for every cell
+// built while a Registration lives. Its ROS side (a topic) is test/extension/ticker_ros.h.
 #include <memory>
 #include <string>
 
@@ -10,7 +11,6 @@
 #include "plc_cell/config/probe_facet.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/scan_engine.h"
-#include "plc_cell/scenario/probe.h"
 
 namespace ticker {
 
@@ -18,6 +18,7 @@ using namespace plc_cell;
 
 struct State {
   int64_t ticks = 0;
+  int64_t step = 1;
 };
 
 class Probes : public ProbeFacet {
@@ -25,8 +26,14 @@ class Probes : public ProbeFacet {
   explicit Probes(State* s) : s_(s) {}
   std::vector<std::string> families() const override { return {"ticker"}; }
   std::string check(Plc&, const ProbeRef& p, bool writing) const override {
-    if (writing) return p.text + ": the ticker is read, not driven";
-    return p.name == "count" && p.field.empty() ? "" : p.text + ": the ticker has ticker.count only";
+    if (!p.field.empty() || (p.name != "count" && p.name != "step"))
+      return p.text + ": the ticker has ticker.count and ticker.step only";
+    if (writing != (p.name == "step")) return p.text + (writing ? ": it is read, not driven" : ": it is driven, not read");
+    return "";
+  }
+  // v in ticks: "2 kticks" comes as 2000 "ticks" (the family's stimuli, below).
+  void drive(Plc& plc, const ProbeRef&, const ProbeInput& v) const override {
+    plc.locked([&](ScanEngine&, Memory&) { return s_->step = int64_t(v.value); });
   }
   ProbeReading read(Plc& plc, const ProbeRef&) const override {
     ProbeReading r;
@@ -49,7 +56,7 @@ class Extension : public CellExtension {
     s.mnemonic = "TICKS";
     s.handler = [](ExecContext& c, const BoundOperand*) {
       if (c.engine)
-        if (State* st = c.engine->extensions().get<State>()) ++st->ticks;
+        if (State* st = c.engine->extensions().get<State>()) st->ticks += st->step;
     };
     t.add(s);
   }
@@ -85,10 +92,11 @@ class Extension : public CellExtension {
   Probes probes_{&state_};
 };
 
-// The one registration line of the subsystem, and of its probe family.
+// The one registration line of the subsystem, and of its probe family with the stimuli its
+// probes take (config/probe_facet.h).
 struct Registration {
   ExtensionRegistration extension{"ticker", [] { return std::make_unique<Extension>(); }};
-  scenario::ProbeFamilyRegistration family{"ticker"};
+  ProbeFamilyRegistration family{ProbeFamily{"ticker", "a ticker", {{"ticks", {"ticks"}}, {"ticks", {"kticks"}, 1000}}, {}}};
 };
 
 }  // namespace ticker

@@ -91,7 +91,7 @@ TEST(ScenarioFile, StepForms) {
   EXPECT_EQ(s[0].assignments.at(0).duration_us, 100000u);
   EXPECT_EQ(s[1].assignments.size(), 2u);
   EXPECT_EQ(s[1].assignments[0].target.kind, Probe::Kind::Analog);
-  EXPECT_EQ(s[1].assignments[0].value.quantity.unit, temp::Unit::Volt);
+  EXPECT_EQ(s[1].assignments[0].value.unit, "V");
   EXPECT_EQ(s[1].assignments[0].value.number, 10);
   EXPECT_EQ(s[2].assignments.at(0).value.number, 0);
   EXPECT_TRUE(s[3].assignments.empty());  // all
@@ -157,7 +157,7 @@ TEST(ScenarioFile, EveryErrorOfAFileInOneReading) {
       "/d/bad.yaml:15:16: error: key 'cases[0].steps[5].stays': 'stays' excludes 'within' and 'between'",
       "/d/bad.yaml:17:9: error: key 'cases[0].steps[6].frobnicate': unknown key (expected one of: after, at, ",
       "/d/bad.yaml:18:20: error: key 'cases[0].steps[7].ramp.R0': missing 'over'",
-      "/d/bad.yaml:19:29: error: key 'cases[0].steps[8].set.analog.level': '5' has no unit (C, mV, ohm, kohm, V or mA)",
+      "/d/bad.yaml:19:29: error: key 'cases[0].steps[8].set.analog.level': '5' has no unit: an analog input takes V or mA",
       "/d/bad.yaml:20:30: error: key 'cases[0].steps[9].set.temperature.t': a temperature channel takes C, mV, ohm or kohm, not V",
       "/d/bad.yaml:21:21: error: key 'cases[0].steps[10].force.R0': force takes on or off",
       "/d/bad.yaml:22:15: error: key 'cases[0].steps[11].set.counter.belt': counter.belt cannot be driven",

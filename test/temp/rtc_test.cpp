@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <ctime>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "../core/plc_fixture.h"
 #include "plc_cell/core/error.h"
@@ -64,10 +67,10 @@ TEST(RtcCalibration, TheManualsExamplesAndTable) {
 
 class RtcTest : public PlcFixture {
  protected:
-  void setup(const std::string& yaml, const std::string& program) {
+  void setup(const std::string& yaml, const std::string& program, const CellClock& clock = {}) {
     const YAML::Node doc = YAML::Load(yaml);
     plc.locked([&](ScanEngine& e, Memory& m) {
-      rtc = make_rtc(doc, "cell.yaml", m);
+      rtc = make_rtc(doc, "cell.yaml", m, clock);
       e.add_hook(rtc.get());
       return 0;
     });
@@ -285,15 +288,71 @@ TEST_F(RtcTest, ACalibrationWrittenToAnExactClockTakesEffectAtTheNextScan) {
   EXPECT_EQ(rtc->seconds() - before, 3600);
 }
 
-TEST_F(RtcTest, WithoutAStartItReadsTheHostsLocalTime) {
-  setup("cell: {name: x}\n", kIdle);
-  scans(1);
+int64_t host_local_seconds() {
   const std::time_t now = std::time(nullptr);
   std::tm tm{};
   localtime_r(&now, &tm);
-  const int64_t host = to_seconds({tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec});
-  EXPECT_NEAR(double(rtc->seconds()), double(host), 5.0);  // where it starts, not how fast it runs
+  return to_seconds({tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec});
+}
+
+const CellClock kRealTime{false, ""};
+
+TEST_F(RtcTest, InRealTimeWithoutAStartItReadsTheHostsLocalTime) {
+  setup("cell: {name: x}\n", kIdle, kRealTime);
+  scans(1);
+  EXPECT_NEAR(double(rtc->seconds()), double(host_local_seconds()), 5.0);  // where it starts, not how fast it runs
   EXPECT_EQ(get("R4133"), uint32_t(rtc->now().year - 2000));
+}
+
+// Virtual time is deterministic: the same run gives the same registers whenever it is made.
+TEST_F(RtcTest, InVirtualTimeWithoutAStartItStartsAtTheDocumentedInstant) {
+  setup("cell: {name: x}\n", kIdle);  // a cell's clock is virtual unless said otherwise
+  scans(1);
+  // 2024-01-01T00:00:00, a Monday (docs/analog-and-temperature.md, "Real-time clock").
+  EXPECT_EQ(std::string(kVirtualCalendarStart), "2024-01-01T00:00:00");
+  for (const auto& [reg, v] : std::vector<std::pair<const char*, uint32_t>>{
+           {"R4128", 0}, {"R4129", 0}, {"R4130", 0}, {"R4131", 1}, {"R4132", 1}, {"R4133", 24}, {"R4134", 1},
+           {"R4135", 0}})
+    EXPECT_EQ(get(reg), v) << reg;
+}
+
+// modules.rtc.start wins over the clock's default, --rtc-start (calendar_start) over both.
+TEST_F(RtcTest, TheCellsCalendarStartWinsOverTheFilesStart) {
+  setup(kStart, kIdle, CellClock{true, "2030-06-15T12:30:00"});
+  scans(1);
+  EXPECT_EQ(get("R4133"), 30u);
+  EXPECT_EQ(get("R4132"), 6u);
+  EXPECT_EQ(get("R4131"), 15u);
+  EXPECT_EQ(get("R4135"), 0x0C1Eu);  // 12:30
+}
+
+TEST_F(RtcTest, HostAsTheCalendarStartReadsTheHostEvenInVirtualTime) {
+  setup(kStart, kIdle, CellClock{true, "host"});
+  scans(1);
+  EXPECT_NEAR(double(rtc->seconds()), double(host_local_seconds()), 5.0);
+}
+
+// The two halves of a lockstep cell take one reading of the host's clock.
+TEST_F(RtcTest, AGivenHostTimeIsTheHostsLocalTime) {
+  setup("cell: {name: x}\n", kIdle, kRealTime);
+  const std::time_t t = 1700000000;  // 2023-11-14 22:13:20 UTC
+  rtc->set_host_time(int64_t(t));
+  scans(1);
+  std::tm tm{};
+  localtime_r(&t, &tm);
+  EXPECT_EQ(rtc->seconds(),
+            to_seconds({tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec}));
+}
+
+TEST(RtcConfig, ABadCalendarStartIsRefused) {
+  Memory m;
+  try {
+    make_rtc(YAML::Node(), "c.yaml", m, CellClock{true, "2030-02-30T00:00:00"});
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "RTC start 2030-02-30T00:00:00: expected host or a date-time 2000-01-01T00:00:00 .. 2099-12-31T23:59:59");
+  }
 }
 
 TEST(RtcConfig, KeysAreChecked) {

@@ -9,6 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "plc_cell/config/cell_clock.h"
 #include "plc_cell/config/register_groups.h"
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/native/engine_choice.h"
@@ -54,6 +55,7 @@ struct CellConfig {
   std::vector<SimInputDef> sim_inputs;
   std::vector<RegisterGroup> registers;  // ~registers/<group> on plc_node
   YAML::Node document;  // the whole file, for subsystems that read their own sections
+  CellClock clock;      // from whoever builds the cell (SoftCell), not from the file
 
   static std::vector<AreaRange> default_retentive();
   // Looks a name up among the signals, or parses it as an address.

@@ -4,6 +4,13 @@
 // answers for, a name and an optional field. The cell in process (`plc_cell test`) reads
 // them over the PLC through this facet; plc_node's scenario target reads the same names
 // from the topics the extension's ROS side publishes (ros/extension_ros.h).
+//
+// What a scenario file may write for a family is known before any cell is built, so each
+// family is also declared once for the whole program (ProbeFamilyRegistration): its name,
+// and the stimuli its probes take, the units a step drives them in (a temperature channel:
+// C, mV, ohm, kohm), with the units its readings may be compared in ("200 C").
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +54,45 @@ class ProbeFacet {
   // Holds p at v from the next scan on; throws plc_cell::Error saying why not.
   virtual void drive(Plc& plc, const ProbeRef& p, const ProbeInput& v) const;
 };
+
+// A unit a family's probes are driven in: written as one of spellings (the first is how
+// messages list it), handed to ProbeFacet::drive as unit, the value times factor.
+struct StimulusUnit {
+  std::string unit;                    // "ohm"
+  std::vector<std::string> spellings;  // {"kohm", "k\u03a9"}
+  double factor = 1;                   // 1000: a kohm is 1000 ohm
+};
+
+struct ProbeFamily {
+  std::string name;  // "temperature": its probes are temperature.NAME
+  std::string what;  // "a temperature channel": how a refusal names one of its probes
+  std::vector<StimulusUnit> stimuli;       // empty: a scenario step does not drive it
+  std::vector<std::string> reading_units;  // may follow a number compared with a reading
+};
+
+// Declares family for as long as the object lives (a static one in the extension's file,
+// or one in a test): scenario files naming FAMILY.NAME parse, and their steps may drive its
+// probes in its stimuli. Several registrations of one name: the latest counts.
+class ProbeFamilyRegistration {
+ public:
+  explicit ProbeFamilyRegistration(ProbeFamily family);
+  explicit ProbeFamilyRegistration(std::string name) : ProbeFamilyRegistration(ProbeFamily{std::move(name), "", {}, {}}) {}
+  ~ProbeFamilyRegistration();
+  ProbeFamilyRegistration(const ProbeFamilyRegistration&) = delete;
+  ProbeFamilyRegistration& operator=(const ProbeFamilyRegistration&) = delete;
+
+ private:
+  uint64_t id_;
+};
+
+std::optional<ProbeFamily> registered_probe_family(const std::string& name);
+std::vector<std::string> registered_probe_families();  // sorted, each once
+
+// A number and a unit of f's stimuli, as a scenario step writes it ("4.096 mV", "10 kohm",
+// "5V"): the input drive() gets. Throws Error saying which units f takes.
+ProbeInput parse_stimulus(const ProbeFamily& f, const std::string& text);
+// "C, mV, ohm or kohm".
+std::string stimulus_units(const ProbeFamily& f);
 
 // "%.10g": how every probe prints a number.
 std::string probe_number_text(double v);

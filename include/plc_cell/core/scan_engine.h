@@ -63,11 +63,22 @@ class ScanEngine {
 
   void load(const Program& program);
   const Program& program() const { return interp_.program(); }
+  // How many programs were loaded, and how many times STOP -> RUN happened: what a lockstep
+  // twin follows (core/native/lockstep.h).
+  uint64_t program_loads() const { return program_loads_; }
+  uint64_t run_starts() const { return run_starts_; }
   Interpreter& interpreter() { return interp_; }
+  const Interpreter& interpreter() const { return interp_; }
 
   // Which engine runs the program (docs/native-engine.md); effective at once, on the
-  // loaded program too, with its edge memories and timers kept.
+  // loaded program too, with its edge memories and timers kept. Lockstep makes a bare PLC
+  // its twin when none was given (set_lockstep); an engine with subsystems hooked needs
+  // its whole cell as the twin, and is refused (Error) without one.
   void set_engine(EngineChoice e);
+  // Lockstep with this twin (a whole cell's: sim/lockstep_cells.h).
+  void set_lockstep(std::unique_ptr<Lockstep> twin);
+  // What sees every run and scan (the lockstep twin's recorder); nullptr: nothing.
+  void observe_runs(RunObserver* o) { runs_ = o; }
   EngineChoice engine() const { return engine_; }
   // What actually runs the program, and why (the native engine may fall back).
   std::string engine_status() const;
@@ -93,7 +104,10 @@ class ScanEngine {
   const uint8_t* inputs() const { return inputs_.data(); }  // 256 bytes, 0 or 1 each
 
   // One scan at time now_us (microseconds on the engine's clock, virtual or steady).
-  void scan(uint64_t now_us);
+  void scan(uint64_t now_us) {
+    if (runs_) return scan_observed(now_us);
+    cycle(now_us);
+  }
   uint64_t now_us() const { return now_us_; }
 
   // The real-time loop reports each scan's duration; past the watchdog the PLC stops.
@@ -119,12 +133,14 @@ class ScanEngine {
   void stop_with_fault(const std::string& why) { fault_stop(why); }
 
  private:
+  void cycle(uint64_t now_us);  // the scan itself
+  // The scan and each run told to the observer: out of line, so that the usual scan does
+  // not pay for their frames.
+  void scan_observed(uint64_t now_us);
   void update_special_relays();
-  // Runs the main program (routine empty) or a routine; in lockstep also the shadow, then compares.
+  // Runs the main program (routine empty) or a routine.
   bool run_program(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why);
-  // The same with the shadow run and the comparison: out of line, so that the usual scan
-  // does not pay for its frame.
-  bool run_in_lockstep(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why);
+  bool run_observed(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why);
   bool run_engine(const std::string& routine, uint64_t now_us, uint32_t dt_us, std::string* why);
   void fault_stop(const std::string& why);
 
@@ -133,7 +149,9 @@ class ScanEngine {
   Interpreter interp_;
   // What interp_ starts as; the constructor then chooses kDefaultEngine.
   EngineChoice engine_ = EngineChoice::Interpreter;
-  std::unique_ptr<Lockstep> lockstep_;  // the interpreter's copy, in lockstep only
+  std::unique_ptr<Lockstep> lockstep_;  // the twin, in lockstep only
+  RunObserver* runs_ = nullptr;         // lockstep_, or the recorder of a twin
+  uint64_t program_loads_ = 0, run_starts_ = 0;
   std::vector<AreaRange> retentive_;
   std::vector<ScanHook*> hooks_;
   // The hooks each scan phase calls (ScanHook::phases_of), in the order they were added.

@@ -26,8 +26,11 @@ namespace plc_cell {
 struct CellOverrides {
   std::string program;  // overrides cell.program
   // Run settings, keys of Cell::run_settings(): scan_period, rt_priority, persist_file,
-  // persist_interval (kind is ignored).
+  // persist_interval, engine, rtc_start (kind is ignored).
   std::vector<SettingOverride> run;
+  // A served cell scanned in virtual time (plc_node ~virtual_time). Every other purpose
+  // than Serve is virtual time anyway.
+  bool virtual_time = false;
   // Server settings, keys of Cell::server_kinds(): {"modbus", "id", {"7"}, "--modbus-id"}.
   std::vector<SettingOverride> servers;
 };
@@ -57,6 +60,10 @@ class Cell {
   static std::set<std::string> sections();
 
   SoftCell& soft() { return *soft_; }
+  // In lockstep (plc.engine, --engine): the interpreter's twin of the whole cell
+  // (sim/lockstep_cells.h), which scans with the cell; else nullptr. What drives an
+  // extension directly (a scenario's stimulus) drives the twin's too.
+  SoftCell* twin() { return twin_.get(); }
   Plc& plc() { return soft_->plc(); }
   const CellConfig& config() const { return soft_->config(); }
   const std::string& program_path() const { return soft_->program_path(); }
@@ -80,6 +87,10 @@ class Cell {
   void stop();
 
  private:
+  void run_in_lockstep(const std::string& config_path, const CellOverrides& o, const CellClock& clock);
+
+  // Before soft_: the cell's engine, which scans the twin, goes first.
+  std::unique_ptr<SoftCell> twin_;
   std::unique_ptr<SoftCell> soft_;
   std::map<std::string, Settings> server_settings_;
   uint64_t scan_us_ = 0;

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "plc_cell/runtime/cell.h"
 #include "plc_cell/scenario/target.h"
@@ -15,7 +16,8 @@ namespace scenario {
 class CellTarget : public Target {
  public:
   // Throws SourceError (the cell's or the program's errors) or Error. The PLC is put in RUN.
-  CellTarget(const std::string& cell_yaml, const std::string& program);
+  // run: the front end's run settings (--engine).
+  CellTarget(const std::string& cell_yaml, const std::string& program, const std::vector<SettingOverride>& run = {});
   ~CellTarget() override;
 
   Cell& cell() { return *cell_; }
@@ -36,7 +38,8 @@ class CellTarget : public Target {
 
  private:
   Plc& plc() { return cell_->plc(); }
-  const ProbeFacet* facet(const Probe& p) const;
+  // The extension of cell that answers for p's family, or nullptr.
+  static const ProbeFacet* facet(SoftCell& cell, const Probe& p);
   // Names resolve once: a condition is read at every scan.
   const Address& address(const std::string& name);
   std::unique_ptr<Cell> cell_;

@@ -46,19 +46,11 @@ Probe parse_probe(const std::string& text);
 using Reading = ProbeReading;
 
 // A probe family beyond the built-in ones (counter, axis, temperature, analog, pulse),
-// written FAMILY.NAME or FAMILY.NAME.FIELD: registered while the object lives, so that a
-// scenario file naming it parses; what it reads is the extension's (its ProbeFacet, and on
-// plc_node its ROS side's TopicProbes).
-class ProbeFamilyRegistration {
- public:
-  explicit ProbeFamilyRegistration(std::string family);
-  ~ProbeFamilyRegistration();
-  ProbeFamilyRegistration(const ProbeFamilyRegistration&) = delete;
-  ProbeFamilyRegistration& operator=(const ProbeFamilyRegistration&) = delete;
-
- private:
-  std::string family_;
-};
+// written FAMILY.NAME or FAMILY.NAME.FIELD, is declared by its extension
+// (config/probe_facet.h), with the stimuli its probes take: registered while the object
+// lives, so that a scenario file naming it parses; what it reads is the extension's (its
+// ProbeFacet, and on plc_node its ROS side's TopicProbes).
+using ProbeFamilyRegistration = plc_cell::ProbeFamilyRegistration;
 
 // How reports name p: a bit that is one of the cell's signals shows both, "stop_pb (X1)",
 // whichever of the two the scenario wrote; anything else as written.

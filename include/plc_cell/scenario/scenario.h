@@ -9,17 +9,17 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/scenario/condition.h"
-#include "plc_cell/temp/sensor_signal.h"
 
 namespace plc_cell {
 namespace scenario {
 
-// A value a step sets: a number (a bit's on/off is 1/0), or for an analog input or a
-// temperature channel a quantity with its unit (5 V, 12 mA, 200 C, 8.138 mV, 110 ohm).
+// A value a step sets: a number (a bit's on/off is 1/0), or for a probe of a family that
+// takes stimuli a quantity in one of its units (config/probe_facet.h: 5 V, 12 mA, 200 C,
+// 8.138 mV, 110 ohm), then number is in the family's unit (10 kohm: 10000, unit "ohm").
 struct Value {
   double number = 0;
   bool has_unit = false;
-  temp::Quantity quantity;
+  std::string unit;
   std::string text;  // as written
 };
 

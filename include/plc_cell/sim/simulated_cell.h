@@ -1,5 +1,6 @@
 #pragma once
 // The simulated cell: drives input terminals from InputSignals before every scan.
+#include <bitset>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ class SimulatedCell final : public ScanHook {
   // The simulation plays x again, from the level it gives now. False if it has no signal on x.
   bool resume(uint32_t x);
   bool simulates(uint32_t x) const;
+  // Plays the same inputs as other from now on (a lockstep twin, sim/lockstep_cells.h):
+  // what other's player overrides, this one does too, and what other resumed, this one resumes.
+  void follow(const SimulatedCell& other);
   std::vector<uint32_t> simulated_inputs() const;  // in address order
   // Input x is a capture input: a pulse between two scans is seen ON at the next scan.
   void capture(uint32_t x) { captured_.push_back(x); }
@@ -45,6 +49,9 @@ class SimulatedCell final : public ScanHook {
   hsc::HscUnit* exact_ = nullptr;
   std::vector<Driver> drivers_;
   std::vector<uint32_t> captured_;
+  std::bitset<256> overridden_;  // override_input, until resume
+  uint64_t overrides_ = 0;       // changes of overridden_, which follow() compares first
+  uint64_t followed_ = 0;        // the other's overrides_ this one has followed
   bool scanned_ = false;
   uint64_t last_us_ = 0;  // the previous scan
 };

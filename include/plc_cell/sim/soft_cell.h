@@ -32,8 +32,12 @@ class SoftCell {
   // failed, then the program (when every extension installed its FUNs, so that the
   // program's FUN lines would not only repeat those errors); one SourceError lists every
   // error found, each with file:line:column. A config or program that cannot be opened,
-  // or "no program", throws at once. more: extensions after the built-in ones.
-  SoftCell(const std::string& config_path, const std::string& program_path, CellExtensions more = {});
+  // or "no program", throws at once. more: extensions after the built-in ones. clock: how
+  // the cell's time runs (config/cell_clock.h; virtual unless said otherwise). The file's
+  // plc.engine: lockstep needs a twin, a second SoftCell: run_in_lockstep
+  // (sim/lockstep_cells.h), which the Cell of runtime/cell.h calls; until then, native.
+  SoftCell(const std::string& config_path, const std::string& program_path, CellExtensions more = {},
+           CellClock clock = {});
   // The instruction set of a cell without a file: the core's plus every built-in
   // extension's FUNs (what a bare Plc needs to run a cell's program).
   static FunctionTable functions();
@@ -64,7 +68,7 @@ class SoftCell {
 
  private:
   static CellExtensions with_builtins(CellExtensions more);
-  CellConfig load(const std::string& path);
+  CellConfig load(const std::string& path, const CellClock& clock);
   FunctionTable install();
   void build(const std::string& program_path);
   void release();  // extensions off the engine in reverse order (port owners first)

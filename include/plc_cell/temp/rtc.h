@@ -3,13 +3,17 @@
 // clock from the moment the hook is attached and follow it on every RUN scan; M1952
 // stops the copy and its falling edge sets the clock from R4128-R4134; M1953 rounds to the minute; D4054 calibrates the rate.
 // The clock runs on the engine's clock: virtual time in tests and `plc_cell sim`,
-// the host's steady clock in real time. docs/analog-and-temperature.md, RTC.
+// the host's steady clock in real time. It starts at modules.rtc.start; without one, at
+// kVirtualCalendarStart in virtual time and at the host's local time in real time (the
+// cell's clock, config/cell_clock.h, says which, and may override the start).
+// docs/analog-and-temperature.md, RTC.
 #include <cstdint>
 #include <memory>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
 
+#include "plc_cell/config/cell_clock.h"
 #include "plc_cell/core/memory.h"
 #include "plc_cell/core/scan_engine.h"
 #include "plc_cell/temp/rtc_calendar.h"
@@ -24,6 +28,10 @@ constexpr uint32_t kStopRead = 1952, kRound30s = 1953, kInstalled = 1954, kSetEr
 constexpr uint32_t kChipType = 4053, kCalibration = 4054;                                    // D
 constexpr uint16_t kChipS35390A = 3;  // the chip with digital calibration
 }  // namespace rtcreg
+
+// Where the clock of a cell in virtual time starts when neither modules.rtc.start nor
+// --rtc-start (~rtc_start) says: a Monday, at midnight.
+constexpr const char* kVirtualCalendarStart = "2024-01-01T00:00:00";
 
 // modules.rtc in the cell YAML.
 struct RtcConfig {
@@ -42,6 +50,10 @@ class Rtc final : public ScanHook {
   void attached(ScanEngine& engine) override;     // the registers hold the clock at once
   void on_run() override;                          // and again once STOP -> RUN cleared them
 
+  // A clock that starts from the host's local time takes it from here (Unix seconds) rather
+  // than reading it at the first scan: the two halves of a lockstep cell read it once.
+  void set_host_time(int64_t unix_s) { host_time_ = unix_s; }
+
   int64_t seconds() const { return us_ / 1000000; }  // since 2000-01-01 00:00:00
   DateTime now() const { return from_seconds(seconds()); }
   int week() const;  // R4134: 0 = Sunday, or what the program set
@@ -54,6 +66,7 @@ class Rtc final : public ScanHook {
 
   RtcConfig cfg_;
   Memory& mem_;
+  int64_t host_time_ = 0;  // 0: read the host's clock
   bool started_ = false;
   uint64_t last_us_ = 0;
   int64_t us_ = 0;          // the clock, microseconds since 2000-01-01 00:00:00
@@ -71,8 +84,14 @@ class Rtc final : public ScanHook {
   double calibration_ = 0;  // what that code corrects, s/day
 };
 
-// The cell's RTC (every FBs MC/MN main unit has one), configured by modules.rtc.
-std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem);
+// Why text is no calendar start (CellClock::calendar_start: "host" or a date-time), or "".
+std::string calendar_start_problem(const std::string& text);
+
+// The cell's RTC (every FBs MC/MN main unit has one), configured by modules.rtc and the
+// cell's clock (whose calendar_start wins over modules.rtc.start). Throws Error for a
+// calendar_start that is neither "host" nor a date-time.
+std::unique_ptr<Rtc> make_rtc(const YAML::Node& document, const std::string& file, Memory& mem,
+                              const CellClock& clock = {});
 
 }  // namespace temp
 }  // namespace plc_cell
