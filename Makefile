@@ -8,6 +8,9 @@ SHELL := /bin/bash
 BUILD   ?= .build
 WS      := $(BUILD)/ws
 JOBS    ?= 2
+# The tests wait on masters, browsers and processes most of their time: four at a time keep
+# two cores busy (docs/testing.md, "How the suite runs").
+TEST_JOBS ?= 4
 PY      := /usr/bin/python3
 CMAKE_ARGS := -DPYTHON_EXECUTABLE=$(PY) -DCMAKE_BUILD_TYPE=Release
 
@@ -117,7 +120,7 @@ $(DEMO_BUILT): $(SOURCES)
 	$(MAKE) --no-print-directory demo-build
 
 test: build
-	@$(PHASE) "tests" '$(PY) scripts/run_tests.py --workspace $(WS) --jobs $(JOBS)'
+	@$(PHASE) "tests" '$(PY) scripts/run_tests.py --workspace $(WS) --jobs $(TEST_JOBS)'
 
 
 # The demo runs on loopback: ROS_HOSTNAME=localhost unless ROS_HOSTNAME or ROS_IP is set,

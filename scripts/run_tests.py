@@ -203,7 +203,7 @@ def total(results, done, expected):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--workspace", required=True)
-    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--jobs", type=int, default=4)
     ap.add_argument("--limit", type=int, help="every test's time limit in seconds (default: per test, %d)" % LIMIT)
     ap.add_argument("-k", dest="only", help="only the tests whose names contain this text")
     args = ap.parse_args()

@@ -26,7 +26,7 @@ if(CATKIN_ENABLE_TESTING)
   # One binary, run sequentially: several tests use the fixed port 1502.
   file(GLOB MODBUS_TESTS CONFIGURE_DEPENDS test/modbus/*_test.cpp)
   catkin_add_gtest(modbus_tests test/core/test_main.cpp ${MODBUS_TESTS}
-    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} TIMEOUT 600)
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(modbus_tests plc_cell_modbus plc_cell_sim)
   target_compile_definitions(modbus_tests PRIVATE
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"

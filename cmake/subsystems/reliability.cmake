@@ -68,7 +68,7 @@ endif()
 # ---- hostile clients against `plc_cell run` (test/reliability/abuse/) ----------
 if(CATKIN_ENABLE_TESTING)
   file(GLOB ABUSE_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/reliability/abuse/*_test.cpp)
-  catkin_add_gtest(abuse_tests test/core/test_main.cpp ${ABUSE_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} TIMEOUT 300)
+  catkin_add_gtest(abuse_tests test/core/test_main.cpp ${ABUSE_TESTS} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   target_link_libraries(abuse_tests plc_cell_fatek plc_cell_modbus plc_cell_sim)
   target_compile_definitions(abuse_tests PRIVATE PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
   add_dependencies(abuse_tests plc_cell_tool)

@@ -52,11 +52,7 @@ uint32_t elements(const Address& a, uint32_t count) {
   return count * per;
 }
 
-std::string Api::cannot(Change c) const {
-  // A recording shows what happened; nothing on it can be changed.
-  if (source_.kind() == SourceKind::Replay) return "a recording cannot be changed";
-  return source_.refusal(c);
-}
+std::string Api::cannot(Change c) const { return source_.refusal(c); }
 
 std::string Api::cannot_write(const Address& a, uint32_t count) const {
   if (std::string why = cannot(Change::Write); !why.empty()) return why;

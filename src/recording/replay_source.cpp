@@ -180,5 +180,7 @@ monitor::History ReplaySource::history(const std::vector<Address>& addrs, uint64
   return h;
 }
 
+std::string ReplaySource::refusal(monitor::Change) const { return kReadOnly; }
+
 }  // namespace recording
 }  // namespace plc_cell

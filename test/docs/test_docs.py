@@ -18,6 +18,7 @@ line (a server announces its ports). An unmarked block that looks like commands 
 import glob
 import os
 import re
+import select
 import shlex
 import subprocess
 import sys
@@ -37,12 +38,19 @@ DOCS = ["README.md"] + sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.pat
 FENCE = re.compile(r"^```([^\n]*)\n(.*?)^```\s*$", re.M | re.S)
 SHELLISH = re.compile(r"^\s*(\$ |source |rostopic |rosservice |roslaunch |rosrun |rostest |plc_cell |make |mbpoll |"
                       r"\.build/ws/devel/lib/)")
-STREAMING = re.compile(r"^(rostopic (echo|hz)|roslaunch |rosbag record|rosrun plc_cell plc_node|make demo|"
+STREAMING = re.compile(r"^(rostopic (echo|hz)|roslaunch |rosbag record(?!.*--duration)|rosrun plc_cell plc_node|make demo|"
                        r"plc_cell run (?!.*--duration))")
 ERRORS = re.compile(r"Traceback|ERROR|Cannot load message|Unable to load type|command not found|"
                     r"No such file|process has died|error:", re.I)
-STREAM_WINDOW = 8.0
 COMMAND_LIMIT = 300.0
+GRACE = 1.0  # s: a streaming command keeps running this long after it is up, to show an error
+# What a streaming command (STREAMING) prints once it works: it is stopped GRACE seconds later.
+UP = [(re.compile(r"^(make demo|roslaunch )"), re.compile(r"process\[plc_node[^\]]*\]: started with pid")),
+      (re.compile(r"^rostopic echo"), re.compile(r"^---$", re.M)),
+      (re.compile(r"^rostopic hz"), re.compile(r"average rate")),
+      (re.compile(r"^rosbag record"), re.compile(r"Recording to")),
+      (re.compile(r"^rosrun plc_cell plc_node"), re.compile(r"plc_node: cell ")),
+      (re.compile(r"^plc_cell run"), re.compile(r"scanning every"))]
 # `make test` is the command that runs this test; it is not run again from inside itself.
 SELF = {"make test"}
 
@@ -92,18 +100,38 @@ class Shell:
         return subprocess.Popen(["bash", "-c", script], cwd=self.workdir, env=self.env, stdin=subprocess.DEVNULL,
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
 
-    def run(self, cmd, window=None):
-        """(exit code or None if still running after window, output)."""
+    def run(self, cmd):
+        """(exit code, output) of a command that ends by itself."""
         p = self.start(cmd)
         try:
-            out, _ = p.communicate(timeout=window or COMMAND_LIMIT)
+            out, _ = p.communicate(timeout=COMMAND_LIMIT)
             return p.returncode, out.decode(errors="replace")
         except subprocess.TimeoutExpired:
             stop(p)
             out, _ = p.communicate()
-            if window is None:
-                return -1, out.decode(errors="replace") + "\n[killed after %d s]" % COMMAND_LIMIT
-            return None, out.decode(errors="replace")
+            return -1, out.decode(errors="replace") + "\n[killed after %d s]" % COMMAND_LIMIT
+
+    def stream(self, cmd):
+        """(exit code, or None if it was still running when stopped; output; whether it came
+        up) of a command that runs until stopped. It runs until it is up (its UP pattern in
+        the output, within COMMAND_LIMIT: make demo may build first), then GRACE seconds
+        more to show an error it makes at once."""
+        up = next(ready for which, ready in UP if which.match(cmd))
+        p = self.start(cmd)
+        out, was_up = b"", False
+        deadline = time.monotonic() + COMMAND_LIMIT
+        try:
+            while time.monotonic() < deadline and p.poll() is None:
+                if select.select([p.stdout], [], [], 0.2)[0]:
+                    out += os.read(p.stdout.fileno(), 65536)
+                    if not was_up and up.search(out.decode(errors="replace")):
+                        was_up = True
+                        deadline = time.monotonic() + GRACE
+        finally:
+            code = p.poll()
+            stop(p)
+            rest, _ = p.communicate()
+        return code, (out + rest).decode(errors="replace"), was_up
 
 
 def untracked():
@@ -197,14 +225,19 @@ def test_commands_work_when_pasted(path, workdir):
                         stop(jobs[n - 1][1])
                     continue
                 streaming = STREAMING.match(cmd) is not None
+                was_up = True
                 if cmd.startswith("make demo"):  # its own master: it starts the demo cell itself
-                    own = Shell(workdir, free_port())
-                    code, out = own.run(cmd, window=90.0)
+                    code, out, was_up = Shell(workdir, free_port()).stream(cmd)
+                elif streaming:
+                    code, out, was_up = shell.stream(cmd)
                 else:
-                    code, out = shell.run(cmd, window=STREAM_WINDOW if streaming else None)
-                if code is None:
-                    if not out.strip() or ERRORS.search(out):
-                        failures.append("%s\n  streamed nothing useful or an error:\n%s" % (where, indent(out)))
+                    code, out = shell.run(cmd)
+                if code is None and not was_up:  # stopped at the limit, never up
+                    failures.append("%s\n  did not come up (no %r in its output):\n%s"
+                                    % (where, next(u.pattern for w, u in UP if w.match(cmd)), indent(out)))
+                elif code is None:
+                    if ERRORS.search(out):
+                        failures.append("%s\n  streamed an error:\n%s" % (where, indent(out)))
                 elif code != 0 and not (kind == "console" and expected):
                     failures.append("%s\n  exit %d:\n%s" % (where, code, indent(out)))
                 elif expected:
@@ -221,7 +254,6 @@ def test_commands_work_when_pasted(path, workdir):
 
 def first_line(p, limit):
     """True once p has printed a line (it keeps running), False if it printed none in time."""
-    import select
     deadline = time.monotonic() + limit
     while time.monotonic() < deadline:
         r, _, _ = select.select([p.stdout], [], [], max(0.0, deadline - time.monotonic()))

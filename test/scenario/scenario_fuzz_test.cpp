@@ -123,7 +123,9 @@ TEST(ScenarioFuzz, MutatedScenariosGiveErrorsWithLinesOrRunToAResult) {
       Bounded t(fresh, 20000);
       const CaseResult r = run_case(sc.cases[0], t);
       ++ran;
-      if (!r.passed) EXPECT_FALSE(r.failure.empty());
+      if (!r.passed) {
+        EXPECT_FALSE(r.failure.empty());
+      }
     } catch (const SourceError&) {
       // a mutated cell path that names another YAML: refused as the cell's own errors
     }

@@ -25,6 +25,8 @@ class ReplaySource : public monitor::Source, public monitor::Replay {
 
   // monitor::Source
   monitor::SourceKind kind() const override { return monitor::SourceKind::Replay; }
+  // A recording shows what happened: nothing on it can be changed.
+  std::string refusal(monitor::Change) const override;
   std::string describe() const override { return "recording " + name_; }
   std::shared_ptr<const monitor::ProgramView> program() const override { return program_; }
   monitor::Frame read(const std::vector<Address>& addrs) override;
