@@ -218,7 +218,7 @@ ApiReply Api::read(const std::string& query) {
   const Frame f = source_.read(addrs);
   nlohmann::json values = nlohmann::json::object();
   for (size_t i = 0; i < names.size(); ++i) values[names[i]] = f.values.at(i);
-  return json_reply({{"scan", f.scan}, {"t_us", f.t_us}, {"mode", mode_text(f.mode)}, {"values", values}});
+  return json_reply({{"scan", f.scan}, {"t_us", f.t_us}, {"mode", mode_text(f.mode, f.mode_known)}, {"values", values}});
 }
 
 ApiReply Api::access(const std::string& query) {

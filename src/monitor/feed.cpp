@@ -100,7 +100,8 @@ nlohmann::json Feed::frame(Source& source) {
   }
   failure_.clear();
   if (prev_.size() != f.values.size()) prev_ = f.values;  // the first frame: no edges yet
-  nlohmann::json j = {{"type", "frame"}, {"scan", f.scan}, {"t_us", f.t_us}, {"mode", mode_text(f.mode)}};
+  nlohmann::json j = {{"type", "frame"}, {"scan", f.scan}, {"t_us", f.t_us},
+                      {"mode", mode_text(f.mode, f.mode_known)}};
   add_values(j, f.values, f.forced);
   auto lookup = [this](const std::vector<uint32_t>& v) {
     return [this, &v](const Address& a) {
@@ -108,13 +109,14 @@ nlohmann::json Feed::frame(Source& source) {
       return it == slot_.end() ? 0u : v[it->second];
     };
   };
-  const bool scanned = f.mode == RunMode::Run;
+  const bool scanned = f.mode_known && f.mode == RunMode::Run;
   j["flow"] = nlohmann::json::array();
   for (size_t n : sub_.networks)
     j["flow"].push_back({{"net", n},
                          {"on", scanned ? nlohmann::json(ladder_->flow(n, lookup(f.values), lookup(prev_)))
                                         : nlohmann::json::array()}});
-  if (!scanned) j["no_flow"] = "STOP: no network runs, so none carries power";
+  if (!f.mode_known) j["no_flow"] = "RUN or STOP is not known (the PLC does not report it): no power flow is drawn";
+  else if (!scanned) j["no_flow"] = "STOP: no network runs, so none carries power";
   j["stale"] = nullptr;
   for (size_t i = 0; i < reads_.size(); ++i)
     known_[key(reads_[i])] = Known{f.values[i], i < f.forced.size() && f.forced[i]};

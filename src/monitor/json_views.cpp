@@ -31,10 +31,10 @@ nlohmann::json scan_json(const ScanStats& s) {
 
 }  // namespace
 
-const char* mode_text(RunMode m) { return m == RunMode::Run ? "run" : "stop"; }
+const char* mode_text(RunMode m, bool known) { return !known ? "unknown" : m == RunMode::Run ? "run" : "stop"; }
 
 nlohmann::json status_json(const CellStatus& s) {
-  nlohmann::json j = {{"mode", s.mode_known ? mode_text(s.mode) : "unknown"},
+  nlohmann::json j = {{"mode", mode_text(s.mode, s.mode_known)},
                       {"mode_switchable", s.mode_switchable},
                       {"engine", s.engine},
                       {"note", s.note}};

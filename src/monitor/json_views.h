@@ -9,7 +9,8 @@
 namespace plc_cell {
 namespace monitor {
 
-const char* mode_text(RunMode m);
+// "run", "stop", or "unknown" where the source cannot tell (Frame::mode_known).
+const char* mode_text(RunMode m, bool known = true);
 nlohmann::json status_json(const CellStatus& s);
 // j as text; invalid UTF-8 (a hostile name echoed back) is replaced, never thrown on.
 std::string dump(const nlohmann::json& j);

@@ -104,13 +104,15 @@ monitor::Frame RemoteSource::read(const std::vector<Address>& addrs) {
   transact("read", [&] {
     const std::optional<RunMode> m = link_->mode();
     f.values = addrs.empty() ? std::vector<uint32_t>{} : link_->read(addrs);
-    f.mode = m.value_or(RunMode::Run);
+    f.mode_known = m.has_value();
+    f.mode = m.value_or(RunMode::Stop);
     sweep_forced(addrs);
     return 0;
   });
   const auto t1 = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lk(state_mu_);
   mode_ = f.mode;
+  mode_known_ = f.mode_known;
   for (const Address& a : addrs) f.forced.push_back(is_bit(a) && forced_.count(key(a)));
   f.scan = ++polls_;  // a poll stands for a scan: the PLC's own scans are not seen
   f.t_us = uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(t1 - created_).count());
@@ -178,7 +180,7 @@ monitor::CellStatus RemoteSource::status() {
   s.scan_note = kRemoteScanNote;
   std::lock_guard<std::mutex> lk(state_mu_);
   s.mode = mode_;
-  s.mode_known = tried_ && link_up_;
+  s.mode_known = tried_ && link_up_ && mode_known_;
   for (const auto& kv : forced_) s.forced.push_back(kv.second);
   s.forced_note = forced_note();
   // The polls' own figures, said to be the polls': a PLC's scan figures are not read.
@@ -241,6 +243,7 @@ void RemoteSource::set_mode(RunMode mode) {
   });
   std::lock_guard<std::mutex> lk(state_mu_);
   mode_ = mode;
+  mode_known_ = true;  // as switched; the next poll reads it again where the PLC reports it
 }
 
 uint64_t RemoteSource::frames() const {

@@ -134,6 +134,30 @@ TEST(RemoteTriPage, SaysItCannotForceBeforeAnyClick) {
   http.stop();
 }
 
+TEST(RemoteTriPage, RunOrStopIsNotKnownUntilTheMonitorSwitchesIt) {
+  Plc plc{SoftCell::functions()};
+  plc.load_program_file(kConveyor);
+  plc.set_mode(RunMode::Run);  // running, which nothing of the TRi's host link reports
+  tri::TcpServer tri(plc, "127.0.0.1", 0, {});
+  tri.start();
+  remote::TriLinkOptions o;
+  o.endpoint = "127.0.0.1:" + std::to_string(tri.port());
+  remote::RemoteSource source(std::make_unique<remote::TriLink>(o),
+                              remote::load_program_view(kConveyor, SoftCell::functions()));
+  monitor::HttpSettings s;
+  s.endpoint = "127.0.0.1:0";
+  s.writable = WritableRanges::parse("all");
+  monitor::HttpServer http(source, s);
+  http.start();
+  EXPECT_EQ(http_get(http.port(), "/api/read?a=Y0").json()["mode"], "unknown");
+  EXPECT_EQ(http_get(http.port(), "/api/status").json()["mode"], "unknown");
+  const std::string token = http_get(http.port(), "/api/session").json().value("token", "");
+  ASSERT_EQ(http_post(http.port(), "/api/mode", R"({"mode": "stop"})", token).status, 200);  // C2, Halt
+  EXPECT_EQ(plc.mode(), RunMode::Stop);
+  EXPECT_EQ(http_get(http.port(), "/api/read?a=Y0").json()["mode"], "stop");
+  http.stop();
+}
+
 }  // namespace
 }  // namespace monitor_test
 }  // namespace plc_cell

@@ -49,6 +49,9 @@ TEST(PlcCellRunAsAPlc, OverTri) {
   remote::RemoteSource& source = *made;
   const monitor::Frame f = poll_until_running(source, {parse_address("M0"), parse_address("Y0")});
   EXPECT_EQ(f.values[0], 1u);
+  // The TRi reports neither RUN nor STOP: not known until this source switched it.
+  EXPECT_FALSE(f.mode_known);
+  EXPECT_FALSE(source.status().mode_known);
   source.write(parse_address("D10"), {321});
   EXPECT_EQ(source.read({parse_address("D10")}).values, std::vector<uint32_t>{321});
   // Sixteen outputs are one word of 16: one RVS frame (the TRi's mode is not read).
@@ -63,7 +66,9 @@ TEST(PlcCellRunAsAPlc, OverTri) {
   EXPECT_NE(error_of([&] { source.force(parse_address("Y0"), ForceAction::Disable); }).find("no DISABLE flag"),
             std::string::npos);
   source.set_mode(RunMode::Stop);  // C2: the ladder halts
-  EXPECT_EQ(source.read({parse_address("M0")}).mode, RunMode::Stop);
+  const monitor::Frame stopped = source.read({parse_address("M0")});
+  EXPECT_TRUE(stopped.mode_known);
+  EXPECT_EQ(stopped.mode, RunMode::Stop);
   source.set_mode(RunMode::Run);
   EXPECT_EQ(source.read({parse_address("M0")}).mode, RunMode::Run);
 }

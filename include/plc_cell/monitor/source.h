@@ -41,6 +41,9 @@ struct Frame {
   uint64_t scan = 0;  // scans since start
   uint64_t t_us = 0;  // the cell's clock: virtual time in sim and replay
   RunMode mode = RunMode::Stop;
+  // false: the source cannot tell RUN from STOP (a TRi reports neither until this source
+  // switched it); mode is then meaningless.
+  bool mode_known = true;
   std::vector<uint32_t> values;  // one per address asked for, as Plc::read gives them
   // One per address: 1 when that discrete is forced (its DISABLE flag set). Empty when the
   // source cannot tell; a word address is never marked.

@@ -77,6 +77,7 @@ class RemoteSource : public monitor::Source {
   std::string last_error_;
   std::chrono::steady_clock::time_point failed_at_;
   RunMode mode_ = RunMode::Stop;
+  bool mode_known_ = false;  // the link reported (or this source set) RUN or STOP
   uint64_t polls_ = 0, errors_ = 0, frames_ = 0;
   DurationStats poll_time_;
   // The discretes whose forced state is read (key -> address; under link_mu_), and which of
