@@ -22,6 +22,7 @@ namespace plc_cell {
 class Plc;
 struct CellConfig;
 class CellExtension;
+class ProgramChanges;
 
 // What a server kind's factory may use besides its settings: the PLC, and for a server
 // that shows the whole cell (the monitor, docs/monitor-api.md) the cell's config, its
@@ -34,6 +35,7 @@ struct ServerContext {
   const std::vector<std::unique_ptr<CellExtension>>* extensions = nullptr;
   std::string program_path;
   std::function<std::vector<const Server*>()> servers;  // every server of the cell, when set
+  ProgramChanges* changes = nullptr;  // changes of the running program (online change), when offered
 };
 
 enum class SettingType {
