@@ -45,6 +45,7 @@ enum class SettingType {
   Integer,     // in [lo, hi]
   Duration,    // "60s", "250ms", a bare number of seconds; lo/hi in microseconds
   Writable,    // "D0-D99,M800", "all" or "none" (a YAML list is joined)
+  Boolean,     // true/false (also on/off, 1/0), kept as "true" or "false"
 };
 
 struct SettingSpec {
@@ -80,6 +81,7 @@ class Settings {
   int64_t integer(const std::string& key) const;
   uint64_t duration_us(const std::string& key) const;
   WritableRanges writable(const std::string& key) const;
+  bool boolean(const std::string& key) const { return text(key) == "true"; }
 
  private:
   std::string kind_;
