@@ -32,7 +32,7 @@ DEMO_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-
   ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rosmaster rosout python3-roslaunch python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
-  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev libboost-dev nlohmann-json3-dev libjs-dygraphs curl
+  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev libboost-dev nlohmann-json3-dev libjs-dygraphs libjs-codemirror curl
 PLOT_PACKAGES := python3-matplotlib
 TEST_PACKAGES := librostest-dev python3-rostest \
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
