@@ -19,7 +19,9 @@ namespace online {
 
 struct GateConfig {
   int line = 0;  // of `gate:`; 0: the cell has no gate
-  std::vector<std::string> scenarios;  // paths, resolved against the cell file's folder
+  // Paths, resolved against the cell file's folder. Read when the gate runs, not with the
+  // cell: a cell copied without its tests still runs, and every change to it fails its gate.
+  std::vector<std::string> scenarios;
   uint64_t explore_us = 0;             // 0: no exploration
   bool mutate = false;
   uint64_t timeout_us = 60'000'000;
