@@ -276,7 +276,7 @@ export class EditTab {
       html("td", {class: "result"}, tr, e.result);
       html("td", {class: "mono"}, tr, `${(e.old_hash || "").slice(0, 8)} → ${(e.new_hash || "").slice(0, 8)}`);
       const what = html("td", {}, tr);
-      const gate = e.gate && e.gate.configured ? `gate: ${e.gate.summary}` : "";
+      const gate = e.gate && e.gate.configured && !(e.why || "").includes(e.gate.summary) ? `gate: ${e.gate.summary}` : "";
       html("span", {}, what, [e.why, gate, e.reason && e.reason !== "undo" ? `reason: ${e.reason}` : ""]
         .filter(Boolean).join(" — "));
       if (e.diff) {
