@@ -17,3 +17,8 @@ if(CATKIN_ENABLE_TESTING)
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
   add_dependencies(online_tests plc_cell_tool)
 endif()
+
+# The scan's wake latency with gates running beside it, against none (docs/performance.md).
+add_executable(bench_gate_latency bench/gate_latency.cpp)
+target_link_libraries(bench_gate_latency plc_cell_runtime)
+target_compile_definitions(bench_gate_latency PRIVATE PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
