@@ -214,6 +214,8 @@ class PlcNodeTest(unittest.TestCase):
         self.start_pub.publish(Bool(False))
 
     def test_load_program_error_keeps_old_program(self):
+        program = rospy.get_param(NS + "program")
+        original = open(program).read()
         r = self.load(text="ORG X0\nOUT Q9\nEND\n")
         self.assertFalse(r.success)
         self.assertEqual(r.result, "refused")
@@ -229,14 +231,16 @@ class PlcNodeTest(unittest.TestCase):
         self.assertEqual(self.sums.wait_for(lambda m: m.values[3] == 321).values[3], 321)
         # Through the change service: the program file rewritten, the change in its log.
         report = json.loads(r.report)
-        program = rospy.get_param(NS + "program")
         self.assertEqual(open(program).read(), text)
         log = [json.loads(l) for l in open(program + ".changes.jsonl")]
         self.assertEqual([(e["result"], e["source"]) for e in log], [("refused", "service"), ("applied", "service")])
         self.assertEqual(log[-1]["new_hash"], report["new_hash"])
-        r = self.load()  # reload the file named in the cell: the same program, nothing changes
+        r = self.load()  # reload the file named in the cell: the program just written, nothing changes
         self.assertTrue(r.success, r.message)
         self.assertIn("already running", r.message)
+        r = self.load(text=original)  # the other tests' program again
+        self.assertEqual(r.result, "applied", r.message)
+        self.assertEqual(open(program).read(), original)
 
     def test_diagnostics_report_the_scan(self):
         diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)
