@@ -13,7 +13,7 @@
 #include "scenario_files.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/explore/explorer.h"
-#include "plc_cell/online/gate_config.h"
+#include "plc_cell/config/gate_config.h"
 #include "plc_cell/runtime/cell.h"
 #include "plc_cell/scenario/runner.h"
 
@@ -92,10 +92,10 @@ int cmd_gate(const std::vector<std::string>& argv) {
   const auto t0 = std::chrono::steady_clock::now();
   CellOverrides o;
   o.program = args.get("program");
-  online::GateConfig gate;
+  GateConfig gate;
   {
     Cell cell(args.positional()[0], o, Cell::Purpose::Check);  // the program's errors, at their lines
-    if (const auto* g = cell.soft().get<online::GateConfig>()) gate = *g;
+    if (const auto* g = cell.soft().get<GateConfig>()) gate = *g;
   }
   if (!gate.line) throw Error(args.positional()[0] + ": no gate: section names the tests a change must pass");
   std::vector<scenario::Scenario> files;

@@ -73,7 +73,6 @@ CellExtensions runtime_extensions(Cell::Purpose purpose) {
   CellExtensions more;
   more.push_back(std::make_unique<ProtocolFunctions>(purpose != Cell::Purpose::Check));
   more.push_back(std::make_unique<ServerSettingsSection>(Cell::server_kinds()));
-  more.push_back(online::gate_section());
   return more;
 }
 
@@ -126,7 +125,7 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
   online::ChangeSetup change;
   change.cell_file = config_path;
   change.program_path = soft_->program_path();
-  if (const auto* gate = soft_->get<online::GateConfig>()) change.gate = *gate;
+  if (const auto* gate = soft_->get<GateConfig>()) change.gate = *gate;
   change.extensions = &soft_->extensions();
   changes_ = std::make_unique<online::ChangeService>(plc(), change);
 

@@ -13,7 +13,7 @@
 #include "plc_cell/config/program_changes.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/online/audit_log.h"
-#include "plc_cell/online/gate_config.h"
+#include "plc_cell/config/gate_config.h"
 
 namespace plc_cell {
 namespace online {

@@ -1,15 +1,14 @@
-#include "plc_cell/online/gate_config.h"
+#include "plc_cell/config/gate_config.h"
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/config/yaml_reader.h"
 
 namespace plc_cell {
-namespace online {
 
 namespace {
 
-std::string folder_of(const std::string& file) {
+std::string cell_file_folder(const std::string& file) {
   const auto slash = file.rfind('/');
   return slash == std::string::npos ? "" : file.substr(0, slash + 1);
 }
@@ -42,7 +41,7 @@ class GateSection : public CellExtension {
 GateConfig read_gate(const CellConfig& cfg) {
   GateConfig g;
   const YAML::Node n = cfg.document.IsMap() ? cfg.document["gate"] : YAML::Node();
-  if (!n) return g;
+  if (!n || n.IsNull()) return g;
   YamlReader r(cfg.file);
   if (!n.IsMap()) r.fail(n, "gate", "expected a mapping: {scenarios: [...], explore: 20s, mutate: false}");
   r.only(n, "gate", {"scenarios", "explore", "mutate", "timeout"});
@@ -52,7 +51,7 @@ GateConfig read_gate(const CellConfig& cfg) {
     r.fail(sc ? sc : n, "gate.scenarios", "expected a list of one or more scenario files");
   for (const auto& f : sc) {
     std::string path = r.str(f, "gate.scenarios");
-    if (path.empty() || path[0] != '/') path = folder_of(cfg.file) + path;
+    if (path.empty() || path[0] != '/') path = cell_file_folder(cfg.file) + path;
     g.scenarios.push_back(path);
   }
   if (n["explore"]) g.explore_us = bounded(r, n["explore"], "gate.explore", 0, 3600);
@@ -64,5 +63,4 @@ GateConfig read_gate(const CellConfig& cfg) {
 
 std::unique_ptr<CellExtension> gate_section() { return std::make_unique<GateSection>(); }
 
-}  // namespace online
 }  // namespace plc_cell

@@ -15,7 +15,6 @@
 #include "plc_cell/config/cell_extension.h"
 
 namespace plc_cell {
-namespace online {
 
 struct GateConfig {
   int line = 0;  // of `gate:`; 0: the cell has no gate
@@ -31,8 +30,8 @@ struct GateConfig {
 GateConfig read_gate(const CellConfig& cfg);
 
 // The extension that claims `gate:` and checks it with the rest of the file; it provides
-// its GateConfig as a facet.
+// its GateConfig as a facet. Every cell has it (SoftCell's built-ins): the gate belongs to
+// the cell file, whoever reads it.
 std::unique_ptr<CellExtension> gate_section();
 
-}  // namespace online
 }  // namespace plc_cell
