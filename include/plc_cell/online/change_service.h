@@ -40,8 +40,6 @@ class ChangeService : public ProgramChanges {
   ChangeOutcome undo(ChangeSource source) override;
   nlohmann::json log(size_t last) const override { return log_.entries(last); }
 
-  const AuditLog& audit() const { return log_; }
-
  private:
   // check() once the parse is known; fills errors or *program.
   ChangeOutcome examine(const std::string& text, Program* program, bool* parsed);
