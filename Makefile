@@ -32,7 +32,7 @@ DEMO_PACKAGES := build-essential cmake pkg-config python3 catkin python3-catkin-
   ros-rosgraph-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs \
   python3-rosmaster rosout python3-roslaunch python3-rosbag \
   python3-rostopic python3-rosservice python3-rosnode python3-rosmsg rosbash \
-  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev libboost-dev nlohmann-json3-dev libjs-dygraphs curl
+  libyaml-cpp-dev libmodbus-dev zlib1g-dev libasmjit-dev libboost-dev nlohmann-json3-dev libjs-dygraphs libjs-codemirror curl
 PLOT_PACKAGES := python3-matplotlib
 TEST_PACKAGES := librostest-dev python3-rostest \
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev llvm \
@@ -131,6 +131,9 @@ test: build
 # that RUN/STOP works too, as the demo is a simulated cell on loopback.
 MONITOR ?= 127.0.0.1:8080
 MONITOR_WRITABLE ?= all
+# Its pages may change the running program through the cell's gate (the Edit tab,
+# docs/online-change.md): true with writable all; `make demo MONITOR_EDIT=false` turns it off.
+MONITOR_EDIT ?= true
 demo: deps-demo $(DEMO_BUILT)
 	@ros_env=$$($(PY) scripts/ros_loopback.py) && eval "$$ros_env" && \
 	echo "== starting the demo cell. The monitor: http://$(MONITOR)/ (open it in a browser)" && \
@@ -142,7 +145,7 @@ demo: deps-demo $(DEMO_BUILT)
 	echo "     rostopic echo /plc_node/io_words" && \
 	echo "     rosservice call /plc_node/read R0 1" && \
 	echo "   Ctrl-C stops it." && \
-	source $(WS)/devel/setup.bash && roslaunch plc_cell cell_sim.launch http_tcp:=$(MONITOR) http_writable:=$(MONITOR_WRITABLE)
+	source $(WS)/devel/setup.bash && roslaunch plc_cell cell_sim.launch http_tcp:=$(MONITOR) http_writable:=$(MONITOR_WRITABLE) http_edit:=$(MONITOR_EDIT)
 
 # The whole suite in a throwaway Debian 12 root: proves `make test` on a machine with nothing
 # installed by hand (scripts/test_fresh.sh; root only). CI runs this.

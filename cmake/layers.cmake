@@ -30,11 +30,12 @@ set(PLC_CELL_LAYER_RULES
   "tri core io config"
   "modbus core io config tri"
   "comm core io config fatek modbus tri"
+  "online core io config"
   "monitor core io config coverage ladder"
-  "runtime core io config timeline hsc temp motion sim persist fatek modbus tri comm coverage ladder monitor"
-  "scenario core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime coverage ladder monitor"
-  "explore core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor"
-  "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario explore ladder monitor"
+  "runtime core io config timeline hsc temp motion sim persist fatek modbus tri comm coverage ladder monitor online"
+  "scenario core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime coverage ladder monitor online"
+  "explore core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor online"
+  "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario explore ladder monitor online"
   "recording core io config timeline coverage ladder monitor"
   "remote core io config coverage ladder monitor fatek tri")
 

@@ -11,6 +11,6 @@ if(CATKIN_ENABLE_TESTING)
   # plc_cell tool serving the demo cell, a cell switched to STOP, a recording, and a real PLC
   # (plc_cell monitor --fatek on a plc_cell run) that goes away and comes back.
   plc_cell_add_pytest(monitor_page FILES test/browser/test_monitor_page.py test/browser/test_monitor_stop.py
-    test/browser/test_monitor_replay.py test/browser/test_monitor_remote.py
+    test/browser/test_monitor_replay.py test/browser/test_monitor_remote.py test/browser/test_monitor_edit.py
     DEPENDENCIES plc_node plc_cell_tool)
 endif()

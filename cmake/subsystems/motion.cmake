@@ -3,6 +3,7 @@
 # motion unit for every cell.
 plc_cell_layer(plc_cell_motion LINKS plc_cell_hsc SOURCES
   src/motion/params.cpp
+  src/motion/axes_online_check.cpp
   src/motion/program_text.cpp
   src/motion/table_text.cpp
   src/motion/table_regs.cpp

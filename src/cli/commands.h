@@ -20,7 +20,8 @@ Command check_command();
 Command fatek_command();
 Command test_command();     // scenario files (src/cli/test_command.cpp)
 Command explore_command();  // random runs against properties (src/cli/explore_command.cpp)
-Command monitor_command();  // the browser monitor on a recording or a real PLC (src/cli/monitor_command.cpp)
+Command monitor_command();
+Command gate_command();     // the tests a change in RUN must pass (src/cli/gate_command.cpp)  // the browser monitor on a recording or a real PLC (src/cli/monitor_command.cpp)
 
 // Every subcommand, in the order --help lists them.
 const std::vector<Command>& commands();

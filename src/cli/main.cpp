@@ -20,6 +20,7 @@ const char* placeholder(plc_cell::SettingType t) {
     case SettingType::Integer: return "N";
     case SettingType::Duration: return "DURATION";
     case SettingType::Writable: return "RANGES";
+    case SettingType::Boolean: return "true|false";
     case SettingType::Text: break;
   }
   return "TEXT";

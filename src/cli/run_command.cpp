@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/io/stop_signal.h"
+#include "plc_cell/online/program_watch.h"
 #include "plc_cell/runtime/cell.h"
 
 namespace plc_cell {
@@ -19,7 +20,7 @@ int cmd_run(const std::vector<std::string>& argv) {
                                       "persist-interval", "engine"};
   const auto servers = server_options();
   options.insert(options.end(), servers.begin(), servers.end());
-  Args args(argv, options);
+  Args args(argv, options, {"watch-program"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Serve,
@@ -32,7 +33,19 @@ int cmd_run(const std::vector<std::string>& argv) {
   cell.start_scanning();
   std::cerr << "plc_cell run: " << cell.program_path() << " scanning every " << cell.scan_period_us()
             << " us; Ctrl-C to stop\n";
+  // A saved program goes live through the change service (docs/online-change.md).
+  std::unique_ptr<online::ProgramWatch> watch;
+  if (args.has("watch-program")) {
+    watch = std::make_unique<online::ProgramWatch>(cell.changes(), [](const ChangeOutcome& o) {
+      std::cerr << "plc_cell run: program change " << o.result << (o.why.empty() ? "" : ": " + o.why) << "\n";
+      for (const auto& e : o.errors)
+        std::cerr << "    line " << e.line << ":" << e.column << ": " << e.message << "\n";
+      if (o.gate.configured) std::cerr << "    gate: " << o.gate.summary << "\n";
+    });
+    std::cerr << "plc_cell run: watching " << cell.program_path() << " for changes\n";
+  }
   if (stop.wait_until_stopped(duration)) std::cerr << "plc_cell run: " << stop.signal_name() << ": stopping\n";
+  watch.reset();
   const std::string priority_error = cell.loop()->priority_error();
   const auto ps = cell.persister() ? cell.persister()->status() : persist::PersistStatus();
   cell.stop();  // servers, scans, then the newest image goes to disk
@@ -51,10 +64,12 @@ int cmd_run(const std::vector<std::string>& argv) {
 Command run_command() {
   return {"run",
           "--program FILE [--config FILE] [--scan 1ms] [--duration T] [--rt-priority N]\n"
-          "         [--persist FILE] [--persist-interval DURATION] [--engine E] [--SERVER-SETTING VALUE ...]\n"
+          "         [--persist FILE] [--persist-interval DURATION] [--engine E] [--watch-program]\n"
+          "         [--SERVER-SETTING VALUE ...]\n"
           "         run the soft PLC in real time until interrupted; keep the retentive ranges in\n"
           "         FILE across restarts and crashes (default 100ms); serve the cell's protocols\n"
-          "         (below), each option overriding the cell YAML's servers.SERVER.SETTING\n",
+          "         (below), each option overriding the cell YAML's servers.SERVER.SETTING;\n"
+          "         --watch-program: a saved program goes live in RUN, gated (docs/online-change.md)\n",
           cmd_run};
 }
 

@@ -65,6 +65,10 @@ std::string check_setting(const SettingSpec& spec, const std::string& text) {
     case SettingType::Writable:
       WritableRanges::parse(text);
       return text;
+    case SettingType::Boolean:
+      if (text == "true" || text == "on" || text == "1") return "true";
+      if (text == "false" || text == "off" || text == "0") return "false";
+      throw Error("expected true or false");
   }
   return text;
 }

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/online_change.h"
 
 namespace plc_cell {
 
@@ -141,6 +142,19 @@ void Interpreter::load(const Program& program) {
   edges_.assign(program_.edge_slots, 0);  // sized before the machine code binds its addresses
   bind_native();
   reset_state();
+}
+
+void Interpreter::load_keeping_state(const Program& program) {
+  const Program old = program_;
+  const std::vector<uint8_t> old_edges = edges_;
+  const auto rem = timer_rem_us_;
+  const auto running = timer_running_;
+  load(program);
+  timer_rem_us_ = rem;
+  timer_running_ = running;
+  const std::vector<uint32_t> from = carried_edges(old, program_);
+  for (size_t slot = 0; slot < from.size() && slot < edges_.size(); ++slot)
+    if (from[slot] < old_edges.size()) edges_[slot] = old_edges[from[slot]];
 }
 
 bool Interpreter::bind(const Program& program, const Instruction& in, uint32_t edge, Bound* b, Extra* x, Op* op,

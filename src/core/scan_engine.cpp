@@ -16,7 +16,15 @@ ScanEngine::ScanEngine(Memory& mem, const FunctionTable& functions)
 void ScanEngine::load(const Program& program) {
   interp_.load(program);
   ++program_loads_;
+  last_load_online_ = false;
   first_scan_ = true;  // a new program sees the first-scan pulse, as after a download
+}
+
+void ScanEngine::load_online(const Program& program) {
+  if (mode_ != RunMode::Run) return load(program);
+  interp_.load_keeping_state(program);
+  ++program_loads_;
+  last_load_online_ = true;
 }
 
 bool ScanEngine::set_mode(RunMode m) {

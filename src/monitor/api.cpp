@@ -88,7 +88,11 @@ std::string signal_name(const Address& a, const ProgramView& program) {
 
 Api::Api(Source& source, const HttpSettings& settings, const std::string& bound_host, std::string token, Events events)
     : source_(source), settings_(settings), guard_(bound_host, settings.allowed_hosts), token_(std::move(token)),
-      events_(std::move(events)) {}
+      events_(std::move(events)) {
+  std::string why;
+  if (!settings.edit) why = "this monitor does not change the program (servers.http.edit: false)";
+  edit_ = std::make_unique<EditDesk>(source_, why, [this](const std::string& text) { log(text); });
+}
 
 std::shared_ptr<const LadderView> Api::ladder() {
   auto program = source_.program();
@@ -176,7 +180,8 @@ ApiReply Api::handle(const ApiRequest& r) {
     if (r.token != token_)
       return refuse_write("POST " + path,
                           r.token.empty() ? "no X-Plc-Token header (GET /api/session gives it)" : "wrong X-Plc-Token");
-    if (r.body.size() > kMaxBody) return error_reply(413, "request body over the limit of 65536 bytes");
+    if (r.body.size() > max_body(path))
+      return error_reply(413, "request body over the limit of " + std::to_string(max_body(path)) + " bytes");
     const auto body = nlohmann::json::parse(r.body, nullptr, false);
     if (body.is_discarded() || !body.is_object())
       return error_reply(400, "POST " + path + ": the body is not a JSON object");
@@ -205,6 +210,7 @@ ApiReply Api::get(const std::string& path, const std::string& query) {
     return json_reply({{"available", true}, {"seen", *seen}});
   }
   if (path == "/api/replay") return replay_get();
+  if (path == "/api/edit" || path.rfind("/api/edit/", 0) == 0) return edit_get(path, query);
   if (path == "/api/replay/history") return replay_history(query);
   if (path.rfind("/api/", 0) == 0) return error_reply(404, path + ": no such API endpoint");
   const auto file = static_file(path, settings_.asset_root.empty() ? default_asset_root() : settings_.asset_root,
@@ -271,6 +277,27 @@ ApiReply Api::replay_history(const std::string& query) {
   nlohmann::json cut = nullptr;
   if (h.cut_us) cut = *h.cut_us;
   return json_reply({{"series", series}, {"cut_us", cut}});
+}
+
+// GET /api/edit, /api/edit/job, /api/edit/log?last=N (edit_desk.h).
+ApiReply Api::edit_get(const std::string& path, const std::string& query) {
+  if (path == "/api/edit") return json_reply(edit_->state());
+  if (path == "/api/edit/job") return json_reply(edit_->job());
+  if (path == "/api/edit/log") {
+    std::string last;
+    size_t n = 200;
+    if (query_value(query, "last", &last)) {
+      if (last.empty() || last.size() > 6 || last.find_first_not_of("0123456789") != std::string::npos)
+        return error_reply(400, "/api/edit/log: last= is a whole number of entries");
+      n = static_cast<size_t>(std::stoul(last));
+    }
+    try {
+      return json_reply(edit_->log(n));
+    } catch (const Error& e) {
+      return error_reply(404, e.what());
+    }
+  }
+  return error_reply(404, path + ": no such API endpoint");
 }
 
 }  // namespace monitor

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "edit_desk.h"
 #include "ladder_view.h"
 #include "plc_cell/monitor/http_server.h"
 #include "request_guard.h"
@@ -19,6 +20,11 @@ namespace plc_cell {
 namespace monitor {
 
 constexpr size_t kMaxBody = 64 * 1024;
+// A program's text (POST /api/edit/...) may be longer than any other request.
+constexpr size_t kMaxProgramBody = 1024 * 1024;
+inline size_t max_body(const std::string& target) {
+  return target.rfind("/api/edit/", 0) == 0 ? kMaxProgramBody : kMaxBody;
+}
 constexpr size_t kMaxWriteValues = 256;
 
 struct ApiRequest {
@@ -67,6 +73,8 @@ class Api {
   ApiReply replay_history(const std::string& query);
   ApiReply replay_post(const nlohmann::json& body);
   ApiReply refuse_write(const std::string& what, const std::string& why);
+  ApiReply edit_get(const std::string& path, const std::string& query);
+  ApiReply edit_post(const std::string& path, const nlohmann::json& body);
   // "" when the elements from a may be written, else why not.
   std::string not_writable(const Address& a, uint32_t elements) const;
   // Why a page may not make this change at all here ("" = it may, within the ranges).
@@ -92,6 +100,7 @@ class Api {
   std::mutex read_mu_;
   enum class ReadState { Unknown, Up, Down } read_state_ = ReadState::Unknown;
   std::chrono::steady_clock::time_point down_since_;
+  std::unique_ptr<EditDesk> edit_;  // last: its job thread may log through this Api
 };
 
 // The elements of the memory a write of count values at a covers: WY8 x1 is Y8..Y23,

@@ -108,6 +108,7 @@ ApiReply Api::post(const std::string& path, const nlohmann::json& body) {
   if (path == "/api/force") return logged(change_name("force", body, "address"), &Api::force);
   if (path == "/api/mode") return logged(change_name("mode", body, "mode"), &Api::mode);
   if (path == "/api/replay") return replay_post(body);
+  if (path.rfind("/api/edit/", 0) == 0) return edit_post(path, body);
   return {404, "application/json", error_body("POST " + path + ": no such API endpoint")};
 }
 
@@ -171,6 +172,27 @@ ApiReply Api::replay_post(const nlohmann::json& body) {
   }
   if (events_.moved) events_.moved();
   return replay_get();
+}
+
+// The Edit tab (edit_desk.h). A check changes nothing and needs no more than a read; a
+// test, apply or undo is a job, refused here (and logged) when it may not start.
+ApiReply Api::edit_post(const std::string& path, const nlohmann::json& body) {
+  const std::string what = path.substr(std::string("/api/edit/").size());
+  if (what == "check") {
+    try {
+      return {200, "application/json", dump(edit_->check(text_field(body, "text", "edit check")))};
+    } catch (const Error& e) {
+      return {400, "application/json", error_body(e.what())};
+    }
+  }
+  try {
+    const nlohmann::json job = edit_->start(what, body);
+    log("program " + what + " (started)");
+    return {202, "application/json", dump(job)};
+  } catch (const Error& e) {
+    log("program " + what + " (refused: " + e.what() + ")");
+    return {409, "application/json", error_body(e.what())};
+  }
 }
 
 }  // namespace monitor

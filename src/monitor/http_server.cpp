@@ -48,6 +48,7 @@ HttpSettings http_settings(const Settings& v) {
   for (const auto& h : v.all("allowed_hosts"))
     if (!h.empty()) s.allowed_hosts.push_back(h);
   s.asset_root = v.text("assets");
+  s.edit = v.boolean("edit");
   return s;
 }
 

@@ -104,6 +104,7 @@ void HttpSession::on_first_bytes() {
 void HttpSession::on_header(beast::error_code ec) {
   if (ec) return on_read(ec, 0);
   if (parser_->is_done()) return on_read({}, 0);
+  parser_->body_limit(max_body(std::string(parser_->get().target())));
   stream_.expires_after(hub_.idle());
   http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_read, shared_from_this()));
 }
@@ -137,7 +138,8 @@ void HttpSession::on_read(beast::error_code ec, size_t) {
   slot_->waiting(true);  // answering: not a stale connection
   if (ec) {
     ++hub_.rejected;
-    const std::string why = ec == http::error::body_limit ? "request body over the limit of 65536 bytes"
+    const std::string limit = std::to_string(max_body(std::string(parser_->get().target())));
+    const std::string why = ec == http::error::body_limit ? "request body over the limit of " + limit + " bytes"
                             : ec == http::error::header_limit ? "request header over the limit of 16384 bytes"
                                                                 : "malformed HTTP request: " + ec.message();
     reply(parse_error_status(ec), "application/json", error_body(why), false);

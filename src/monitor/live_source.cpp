@@ -6,22 +6,25 @@
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/cell_extension.h"
+#include "plc_cell/config/program_changes.h"
 #include "plc_cell/core/error.h"
 
 namespace plc_cell {
 namespace monitor {
 namespace {
 
-// What tells one loaded program from another without copying it under the lock: its file,
-// size and a hash of every instruction's operation, address and line.
-std::vector<uint64_t> fingerprint_of(const Program& p) {
+// What tells one loaded program from another without copying it under the lock: how many
+// loads the engine has seen (a change of a constant alone is a new program), its file, size
+// and a hash of every instruction's operation, address and line.
+std::vector<uint64_t> fingerprint_of(const ScanEngine& se) {
+  const Program& p = se.program();
   uint64_t h = 1469598103934665603ull;
   auto mix = [&h](uint64_t v) { h = (h ^ v) * 1099511628211ull; };
   for (const auto& i : p.code) {
     mix(uint64_t(i.op) | uint64_t(i.fun) << 8 | uint64_t(i.addr.area) << 24 | uint64_t(i.addr.index) << 32);
     mix(uint64_t(uint32_t(i.line)) | uint64_t(i.operands.size()) << 32);
   }
-  return {h, p.code.size(), std::hash<std::string>()(p.file)};
+  return {h, p.code.size(), std::hash<std::string>()(p.file), se.program_loads()};
 }
 
 std::string file_text(const std::string& path) {
@@ -34,7 +37,12 @@ std::string file_text(const std::string& path) {
 }  // namespace
 
 LiveSource::LiveSource(const ServerContext& c, std::string name)
-    : plc_(c.plc), config_(c.config), extensions_(c.extensions), servers_(c.servers), name_(std::move(name)) {}
+    : plc_(c.plc),
+      config_(c.config),
+      extensions_(c.extensions),
+      servers_(c.servers),
+      changes_(c.changes),
+      name_(std::move(name)) {}
 
 LiveSource::~LiveSource() {
   std::lock_guard<std::mutex> lk(mu_);
@@ -47,15 +55,18 @@ LiveSource::~LiveSource() {
 
 std::shared_ptr<const ProgramView> LiveSource::program() const {
   std::lock_guard<std::mutex> lk(mu_);
-  auto fp = plc_.locked([](const ScanEngine& se, const Memory&) { return fingerprint_of(se.program()); });
+  auto fp = plc_.locked([](const ScanEngine& se, const Memory&) { return fingerprint_of(se); });
   if (view_ && fp == fingerprint_) return view_;
   // Changed (or first): copy it once. Another reload between the two locks only makes the
   // next call copy again.
   auto v = std::make_shared<ProgramView>();
-  v->program = plc_.locked([](const ScanEngine& se, const Memory&) { return se.program(); });
-  fingerprint_ = fingerprint_of(v->program);
+  plc_.locked([&](const ScanEngine& se, const Memory&) {
+    v->program = se.program();
+    fingerprint_ = fingerprint_of(se);
+    return 0;
+  });
   v->file = v->program.file;
-  v->text = file_text(v->program.file);
+  v->text = changes_ ? changes_->text() : file_text(v->program.file);
   if (config_) v->signals = config_->signals;
   v->version = view_ ? view_->version + 1 : 1;
   view_ = v;

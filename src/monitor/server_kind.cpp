@@ -20,12 +20,20 @@ ServerKind server_kind() {
                                "a Host name the pages may use besides loopback and the bound address; repeatable"));
   k.settings.back().repeatable = true;
   k.settings.push_back(setting("assets", SettingType::Text, "the page's folder (default: the package's share/monitor)"));
+  k.settings.push_back(setting("edit", SettingType::Boolean,
+                               "pages may change the running program (the Edit tab's Apply and Undo); needs "
+                               "writable: all (docs/online-change.md)",
+                               "false"));
   k.make = [](const ServerContext& c, const Settings& v) {
     std::vector<std::unique_ptr<Server>> out;
     if (v.text("tcp").empty()) return out;
     std::string name = "cell";
     if (c.config) name = "cell " + c.config->name;
-    out.push_back(std::make_unique<HttpServer>(std::make_unique<LiveSource>(c, name), http_settings(v)));
+    const HttpSettings s = http_settings(v);
+    if (s.edit && !s.writable.everything())
+      throw Error("servers.http.edit: true needs servers.http.writable: all (a page that may change the program "
+                  "may change anything)");
+    out.push_back(std::make_unique<HttpServer>(std::make_unique<LiveSource>(c, name), s));
     return out;
   };
   return k;

@@ -1,5 +1,6 @@
 #include "plc_cell/motion/axes_extension.h"
 
+#include "plc_cell/motion/axes_online_check.h"
 #include "plc_cell/motion/motion_functions.h"
 
 namespace plc_cell {
@@ -10,8 +11,10 @@ void AxesExtension::install(const CellConfig&, FunctionTable& t) { add_functions
 void AxesExtension::attach(const CellConfig& cfg, Plc& plc, ErrorList& errors) {
   unit_ = std::make_unique<MotionUnit>(plc);
   probes_ = std::make_unique<AxisProbes>(unit_.get());
+  online_check_ = std::make_unique<AxesOnlineCheck>(unit_.get());
   provide<MotionUnit>(unit_.get());
   provide<ProbeFacet>(probes_.get());
+  provide<OnlineCheckFacet>(online_check_.get());
   const YAML::Node section = cfg.document.IsMap() ? cfg.document["axes"] : YAML::Node();
   errors.collect([&] { unit_->configure(parse_axes_config(section, cfg.file)); }, cfg.file, section);
 }

@@ -2,11 +2,15 @@
 
 #include <std_msgs/Bool.h>
 
+#include <fstream>
+#include <sstream>
+
 #include "plc_cell/ForcedPoints.h"
 #include "plc_cell/IoState.h"
 #include "plc_cell/IoWords.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/online/il_diff.h"
 #include "plc_cell/ros/extension_diagnostics.h"
 #include "plc_cell/ros/frame_id.h"
 #include "plc_cell/ros/node_parameters.h"
@@ -175,28 +179,49 @@ bool PlcNode::on_run(std_srvs::SetBool::Request& req, std_srvs::SetBool::Respons
   return true;
 }
 
+// Through the cell's change service, as the monitor and --watch-program (docs/online-change.md).
 bool PlcNode::on_load(LoadProgram::Request& req, LoadProgram::Response& res) {
-  try {
-    if (!req.text.empty()) {
-      cell_->plc().load_program_text(req.text, "<service>");
-    } else {
-      std::string path;
-      {
-        std::lock_guard<std::mutex> lk(path_mu_);
-        path = req.path.empty() ? program_path_ : req.path;
-      }
-      cell_->plc().load_program_file(path);
+  ChangeRequest r;
+  r.source = ChangeSource::Service;
+  r.force = req.force;
+  r.reason = req.reason;
+  r.text = req.text;
+  if (r.text.empty()) {
+    std::string path;
+    {
       std::lock_guard<std::mutex> lk(path_mu_);
-      program_path_ = path;
+      path = req.path.empty() ? program_path_ : req.path;
     }
-    res.instructions = cell_->plc().locked([](ScanEngine& e, Memory&) {
-      return static_cast<uint32_t>(e.program().code.size());
-    });
-    res.success = true;
-  } catch (const std::exception& e) {
-    res.success = false;
-    res.message = e.what();
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      res.success = false;
+      res.result = "refused";
+      res.message = "cannot read " + path;
+      return true;
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    r.text = text.str();
   }
+  online::ChangeService& changes = cell_->changes();
+  ChangeOutcome o;
+  if (online::text_hash(r.text) == changes.hash()) {
+    o.result = "applied";
+    o.why = "this program is already running: nothing changed";
+  } else {
+    o = changes.apply(r);
+  }
+  res.success = o.result != "refused";
+  res.result = o.result;
+  res.message = o.why;
+  for (const auto& e : o.errors)
+    res.message += "\n" + changes.file() + ":" + std::to_string(e.line) + ":" + std::to_string(e.column) + ": " +
+                   e.message;
+  if (o.gate.configured && !o.gate.passed) res.message += "\ngate: " + o.gate.summary;
+  res.report = to_json(o).dump();
+  res.instructions = cell_->plc().locked([](ScanEngine& e, Memory&) {
+    return static_cast<uint32_t>(e.program().code.size());
+  });
   return true;
 }
 

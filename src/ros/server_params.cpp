@@ -15,6 +15,8 @@ std::vector<std::string> texts(const XmlRpc::XmlRpcValue& v, const std::string& 
   switch (v.getType()) {
     case XmlRpc::XmlRpcValue::TypeString:
       return {static_cast<std::string>(const_cast<XmlRpc::XmlRpcValue&>(v))};
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      return {static_cast<bool>(const_cast<XmlRpc::XmlRpcValue&>(v)) ? "true" : "false"};
     case XmlRpc::XmlRpcValue::TypeInt:
       return {std::to_string(static_cast<int>(const_cast<XmlRpc::XmlRpcValue&>(v)))};
     case XmlRpc::XmlRpcValue::TypeDouble:

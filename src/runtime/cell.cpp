@@ -122,7 +122,15 @@ Cell::Cell(const std::string& config_path, const CellOverrides& o, Purpose purpo
     });
   }
 
+  online::ChangeSetup change;
+  change.cell_file = config_path;
+  change.program_path = soft_->program_path();
+  if (const auto* gate = soft_->get<GateConfig>()) change.gate = *gate;
+  change.extensions = &soft_->extensions();
+  changes_ = std::make_unique<online::ChangeService>(plc(), change);
+
   ServerContext context(plc());
+  context.changes = changes_.get();
   context.config = &cfg;
   context.extensions = &soft_->extensions();
   context.program_path = soft_->program_path();

@@ -1,6 +1,7 @@
 #include "plc_cell/sim/soft_cell.h"
 
 #include "plc_cell/config/extension_registry.h"
+#include "plc_cell/config/gate_config.h"
 #include "plc_cell/config/yaml_reader.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/core/unreadable.h"
@@ -43,12 +44,14 @@ std::set<std::string> SoftCell::sections(const CellExtensions& more) {
 }
 
 // The built-in subsystems come first, in the order they attach: the temperature modules,
-// the counters (whose edge sources the axes' pins and encoders are), the axes.
+// the counters (whose edge sources the axes' pins and encoders are), the axes; then the
+// gate: section, which every cell file may have (docs/online-change.md).
 CellExtensions SoftCell::with_builtins(CellExtensions more) {
   CellExtensions all;
   all.push_back(std::make_unique<temp::ModulesExtension>());
   all.push_back(std::make_unique<hsc::CountersExtension>());
   all.push_back(std::make_unique<motion::AxesExtension>());
+  all.push_back(gate_section());
   for (auto& x : more) all.push_back(std::move(x));
   for (auto& x : registered_extensions()) all.push_back(std::move(x));
   return all;

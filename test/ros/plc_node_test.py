@@ -1,5 +1,6 @@
 #!/usr/bin/python3
 """rostest for plc_node: topics in, program outputs observed on topics out, services."""
+import json
 import os
 import subprocess
 import sys
@@ -213,18 +214,33 @@ class PlcNodeTest(unittest.TestCase):
         self.start_pub.publish(Bool(False))
 
     def test_load_program_error_keeps_old_program(self):
-        r = self.load("", "ORG X0\nOUT Q9\nEND\n")
+        program = rospy.get_param(NS + "program")
+        original = open(program).read()
+        r = self.load(text="ORG X0\nOUT Q9\nEND\n")
         self.assertFalse(r.success)
-        self.assertIn("<service>:2:5", r.message)
+        self.assertEqual(r.result, "refused")
+        self.assertIn("test_cell.il:2:5", r.message)
         self.start_pub.publish(Bool(True))
         self.assertTrue(self.motor.wait_for(lambda m: m.data).data, "the old program stopped running")
         self.start_pub.publish(Bool(False))
-        r = self.load("", "ORG X0\nOUT Y0\nORG M1925\nFUN 8 S=321 D=R20\nEND\n")
+        text = "ORG X0\nOUT Y0\nORG M1925\nFUN 8 S=321 D=R20\nEND\n"
+        r = self.load(text=text)
         self.assertTrue(r.success, r.message)
+        self.assertEqual(r.result, "applied")
         self.assertEqual(r.instructions, 5)
         self.assertEqual(self.sums.wait_for(lambda m: m.values[3] == 321).values[3], 321)
-        r = self.load("", "")  # reload the file named in the cell
+        # Through the change service: the program file rewritten, the change in its log.
+        report = json.loads(r.report)
+        self.assertEqual(open(program).read(), text)
+        log = [json.loads(l) for l in open(program + ".changes.jsonl")]
+        self.assertEqual([(e["result"], e["source"]) for e in log], [("refused", "service"), ("applied", "service")])
+        self.assertEqual(log[-1]["new_hash"], report["new_hash"])
+        r = self.load()  # reload the file named in the cell: the program just written, nothing changes
         self.assertTrue(r.success, r.message)
+        self.assertIn("already running", r.message)
+        r = self.load(text=original)  # the other tests' program again
+        self.assertEqual(r.result, "applied", r.message)
+        self.assertEqual(open(program).read(), original)
 
     def test_diagnostics_report_the_scan(self):
         diag = Latest("/diagnostics", DiagnosticArray, timeout=TIMEOUT)

@@ -22,6 +22,7 @@ namespace plc_cell {
 class Plc;
 struct CellConfig;
 class CellExtension;
+class ProgramChanges;
 
 // What a server kind's factory may use besides its settings: the PLC, and for a server
 // that shows the whole cell (the monitor, docs/monitor-api.md) the cell's config, its
@@ -34,6 +35,7 @@ struct ServerContext {
   const std::vector<std::unique_ptr<CellExtension>>* extensions = nullptr;
   std::string program_path;
   std::function<std::vector<const Server*>()> servers;  // every server of the cell, when set
+  ProgramChanges* changes = nullptr;  // changes of the running program (online change), when offered
 };
 
 enum class SettingType {
@@ -43,6 +45,7 @@ enum class SettingType {
   Integer,     // in [lo, hi]
   Duration,    // "60s", "250ms", a bare number of seconds; lo/hi in microseconds
   Writable,    // "D0-D99,M800", "all" or "none" (a YAML list is joined)
+  Boolean,     // true/false (also on/off, 1/0), kept as "true" or "false"
 };
 
 struct SettingSpec {
@@ -78,6 +81,7 @@ class Settings {
   int64_t integer(const std::string& key) const;
   uint64_t duration_us(const std::string& key) const;
   WritableRanges writable(const std::string& key) const;
+  bool boolean(const std::string& key) const { return text(key) == "true"; }
 
  private:
   std::string kind_;

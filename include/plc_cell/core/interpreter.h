@@ -47,7 +47,13 @@ class Interpreter {
 
   // Binds the program to memory. Edge memories and timer remainders start fresh.
   void load(const Program& program);
+  // Binds as load() does, keeping what a change in RUN keeps (docs/online-change.md): every
+  // timer's running state and remainder, and the edge memory of each edge instruction the
+  // new program still has (online_change.h, carried_edges).
+  void load_keeping_state(const Program& program);
   bool loaded() const { return !code_.empty(); }
+  // A TMR whose rung was on at its last run: the timer is timing (or up and held).
+  bool timer_running(uint32_t timer) const { return timer_running_[timer] != 0; }
   const Program& program() const { return program_; }
 
   // Time base of each timer in microseconds (FBs default: T0-49 10 ms, T50-199 100 ms, T200-255 1 s).

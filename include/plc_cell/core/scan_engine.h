@@ -62,6 +62,12 @@ class ScanEngine {
   ScanEngine(Memory& mem, const FunctionTable& functions);
 
   void load(const Program& program);
+  // A change in RUN (docs/online-change.md): swapped in at this scan boundary keeping the
+  // memory, the timers and the edge memories the new program still has, without a first-scan
+  // pulse. In STOP it is load(). The caller checks online_change_refusals first.
+  void load_online(const Program& program);
+  // Whether the last load was load_online (what a lockstep twin repeats).
+  bool last_load_online() const { return last_load_online_; }
   const Program& program() const { return interp_.program(); }
   // How many programs were loaded, and how many times STOP -> RUN happened: what a lockstep
   // twin follows (core/native/lockstep.h).
@@ -152,6 +158,7 @@ class ScanEngine {
   std::unique_ptr<Lockstep> lockstep_;  // the twin, in lockstep only
   RunObserver* runs_ = nullptr;         // lockstep_, or the recorder of a twin
   uint64_t program_loads_ = 0, run_starts_ = 0;
+  bool last_load_online_ = false;
   std::vector<AreaRange> retentive_;
   std::vector<ScanHook*> hooks_;
   // The hooks each scan phase calls (ScanHook::phases_of), in the order they were added.

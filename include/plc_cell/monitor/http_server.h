@@ -27,6 +27,9 @@ struct HttpSettings {
   std::vector<std::string> allowed_hosts;  // Host names accepted besides loopback and the bound address
   std::string asset_root;                  // the page's files ("" = default_asset_root())
   std::string vendor_root = "/usr/share/javascript";  // /vendor/<lib>/... (Debian's libjs-*)
+  // Pages may change the running program (Apply, Undo: docs/online-change.md); only with
+  // writable all, and every change with the session's token.
+  bool edit = false;
 };
 
 // The page's folder: $PLC_CELL_MONITOR_ASSETS, else share/monitor of the source tree this

@@ -31,12 +31,14 @@ class LiveSource : public Source {
   void set_mode(RunMode mode) override;
   std::optional<std::vector<uint8_t>> coverage() override;
   const FunctionTable* functions() const override { return &plc_.functions(); }
+  ProgramChanges* changes() override { return changes_; }
 
  private:
   Plc& plc_;
   const CellConfig* config_;
   const std::vector<std::unique_ptr<CellExtension>>* extensions_;
   std::function<std::vector<const Server*>()> servers_;
+  ProgramChanges* changes_;
   std::string name_;
 
   mutable std::mutex mu_;  // the program view and the coverage buffer (not the PLC)

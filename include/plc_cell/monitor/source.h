@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "plc_cell/config/cell_extension.h"
+#include "plc_cell/config/program_changes.h"
 #include "plc_cell/core/address.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/core/program.h"
@@ -124,6 +125,9 @@ class Source {
   // The instruction set the program was parsed with (the ladder's FUN names and inputs);
   // nullptr: the core's.
   virtual const FunctionTable* functions() const { return nullptr; }
+  // Changes of the running program (the Edit tab, docs/online-change.md); nullptr where the
+  // program cannot be changed from here (a real PLC, a recording).
+  virtual ProgramChanges* changes() { return nullptr; }
 };
 
 }  // namespace monitor

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "plc_cell/config/cell_extension.h"
+#include "plc_cell/motion/axes_online_check.h"
 #include "plc_cell/motion/axis_probes.h"
 #include "plc_cell/motion/motion_unit.h"
 
@@ -28,6 +29,7 @@ class AxesExtension : public CellExtension {
  private:
   std::unique_ptr<MotionUnit> unit_;
   std::unique_ptr<AxisProbes> probes_;
+  std::unique_ptr<AxesOnlineCheck> online_check_;
 };
 
 }  // namespace motion

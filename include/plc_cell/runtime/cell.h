@@ -16,6 +16,7 @@
 #include "plc_cell/config/server_kind.h"
 #include "plc_cell/core/realtime_loop.h"
 #include "plc_cell/io/server.h"
+#include "plc_cell/online/change_service.h"
 #include "plc_cell/persist/persister.h"
 #include "plc_cell/sim/soft_cell.h"
 
@@ -67,6 +68,9 @@ class Cell {
   Plc& plc() { return soft_->plc(); }
   const CellConfig& config() const { return soft_->config(); }
   const std::string& program_path() const { return soft_->program_path(); }
+  // Changes of the running program (docs/online-change.md): the one path plc_node's
+  // ~load_program, the monitor and `plc_cell run --watch-program` take.
+  online::ChangeService& changes() { return *changes_; }
   uint64_t scan_period_us() const { return scan_us_; }
   int rt_priority() const { return rt_priority_; }
   const PersistSettings& persist_settings() const { return persist_; }
@@ -92,6 +96,7 @@ class Cell {
   // Before soft_: the cell's engine, which scans the twin, goes first.
   std::unique_ptr<SoftCell> twin_;
   std::unique_ptr<SoftCell> soft_;
+  std::unique_ptr<online::ChangeService> changes_;  // before the servers, which use it
   std::map<std::string, Settings> server_settings_;
   uint64_t scan_us_ = 0;
   int rt_priority_ = 0;

@@ -8,6 +8,7 @@
 
 import * as api from "./api.js";
 import {coverage} from "./coverage.js";
+import {EditTab} from "./edit.js";
 import {show} from "./format.js";
 import {Ladder} from "./ladder.js";
 import {Live} from "./live.js";
@@ -35,8 +36,9 @@ const trends = new Trends($("trends-panel"), {changed: () => resubscribe(), log:
 const ladder = new Ladder($("ladder"), async (address) => {
   if (await watch.add(address)) toast(`${address} added to the watch table`);
 });
+const edit = new EditTab($("edit-panel"), {log: addLog});
 const observer = new IntersectionObserver(onVisibility, {root: null, rootMargin: "200px"});
-const live = new Live({frame: onFrame, status: onStatus, log: onLogEvent, program: () => loadLadder(),
+const live = new Live({frame: onFrame, status: onStatus, log: onLogEvent, program: () => programChanged(),
                        open: onOpen, close: onClose, error: (m) => addLog(`server: ${m.error || m}`, "error")});
 
 function toast(text) {
@@ -99,6 +101,22 @@ async function loadLadder() {
   onSearch();
   if (page.coverage) await refreshCoverage();
   resubscribe();
+}
+
+// A new program is running (a change from this page, another, the service or the file).
+async function programChanged() {
+  await loadLadder();
+  await loadEdit();
+}
+
+// The Edit tab keeps what is typed in it unless it still shows the program that ran before.
+async function loadEdit() {
+  try {
+    const before = edit.state && edit.state.text;
+    await edit.load(before !== undefined && before !== null && edit.text() !== before);
+  } catch (e) {
+    addLog(`edit: ${e.message}`, "error");
+  }
 }
 
 async function loadStatus() {
@@ -179,6 +197,7 @@ async function onOpen() {
     await loadSession();
     await loadLadder();
     await loadStatus();
+    await loadEdit();
     banner("");
     await watch.validate();
   } catch (e) {
@@ -234,6 +253,8 @@ function showTab(id) {
   for (const b of document.querySelectorAll(".tabs button")) b.classList.toggle("active", b.dataset.tab === id);
   for (const s of document.querySelectorAll(".side .tab")) s.hidden = s.id !== id;
   if (id === "trends-panel") trends.resetGraph();
+  document.body.classList.toggle("editing", id === "edit-panel");
+  if (id === "edit-panel") edit.shown();
 }
 
 function wire() {
@@ -250,4 +271,4 @@ function wire() {
 wire();
 live.connect();
 // For the browser tests and the console: the page's parts.
-window.plcMonitor = {page, ladder, watch, trends, live};
+window.plcMonitor = {page, ladder, watch, trends, live, edit};

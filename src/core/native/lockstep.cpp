@@ -129,7 +129,9 @@ void Lockstep::before_scan(uint64_t now_us) {
   const ScanEngine& p = *primary_;
   twin_.locked([&](ScanEngine& t, Memory& m) {
     if (p.program_loads() != loads_seen_) {
-      t.load(p.program());  // an online change, at the same scan boundary
+      // An online change, at the same scan boundary and of the same kind.
+      if (p.last_load_online()) t.load_online(p.program());
+      else t.load(p.program());
       loads_seen_ = p.program_loads();
     }
     if (p.run_starts() != starts_seen_) {  // a STOP -> RUN since, even if both are back in RUN
