@@ -141,7 +141,8 @@ function onFrame(frame) {
   if (page.replay) page.replay.frame(frame);
   page.stale = frame.stale ? staleText(frame.stale) : "";
   showBanner();
-  if (frame.mode) setMode(frame.mode);
+  page.modeWhy = frame.stale ? "the source cannot be read now" : frame.no_flow;
+  if (frame.mode) setMode(frame.mode, page.modeWhy);
   if (!frame.stale) page.t_us = frame.t_us ?? page.t_us;
   const clock = $("clock");
   // A real PLC's scans are not seen: what its frames count are the monitor's polls.
@@ -151,10 +152,12 @@ function onFrame(frame) {
   clock.dataset.tUs = frame.t_us;
 }
 
-function setMode(mode) {
+// why: what the server said of a mode it does not know (a link that is down, a TRi that
+// reports no RUN/STOP).
+function setMode(mode, why) {
   const m = $("mode");
   m.textContent = mode === "unknown" ? "RUN/STOP ?" : mode.toUpperCase();
-  m.title = mode === "unknown" ? "not known: the source cannot be read now" : "";
+  m.title = mode === "unknown" ? `not known: ${why || "the source cannot say"}` : "";
   m.className = `mode mode-${mode}`;
 }
 
@@ -163,7 +166,7 @@ function onStatus(status) {
   page.status = rest;
   renderStatus($("status-panel"), rest);
   // A stale frame says the mode is not known; a status gathered meanwhile says no better.
-  if (rest.mode && !page.stale) setMode(rest.mode);
+  if (rest.mode && !page.stale) setMode(rest.mode, page.modeWhy);
   if (page.session) describeSource(page.session, rest);
   const button = $("mode-switch");
   const why = modeRefusal(rest);
