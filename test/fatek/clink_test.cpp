@@ -250,14 +250,17 @@ TEST_F(ClinkFree, Md2ReceivesByGapAndRepliesWhenTheLengthIsSet) {
 }
 
 // FUN151 MD0 on a COM port whose slave answers late but in order (the soft PLC's FATEK
-// serial server behind a proxy that holds each reply back 60 ms; time-out 50 ms). The two
+// serial server behind a proxy that holds each reply back 250 ms; time-out 200 ms). The two
 // packets read one register each: their replies are alike but for the value, and a late
-// one must never land in the other packet's master register.
+// one must never land in the other packet's master register. After a time-out the master
+// waits for the line to be quiet for the time-out before the next packet, so a reply up to
+// twice the time-out late is drained; the proxy's 250 ms leave 150 ms for the threads of a
+// loaded machine to be late by.
 TEST(ClinkLate, ALateReplyIsNeverTakenForTheNextPacket) {
   fatek_test::TempDir dir;
   PtyProxy proxy(dir.path, 1);
   PtyProxy::Faults f;
-  f.delay_ms = 60;
+  f.delay_ms = 250;
   proxy.set_faults(f);
   Plc slave;
   slave.write(parse_address("R0"), {111, 222});
@@ -269,7 +272,7 @@ TEST(ClinkLate, ALateReplyIsNeverTakenForTheNextPacket) {
   auto ports = std::make_shared<ClinkPorts>();
   ComLine line;
   line.serial = parse_serial_settings(proxy.client_link() + ":115200:7E1");
-  ports->set_port(std::make_shared<ComPort>(1, line), 50);
+  ports->set_port(std::make_shared<ComPort>(1, line), 200);
   FunctionTable t = FunctionTable::with_core_functions();
   add_clink_function(t, ports);
   Plc master(std::move(t));

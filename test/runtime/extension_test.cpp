@@ -90,7 +90,7 @@ TEST(Extensions, TheBuiltInSubsystemsAndTheCellsComeInOrder) {
   Cell cell(write_cell(d, "", "ORG M1925\nOUT Y0\nEND\n"), {}, Cell::Purpose::Check);
   std::vector<std::string> names;
   for (const auto& x : cell.soft().extensions()) names.push_back(x->name());
-  EXPECT_EQ(names, (std::vector<std::string>{"modules", "counters", "axes", "protocol functions", "servers"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"modules", "counters", "axes", "gate", "protocol functions", "servers"}));
 }
 
 // Every section an extension claims is a section of the cell file, and every section of
