@@ -45,7 +45,7 @@ bool parse_number(const std::string& s, double* v) {
 }
 
 // One comparison from its words: NAME | not NAME | NAME OP VALUE [C] [+- TOL].
-Comparison comparison(const std::vector<std::string>& w, const std::string& text) {
+Comparison comparison(const std::vector<std::string>& w, const std::string& text, Naming naming) {
   Comparison c;
   c.text = text;
   size_t i = 0;
@@ -57,7 +57,7 @@ Comparison comparison(const std::vector<std::string>& w, const std::string& text
     negated = true;
   }
   if (i >= w.size()) throw Error("'" + text + "': 'not' of what?");
-  c.probe = parse_probe(negated && i == 0 ? w[0].substr(1) : w[i]);
+  c.probe = parse_probe(negated && i == 0 ? w[0].substr(1) : w[i], naming);
   ++i;
   // The units the probe's family reads in (config/probe_facet.h), the longest first.
   std::vector<std::string> units;
@@ -126,7 +126,7 @@ bool Comparison::holds(const Reading& r) const {
   return false;
 }
 
-Condition parse_condition(const std::string& text) {
+Condition parse_condition(const std::string& text, Naming naming) {
   Condition cond;
   cond.text = text;
   const auto w = words(text);
@@ -135,7 +135,7 @@ Condition parse_condition(const std::string& text) {
   std::string part_text;
   auto flush = [&] {
     if (part.empty()) throw Error("'" + text + "': 'and' needs a comparison on each side");
-    cond.all.push_back(comparison(part, part_text));
+    cond.all.push_back(comparison(part, part_text, naming));
     part.clear();
     part_text.clear();
   };

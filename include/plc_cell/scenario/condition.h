@@ -33,7 +33,8 @@ struct Condition {
 };
 
 // Throws plc_cell::Error saying what is wrong and where in the text.
-Condition parse_condition(const std::string& text);
+// naming: a line's names (CELL.NAME) or a lone cell's.
+Condition parse_condition(const std::string& text, Naming naming = Naming::Cell);
 // A tolerance from the step (`tolerance: 0.5`) for the comparisons that have none.
 void apply_tolerance(Condition& c, double tolerance);
 
