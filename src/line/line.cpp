@@ -56,12 +56,12 @@ void Line::build(ErrorList& errors) {
     const CellEntry& c = file_.cells[i];
     const std::string why = why_unreadable(c.config);
     if (!why.empty()) {
-      errors.add(error_at(c.config_at, "key 'cells." + c.name + "': cannot open the cell YAML " + c.config + ": " + why));
+      errors.add(error_at(c.config_at, "key 'cells." + c.name + "': cannot open the cell YAML: " + why));
       continue;
     }
     if (!c.program.empty() && !why_unreadable(c.program).empty()) {
-      errors.add(error_at(c.program_at, "key 'cells." + c.name + ".program': cannot open the program " + c.program +
-                                            ": " + why_unreadable(c.program)));
+      errors.add(error_at(c.program_at, "key 'cells." + c.name + ".program': cannot open the program: " +
+                                            why_unreadable(c.program)));
       continue;
     }
     if (!options_.here.empty() && !options_.here.count(c.name)) {

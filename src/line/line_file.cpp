@@ -39,22 +39,23 @@ CellEntry read_cell(const YamlReader& r, const YAML::Node& name, const YAML::Nod
   const std::string key = "cells." + name.Scalar();
   c.name = r.topic_name(name, key, "cell");
   c.at = where(r.file(), name);
-  YAML::Node config = n;
   if (n.IsMap()) {
     r.only(n, key, {"config", "program", "scan"});
     if (!n["config"]) r.fail(n, key, "missing 'config': the cell YAML");
-    config = n["config"];
     if (n["program"]) {
       c.program = resolved(r.file(), r.str(n["program"], key + ".program"));
       c.program_at = where(r.file(), n["program"]);
     }
     if (n["scan"]) {
-      c.scan_us = r.seconds_us(n["scan"], key + ".scan", 0.0001, 1.0);
+      c.scan_us = r.duration_us(n["scan"], key + ".scan");
+      if (c.scan_us < 100 || c.scan_us > 1000000) r.fail(n["scan"], key + ".scan", "a scan period is 0.1 ms to 1 s");
       c.scan_at = where(r.file(), n["scan"]);
     }
   } else if (!n.IsScalar()) {
     r.fail(n, key, "expected the cell YAML, or {config: CELL.yaml, program: FILE.il, scan: 1ms}");
   }
+  // Not a Node assigned from another: yaml-cpp's assignment would overwrite n itself.
+  const YAML::Node config = n.IsMap() ? n["config"] : n;
   c.config = resolved(r.file(), r.str(config, key + (n.IsMap() ? ".config" : "")));
   c.config_at = where(r.file(), config);
   return c;
@@ -136,8 +137,8 @@ LineFile parse_line_file(const std::string& text, const std::string& file, Error
         if (!names.insert(c.name).second) r.fail(kv.first, "cells." + c.name, "a second cell named '" + c.name + "'");
         lf.cells.push_back(std::move(c));
       }, file, kv.first);
-  const YAML::Node wires = doc["wires"];
-  if (wires && !wires.IsSequence())
+  const YAML::Node wires = doc["wires"];  // none (or `wires:` alone): cells side by side
+  if (wires && !wires.IsNull() && !wires.IsSequence())
     errors.add(ErrorList::diagnostic(file, wires, "key 'wires': expected a list of {from: CELL.NAME, to: CELL.NAME}"));
   if (wires && wires.IsSequence())
     for (size_t i = 0; i < wires.size(); ++i)

@@ -17,7 +17,9 @@ namespace testing {
 class LineFolder {
  public:
   LineFolder(const std::string& name, const std::map<std::string, std::string>& files) {
-    dir_ = ::testing::TempDir() + "/line_" + name;
+    std::string tmp = ::testing::TempDir();
+    if (!tmp.empty() && tmp.back() == '/') tmp.pop_back();
+    dir_ = tmp + "/line_" + name;
     std::system(("rm -rf " + dir_ + " && mkdir -p " + dir_).c_str());
     for (const auto& f : files) std::ofstream(dir_ + "/" + f.first) << f.second;
   }
