@@ -75,7 +75,10 @@ Reader Reader::load(const std::string& path) {
 }
 
 Reader Reader::parse(const std::string& bytes, const std::string& name) {
-  const std::string payload = unpack(bytes, name);
+  return parse_payload(unpack(bytes, name, kFormatVersion), name);
+}
+
+Reader Reader::parse_payload(const std::string& payload, const std::string& name) {
   Reader out;
   ByteReader r(payload);
   try {

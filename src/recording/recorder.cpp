@@ -92,7 +92,9 @@ void Recorder::set_failure(uint64_t t_us, const std::string& text) {
   info_.failure = text;
 }
 
-std::string Recorder::bytes() const {
+std::string Recorder::bytes() const { return pack(payload(), kFormatVersion); }
+
+std::string Recorder::payload() const {
   ByteWriter w;
   write_info(info_, w);
   w.varint(initial_.bits.size());
@@ -102,7 +104,7 @@ std::string Recorder::bytes() const {
   w.u8(initial_mode_);
   w.varint(scans_);
   w.bytes() += scans_bytes_;
-  return pack(w.bytes());
+  return w.bytes();
 }
 
 void Recorder::save(const std::string& path) const {

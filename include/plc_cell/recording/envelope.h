@@ -12,10 +12,13 @@ constexpr size_t kEnvelopeSize = 30;
 // A payload larger than this is refused before anything is allocated for it.
 constexpr uint64_t kMaxPayload = uint64_t(1) << 31;
 
-// A payload in its envelope: the file's bytes.
-std::string pack(const std::string& payload);
-// The payload of a file's bytes; throws RecordingError "name: offset N: why".
-std::string unpack(const std::string& file, const std::string& name);
+// A payload in its envelope: the file's bytes. version: kFormatVersion for a cell's
+// recording, kLineFormatVersion for a line's (line_recording.h).
+std::string pack(const std::string& payload, uint16_t version);
+// The payload of a file's bytes, which must be of the format version given; throws
+// RecordingError "name: offset N: why" (a line's recording where a cell's is expected is
+// said so).
+std::string unpack(const std::string& file, const std::string& name, uint16_t version);
 
 }  // namespace recording
 }  // namespace plc_cell

@@ -17,6 +17,8 @@ namespace plc_cell {
 namespace recording {
 
 constexpr uint16_t kFormatVersion = 1;
+// A line's recording: one recording of format 1 per cell, under the line (line_recording.h).
+constexpr uint16_t kLineFormatVersion = 2;
 // What `plc_cell test --record DIR` names a case's file: DIR/<case>.plcrec.
 constexpr const char* kExtension = ".plcrec";
 
