@@ -16,9 +16,10 @@ std::string hold_text(uint64_t hold_us, uint64_t period_us) {
   return hold_us == period_us ? "one scan" : scenario::format_time(hold_us);
 }
 
-std::string inputs_text(const std::vector<uint32_t>& x) {
+// "X2, X3" (in a line "test.X2, test.X3").
+std::string inputs_text(const std::string& prefix, const std::vector<uint32_t>& x) {
   std::string s;
-  for (uint32_t i : x) s += (s.empty() ? "X" : ", X") + std::to_string(i);
+  for (uint32_t i : x) s += (s.empty() ? "" : ", ") + prefix + "X" + std::to_string(i);
   return s;
 }
 
@@ -116,7 +117,8 @@ std::vector<InputSearch::Stimulus>& InputSearch::exhaustive_stimuli(const Networ
   std::vector<Stimulus> out;
   for (uint64_t hold : {period_us_, std::max(period_us_, kLongHoldUs / period_us_ * period_us_)}) {
     Stimulus s;
-    s.name = "the exhaustive run over " + (n.x.empty() ? std::string("no input") : inputs_text(n.x)) + " (" +
+    s.name = "the exhaustive run over " +
+             (n.x.empty() ? std::string("no input") : inputs_text(input_.prefix, n.x)) + " (" +
              hold_text(hold, period_us_) + " a step)";
     for (uint32_t x : n.x) s.spec.inputs.push_back(bit_input(input_, x, hold, hold));
     s.run = exhaustive_run(n.x.size(), hold, period_us_);
@@ -128,7 +130,8 @@ std::vector<InputSearch::Stimulus>& InputSearch::exhaustive_stimuli(const Networ
 std::string InputSearch::plan(int line) const {
   const NetworkInputs* n = network_of(line);
   if (!exhaustive(n)) return exploration_plan_;
-  return "every combination of " + (n->x.empty() ? std::string("no input") : inputs_text(n->x)) + " (one scan a step, then " +
+  return "every combination of " + (n->x.empty() ? std::string("no input") : inputs_text(input_.prefix, n->x)) +
+         " (one scan a step, then " +
          scenario::format_time(kLongHoldUs) + "), then " + exploration_plan_;
 }
 
