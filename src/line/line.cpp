@@ -31,6 +31,7 @@ Line::Line(const LineFile& file, LineOptions options) : file_(file), options_(st
 Line::~Line() {
   stop();
   sinks_.clear();  // their hooks leave the cells' engines before the cells go
+  twin_sinks_.clear();
 }
 
 int Line::find(const std::string& name) const {

@@ -14,6 +14,8 @@ void Line::connect() {
   tap_wire_.assign(size(), {});
   sinks_.clear();
   sinks_.resize(wires_.size());
+  twin_sinks_.clear();
+  twin_sinks_.resize(wires_.size());
   for (size_t i = 0; i < size(); ++i)
     if (here(i) && !cells_[i]->plc().set_mode(RunMode::Run))
       throw Error("cell " + entry(i).name + ": cannot RUN: no program loaded");
@@ -29,6 +31,11 @@ void Line::connect() {
       sinks_[w] = to.plc().locked([&](ScanEngine& e, Memory& m) {
         return WireSink::make(to.soft(), e, m, wire.to, wire.model, wire.initial);
       });
+      // A wire drives the cell's simulation and memory directly: its lockstep twin's too.
+      if (SoftCell* twin = to.twin())
+        twin_sinks_[w] = twin->plc().locked([&](ScanEngine& e, Memory& m) {
+          return WireSink::make(*twin, e, m, wire.to, wire.model, wire.initial);
+        });
     }
   }
 }
@@ -43,14 +50,24 @@ void Line::carry(size_t cell) {
       if (on_remote_) on_remote_(w, s.t_us, s.value);
       continue;
     }
-    // In virtual time the sink shares the source's clock; in real time each cell's clock
-    // is its own, and the delay runs from the value's arrival.
-    cells_[wires_[w].to_cell]->plc().locked([&](ScanEngine& e, Memory&) {
-      sinks_[w]->receive(real_time_ ? e.now_us() : s.t_us, s.value);
-      return 0;
-    });
+    deliver(w, real_time_ ? UINT64_MAX : s.t_us, s.value);
   }
   pending.clear();
+}
+
+// In virtual time the sink shares the source's clock; in real time each cell's clock is its
+// own, and the delay runs from the value's arrival (t_us UINT64_MAX: the sink's now).
+void Line::deliver(size_t w, uint64_t t_us, uint32_t value) {
+  Cell& to = *cells_[wires_[w].to_cell];
+  to.plc().locked([&](ScanEngine& e, Memory&) {
+    sinks_[w]->receive(t_us == UINT64_MAX ? e.now_us() : t_us, value);
+    return 0;
+  });
+  if (twin_sinks_[w])
+    to.twin()->plc().locked([&](ScanEngine& e, Memory&) {
+      twin_sinks_[w]->receive(t_us == UINT64_MAX ? e.now_us() : t_us, value);
+      return 0;
+    });
 }
 
 void Line::scan_at(uint64_t t_us) {
@@ -81,10 +98,7 @@ void Line::receive(size_t wire, uint32_t value) { receive(wire, UINT64_MAX, valu
 void Line::receive(size_t wire, uint64_t t_us, uint32_t value) {
   if (wire >= wires_.size() || sinks_.size() != wires_.size() || !sinks_[wire])
     throw Error("line " + name() + ": wire " + std::to_string(wire) + " has no sink in this process");
-  cells_[wires_[wire].to_cell]->plc().locked([&](ScanEngine& e, Memory&) {
-    sinks_[wire]->receive(t_us == UINT64_MAX ? e.now_us() : t_us, value);
-    return 0;
-  });
+  deliver(wire, t_us, value);
 }
 
 void Line::start_real_time(unsigned shared_threads) {

@@ -60,7 +60,7 @@ class Line {
   // (at their own file:line) and of the wires (at the line file's).
   explicit Line(const std::string& path, LineOptions options = {});
   Line(const LineFile& file, LineOptions options);
-  ~Line();
+  ~Line();  // stops the scans; the wires' ends leave the cells before the cells go
   Line(const Line&) = delete;
   Line& operator=(const Line&) = delete;
 
@@ -120,6 +120,7 @@ class Line {
   void resolve_wires(const std::vector<CellConfig>& configs, ErrorList& errors);
   void connect();
   void carry(size_t cell);  // the samples cell's taps took, to their sinks
+  void deliver(size_t wire, uint64_t t_us, uint32_t value);
   bool here(size_t i) const { return cells_[i] != nullptr; }
 
   LineFile file_;
@@ -131,8 +132,9 @@ class Line {
   // Per cell here: the taps of the wires leaving it, and which wire each tap is.
   std::vector<WireTaps> taps_;
   std::vector<std::vector<size_t>> tap_wire_;
-  // Per wire: its sink end when the sink is here (destroyed before the cells: see ~Line).
-  std::vector<std::unique_ptr<WireSink>> sinks_;
+  // Per wire: its sink end when the sink is here (destroyed before the cells: see ~Line),
+  // and the same in the sink's lockstep twin (runtime/cell.h), which every value reaches too.
+  std::vector<std::unique_ptr<WireSink>> sinks_, twin_sinks_;
   std::function<void(size_t, uint64_t)> after_scan_;
   std::function<void(size_t, uint64_t, uint32_t)> on_remote_;
   std::vector<std::pair<SharedScanThread*, uint64_t>> shared_;  // in real time on shared threads
