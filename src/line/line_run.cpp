@@ -40,7 +40,10 @@ void Line::connect() {
   }
 }
 
-void Line::run() { connect(); }
+void Line::run() {
+  connect();
+  due_us_.assign(size(), 0);
+}
 
 void Line::carry(size_t cell) {
   auto& pending = taps_[cell].pending();
@@ -72,7 +75,11 @@ void Line::deliver(size_t w, uint64_t t_us, uint32_t value) {
 
 void Line::scan_at(uint64_t t_us) {
   for (size_t i = 0; i < cells_.size(); ++i) {
-    if (!cells_[i] || t_us % periods_[i] != 0) continue;
+    // Due at t_us: a multiple of its period (found by stepping, not by a division a scan).
+    uint64_t& due = due_us_[i];
+    if (due < t_us) due += (t_us - due + periods_[i] - 1) / periods_[i] * periods_[i];
+    if (due != t_us || !cells_[i]) continue;
+    due += periods_[i];
     WireTaps& taps = taps_[i];
     cells_[i]->plc().locked([&](ScanEngine& e, Memory& m) {
       e.scan(t_us);

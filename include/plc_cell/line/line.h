@@ -127,6 +127,7 @@ class Line {
   LineOptions options_;
   std::vector<std::unique_ptr<Cell>> cells_;  // nullptr: elsewhere
   std::vector<uint64_t> periods_;
+  std::vector<uint64_t> due_us_;  // per cell here: its next scan's instant
   uint64_t tick_us_ = 1000;
   std::vector<Wire> wires_;
   // Per cell here: the taps of the wires leaving it, and which wire each tap is.
