@@ -123,9 +123,34 @@ void BM_Cells(benchmark::State& state) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// The dearest a wire gets: its source changes at every scan. a inverts its Y0-Y15 at every
+// scan; w wires carry them to b's X16.. (scanned inputs), each change sampled, carried and
+// delivered. Per wire: this one's time less the time with no wire, over w.
+void BM_BusyWires(benchmark::State& state) {
+  const size_t w = size_t(state.range(0));
+  (void)std::system(("mkdir -p " + kDir).c_str());
+  std::ofstream(kDir + "/toggle.il") << "ORG M1925\nFUN 9 MOVN S=WY0 D=WY0\nEND\n";
+  std::ofstream(kDir + "/busy_a.yaml") << "cell: {name: a, program: toggle.il}\n";
+  std::ofstream(kDir + "/busy_b.yaml") << "cell: {name: b, program: toggle.il}\n";
+  const std::string path = kDir + "/busy" + std::to_string(w) + ".line.yaml";
+  {
+    std::ofstream f(path);
+    f << "cells: {a: busy_a.yaml, b: busy_b.yaml}\nwires:\n";
+    for (size_t i = 0; i < w; ++i) f << "  - {from: a.Y" << i << ", to: b.X" << 16 + i << "}\n";
+  }
+  line::Line l(path);
+  l.run();
+  uint64_t t = 0;
+  for (auto _ : state)
+    for (int k = 0; k < 1000; ++k, t += 1000) l.scan_at(t);
+  state.counters["ns_per_instant"] = benchmark::Counter(double(state.iterations()) * 1000.0 * 1e-9,
+                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
 BENCHMARK(BM_DemoAlone)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BusyWires)->Arg(0)->Arg(16)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Cells)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Unwired)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Chain)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);

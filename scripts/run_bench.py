@@ -108,6 +108,8 @@ def line_rows(ws, repetitions, min_time):
     print()
     b = run_scan_bench(binary, repetitions, min_time)
     rows = [("Demo cell alone, per scan", "%.0f ns" % b["BM_DemoAlone"]["ns_per_cell_scan"], "")]
+    busy = (b["BM_BusyWires/16"]["ns_per_instant"] - b["BM_BusyWires/0"]["ns_per_instant"]) / 16
+    rows.append(("A wire changing at every scan, per change", "%.1f ns" % busy, ""))
     for n in (10, 100, 1000):
         cells = b["BM_Cells/%d" % n]["ns_per_cell_scan"]
         unwired = b["BM_Unwired/%d" % n]["ns_per_cell_scan"]

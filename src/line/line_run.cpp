@@ -47,13 +47,29 @@ void Line::run() {
 
 void Line::carry(size_t cell) {
   auto& pending = taps_[cell].pending();
-  for (const WireTaps::Sample& s : pending) {
-    const size_t w = tap_wire_[cell][s.tap];
+  const std::vector<size_t>& wire_of = tap_wire_[cell];
+  // The samples for one sink cell in a row are delivered under one lock (its twin's after).
+  for (size_t k = 0; k < pending.size();) {
+    const size_t w = wire_of[pending[k].tap];
     if (!sinks_[w]) {
-      if (on_remote_) on_remote_(w, s.t_us, s.value);
+      if (on_remote_) on_remote_(w, pending[k].t_us, pending[k].value);
+      ++k;
       continue;
     }
-    deliver(w, real_time_ ? UINT64_MAX : s.t_us, s.value);
+    const size_t to = wires_[w].to_cell;
+    size_t end = k + 1;
+    while (end < pending.size() && sinks_[wire_of[pending[end].tap]] && wires_[wire_of[pending[end].tap]].to_cell == to)
+      ++end;
+    const auto each = [&](const std::vector<std::unique_ptr<WireSink>>& sinks, Plc& plc) {
+      plc.locked([&](ScanEngine& e, Memory&) {
+        for (size_t j = k; j < end; ++j)
+          sinks[wire_of[pending[j].tap]]->receive(real_time_ ? e.now_us() : pending[j].t_us, pending[j].value);
+        return 0;
+      });
+    };
+    each(sinks_, cells_[to]->plc());
+    if (SoftCell* twin = cells_[to]->twin()) each(twin_sinks_, twin->plc());
+    k = end;
   }
   pending.clear();
 }
