@@ -39,6 +39,56 @@ std::string refused_sink(const Address& a, const std::string& text) {
 
 }  // namespace
 
+// One end of a wire: its cell (built or read) and its address there; false (with the
+// error, unless the cell's YAML has errors of its own) when there is none.
+bool Line::resolve_end(const std::vector<CellConfig>& configs, const std::string& text, const SourceLocation& at,
+                       size_t* cell, Address* a, ErrorList& errors) const {
+  std::string name, rest;
+  split_qualified(text, &name, &rest);
+  const int i = find(name);
+  if (i < 0) {
+    errors.add(error_at(at, "'" + text + "': no cell '" + name + "' in the line (" + names() + ")"));
+    return false;
+  }
+  *cell = size_t(i);
+  if (configs[*cell].name.empty()) return false;
+  try {
+    *a = configs[*cell].resolve(rest);
+  } catch (const Error& x) {
+    errors.add(error_at(at, "'" + text + "': " + x.what()));
+    return false;
+  }
+  return true;
+}
+
+// Why the wire, its ends resolved, may not be (at its place), or an empty message.
+Diagnostic Line::refused_wire(const Wire& w, const CellConfig& to_cfg) {
+  const WireEntry& e = w.entry;
+  const std::string why = refused_sink(w.to, e.to);
+  if (!why.empty()) return error_at(e.to_at, why);
+  const int from_bits = value_bits(w.from), to_bits = value_bits(w.to);
+  const auto bits = [](int n) { return n == 1 ? std::string("a bit") : std::to_string(n) + " bits"; };
+  if (from_bits != to_bits)
+    return error_at(e.to_at, "'" + e.from + "' is " + bits(from_bits) + ", '" + e.to + "' " + bits(to_bits) +
+                                 ": a wire joins a bit to a bit, a register to a register of its width");
+  if (from_bits != 1 && (e.invert || e.part))
+    return error_at(e.at, std::string("a register's wire carries its value: '") + (e.invert ? "invert" : "part") +
+                              "' is for a bit");
+  if (w.to.area != Area::X) return {};
+  const auto sim = std::find_if(to_cfg.sim_inputs.begin(), to_cfg.sim_inputs.end(),
+                                [&](const SimInputDef& d) { return d.x == w.to.index; });
+  if (sim != to_cfg.sim_inputs.end())
+    return error_at(e.to_at, "'" + e.to + "' (" + format_address(w.to) + ") is played by the simulation of " +
+                                 to_cfg.file + " (simulation.inputs." + sim->name +
+                                 "): a wired input has no simulation of its own");
+  Cell* c = cells_[w.to_cell].get();
+  if (c && w.to.index < 16 &&
+      !c->plc().locked([&](ScanEngine&, Memory&) { return c->soft().simulation().exact(w.to.index); }))
+    return error_at(e.to_at, "'" + e.to + "' (" + format_address(w.to) +
+                                 ") is driven by a pulse source of the cell's counters or axes");
+  return {};
+}
+
 void Line::resolve_wires(const std::vector<CellConfig>& configs, ErrorList& errors) {
   struct Driven {
     size_t cell;
@@ -49,70 +99,17 @@ void Line::resolve_wires(const std::vector<CellConfig>& configs, ErrorList& erro
   for (const WireEntry& e : file_.wires) {
     Wire w;
     w.entry = e;
-    bool ok = true;
-    // One end: its cell (built or read) and its address there.
-    auto end = [&](const std::string& text, const SourceLocation& at, size_t* cell, Address* a) {
-      std::string name, rest;
-      split_qualified(text, &name, &rest);
-      const int i = find(name);
-      if (i < 0) {
-        errors.add(error_at(at, "'" + text + "': no cell '" + name + "' in the line (" + names() + ")"));
-        return false;
-      }
-      *cell = size_t(i);
-      if (configs[*cell].name.empty()) return false;  // its YAML has errors of its own
-      try {
-        *a = configs[*cell].resolve(rest);
-      } catch (const Error& x) {
-        errors.add(error_at(at, "'" + text + "': " + x.what()));
-        return false;
-      }
-      return true;
-    };
-    ok = end(e.from, e.from_at, &w.from_cell, &w.from) & ok;
-    ok = end(e.to, e.to_at, &w.to_cell, &w.to) & ok;
-    if (!ok) continue;
-    const std::string why = refused_sink(w.to, e.to);
-    if (!why.empty()) {
-      errors.add(error_at(e.to_at, why));
+    const bool from = resolve_end(configs, e.from, e.from_at, &w.from_cell, &w.from, errors);
+    if (!resolve_end(configs, e.to, e.to_at, &w.to_cell, &w.to, errors) || !from) continue;
+    const Diagnostic refused = refused_wire(w, configs[w.to_cell]);
+    if (!refused.message.empty()) {
+      errors.add(refused);
       continue;
-    }
-    const int from_bits = value_bits(w.from), to_bits = value_bits(w.to);
-    if (from_bits != to_bits) {
-      errors.add(error_at(e.to_at, "'" + e.from + "' is " + (from_bits == 1 ? "a bit" : std::to_string(from_bits) + " bits") +
-                                       ", '" + e.to + "' " + (to_bits == 1 ? "a bit" : std::to_string(to_bits) + " bits") +
-                                       ": a wire joins a bit to a bit, a register to a register of its width"));
-      continue;
-    }
-    if (from_bits != 1 && (e.invert || e.part)) {
-      errors.add(error_at(e.at, std::string("a register's wire carries its value: '") + (e.invert ? "invert" : "part") +
-                                    "' is for a bit"));
-      continue;
-    }
-    const CellConfig& to_cfg = configs[w.to_cell];
-    if (w.to.area == Area::X) {
-      const auto sim = std::find_if(to_cfg.sim_inputs.begin(), to_cfg.sim_inputs.end(),
-                                    [&](const SimInputDef& d) { return d.x == w.to.index; });
-      if (sim != to_cfg.sim_inputs.end()) {
-        errors.add(error_at(e.to_at, "'" + e.to + "' (" + format_address(w.to) + ") is played by the simulation of " +
-                                         to_cfg.file + " (simulation.inputs." + sim->name +
-                                         "): a wired input has no simulation of its own"));
-        continue;
-      }
-      Cell* c = cells_[w.to_cell].get();
-      const bool pinned = c && w.to.index < 16 &&
-                          !c->plc().locked([&](ScanEngine&, Memory&) { return c->soft().simulation().exact(w.to.index); });
-      if (pinned) {
-        errors.add(error_at(e.to_at, "'" + e.to + "' (" + format_address(w.to) +
-                                         ") is driven by a pulse source of the cell's counters or axes"));
-        continue;
-      }
     }
     const auto [lo, hi] = span_of(w.to);
     const auto twice = std::find_if(driven.begin(), driven.end(), [&](const Driven& d) {
       const auto [dlo, dhi] = span_of(d.a);
-      return d.cell == w.to_cell && is_discrete(d.a.area) == is_discrete(w.to.area) && d.a.area == w.to.area &&
-             dlo <= hi && lo <= dhi;
+      return d.cell == w.to_cell && d.a.area == w.to.area && dlo <= hi && lo <= dhi;
     });
     if (twice != driven.end()) {
       errors.add(error_at(e.to_at, "'" + e.to + "' (" + format_address(w.to) + ") is driven already, by the wire at " +

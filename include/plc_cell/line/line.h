@@ -118,6 +118,9 @@ class Line {
  private:
   void build(ErrorList& errors);
   void resolve_wires(const std::vector<CellConfig>& configs, ErrorList& errors);
+  bool resolve_end(const std::vector<CellConfig>& configs, const std::string& text, const SourceLocation& at,
+                   size_t* cell, Address* a, ErrorList& errors) const;
+  Diagnostic refused_wire(const Wire& w, const CellConfig& to_cfg);
   void connect();
   void carry(size_t cell);  // the samples cell's taps took, to their sinks
   void deliver(size_t wire, uint64_t t_us, uint32_t value);
