@@ -10,7 +10,6 @@ namespace line {
 
 namespace {
 
-
 // The cell YAML of a cell built elsewhere: read for its names and its simulation only.
 CellConfig config_only(const CellEntry& c, ErrorList& errors) {
   CellConfig cfg;
@@ -49,6 +48,8 @@ std::string Line::names() const {
 // Every cell, each error of one not stopping the others: a user fixes the whole line at once.
 void Line::build(ErrorList& errors) {
   const size_t n = file_.cells.size();
+  for (const auto& name : options_.here)
+    if (find(name) < 0) throw Error("line " + file_.name + " has no cell '" + name + "' to build here (" + names() + ")");
   cells_.resize(n);
   periods_.assign(n, 0);
   std::vector<CellConfig> configs(n);
@@ -93,9 +94,10 @@ void Line::build(ErrorList& errors) {
   tick_us_ = g ? g : 1000;
   // A wire is checked only against cells that were read: an error in a cell YAML is not
   // repeated as one error per wire that names it.
+  std::vector<const CellConfig*> read(n, nullptr);
   for (size_t i = 0; i < n; ++i)
-    if (!ok[i]) configs[i].name.clear();
-  resolve_wires(configs, errors);
+    if (ok[i]) read[i] = &configs[i];
+  resolve_wires(read, errors);
 }
 
 }  // namespace line

@@ -41,8 +41,8 @@ std::string refused_sink(const Address& a, const std::string& text) {
 
 // One end of a wire: its cell (built or read) and its address there; false (with the
 // error, unless the cell's YAML has errors of its own) when there is none.
-bool Line::resolve_end(const std::vector<CellConfig>& configs, const std::string& text, const SourceLocation& at,
-                       size_t* cell, Address* a, ErrorList& errors) const {
+bool Line::resolve_end(const std::vector<const CellConfig*>& configs, const std::string& text,
+                       const SourceLocation& at, size_t* cell, Address* a, ErrorList& errors) const {
   std::string name, rest;
   split_qualified(text, &name, &rest);
   const int i = find(name);
@@ -51,9 +51,9 @@ bool Line::resolve_end(const std::vector<CellConfig>& configs, const std::string
     return false;
   }
   *cell = size_t(i);
-  if (configs[*cell].name.empty()) return false;
+  if (!configs[*cell]) return false;
   try {
-    *a = configs[*cell].resolve(rest);
+    *a = configs[*cell]->resolve(rest);
   } catch (const Error& x) {
     errors.add(error_at(at, "'" + text + "': " + x.what()));
     return false;
@@ -89,7 +89,7 @@ Diagnostic Line::refused_wire(const Wire& w, const CellConfig& to_cfg) {
   return {};
 }
 
-void Line::resolve_wires(const std::vector<CellConfig>& configs, ErrorList& errors) {
+void Line::resolve_wires(const std::vector<const CellConfig*>& configs, ErrorList& errors) {
   struct Driven {
     size_t cell;
     Address a;
@@ -101,7 +101,7 @@ void Line::resolve_wires(const std::vector<CellConfig>& configs, ErrorList& erro
     w.entry = e;
     const bool from = resolve_end(configs, e.from, e.from_at, &w.from_cell, &w.from, errors);
     if (!resolve_end(configs, e.to, e.to_at, &w.to_cell, &w.to, errors) || !from) continue;
-    const Diagnostic refused = refused_wire(w, configs[w.to_cell]);
+    const Diagnostic refused = refused_wire(w, *configs[w.to_cell]);
     if (!refused.message.empty()) {
       errors.add(refused);
       continue;

@@ -1,8 +1,5 @@
 #include "plc_cell/recording/line_recording.h"
 
-#include <fstream>
-#include <sstream>
-
 #include "codec.h"
 #include "plc_cell/recording/envelope.h"
 
@@ -49,22 +46,9 @@ std::string LineRecorder::bytes() const {
   return pack(w.bytes(), kLineFormatVersion);
 }
 
-void LineRecorder::save(const std::string& path) const {
-  const std::string b = bytes();
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error("cannot write the recording " + path);
-  out.write(b.data(), std::streamsize(b.size()));
-  out.close();
-  if (!out) throw Error("cannot write the recording " + path + " (disk full?)");
-}
+void LineRecorder::save(const std::string& path) const { write_recording_file(path, bytes()); }
 
-LineReader LineReader::load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot open the recording " + path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse(s.str(), path);
-}
+LineReader LineReader::load(const std::string& path) { return parse(read_recording_file(path), path); }
 
 LineReader LineReader::parse(const std::string& bytes, const std::string& name) {
   const std::string payload = unpack(bytes, name, kLineFormatVersion);

@@ -3,7 +3,6 @@
 #include <zlib.h>
 
 #include <cstring>
-#include <fstream>
 
 #include "codec.h"
 #include "plc_cell/recording/envelope.h"
@@ -107,14 +106,7 @@ std::string Recorder::payload() const {
   return w.bytes();
 }
 
-void Recorder::save(const std::string& path) const {
-  const std::string b = bytes();
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error("cannot write the recording " + path);
-  out.write(b.data(), std::streamsize(b.size()));
-  out.close();
-  if (!out) throw Error("cannot write the recording " + path + " (disk full?)");
-}
+void Recorder::save(const std::string& path) const { write_recording_file(path, bytes()); }
 
 }  // namespace recording
 }  // namespace plc_cell

@@ -3,6 +3,9 @@
 // their own lines.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <random>
+
 #include "line_fixture.h"
 
 namespace plc_cell {
@@ -150,6 +153,54 @@ TEST(LineErrors, FilesThatCannotBeOpened) {
             "nowhere.yaml)\n"
             "l.line.yaml:3:32: error: key 'cells.b.program': cannot open the program: No such file or directory (looked "
             "for none.il)\n");
+}
+
+}  // namespace
+}  // namespace testing
+}  // namespace plc_cell
+
+namespace plc_cell {
+namespace testing {
+namespace {
+
+// Random damage to a good line file (a byte changed, dropped or doubled, from a fixed seed):
+// reading and building it either succeeds or throws SourceError, each error naming a file,
+// and nothing else escapes.
+TEST(LineErrors, DamagedFilesAreErrorsNeverCrashes) {
+  const std::string good = "line: {name: l}\ncells:\n  a: a.yaml\n  b: {config: b.yaml, scan: 2ms}\nwires:\n"
+                           "  - {from: a.Y0, to: b.X20, delay: 5ms}\n  - {from: b.Y0, to: a.X3, invert: true}\n"
+                           "  - {from: a.M5, to: b.X21, part: {travel: 1s, length: 20ms}}\n  - {from: a.R0, to: b.D7}\n";
+  LineFolder f("hostile", {{"copy.il", "ORG X20\nOUT Y0\nEND\n"},
+                           {"a.yaml", cell_yaml("a", "copy.il")},
+                           {"b.yaml", cell_yaml("b", "copy.il")}});
+  std::mt19937 rnd(20240601);
+  const std::string chars = "{}[]:,.-#&*!|>'\"%@` \n\tabXYRD0123456789";
+  int refused = 0;
+  for (int i = 0; i < 600; ++i) {
+    std::string text = good;
+    for (int k = 0, edits = 1 + int(rnd() % 3); k < edits; ++k) {
+      const size_t at = rnd() % text.size();
+      switch (rnd() % 3) {
+        case 0: text[at] = chars[rnd() % chars.size()]; break;
+        case 1: text.erase(at, 1); break;
+        default: text.insert(at, 1, text[at]);
+      }
+    }
+    std::ofstream(f.path("l.line.yaml")) << text;
+    try {
+      line::Line l(f.path("l.line.yaml"));
+      l.run();
+      for (uint64_t t = 0; t < 5000; t += l.tick_us()) l.scan_at(t);
+    } catch (const SourceError& e) {
+      ++refused;
+      for (const auto& d : e.diagnostics()) {
+        ASSERT_FALSE(d.where.file.empty()) << d.to_string() << "\n" << text;
+        ASSERT_FALSE(d.message.empty()) << text;
+      }
+    }
+  }
+  EXPECT_GT(refused, 300);  // most damage breaks the flow mappings; the rest still makes a line
+  EXPECT_LT(refused, 600) << "no damaged file made a line";
 }
 
 }  // namespace

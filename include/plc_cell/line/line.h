@@ -117,8 +117,9 @@ class Line {
 
  private:
   void build(ErrorList& errors);
-  void resolve_wires(const std::vector<CellConfig>& configs, ErrorList& errors);
-  bool resolve_end(const std::vector<CellConfig>& configs, const std::string& text, const SourceLocation& at,
+  // configs: each cell's, read here or built; nullptr for one that could not be read.
+  void resolve_wires(const std::vector<const CellConfig*>& configs, ErrorList& errors);
+  bool resolve_end(const std::vector<const CellConfig*>& configs, const std::string& text, const SourceLocation& at,
                    size_t* cell, Address* a, ErrorList& errors) const;
   Diagnostic refused_wire(const Wire& w, const CellConfig& to_cfg);
   void connect();

@@ -42,5 +42,9 @@ class RecordingError : public Error {
 // A case name as a file name: letters, digits, '-', '_' and '.' kept, others '_'.
 std::string file_name_for(const std::string& case_name);
 
+// A recording's bytes from its file, and into it (each throws Error naming the file).
+std::string read_recording_file(const std::string& path);
+void write_recording_file(const std::string& path, const std::string& bytes);
+
 }  // namespace recording
 }  // namespace plc_cell
