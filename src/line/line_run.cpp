@@ -90,6 +90,7 @@ void Line::deliver(size_t w, uint64_t t_us, uint32_t value) {
 }
 
 void Line::scan_at(uint64_t t_us) {
+  if (due_us_.size() != cells_.size()) throw Error("line " + name() + ": scan_at before run()");
   for (size_t i = 0; i < cells_.size(); ++i) {
     // Due at t_us: a multiple of its period (found by stepping, not by a division a scan).
     uint64_t& due = due_us_[i];
@@ -132,11 +133,12 @@ void Line::start_real_time(unsigned shared_threads) {
     Cell& c = *cells_[i];
     // After each scan, on the scan's thread: the taps read in one memory copy, then carried.
     auto after = [this, i, &c] {
-      c.plc().locked([&](ScanEngine& e, Memory& m) {
+      const uint64_t t = c.plc().locked([&](ScanEngine& e, Memory& m) {
         taps_[i].sample(m, e.now_us());
-        return 0;
+        return e.now_us();
       });
       if (!taps_[i].pending().empty()) carry(i);
+      if (after_scan_) after_scan_(i, t);
     };
     if (shared_threads == 0) {
       c.start_scanning(after);

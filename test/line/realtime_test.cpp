@@ -3,6 +3,7 @@
 // on speed: each wait is bounded and, past its bound, fails naming what it waited for.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <thread>
 
@@ -39,6 +40,14 @@ void carries_a_change_down_the_chain(unsigned shared_threads) {
   line::LineOptions o;
   o.purpose = Cell::Purpose::Serve;
   line::Line l(f.path("l.line.yaml"), o);
+  // Each cell's scans reported on its own thread, with instants that grow.
+  std::atomic<uint64_t> reported[3] = {0, 0, 0};
+  std::atomic<bool> backwards{false};
+  std::atomic<uint64_t> last[3] = {0, 0, 0};
+  l.after_scan([&](size_t i, uint64_t t) {
+    if (reported[i]++ && t <= last[i]) backwards = true;
+    last[i] = t;
+  });
   l.start_real_time(shared_threads);
   // b.X20 OFF through the inverted wire: c's X20 ON, its R7 (WX16) shows bit 4 (X20).
   ASSERT_TRUE(within_5s([&] { return value(l, 2, "R7") == 16; })) << "c.R7 never read 16 (c.X20 ON)";
@@ -47,7 +56,10 @@ void carries_a_change_down_the_chain(unsigned shared_threads) {
   ASSERT_TRUE(within_5s([&] { return value(l, 2, "R7") == 0; })) << "c.X20 never turned OFF after b.Y0";
   l.cell(0)->plc().set_input(20, false);
   ASSERT_TRUE(within_5s([&] { return value(l, 2, "R7") == 16; })) << "c.X20 never came back ON";
+  ASSERT_TRUE(within_5s([&] { return reported[0] > 10 && reported[1] > 10 && reported[2] > 10; }))
+      << "after_scan not called for every cell";
   l.stop();
+  EXPECT_FALSE(backwards) << "a cell's scan instants went backwards";
   EXPECT_EQ(l.fault(), "");
 }
 

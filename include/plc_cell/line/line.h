@@ -89,7 +89,9 @@ class Line {
   // Every cell here whose period divides t_us scans at t_us, in file order, then the wires
   // carry what they sampled. t_us on the tick grid, increasing.
   void scan_at(uint64_t t_us);
-  // Called after each scan of a cell, with its index and instant (recordings, traces).
+  // Called after each scan of a cell, with its index and instant (recordings, traces), once
+  // its wires are carried. In real time on the cell's scan thread, with no lock held: for
+  // two cells on two threads, at the same time. Set it before the line runs.
   void after_scan(std::function<void(size_t cell, uint64_t t_us)> f) { after_scan_ = std::move(f); }
   // "robot: <why>" for the first cell here (in file order) that stopped on a fault; "" if none.
   std::string fault();
@@ -103,7 +105,8 @@ class Line {
 
   // ---- wires across processes ----
   // A wire whose source is here and sink elsewhere: each change, with its scan's instant.
-  // Called on the scanning thread, with no lock held.
+  // Called on the scanning thread, with no lock held: in real time, for two cells on two
+  // threads at the same time. Set it before the line runs.
   void on_remote_sample(std::function<void(size_t wire, uint64_t t_us, uint32_t value)> f) {
     on_remote_ = std::move(f);
   }
