@@ -35,6 +35,7 @@ set(PLC_CELL_LAYER_RULES
   "runtime core io config timeline hsc temp motion sim persist fatek modbus tri comm coverage ladder monitor online"
   "scenario core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime coverage ladder monitor online"
   "explore core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor online"
+  "line core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor online"
   "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario explore ladder monitor online"
   "recording core io config timeline coverage ladder monitor"
   "remote core io config coverage ladder monitor fatek tri")

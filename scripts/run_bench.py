@@ -8,6 +8,9 @@
                   percentiles, cycle time, overruns.
   bench_temp      (when built) 64 temperature channels + 16 FUN86 loops against
                   a 1 ms scan.
+  bench_line      (when built) chains of 10, 100 and 1,000 demo-like cells on one
+                  virtual clock, beside the same cells unwired and with no line;
+                  and, in a process of its own, the memory of 1,000 cells.
 
 The targets checked are those of docs/performance.md. The exit status is 0 when
 both benchmarks ran, whatever the figures: the machine decides those.
@@ -25,6 +28,7 @@ from process_tree import exit_on_sigterm  # noqa: E402
 TARGET_NS_PER_INSTR = 5.0
 TARGET_SCAN_US = 50.0
 TARGET_P99_US = 200.0
+TARGET_LINE_X = {100: 100.0, 1000: 10.0}  # cells in a chain: x real time in plc_cell sim
 
 
 def find_binary(ws, name):
@@ -96,6 +100,38 @@ def verdict(ok):
     return "met" if ok else "MISSED"
 
 
+def line_rows(ws, repetitions, min_time):
+    """bench_line's figures (docs/performance.md, "Lines of cells"), side by side."""
+    binary = os.path.join(ws, "devel", "lib", "plc_cell", "bench_line")
+    if not os.path.isfile(binary):
+        return []
+    print()
+    b = run_scan_bench(binary, repetitions, min_time)
+    rows = [("Demo cell alone, per scan", "%.0f ns" % b["BM_DemoAlone"]["ns_per_cell_scan"], "")]
+    busy = (b["BM_BusyWires/16"]["ns_per_instant"] - b["BM_BusyWires/0"]["ns_per_instant"]) / 16
+    rows.append(("A wire changing at every scan, per change", "%.1f ns" % busy, ""))
+    for n in (10, 100, 1000):
+        cells = b["BM_Cells/%d" % n]["ns_per_cell_scan"]
+        unwired = b["BM_Unwired/%d" % n]["ns_per_cell_scan"]
+        chain = b["BM_Chain/%d" % n]
+        x = chain["x_real_time"]
+        target = TARGET_LINE_X.get(n)
+        note = ">= %gx: %s" % (target, verdict(x >= target)) if target else ""
+        rows.append(("%d cells: no line / unwired / chain, per cell-scan" % n,
+                     "%.0f / %.0f / %.0f ns" % (cells, unwired, chain["ns_per_cell_scan"]), ""))
+        rows.append(("  chain of %d in plc_cell sim" % n, "%.1fx real time" % x, note))
+    cmd = [binary, "--memory", "1000"]
+    print("$ " + " ".join(cmd), flush=True)
+    text = subprocess.run(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                          universal_newlines=True, timeout=600).stdout
+    sys.stdout.write(text)
+    mem = dict(line.split(" ", 1) for line in text.splitlines() if " " in line)
+    rows.append(("Memory per cell (1,000 cells): resident / heap",
+                 "%.0f / %.0f KiB" % (float(mem["resident_bytes_per_cell"]) / 1024,
+                                      float(mem["heap_bytes_per_cell"]) / 1024), ""))
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workspace", required=True, help="catkin workspace, e.g. .build/ws")
@@ -149,6 +185,7 @@ def main():
         pct = (full_ns - base_ns) / 1e6 * 100
         rows.append(("64 temp channels + 16 PID loops", "%.0f ns/scan" % (full_ns - base_ns),
                      "%.3f %% of 1 ms, < 2 %%: %s" % (pct, verdict(pct < 2.0))))
+    rows += line_rows(ws, args.repetitions, args.min_time)
     print()
     print("== plc_cell benchmark summary (medians of %d repetitions; CPU time; %d CPUs)"
           % (args.repetitions, os.cpu_count() or 0))

@@ -1,6 +1,10 @@
 #include "cell_options.h"
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+#include "plc_cell/sim/virtual_run.h"
 
 #include "plc_cell/core/error.h"
 
@@ -57,6 +61,32 @@ CellOverrides cell_overrides(const Args& args) {
         o.servers.push_back(checked(s, {k.name, s.key, args.all(name), "--" + name}));
       }
   return o;
+}
+
+// One --set ADDR=VALUE, written before the first scan.
+void apply_set(Cell& cell, const std::string& s, const std::string& shown) {
+  const auto eq = s.find('=');
+  if (eq == std::string::npos) throw UsageError("--set takes ADDR=VALUE, got '" + shown + "'");
+  const Address a = cell.config().resolve(s.substr(0, eq));
+  int64_t v;
+  try {
+    size_t used = 0;
+    v = std::stoll(s.substr(eq + 1), &used, 0);
+    if (used != s.size() - eq - 1) throw std::invalid_argument("x");
+  } catch (const std::exception&) {
+    throw UsageError("--set " + shown + ": value is not a number");
+  }
+  // A negative value is the two's complement of the register's width (R1=-500).
+  const int bits = value_bits(a);
+  if (v < 0 && bits > 1 && v >= -(int64_t(1) << (bits - 1))) v &= bits == 16 ? 0xFFFF : 0xFFFFFFFFLL;
+  if (v < 0) throw UsageError("--set " + shown + ": value below the address's range");
+  cell.plc().write(a, {static_cast<uint32_t>(v)});
+}
+
+std::string seconds(uint64_t us) {
+  std::ostringstream s;
+  s << us / 1000000 << "." << std::setw(6) << std::setfill('0') << us % 1000000;
+  return s.str();
 }
 
 }  // namespace cli

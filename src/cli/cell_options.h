@@ -16,6 +16,12 @@ std::vector<std::string> server_options();
 // --program, --scan, --persist, --persist-interval, --rt-priority and the server options
 // given in args, each checked: a bad value is a UsageError naming the option.
 CellOverrides cell_overrides(const Args& args);
+// One --set ADDR=VALUE (shown as the user wrote it), written into cell before the first scan.
+void apply_set(Cell& cell, const std::string& set, const std::string& shown);
+// "2.500000": virtual time in s, as plc_cell sim prints it.
+std::string seconds(uint64_t us);
+// plc_cell sim --line (sim_line.cpp).
+int sim_line(const Args& args);
 
 }  // namespace cli
 }  // namespace plc_cell

@@ -52,10 +52,10 @@ int cmd_explore(const std::vector<std::string>& argv) {
     throw UsageError(std::string("--run/--budget: ") + e.what());
   }
   if (sc.explore.run_us == 0) throw UsageError("--run 0: a run of 0 s explores nothing");
-  const auto period = fresh_target(sc, engine)->period_us();
+  const auto period = fresh_target(sc, engine)->target().period_us();
   const explore::Runner runner = [&](const explore::InputRun& run) {
-    const auto target = fresh_target(sc, engine);  // a fresh cell for every run
-    return scenario::run_case(explore::as_case(sc, run, "explore"), *target);
+    const auto target = fresh_target(sc, engine);  // a fresh cell (or line) for every run
+    return scenario::run_case(explore::as_case(sc, run, "explore"), target->target());
   };
   const explore::Outcome o = explore::explore(sc.explore, period, runner);
   std::cout << "explore " << sc.file << ": seed " << sc.explore.seed << ", " << o.runs << " run(s), "

@@ -12,6 +12,7 @@
 #include "plc_cell/io/stop_signal.h"
 #include "plc_cell/monitor/http_server.h"
 #include "plc_cell/monitor/server_kind.h"
+#include "plc_cell/recording/line_recording.h"
 #include "plc_cell/recording/replay_source.h"
 #include "plc_cell/remote/fatek_link.h"
 #include "plc_cell/remote/remote_source.h"
@@ -26,9 +27,21 @@ namespace {
 
 constexpr const char* kDefaultEndpoint = "127.0.0.1:8080";
 
+// The recording, or with --cell that cell of a line's recording (recording/line_recording.h).
+recording::Reader load_recording(const Args& args) {
+  const std::string path = args.get("recording");
+  if (!args.has("cell")) return recording::Reader::load(path);
+  const recording::LineReader line = recording::LineReader::load(path);
+  if (const recording::Reader* r = line.find(args.get("cell"))) return *r;
+  std::string cells;
+  for (size_t i = 0; i < line.size(); ++i) cells += (i ? ", " : "") + line.name(i);
+  throw UsageError("--cell " + args.get("cell") + ": line " + line.info().line + " has no such cell (" + cells + ")");
+}
+
 std::unique_ptr<monitor::Source> replay_source(const Args& args) {
   const std::string path = args.get("recording");
-  auto src = std::make_unique<recording::ReplaySource>(recording::Reader::load(path), path, SoftCell::functions());
+  const std::string name = args.has("cell") ? path + " (cell " + args.get("cell") + ")" : path;
+  auto src = std::make_unique<recording::ReplaySource>(load_recording(args), name, SoftCell::functions());
   if (args.has("open-at")) {
     const std::string at = args.get("open-at");
     if (at == "failure") {
@@ -91,7 +104,7 @@ monitor::HttpSettings http_options(const Args& args) {
 }
 
 std::vector<std::string> options() {
-  std::vector<std::string> out = {"recording", "open-at", "fatek", "tri", "program", "config",
+  std::vector<std::string> out = {"recording", "cell", "open-at", "fatek", "tri", "program", "config",
                                   "station", "id", "timeout", "duration"};
   const ServerKind kind = monitor::server_kind();
   for (const auto& s : kind.settings) out.push_back(kind.option(s).substr(2));
@@ -107,6 +120,7 @@ int cmd_monitor(const std::vector<std::string>& argv) {
   const int given = int(args.has("recording")) + int(args.has("fatek")) + int(args.has("tri"));
   if (given != 1) throw UsageError("give one of --recording FILE, --fatek HOST:PORT|DEV, --tri HOST:PORT|DEV");
   if (args.has("open-at") && !args.has("recording")) throw UsageError("--open-at goes with --recording");
+  if (args.has("cell") && !args.has("recording")) throw UsageError("--cell goes with --recording (a line's)");
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
   const monitor::HttpSettings settings = http_options(args);
   std::unique_ptr<monitor::Source> source = args.has("recording") ? replay_source(args) : remote_source(args);
@@ -121,11 +135,12 @@ int cmd_monitor(const std::vector<std::string>& argv) {
 
 Command monitor_command() {
   return {"monitor",
-          "--recording FILE [--open-at failure|T] [--http-tcp HOST:PORT] [--http-...]\n"
+          "--recording FILE [--cell NAME] [--open-at failure|T] [--http-tcp HOST:PORT] [--http-...]\n"
           "         --fatek HOST:PORT|DEV [--station N] (--program FILE.il | --config CELL.yaml)\n"
           "         --tri HOST:PORT|DEV [--id N] (--program FILE.il | --config CELL.yaml)\n"
           "         [--timeout 1s] [--duration T]\n"
-          "         the browser monitor on a recorded run (docs/recordings.md) or on a real PLC\n"
+          "         the browser monitor on a recorded run (docs/recordings.md; --cell: one cell of a\n"
+          "         line's recording) or on a real PLC\n"
           "         through its host link (docs/monitor-remote.md); 127.0.0.1:8080 by default\n",
           cmd_monitor};
 }

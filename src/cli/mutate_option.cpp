@@ -17,9 +17,7 @@ void run_mutate(const Args& args, const std::vector<scenario::Scenario>& files, 
   o.jobs = int(args.get_int("jobs", 1, 1, 64));
   // Many runs of the same cases: the native engine unless --engine says otherwise.
   const EngineChoice e = engine.value_or(EngineChoice::Native);
-  const auto results = mutation::run_mutation(files, o, [&](const scenario::Scenario& sc, const std::string& program) {
-    return fresh_target(sc, e, program);
-  });
+  const auto results = mutation::run_mutation(files, o, mutation_targets(e));
   std::cout << "mutation testing on the " << engine_choice_name(e)
             << " engine (the original program's cases on the interpreter, recording what they execute)\n";
   std::cout.flush();

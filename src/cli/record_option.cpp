@@ -27,25 +27,61 @@ recording::RecordingInfo recording_info(const Cell& cell, const std::string& sou
   return info;
 }
 
-std::unique_ptr<recording::Recorder> record_case(scenario::CellTarget& target, const std::string& source) {
-  auto rec = std::make_unique<recording::Recorder>(recording_info(target.cell(), source));
-  rec->start(target.cell().plc());
-  recording::Recorder* r = rec.get();
-  Plc* plc = &target.cell().plc();
-  target.after_scan([r, plc](uint64_t t_us) { r->scanned(*plc, t_us); });
+namespace {
+
+// "infeed.part_out -> robot.part_in (delay 2.000 s, inverted)": a wire as a recording lists it.
+std::string wire_text(const line::WireEntry& w) {
+  std::string s = w.from + " -> " + w.to, how;
+  if (w.part) how = "a part: travel " + scenario::format_time(w.travel_us) + ", length " + scenario::format_time(w.length_us);
+  else if (w.delay_us) how = "delay " + scenario::format_time(w.delay_us);
+  if (w.invert) how += (how.empty() ? "" : ", ") + std::string("inverted");
+  return how.empty() ? s : s + " (" + how + ")";
+}
+
+}  // namespace
+
+std::unique_ptr<recording::LineRecorder> record_line(line::Line& l, const std::string& source) {
+  recording::LineRecordingInfo info;
+  info.source = source;
+  info.line = l.name();
+  for (const auto& w : l.wires()) info.wires.push_back(wire_text(w.entry));
+  std::vector<std::pair<std::string, recording::RecordingInfo>> cells;
+  for (size_t i = 0; i < l.size(); ++i) cells.push_back({l.entry(i).name, recording_info(*l.cell(i), source)});
+  auto rec = std::make_unique<recording::LineRecorder>(info, std::move(cells));
+  for (size_t i = 0; i < l.size(); ++i) rec->cell(i).start(l.cell(i)->plc());
+  recording::LineRecorder* r = rec.get();
+  line::Line* lp = &l;
+  l.after_scan([r, lp](size_t i, uint64_t t_us) { r->cell(i).scanned(lp->cell(i)->plc(), t_us); });
   return rec;
 }
 
-std::string save_case(recording::Recorder& rec, const scenario::CaseResult& result, const std::string& dir,
+std::unique_ptr<CaseRecording> record_case(FreshTarget& target, const std::string& source) {
+  auto rec = std::make_unique<CaseRecording>();
+  if (target.is_line()) {
+    rec->line = record_line(target.line()->line(), source);
+    return rec;
+  }
+  Cell& cell = *target.cells().front().second;
+  rec->cell = std::make_unique<recording::Recorder>(recording_info(cell, source));
+  rec->cell->start(cell.plc());
+  recording::Recorder* r = rec->cell.get();
+  Plc* plc = &cell.plc();
+  target.after_scan([r, plc](size_t, uint64_t t_us) { r->scanned(*plc, t_us); });
+  return rec;
+}
+
+std::string save_case(CaseRecording& rec, const scenario::CaseResult& result, const std::string& dir,
                       std::set<std::string>* used) {
   if (::mkdir(dir.c_str(), 0777) != 0 && errno != EEXIST)
     throw Error("cannot make the recording folder " + dir + ": " + std::strerror(errno));
-  if (!result.passed) rec.set_failure(result.virtual_us, result.failure);
+  if (!result.passed && rec.cell) rec.cell->set_failure(result.virtual_us, result.failure);
+  if (!result.passed && rec.line) rec.line->set_failure(result.virtual_us, result.failure);
   std::string name = recording::file_name_for(result.name);
   const std::string stem = name.substr(0, name.size() - std::strlen(recording::kExtension));
   for (int n = 2; !used->insert(name).second; ++n) name = stem + "-" + std::to_string(n) + recording::kExtension;
   const std::string path = dir + "/" + name;
-  rec.save(path);
+  if (rec.cell) rec.cell->save(path);
+  if (rec.line) rec.line->save(path);
   return path;
 }
 

@@ -12,7 +12,7 @@ namespace cli {
 namespace {
 
 // The explore section's inputs: each drivable on the cell, its low and high values taken.
-void check_explore(const scenario::Scenario& sc, scenario::CellTarget& target, ErrorList& errors) {
+void check_explore(const scenario::Scenario& sc, scenario::Target& target, ErrorList& errors) {
   for (const auto& d : sc.explore.inputs) {
     auto error = [&](const std::string& why) {
       Diagnostic e;
@@ -48,9 +48,10 @@ bool load_scenarios(const std::vector<std::string>& paths, const std::string& to
   for (const auto& path : paths) {
     files->push_back(scenario::read_scenario(path, errors));
     const scenario::Scenario& sc = files->back();
-    if (sc.cell.empty()) continue;
+    if (sc.cell.empty() && sc.line.empty()) continue;
     errors.collect([&] {
-      scenario::CellTarget target(sc.cell, sc.program);
+      FreshTarget fresh(sc, std::nullopt);
+      scenario::Target& target = fresh.target();
       scenario::Case props;  // the properties, for a file with no case
       props.properties = sc.properties;
       for (const auto& e : scenario::check_case(props, target)) errors.add(e);
@@ -77,12 +78,6 @@ std::optional<EngineChoice> engine_option(const Args& args) {
   return engine;
 }
 
-std::unique_ptr<scenario::CellTarget> fresh_target(const scenario::Scenario& sc, std::optional<EngineChoice> engine,
-                                                   const std::string& program) {
-  std::vector<SettingOverride> run;
-  if (engine) run.push_back({"", "engine", {engine_choice_name(*engine)}, "--engine"});
-  return std::make_unique<scenario::CellTarget>(sc.cell, program.empty() ? sc.program : program, run);
-}
 
 }  // namespace cli
 }  // namespace plc_cell

@@ -1,13 +1,14 @@
 #pragma once
 // What plc_cell test, explore and the mutation run share: the scenario files read and their
-// names checked against their cells before anything runs, and the --engine option.
+// names checked against their cells (or lines of cells) before anything runs, and the
+// --engine option.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "args.h"
 #include "plc_cell/core/scan_engine.h"
-#include "plc_cell/scenario/cell_target.h"
+#include "fresh_target.h"
 #include "plc_cell/scenario/scenario.h"
 
 namespace plc_cell {
@@ -20,9 +21,10 @@ bool load_scenarios(const std::vector<std::string>& paths, const std::string& to
 
 // --engine, if given (UsageError when it names no engine).
 std::optional<EngineChoice> engine_option(const Args& args);
-// A fresh cell of sc for one case, on the engine asked for.
-std::unique_ptr<scenario::CellTarget> fresh_target(const scenario::Scenario& sc, std::optional<EngineChoice> engine,
-                                                   const std::string& program = "");
+// A fresh cell (or line) of sc for one case, on the engine asked for.
+inline std::unique_ptr<FreshTarget> fresh_target(const scenario::Scenario& sc, std::optional<EngineChoice> engine) {
+  return std::make_unique<FreshTarget>(sc, engine);
+}
 
 }  // namespace cli
 }  // namespace plc_cell

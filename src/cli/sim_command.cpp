@@ -15,31 +15,6 @@
 namespace plc_cell {
 namespace cli {
 
-static std::string seconds(uint64_t us) {
-  std::ostringstream s;
-  s << us / 1000000 << "." << std::setw(6) << std::setfill('0') << us % 1000000;
-  return s.str();
-}
-
-// One --set ADDR=VALUE, written before the first scan.
-static void apply_set(Cell& cell, Plc& plc, const std::string& s) {
-  const auto eq = s.find('=');
-  if (eq == std::string::npos) throw UsageError("--set takes ADDR=VALUE, got '" + s + "'");
-  const Address a = cell.config().resolve(s.substr(0, eq));
-  int64_t v;
-  try {
-    size_t used = 0;
-    v = std::stoll(s.substr(eq + 1), &used, 0);
-    if (used != s.size() - eq - 1) throw std::invalid_argument("x");
-  } catch (const std::exception&) {
-    throw UsageError("--set " + s + ": value is not a number");
-  }
-  // A negative value is the two's complement of the register's width (R1=-500).
-  const int bits = value_bits(a);
-  if (v < 0 && bits > 1 && v >= -(int64_t(1) << (bits - 1))) v &= bits == 16 ? 0xFFFF : 0xFFFFFFFFLL;
-  if (v < 0) throw UsageError("--set " + s + ": value below the address's range");
-  plc.write(a, {static_cast<uint32_t>(v)});
-}
 
 namespace {
 
@@ -74,8 +49,10 @@ Watches watches(const Args& args, Cell& cell, VirtualRun& run) {
 }  // namespace
 
 int cmd_sim(const std::vector<std::string>& argv) {
-  Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace", "engine", "record", "rtc-start"});
+  Args args(argv, {"program", "config", "duration", "scan", "set", "watch", "trace", "engine", "record", "rtc-start",
+                   "line"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
+  if (args.has("line")) return sim_line(args);
   const uint64_t duration = parse_duration_us(args.require("duration"));
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Simulate);
   const uint64_t scan = cell.scan_period_us();
@@ -85,7 +62,7 @@ int cmd_sim(const std::vector<std::string>& argv) {
   if (!plc.set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
   // After RUN's clearing of the non-retentive memory: the values hold at the first scan,
   // retentive or not.
-  for (const auto& s : args.all("set")) apply_set(cell, plc, s);
+  for (const auto& s : args.all("set")) apply_set(cell, s, s);
   // Said only on a fallback: the status line carries the generation time, and sim's output
   // is the same on every run.
   const std::string fallback =
@@ -142,7 +119,10 @@ Command sim_command() {
           "         [--set ADDR=VALUE ...] [--watch ADDR,...] [--trace FILE.csv]\n"
           "         [--record FILE.plcrec] [--rtc-start 2024-01-01T00:00:00|host]\n"
           "         run the program in virtual time and print the watched values;\n"
-          "         --record: every change of memory with its instant (docs/recordings.md)\n",
+          "         --record: every change of memory with its instant (docs/recordings.md)\n"
+          "     sim --line LINE.yaml --duration 10s [--engine E] [--set CELL.ADDR=VALUE ...]\n"
+          "         [--watch CELL.NAME,...] [--trace FILE.csv] [--record FILE.plcrec]\n"
+          "         a line of cells on one virtual clock (docs/lines.md)\n",
           cmd_sim};
 }
 

@@ -86,11 +86,13 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   for (const auto& sc : files)
     for (const auto& c : sc.cases) {
       if (!selected(filters, c.name)) continue;
-      const auto target = fresh_target(sc, engine);  // a fresh cell for every case
-      if (coverage) recorders.attach(target->cell().plc(), target->cell().config().signals);
+      const auto target = fresh_target(sc, engine);  // a fresh cell (or line) for every case
+      if (coverage)  // per program: a line's cells each add to their own program's coverage
+        for (const auto& cell : target->cells()) recorders.attach(cell.second->plc(), cell.second->config().signals);
       const auto rec = args.has("record") ? record_case(*target, "plc_cell test " + sc.file + ": " + c.name) : nullptr;
-      results.push_back(scenario::run_case(c, *target));
-      if (coverage) recorders.detach(target->cell().plc());
+      results.push_back(scenario::run_case(c, target->target()));
+      if (coverage)
+        for (const auto& cell : target->cells()) recorders.detach(cell.second->plc());
       virtual_us += results.back().virtual_us;
       print_result(sc, results.back());
       if (rec) {

@@ -52,7 +52,8 @@ std::string case_file(const scenario::Scenario& sc, const InputRun& run, const s
   std::ostringstream o;
   std::istringstream lines(comment);
   for (std::string l; std::getline(lines, l);) o << "# " << l << "\n";
-  o << "cell: " << scalar(relative_to(sc.cell, out_path)) << "\n";
+  if (!sc.line.empty()) o << "line: " << scalar(relative_to(sc.line, out_path)) << "\n";
+  else o << "cell: " << scalar(relative_to(sc.cell, out_path)) << "\n";
   if (!sc.program.empty()) o << "program: " << scalar(relative_to(sc.program, out_path)) << "\n";
   o << "properties:\n";
   for (const auto& p : sc.properties) {

@@ -16,15 +16,16 @@ std::string hold_text(uint64_t hold_us, uint64_t period_us) {
   return hold_us == period_us ? "one scan" : scenario::format_time(hold_us);
 }
 
-std::string inputs_text(const std::vector<uint32_t>& x) {
+// "X2, X3" (in a line "test.X2, test.X3").
+std::string inputs_text(const std::string& prefix, const std::vector<uint32_t>& x) {
   std::string s;
-  for (uint32_t i : x) s += (s.empty() ? "X" : ", X") + std::to_string(i);
+  for (uint32_t i : x) s += (s.empty() ? "" : ", ") + prefix + "X" + std::to_string(i);
   return s;
 }
 
-scenario::InputDomain bit_input(uint32_t x, uint64_t hold_min_us, uint64_t hold_max_us) {
+scenario::InputDomain bit_input(const Subject::Part& part, uint32_t x, uint64_t hold_min_us, uint64_t hold_max_us) {
   scenario::InputDomain d;
-  d.probe = scenario::parse_probe("X" + std::to_string(x));
+  d.probe = probe_of(part, "X" + std::to_string(x));
   d.hold_min_us = hold_min_us;
   d.hold_max_us = hold_max_us;
   return d;
@@ -66,11 +67,18 @@ explore::InputRun exhaustive_run(size_t k, uint64_t hold_us, uint64_t period_us)
 InputSearch::InputSearch(const scenario::Scenario& sc, std::string original, const Program& program,
                          const FunctionTable& functions, std::vector<scenario::Probe> observed, TargetFactory make)
     : sc_(sc), original_(std::move(original)), observed_(std::move(observed)), make_(std::move(make)) {
-  const auto first = make_(sc_, original_);
-  period_us_ = std::max<uint64_t>(1, first->period_us());
+  const Subject first = make_(sc_, original_, "");
+  input_ = first.cells.front();
+  input_.cell = nullptr;  // only its prefix: the cell goes with first
+  period_us_ = std::max<uint64_t>(1, first.target->period_us());
+  addresses_.resize(first.cells.size());
   for (const auto& p : observed_) {
-    if (p.kind == scenario::Probe::Kind::Address) addresses_.push_back(first->cell().config().resolve(p.name));
-    else others_.push_back(p);
+    size_t k = 0;
+    while (k < first.cells.size() && first.cells[k].prefix != (p.cell.empty() ? "" : p.cell + ".")) ++k;
+    if (p.kind == scenario::Probe::Kind::Address && k < first.cells.size())
+      addresses_[k].push_back(first.cells[k].cell->config().resolve(p.name));
+    else
+      others_.push_back(p);
   }
   networks_ = network_inputs(program, functions);
   scenario::ExploreSpec spec = sc_.explore;
@@ -78,7 +86,7 @@ InputSearch::InputSearch(const scenario::Scenario& sc, std::string original, con
     std::set<uint32_t> x;
     for (const auto& n : networks_) x.insert(n.x.begin(), n.x.end());
     spec = {};
-    for (uint32_t i : x) spec.inputs.push_back(bit_input(i, period_us_, kDefaultHoldUs));
+    for (uint32_t i : x) spec.inputs.push_back(bit_input(input_, i, period_us_, kDefaultHoldUs));
     spec.run_us = kDefaultRunUs;
     spec.budget_us = kDefaultRuns * kDefaultRunUs;
   }
@@ -109,9 +117,10 @@ std::vector<InputSearch::Stimulus>& InputSearch::exhaustive_stimuli(const Networ
   std::vector<Stimulus> out;
   for (uint64_t hold : {period_us_, std::max(period_us_, kLongHoldUs / period_us_ * period_us_)}) {
     Stimulus s;
-    s.name = "the exhaustive run over " + (n.x.empty() ? std::string("no input") : inputs_text(n.x)) + " (" +
+    s.name = "the exhaustive run over " +
+             (n.x.empty() ? std::string("no input") : inputs_text(input_.prefix, n.x)) + " (" +
              hold_text(hold, period_us_) + " a step)";
-    for (uint32_t x : n.x) s.spec.inputs.push_back(bit_input(x, hold, hold));
+    for (uint32_t x : n.x) s.spec.inputs.push_back(bit_input(input_, x, hold, hold));
     s.run = exhaustive_run(n.x.size(), hold, period_us_);
     out.push_back(std::move(s));
   }
@@ -121,21 +130,25 @@ std::vector<InputSearch::Stimulus>& InputSearch::exhaustive_stimuli(const Networ
 std::string InputSearch::plan(int line) const {
   const NetworkInputs* n = network_of(line);
   if (!exhaustive(n)) return exploration_plan_;
-  return "every combination of " + (n->x.empty() ? std::string("no input") : inputs_text(n->x)) + " (one scan a step, then " +
+  return "every combination of " + (n->x.empty() ? std::string("no input") : inputs_text(input_.prefix, n->x)) +
+         " (one scan a step, then " +
          scenario::format_time(kLongHoldUs) + "), then " + exploration_plan_;
 }
 
-uint64_t InputSearch::scan_hash(scenario::CellTarget& t) {
-  uint64_t h = t.cell().plc().locked([&](ScanEngine& e, Memory& m) {
-    uint64_t x = e.fault().empty() ? kHashStart : ~kHashStart;
-    for (const Address& a : addresses_) x = (x ^ m.read(a)) * 1099511628211ULL;
-    return x;
-  });
-  return fold(h, t, others_);
+uint64_t InputSearch::scan_hash(const Subject& s) {
+  uint64_t h = kHashStart;
+  for (size_t k = 0; k < s.cells.size(); ++k)
+    h = s.cells[k].cell->plc().locked([&](ScanEngine& e, Memory& m) {
+      uint64_t x = e.fault().empty() ? h : ~h;
+      for (const Address& a : addresses_[k]) x = (x ^ m.read(a)) * 1099511628211ULL;
+      return x;
+    });
+  return fold(h, *s.target, others_);
 }
 
 void InputSearch::drive(const std::string& program, const Stimulus& s, const AfterScan& after) {
-  const auto target = make_(sc_, program);
+  const Subject subject = make_(sc_, original_, program == original_ ? "" : program);
+  scenario::Target* target = subject.target;
   auto set = [&](size_t input, double v) {
     const scenario::InputDomain& d = s.spec.inputs[input];
     scenario::Value value;
@@ -147,7 +160,7 @@ void InputSearch::drive(const std::string& program, const Stimulus& s, const Aft
   size_t next = 0, scan = 0;
   for (uint64_t t = 0; t <= s.run.end_us; t += period_us_, ++scan) {
     target->scan(t);
-    if (!after(scan, *target) || !target->fault().empty()) return;  // a fault stops the PLC: the run ends
+    if (!after(scan, subject) || !target->fault().empty()) return;  // a fault stops the PLC: the run ends
     for (; next < s.run.changes.size() && s.run.changes[next].t_us <= t; ++next)
       set(s.run.changes[next].input, s.run.changes[next].value);
   }
@@ -155,13 +168,13 @@ void InputSearch::drive(const std::string& program, const Stimulus& s, const Aft
 
 Finding InputSearch::compare(const std::string& mutant, Stimulus& s) {
   if (s.reference.empty())
-    drive(original_, s, [&](size_t, scenario::CellTarget& t) {
+    drive(original_, s, [&](size_t, const Subject& t) {
       s.reference.push_back(scan_hash(t));
       return true;
     });
   size_t differs = s.reference.size();
   size_t scans = 0;
-  drive(mutant, s, [&](size_t i, scenario::CellTarget& t) {
+  drive(mutant, s, [&](size_t i, const Subject& t) {
     scans = i + 1;
     if (i < s.reference.size() && scan_hash(t) == s.reference[i]) return true;
     differs = i;
@@ -186,29 +199,31 @@ std::string InputSearch::difference(const std::string& mutant, const Stimulus& s
   };
   auto at = [&](const std::string& program) {
     At a;
-    drive(program, s, [&](size_t i, scenario::CellTarget& t) {
+    drive(program, s, [&](size_t i, const Subject& t) {
       if (i < scan) return true;
-      for (const auto& p : observed_) a.values.push_back(t.read(p));
-      a.fault = t.fault();
+      for (const auto& p : observed_) a.values.push_back(t.target->read(p));
+      a.fault = t.target->fault();
       return false;
     });
     return a;
   };
   const At o = at(original_), m = at(mutant);
   if (m.fault != o.fault) return m.fault.empty() ? "the original faults: " + o.fault : "the PLC faults: " + m.fault;
-  const auto target = make_(sc_, original_);  // for the names of the outputs
+  const Subject names = make_(sc_, original_, "");  // for the names of the outputs
   for (size_t k = 0; k < observed_.size() && k < o.values.size() && k < m.values.size(); ++k) {
     if (o.values[k].number == m.values[k].number) continue;
-    const std::string& name = observed_[k].text;
-    if (name.rfind("WY", 0) == 0 && k < 16) {
+    const scenario::Probe& p = observed_[k];
+    if (p.kind == scenario::Probe::Kind::Address && p.name.rfind("WY", 0) == 0) {  // an output word: its bit
       const auto a = uint32_t(o.values[k].number), b = uint32_t(m.values[k].number);
       int bit = 0;
       while (!(((a ^ b) >> bit) & 1)) ++bit;
-      const auto y = scenario::parse_probe("Y" + std::to_string(std::stoi(name.substr(2)) + bit));
-      return target->label(y) + " " + ((b >> bit) & 1 ? "ON" : "OFF") + ", the original's " +
+      Subject::Part part;
+      part.prefix = p.cell.empty() ? "" : p.cell + ".";
+      const auto y = probe_of(part, "Y" + std::to_string(std::stoi(p.name.substr(2)) + bit));
+      return names.target->label(y) + " " + ((b >> bit) & 1 ? "ON" : "OFF") + ", the original's " +
              ((a >> bit) & 1 ? "ON" : "OFF");
     }
-    return target->label(observed_[k]) + " " + m.values[k].text + ", the original's " + o.values[k].text;
+    return names.target->label(p) + " " + m.values[k].text + ", the original's " + o.values[k].text;
   }
   return "the run ends at another scan";
 }

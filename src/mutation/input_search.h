@@ -63,24 +63,26 @@ class InputSearch {
     explore::InputRun run;
     std::vector<uint64_t> reference;  // the original's hash per scan, once it ran
   };
-  using AfterScan = std::function<bool(size_t scan, scenario::CellTarget& t)>;  // false: stop
+  using AfterScan = std::function<bool(size_t scan, const Subject& s)>;  // false: stop
 
   const NetworkInputs* network_of(int line) const;
   bool exhaustive(const NetworkInputs* n) const { return n && n->closed && n->x.size() <= kFewInputs; }
   std::vector<Stimulus>& exhaustive_stimuli(const NetworkInputs& n);
   void drive(const std::string& program, const Stimulus& s, const AfterScan& after);
-  uint64_t scan_hash(scenario::CellTarget& t);
+  uint64_t scan_hash(const Subject& s);
   Finding compare(const std::string& mutant, Stimulus& s);
   std::string difference(const std::string& mutant, const Stimulus& s, size_t scan);
 
   scenario::Scenario sc_;
   std::string original_;
   std::vector<scenario::Probe> observed_;
-  // The observed addresses, read in one memory copy after every scan; the other probes
-  // (counters, axes, ...) through the target.
-  std::vector<Address> addresses_;
+  // The observed addresses of each of the subject's cells, read in one memory copy of the
+  // cell after every scan; the other probes (counters, axes, other cells' names, ...)
+  // through the target.
+  std::vector<std::vector<Address>> addresses_;
   std::vector<scenario::Probe> others_;
   TargetFactory make_;
+  Subject::Part input_;  // the cell whose inputs the search drives without an explore: section
   uint64_t period_us_ = 1000;
   std::vector<NetworkInputs> networks_;
   std::map<int, std::vector<Stimulus>> exhaustive_;  // by the network's line

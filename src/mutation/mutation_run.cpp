@@ -54,15 +54,17 @@ std::vector<std::string> lines_of(const std::string& path) {
   return lines;
 }
 
+// Every program a file's target runs (a line's: each of its cells'), with the file's cases.
 std::vector<ProgramCases> programs(const std::vector<scenario::Scenario>& files, const TargetFactory& make) {
   std::vector<ProgramCases> out;
   for (const auto& sc : files) {
     if (sc.cases.empty()) continue;  // none selected: nothing could kill a mutant
-    const std::string file = sc.program.empty() ? make(sc, "")->cell().config().program : sc.program;
-    auto it = out.begin();
-    while (it != out.end() && it->file != file) ++it;
-    if (it == out.end()) it = out.insert(out.end(), ProgramCases{file, {}, {}, {}, output_words()});
-    for (const auto& c : sc.cases) it->cases.push_back({&sc, &c});
+    for (const std::string& file : make(sc, "", "").programs) {
+      auto it = out.begin();
+      while (it != out.end() && it->file != file) ++it;
+      if (it == out.end()) it = out.insert(out.end(), ProgramCases{file, {}, {}, {}, {}});
+      for (const auto& c : sc.cases) it->cases.push_back({&sc, &c});
+    }
   }
   return out;
 }
@@ -103,22 +105,26 @@ void add_executed(const coverage::Recorder& rec, const std::string& name, Progra
 // The original program: every case must pass; its traces, the lines each case executed.
 void baseline(ProgramCases& p, const TargetFactory& make, ProgramResult* r) {
   for (auto& cr : p.cases) {
-    const auto target = make(*cr.sc, p.file);
+    const Subject s = make(*cr.sc, p.file, "");
     coverage::Recorders recs;
-    coverage::Recorder& rec = recs.attach(target->cell().plc(), target->cell().config().signals);
-    TracingTarget t(*target, *cr.c);
+    coverage::Recorder* rec = nullptr;
+    for (const auto& part : s.cells) rec = &recs.attach(part.cell->plc(), part.cell->config().signals);
+    const std::vector<scenario::Probe> outputs = output_words(s);
+    TracingTarget t(*s.target, *cr.c, outputs);
     const scenario::CaseResult res = scenario::run_case(*cr.c, t);
-    recs.detach(target->cell().plc());
+    for (const auto& part : s.cells) recs.detach(part.cell->plc());
     if (!res.passed)
       throw Error("mutation testing needs every case to pass on the original program: " + cr.c->name + ": " +
                   res.failure);
     cr.hash = t.hash();
-    add_executed(rec, cr.c->name, r);
+    add_executed(*rec, cr.c->name, r);
     if (p.parsed.code.empty()) {
-      p.parsed = rec.program();
-      p.functions = target->cell().plc().functions();
+      p.parsed = rec->program();
+      p.functions = s.cells.front().cell->plc().functions();
     }
-    for (const auto& sig : target->cell().config().signals) observe(&p.observed, scenario::parse_probe(sig.first));
+    for (const auto& o : outputs) observe(&p.observed, o);
+    for (const auto& part : s.cells)
+      for (const auto& sig : part.cell->config().signals) observe(&p.observed, probe_of(part, sig.first));
     for (const auto& probe : case_probes(*cr.c)) observe(&p.observed, probe);
   }
 }
@@ -137,14 +143,14 @@ MutantResult run_mutant(const ProgramCases& p, const std::vector<std::string>& l
   std::ofstream(path, std::ios::trunc) << apply(lines, m);
   bool same = true;
   for (const auto& cr : p.cases) {
-    std::unique_ptr<scenario::CellTarget> target;
+    Subject s;
     try {
-      target = make(*cr.sc, path);
+      s = make(*cr.sc, p.file, path);
     } catch (const std::exception& e) {
       r.verdict = Verdict::NotLoaded;  // the parser refuses it: no program to test
       return r;
     }
-    TracingTarget t(*target, *cr.c);
+    TracingTarget t(*s.target, *cr.c, output_words(s));
     if (!scenario::run_case(*cr.c, t).passed) {
       r.verdict = Verdict::Killed;
       r.killed_by = cr.c->name;
@@ -251,9 +257,11 @@ std::vector<ProgramResult> run_mutation(const std::vector<scenario::Scenario>& f
     r.generated = all.size();
     const size_t n = options.budget && options.budget < all.size() ? options.budget : all.size();
     for (size_t i = 0; i < n; ++i) r.results.push_back({all[i * all.size() / n], Verdict::Survived, "", false, "", ""});
-    // What a master or an HMI reads of the program's doing: every element it writes.
+    // What a master or an HMI reads of the program's doing: every element it writes, in
+    // each cell that runs it.
+    const Subject s = make(*p.cases.front().sc, p.file, "");
     for (const Address& a : written_by(p.parsed, p.functions))
-      observe(&p.observed, scenario::parse_probe(format_address(a)));
+      for (const auto& part : s.cells) observe(&p.observed, probe_of(part, format_address(a)));
     InputSearch search(search_file(p), p.file, p.parsed, p.functions, p.observed, make);
     run_all(p, lines, options, make, search, r.results);
     out.push_back(std::move(r));

@@ -6,9 +6,14 @@
 namespace plc_cell {
 namespace mutation {
 
-std::vector<scenario::Probe> output_words() {
+scenario::Probe probe_of(const Subject::Part& part, const std::string& name) {
+  return scenario::parse_probe(part.prefix + name, part.prefix.empty() ? scenario::Naming::Cell : scenario::Naming::Line);
+}
+
+std::vector<scenario::Probe> output_words(const Subject& s) {
   std::vector<scenario::Probe> out;
-  for (int w = 0; w < 256; w += 16) out.push_back(scenario::parse_probe("WY" + std::to_string(w)));
+  for (const auto& part : s.cells)
+    for (int w = 0; w < 256; w += 16) out.push_back(probe_of(part, "WY" + std::to_string(w)));
   return out;
 }
 
@@ -17,8 +22,8 @@ std::vector<scenario::Probe> case_probes(const scenario::Case& c) {
   std::set<std::string> seen;
   auto add = [&](const scenario::Condition& cond) {
     for (const auto& cmp : cond.all)
-      if (cmp.probe.kind != scenario::Probe::Kind::Analog && seen.insert(cmp.probe.text).second)
-        out.push_back(cmp.probe);
+      for (const scenario::Probe* p : cmp.probes())
+        if (p->kind != scenario::Probe::Kind::Analog && seen.insert(p->text).second) out.push_back(*p);
   };
   for (const auto& s : c.steps) {
     add(s.cond);
@@ -42,8 +47,8 @@ uint64_t fold(uint64_t hash, scenario::Target& t, const std::vector<scenario::Pr
   return hash;
 }
 
-TracingTarget::TracingTarget(scenario::Target& inner, const scenario::Case& c)
-    : inner_(inner), probes_(output_words()) {
+TracingTarget::TracingTarget(scenario::Target& inner, const scenario::Case& c, std::vector<scenario::Probe> outputs)
+    : inner_(inner), probes_(std::move(outputs)) {
   for (auto& p : case_probes(c)) probes_.push_back(p);
 }
 

@@ -5,13 +5,17 @@
 #include <cstdint>
 #include <vector>
 
+#include "plc_cell/mutation/mutation_run.h"
 #include "plc_cell/scenario/target.h"
 
 namespace plc_cell {
 namespace mutation {
 
-// The outputs as 16 words, WY0..WY240.
-std::vector<scenario::Probe> output_words();
+// The outputs of the subject's cells, 16 words each (WY0..WY240, named as the scenario
+// names them: "robot.WY0" in a line).
+std::vector<scenario::Probe> output_words(const Subject& s);
+// name (a signal, an address) of one of the subject's cells as the scenario names it.
+scenario::Probe probe_of(const Subject::Part& part, const std::string& name);
 // Every probe c's steps and the file's properties read, each once (an analog input is
 // driven, not read).
 std::vector<scenario::Probe> case_probes(const scenario::Case& c);
@@ -21,7 +25,8 @@ constexpr uint64_t kHashStart = 1469598103934665603ULL;  // FNV-1a
 
 class TracingTarget : public scenario::Target {
  public:
-  TracingTarget(scenario::Target& inner, const scenario::Case& c);
+  // outputs: what is hashed besides the case's probes (output_words).
+  TracingTarget(scenario::Target& inner, const scenario::Case& c, std::vector<scenario::Probe> outputs);
   uint64_t hash() const { return hash_; }
 
   uint64_t period_us() const override { return inner_.period_us(); }

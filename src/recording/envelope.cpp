@@ -18,7 +18,7 @@ const char kMagic[8] = {'P', 'L', 'C', 'R', 'E', 'C', '\x1a', '\n'};
 
 }  // namespace
 
-std::string pack(const std::string& payload) {
+std::string pack(const std::string& payload, uint16_t version) {
   uLongf packed_size = compressBound(payload.size());
   std::string packed(packed_size, '\0');
   if (compress2(reinterpret_cast<Bytef*>(&packed[0]), &packed_size,
@@ -27,7 +27,7 @@ std::string pack(const std::string& payload) {
   packed.resize(packed_size);
   ByteWriter w;
   w.raw(kMagic, sizeof kMagic);
-  w.u16(kFormatVersion);
+  w.u16(version);
   w.u64(payload.size());
   w.u32(uint32_t(crc32(0, reinterpret_cast<const Bytef*>(payload.data()), uInt(payload.size()))));
   w.u64(packed.size());
@@ -35,7 +35,7 @@ std::string pack(const std::string& payload) {
   return w.bytes();
 }
 
-std::string unpack(const std::string& file, const std::string& name) {
+std::string unpack(const std::string& file, const std::string& name, uint16_t expected) {
   if (file.compare(0, sizeof kMagic, std::string(kMagic, sizeof kMagic)) != 0)
     fail(name, 0, "not a plc_cell recording (no PLCREC magic)");
   ByteReader r(file);
@@ -43,9 +43,14 @@ std::string unpack(const std::string& file, const std::string& name) {
     char magic[sizeof kMagic];
     r.raw(magic, sizeof magic, "magic");
     const uint16_t version = r.u16("version");
-    if (version != kFormatVersion)
-      fail(name, 8, "format version " + std::to_string(version) + ", this plc_cell reads version " +
-                        std::to_string(kFormatVersion));
+    if (version == kLineFormatVersion && expected == kFormatVersion)
+      fail(name, 8, "a recording of a line of cells: open one of its cells (plc_cell monitor --recording " + name +
+                        " --cell NAME)");
+    if (version == kFormatVersion && expected == kLineFormatVersion)
+      fail(name, 8, "a recording of one cell, not of a line");
+    if (version != kFormatVersion && version != kLineFormatVersion)
+      fail(name, 8, "format version " + std::to_string(version) + ", this plc_cell reads versions " +
+                        std::to_string(kFormatVersion) + " and " + std::to_string(kLineFormatVersion));
     const uint64_t size = r.u64("payload size");
     if (size > kMaxPayload)
       fail(name, 10, "payload size " + std::to_string(size) + " is over the limit of " + std::to_string(kMaxPayload));

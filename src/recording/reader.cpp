@@ -66,16 +66,13 @@ void read_image(ByteReader& r, Image* img) {
 
 }  // namespace
 
-Reader Reader::load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot open the recording " + path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse(s.str(), path);
-}
+Reader Reader::load(const std::string& path) { return parse(read_recording_file(path), path); }
 
 Reader Reader::parse(const std::string& bytes, const std::string& name) {
-  const std::string payload = unpack(bytes, name);
+  return parse_payload(unpack(bytes, name, kFormatVersion), name);
+}
+
+Reader Reader::parse_payload(const std::string& payload, const std::string& name) {
   Reader out;
   ByteReader r(payload);
   try {

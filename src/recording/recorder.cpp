@@ -3,7 +3,6 @@
 #include <zlib.h>
 
 #include <cstring>
-#include <fstream>
 
 #include "codec.h"
 #include "plc_cell/recording/envelope.h"
@@ -92,7 +91,9 @@ void Recorder::set_failure(uint64_t t_us, const std::string& text) {
   info_.failure = text;
 }
 
-std::string Recorder::bytes() const {
+std::string Recorder::bytes() const { return pack(payload(), kFormatVersion); }
+
+std::string Recorder::payload() const {
   ByteWriter w;
   write_info(info_, w);
   w.varint(initial_.bits.size());
@@ -102,17 +103,10 @@ std::string Recorder::bytes() const {
   w.u8(initial_mode_);
   w.varint(scans_);
   w.bytes() += scans_bytes_;
-  return pack(w.bytes());
+  return w.bytes();
 }
 
-void Recorder::save(const std::string& path) const {
-  const std::string b = bytes();
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error("cannot write the recording " + path);
-  out.write(b.data(), std::streamsize(b.size()));
-  out.close();
-  if (!out) throw Error("cannot write the recording " + path + " (disk full?)");
-}
+void Recorder::save(const std::string& path) const { write_recording_file(path, bytes()); }
 
 }  // namespace recording
 }  // namespace plc_cell

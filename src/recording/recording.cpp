@@ -1,6 +1,8 @@
 #include "plc_cell/recording/recording.h"
 
 #include <cctype>
+#include <fstream>
+#include <sstream>
 
 namespace plc_cell {
 namespace recording {
@@ -10,6 +12,22 @@ std::string file_name_for(const std::string& case_name) {
   for (unsigned char c : case_name) out += std::isalnum(c) || c == '-' || c == '_' || c == '.' ? char(c) : '_';
   if (out.empty() || out[0] == '.') out.insert(0, "case");
   return out + kExtension;
+}
+
+std::string read_recording_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot open the recording " + path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_recording_file(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw Error("cannot write the recording " + path);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  out.close();
+  if (!out) throw Error("cannot write the recording " + path + " (disk full?)");
 }
 
 }  // namespace recording

@@ -90,6 +90,9 @@ std::string suite_name(const std::string& file) {
 void prepare(Shared* run, const std::string& file, const std::string& node, double timeout_s, bool read_fallback) {
   if (file.empty()) throw Error("~scenario is not set: give the scenario file");
   run->scenario = sc::load_scenario(file);
+  if (!run->scenario.line.empty())
+    throw Error(file + " names a line of cells (" + run->scenario.line +
+                "): this runner drives one plc_node; plc_cell test runs a line's scenarios (docs/lines.md)");
   std::string node_cell;
   if (!ros::param::get(node + "/cell", node_cell))
     throw Error("no parameter " + node + "/cell: is ~node (" + node + ") plc_node's name?");

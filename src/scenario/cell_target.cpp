@@ -37,7 +37,8 @@ CellTarget::CellTarget(const std::string& cell_yaml, const std::string& program,
   CellOverrides o;
   o.program = program;
   o.run = run;
-  cell_ = std::make_unique<Cell>(cell_yaml, o, Cell::Purpose::Simulate);
+  owned_ = std::make_unique<Cell>(cell_yaml, o, Cell::Purpose::Simulate);
+  cell_ = owned_.get();
   if (!cell_->plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
 }
 

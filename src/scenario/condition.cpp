@@ -44,8 +44,57 @@ bool parse_number(const std::string& s, double* v) {
   return false;
 }
 
-// One comparison from its words: NAME | not NAME | NAME OP VALUE [C] [+- TOL].
-Comparison comparison(const std::vector<std::string>& w, const std::string& text) {
+// A sum of names and numbers on both sides of one operator: TERM (+|- TERM)* OP TERM
+// (+|- TERM)* [+- TOL], the first term a name. The names go to c.probe and c.more (the
+// right side's with their sign turned), the numbers to c.value (the left side's turned).
+Comparison sum(const std::vector<std::string>& w, const std::string& text, Naming naming) {
+  Comparison c;
+  c.text = text;
+  size_t end = w.size();
+  if (end >= 2 && (w[end - 2] == "+-" || w[end - 2] == "±")) {
+    if (!parse_number(w[end - 1], &c.tolerance) || c.tolerance < 0) throw Error("'" + text + "': +- takes a number >= 0");
+    end -= 2;
+  }
+  size_t op_at = 0;
+  while (op_at < end && !parse_op(w[op_at], &c.op)) ++op_at;
+  if (op_at == end) throw Error("'" + text + "': a sum is compared: A + B == C (==, !=, <, <=, > or >=)");
+  if (c.tolerance > 0 && c.op != Comparison::Op::Eq && c.op != Comparison::Op::Ne)
+    throw Error("'" + text + "': a tolerance (+-) goes with == or != only");
+  bool first = true;
+  for (int side : {1, -1}) {
+    const size_t from = side == 1 ? 0 : op_at + 1, to = side == 1 ? op_at : end;
+    int sign = 1;
+    for (size_t i = from; i < to; ++i) {
+      const bool term = (i - from) % 2 == 0;
+      if (!term) {
+        if (w[i] != "+" && w[i] != "-") throw Error("'" + text + "': expected + or - between terms, got '" + w[i] + "'");
+        sign = w[i] == "+" ? 1 : -1;
+        continue;
+      }
+      if (w[i] == "+" || w[i] == "-") throw Error("'" + text + "': a term is missing before '" + w[i] + "'");
+      double v;
+      if (parse_number(w[i], &v)) {
+        c.value -= side * sign * v;
+      } else if (first) {
+        if (sign != 1) throw Error("'" + text + "': a sum starts with a name (A + B == C)");
+        c.probe = parse_probe(w[i], naming);
+      } else {
+        c.more.push_back({side * sign, parse_probe(w[i], naming)});
+      }
+      if (!parse_number(w[i], &v)) first = false;
+    }
+    if (to == from || (to - from) % 2 == 0) throw Error("'" + text + "': a term is missing at the end of a side");
+    if (first) throw Error("'" + text + "': a sum starts with a name (A + B == C)");
+  }
+  for (const Probe* p : c.probes())
+    if (p->kind == Probe::Kind::AxisState) throw Error("'" + text + "': an axis state is a word: it is not summed");
+  return c;
+}
+
+// One comparison from its words: NAME | not NAME | NAME OP VALUE [C] [+- TOL], or a sum.
+Comparison comparison(const std::vector<std::string>& w, const std::string& text, Naming naming) {
+  if (std::find_if(w.begin(), w.end(), [](const std::string& x) { return x == "+" || x == "-"; }) != w.end())
+    return sum(w, text, naming);
   Comparison c;
   c.text = text;
   size_t i = 0;
@@ -57,7 +106,7 @@ Comparison comparison(const std::vector<std::string>& w, const std::string& text
     negated = true;
   }
   if (i >= w.size()) throw Error("'" + text + "': 'not' of what?");
-  c.probe = parse_probe(negated && i == 0 ? w[0].substr(1) : w[i]);
+  c.probe = parse_probe(negated && i == 0 ? w[0].substr(1) : w[i], naming);
   ++i;
   // The units the probe's family reads in (config/probe_facet.h), the longest first.
   std::vector<std::string> units;
@@ -126,7 +175,24 @@ bool Comparison::holds(const Reading& r) const {
   return false;
 }
 
-Condition parse_condition(const std::string& text) {
+bool Comparison::holds(const std::function<Reading(const Probe&)>& read) const {
+  if (more.empty()) return holds(read(probe));
+  Reading total = read(probe);
+  for (const Term& t : more) {
+    const Reading r = read(t.probe);
+    total.valid = total.valid && r.valid;
+    total.number += t.sign * r.number;
+  }
+  return holds(total);
+}
+
+std::vector<const Probe*> Comparison::probes() const {
+  std::vector<const Probe*> out{&probe};
+  for (const Term& t : more) out.push_back(&t.probe);
+  return out;
+}
+
+Condition parse_condition(const std::string& text, Naming naming) {
   Condition cond;
   cond.text = text;
   const auto w = words(text);
@@ -135,7 +201,7 @@ Condition parse_condition(const std::string& text) {
   std::string part_text;
   auto flush = [&] {
     if (part.empty()) throw Error("'" + text + "': 'and' needs a comparison on each side");
-    cond.all.push_back(comparison(part, part_text));
+    cond.all.push_back(comparison(part, part_text, naming));
     part.clear();
     part_text.clear();
   };

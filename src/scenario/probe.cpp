@@ -81,7 +81,18 @@ Reading address_reading(const Address& a, uint32_t v, ValueFormat f) {
   return r;
 }
 
-Probe parse_probe(const std::string& text) {
+Probe parse_probe(const std::string& text, Naming naming) {
+  if (naming == Naming::Line) {
+    const auto dot = text.find('.');
+    if (dot == std::string::npos)
+      throw Error("'" + text + "': a line's names start with their cell: CELL." + text);
+    const std::string cell = text.substr(0, dot);
+    if (!is_name(cell)) throw Error("'" + text + "': '" + cell + "' is not a cell name");
+    Probe q = parse_probe(text.substr(dot + 1), Naming::Cell);
+    q.cell = cell;
+    q.text = text;
+    return q;
+  }
   Probe p;
   p.text = text;
   const auto dot = text.find('.');

@@ -19,7 +19,7 @@ bool split_arrow(const std::string& text, std::string* lhs, std::string* rhs) {
 
 }  // namespace
 
-Property parse_property(bool never, const std::string& text) {
+Property parse_property(bool never, const std::string& text, Naming naming) {
   Property p;
   p.never = never;
   p.text = std::string(never ? "never: " : "always: ") + text;
@@ -28,11 +28,11 @@ Property parse_property(bool never, const std::string& text) {
     if (never) throw Error("'" + text + "': '->' goes with always (never: A -> B is always: A -> not B)");
     if (lhs.find_first_not_of(" \t") == std::string::npos) throw Error("'" + text + "': nothing before '->'");
     if (rhs.find_first_not_of(" \t") == std::string::npos) throw Error("'" + text + "': nothing after '->'");
-    p.when = parse_condition(lhs);
-    p.cond = parse_condition(rhs);
+    p.when = parse_condition(lhs, naming);
+    p.cond = parse_condition(rhs, naming);
     return p;
   }
-  p.cond = parse_condition(text);
+  p.cond = parse_condition(text, naming);
   return p;
 }
 

@@ -100,7 +100,8 @@ class CaseRun {
     if (known_.insert(p.text).second) probes_.push_back(p);
   }
   void add_probes(const Condition& c) {
-    for (const auto& cmp : c.all) add_probe(cmp.probe);
+    for (const auto& cmp : c.all)
+      for (const Probe* p : cmp.probes()) add_probe(*p);
   }
 
   // The probes' values after a scan (or at the start): a change is kept with its time.
@@ -190,10 +191,11 @@ class CaseRun {
   std::string actual(const Condition& c) {
     std::string s;
     std::set<std::string> seen;
-    for (const auto& cmp : c.all) {
-      if (!seen.insert(cmp.probe.text).second) continue;
-      s += (s.empty() ? "" : ", ") + label(cmp.probe) + " is " + t_.read(cmp.probe).text;
-    }
+    for (const auto& cmp : c.all)
+      for (const Probe* p : cmp.probes()) {
+        if (!seen.insert(p->text).second) continue;
+        s += (s.empty() ? "" : ", ") + label(*p) + " is " + t_.read(*p).text;
+      }
     return s;
   }
   // What is still false of c, with the values: "motor (Y0) is OFF" for a bare name (the
@@ -201,9 +203,9 @@ class CaseRun {
   std::string still_false(const Condition& c) {
     std::string s;
     for (const auto& cmp : c.all) {
-      const Reading r = t_.read(cmp.probe);
-      if (cmp.holds(r)) continue;
-      const std::string value = label(cmp.probe) + " is " + r.text;
+      if (cmp.holds(reader())) continue;
+      std::string value;
+      for (const Probe* p : cmp.probes()) value += (value.empty() ? "" : ", ") + label(*p) + " is " + t_.read(*p).text;
       s += (s.empty() ? "" : "; ") + (cmp.text == cmp.probe.text ? value : cmp.text + " (" + value + ")");
     }
     return s;
@@ -214,9 +216,12 @@ class CaseRun {
     if (it == labels_.end()) it = labels_.emplace(p.text, t_.label(p)).first;
     return it->second;
   }
+  std::function<Reading(const Probe&)> reader() {
+    return [this](const Probe& p) { return t_.read(p); };
+  }
   bool holds(const Condition& c) {
     for (const auto& cmp : c.all)
-      if (!cmp.holds(t_.read(cmp.probe))) return false;
+      if (cmp.more.empty() ? !cmp.holds(t_.read(cmp.probe)) : !cmp.holds(reader())) return false;
     return true;
   }
 
@@ -230,8 +235,9 @@ class CaseRun {
     std::vector<const Probe*> shown;
     for (const Condition* c : f.involved)
       for (const auto& cmp : c->all)
-        if (std::find_if(shown.begin(), shown.end(), [&](const Probe* p) { return *p == cmp.probe; }) == shown.end())
-          shown.push_back(&cmp.probe);
+        for (const Probe* q : cmp.probes())
+          if (std::find_if(shown.begin(), shown.end(), [&](const Probe* p) { return *p == *q; }) == shown.end())
+            shown.push_back(q);
     if (!shown.empty()) o << "  last changes (time value):\n";
     for (const Probe* p : shown) {
       o << "    " << label(*p) << ":";
@@ -443,9 +449,11 @@ std::vector<Diagnostic> check_case(const Case& c, Target& target) {
   };
   for (const auto& s : c.steps) {
     for (const auto& a : s.assignments) check(s, a.line, a.target, s.kind != Step::Kind::Release && s.kind != Step::Kind::Simulate);
-    for (const auto& cmp : s.cond.all) check(s, s.line, cmp.probe, false);
+    for (const auto& cmp : s.cond.all)
+      for (const Probe* p : cmp.probes()) check(s, s.line, *p, false);
     for (const auto& e : s.sequence)
-      for (const auto& cmp : e.cond.all) check(s, e.line, cmp.probe, false);
+      for (const auto& cmp : e.cond.all)
+        for (const Probe* p : cmp.probes()) check(s, e.line, *p, false);
   }
   for (const auto& p : c.properties) {
     Step at;  // the property's line, under its key
@@ -453,7 +461,8 @@ std::vector<Diagnostic> check_case(const Case& c, Target& target) {
     at.key = p.never ? "never" : "always";
     at.line = p.line;
     for (const Condition* cond : {&p.when, &p.cond})
-      for (const auto& cmp : cond->all) check(at, p.line, cmp.probe, false);
+      for (const auto& cmp : cond->all)
+        for (const Probe* q : cmp.probes()) check(at, p.line, *q, false);
   }
   return errors;
 }

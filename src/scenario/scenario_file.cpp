@@ -33,7 +33,7 @@ std::string folder_of(const std::string& path) {
 // (${name}), so an error still points at the line that holds the placeholder.
 class Reader {
  public:
-  Reader(const YamlReader& r, ErrorList& errors) : r_(r), errors_(errors) {}
+  Reader(const YamlReader& r, ErrorList& errors, Naming naming) : r_(r), errors_(errors), naming_(naming) {}
 
   void set_parameters(const std::map<std::string, std::string>* p) { params_ = p; }
 
@@ -64,12 +64,12 @@ class Reader {
 
   Condition condition(const YAML::Node& n, const std::string& key) const {
     const std::string s = text(n, key);
-    return r_.checked(n, key, [&] { return parse_condition(s); });
+    return r_.checked(n, key, [&] { return parse_condition(s, naming_); });
   }
 
   Probe probe(const YAML::Node& n, const std::string& key) const {
     const std::string s = text(n, key);
-    return r_.checked(n, key, [&] { return parse_probe(s); });
+    return r_.checked(n, key, [&] { return parse_probe(s, naming_); });
   }
 
   // What a step may drive: an address or signal, or a probe whose family takes stimuli (an
@@ -312,6 +312,7 @@ class Reader {
 
   const YamlReader& r_;
   ErrorList& errors_;
+  const Naming naming_;
   const std::map<std::string, std::string>* params_ = nullptr;
 };
 
@@ -319,21 +320,30 @@ class Reader {
 
 namespace {
 
-// The files the scenario names: cell and program, resolved against its folder.
+// The files the scenario names, resolved against its folder: the cell and its program, or
+// the line (docs/lines.md), whose file names each cell's.
 void read_files(const YamlReader& r, const YAML::Node& doc, Scenario& sc, ErrorList& errors) {
   const std::string& file = sc.file;
+  auto path = [&](const char* key, std::string* out, SourceLocation* at) {
+    const std::string p = r.str(doc[key], key);
+    *out = !p.empty() && p[0] == '/' ? p : folder_of(file) + p;
+    *at = {file, YamlReader::line(doc[key]), doc[key].Mark().column + 1};
+  };
+  if (doc["line"]) {
+    errors.collect([&] {
+      if (doc["cell"]) r.fail(doc["cell"], "cell", "a scenario runs a cell or a line, not both: 'line' is given");
+      if (doc["program"])
+        r.fail(doc["program"], "program", "a line's programs are named in its line file, one per cell");
+      path("line", &sc.line, &sc.line_at);
+    }, file, doc);
+    return;
+  }
   errors.collect([&] {
-    if (!doc["cell"]) r.fail(doc, "cell", "missing 'cell': the cell YAML this scenario runs");
-    sc.cell = folder_of(file) + r.str(doc["cell"], "cell");
-    if (!sc.cell.empty() && r.str(doc["cell"], "cell")[0] == '/') sc.cell = r.str(doc["cell"], "cell");
-    sc.cell_at = {file, YamlReader::line(doc["cell"]), doc["cell"].Mark().column + 1};
+    if (!doc["cell"]) r.fail(doc, "cell", "missing 'cell' (or 'line'): the cell YAML this scenario runs");
+    path("cell", &sc.cell, &sc.cell_at);
   }, file, doc);
   errors.collect([&] {
-    if (doc["program"]) {
-      const std::string p = r.str(doc["program"], "program");
-      sc.program = p[0] == '/' ? p : folder_of(file) + p;
-      sc.program_at = {file, YamlReader::line(doc["program"]), doc["program"].Mark().column + 1};
-    }
+    if (doc["program"]) path("program", &sc.program, &sc.program_at);
   }, file, doc);
 }
 
@@ -421,11 +431,12 @@ Scenario parse_scenario(const std::string& text, const std::string& file, ErrorL
     errors.add(SourceError::at(file, 1, 1, "a scenario file is a mapping with 'cell' and 'cases'"));
     return sc;
   }
-  r.only(doc, "", {"cell", "program", "setup", "cases", "properties", "explore"}, &errors);
+  r.only(doc, "", {"cell", "line", "program", "setup", "cases", "properties", "explore"}, &errors);
   read_files(r, doc, sc, errors);
-  sc.properties = read_properties(r, doc["properties"], errors);
-  sc.explore = read_explore(r, doc["explore"], errors);
-  Reader rd(r, errors);
+  const Naming naming = doc["line"] ? Naming::Line : Naming::Cell;
+  sc.properties = read_properties(r, doc["properties"], errors, naming);
+  sc.explore = read_explore(r, doc["explore"], errors, naming);
+  Reader rd(r, errors, naming);
   std::vector<Step> common;
   rd.steps(doc["setup"], "setup", &common);
   const YAML::Node cases = doc["cases"];
@@ -466,12 +477,14 @@ Scenario read_scenario(const std::string& path, ErrorList& errors) {
     const char* what;
   };
   for (const Named& n : {Named{sc.cell, sc.cell_at, "cell", "the cell config"},
-                         Named{sc.program, sc.program_at, "program", "the program file"}}) {
+                         Named{sc.program, sc.program_at, "program", "the program file"},
+                         Named{sc.line, sc.line_at, "line", "the line file"}}) {
     const std::string why = n.path.empty() ? "" : why_unreadable(n.path);
     if (why.empty()) continue;
     errors.add(SourceError::at(n.at.file, n.at.line, n.at.column,
                                std::string("key '") + n.key + "': cannot open " + n.what + ": " + why));
     sc.cell.clear();
+    sc.line.clear();
   }
   return sc;
 }

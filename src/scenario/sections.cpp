@@ -7,7 +7,7 @@ namespace scenario {
 
 namespace {
 
-Property read_property(const YamlReader& r, const YAML::Node& n, const std::string& key) {
+Property read_property(const YamlReader& r, const YAML::Node& n, const std::string& key, Naming naming) {
   if (!n.IsMap()) r.fail(n, key, "a property is a mapping: {never: CONDITION} or {always: [A ->] B}");
   r.only(n, key, {"never", "always", "within"});
   if (bool(n["never"]) == bool(n["always"])) r.fail(n, key, "a property has one of 'never' and 'always'");
@@ -15,17 +15,18 @@ Property read_property(const YamlReader& r, const YAML::Node& n, const std::stri
   const std::string k = key + (never ? ".never" : ".always");
   const YAML::Node c = n[never ? "never" : "always"];
   const std::string text = r.str(c, k);
-  Property p = r.checked(c, k, [&] { return parse_property(never, text); });
+  Property p = r.checked(c, k, [&] { return parse_property(never, text, naming); });
   p.file = r.file();
   p.line = YamlReader::line(n);
   if (n["within"]) p.within_us = r.duration_us(n["within"], key + ".within");
   return p;
 }
 
-InputDomain read_domain(const YamlReader& r, const YAML::Node& name, const YAML::Node& n, const std::string& key) {
+InputDomain read_domain(const YamlReader& r, const YAML::Node& name, const YAML::Node& n, const std::string& key,
+                        Naming naming) {
   InputDomain d;
   d.line = YamlReader::line(name);
-  d.probe = r.checked(name, key, [&] { return parse_probe(name.Scalar()); });
+  d.probe = r.checked(name, key, [&] { return parse_probe(name.Scalar(), naming); });
   if (d.probe.kind != Probe::Kind::Address) r.fail(name, key, "explore drives addresses and signals");
   if (!n.IsMap()) r.fail(n, key, "expected {hold: [SHORTEST, LONGEST]} and optionally values: [LOW, HIGH]");
   r.only(n, key, {"values", "hold"});
@@ -48,7 +49,7 @@ InputDomain read_domain(const YamlReader& r, const YAML::Node& name, const YAML:
 
 }  // namespace
 
-std::vector<Property> read_properties(const YamlReader& r, const YAML::Node& list, ErrorList& errors) {
+std::vector<Property> read_properties(const YamlReader& r, const YAML::Node& list, ErrorList& errors, Naming naming) {
   std::vector<Property> out;
   if (!list) return out;
   if (!list.IsSequence() || list.size() == 0) {
@@ -56,12 +57,12 @@ std::vector<Property> read_properties(const YamlReader& r, const YAML::Node& lis
     return out;
   }
   for (size_t i = 0; i < list.size(); ++i)
-    errors.collect([&] { out.push_back(read_property(r, list[i], "properties[" + std::to_string(i) + "]")); },
+    errors.collect([&] { out.push_back(read_property(r, list[i], "properties[" + std::to_string(i) + "]", naming)); },
                    r.file(), list[i]);
   return out;
 }
 
-ExploreSpec read_explore(const YamlReader& r, const YAML::Node& n, ErrorList& errors) {
+ExploreSpec read_explore(const YamlReader& r, const YAML::Node& n, ErrorList& errors, Naming naming) {
   ExploreSpec e;
   if (!n) return e;
   e.line = YamlReader::line(n);
@@ -77,7 +78,7 @@ ExploreSpec read_explore(const YamlReader& r, const YAML::Node& n, ErrorList& er
       r.fail(in ? in : n, "explore.inputs", "expected a mapping of inputs to their domains ({start_button: {hold: [50ms, 2s]}})");
     for (const auto& kv : in) {
       const std::string k = "explore.inputs." + kv.first.Scalar();
-      errors.collect([&] { e.inputs.push_back(read_domain(r, kv.first, kv.second, k)); }, r.file(), kv.first);
+      errors.collect([&] { e.inputs.push_back(read_domain(r, kv.first, kv.second, k, naming)); }, r.file(), kv.first);
     }
   }, r.file(), n);
   return e;

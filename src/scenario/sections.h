@@ -10,8 +10,9 @@
 namespace plc_cell {
 namespace scenario {
 
-std::vector<Property> read_properties(const YamlReader& r, const YAML::Node& list, ErrorList& errors);
-ExploreSpec read_explore(const YamlReader& r, const YAML::Node& map, ErrorList& errors);
+// naming: how the file names what it reads (a line's names or a lone cell's).
+std::vector<Property> read_properties(const YamlReader& r, const YAML::Node& list, ErrorList& errors, Naming naming);
+ExploreSpec read_explore(const YamlReader& r, const YAML::Node& map, ErrorList& errors, Naming naming);
 
 }  // namespace scenario
 }  // namespace plc_cell

@@ -15,6 +15,12 @@ void SimulatedCell::drop(uint32_t x) {
                  drivers_.end());
 }
 
+bool SimulatedCell::exact(uint32_t x) const { return exact_ && x < 16 && !exact_->source_on(int(x)); }
+
+void SimulatedCell::schedule_edge(uint32_t x, uint64_t t_ns, bool level) {
+  if (exact(x)) exact_->schedule_edge(int(x), t_ns, level);
+}
+
 void SimulatedCell::override_input(uint32_t x) {
   overridden_.set(x);
   ++overrides_;

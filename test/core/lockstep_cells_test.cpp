@@ -29,7 +29,8 @@ struct ExampleCell {
   std::string program;  // "" for the cell's own
 };
 
-// Every cell file of examples/ (examples/modbus and examples/tri hold bridge configurations), and
+// Every cell file of examples/ (examples/modbus and examples/tri hold bridge configurations, a
+// *.line.yaml a line of cells), and
 // every program with no cell of its own (a variant, such as broken_interlock.il), run by the
 // cell of its folder, named as the folder, in place of its program.
 std::vector<ExampleCell> example_cells() {
@@ -40,7 +41,8 @@ std::vector<ExampleCell> example_cells() {
     const std::string file = p.filename().string();
     const std::string folder = p.parent_path().filename().string();
     if (p.extension() == ".yaml" && folder != "modbus" && folder != "tri" && file.find(".scenario.") == std::string::npos &&
-        file.find(".explore.") == std::string::npos && file.find(".fails.") == std::string::npos)
+        file.find(".explore.") == std::string::npos && file.find(".fails.") == std::string::npos &&
+        file.find(".line.") == std::string::npos)  // a line of cells (docs/lines.md): its cells are here each
       out.push_back({fs::relative(p, root).string(), p, ""});
     if (p.extension() == ".il" && !fs::exists(fs::path(p).replace_extension(".yaml"))) {
       const fs::path folder_cell = p.parent_path() / (p.parent_path().filename().string() + ".yaml");

@@ -50,9 +50,13 @@ TEST_F(CorruptFile, EveryTruncationIsRefusedWithItsOffset) {
 TEST_F(CorruptFile, ForeignFilesAndOtherVersions) {
   EXPECT_EQ(error_of("PK\x03\x04 a zip file, not a recording"),
             "bad.plcrec: offset 0: not a plc_cell recording (no PLCREC magic)");
-  std::string v2 = *bytes_;
+  std::string v3 = *bytes_;
+  v3[8] = 3;
+  EXPECT_EQ(error_of(v3), "bad.plcrec: offset 8: format version 3, this plc_cell reads versions 1 and 2");
+  std::string v2 = *bytes_;  // a line's recording (line_recording.h): a cell's reader says what it is
   v2[8] = 2;
-  EXPECT_EQ(error_of(v2), "bad.plcrec: offset 8: format version 2, this plc_cell reads version 1");
+  EXPECT_EQ(error_of(v2), "bad.plcrec: offset 8: a recording of a line of cells: open one of its cells "
+                          "(plc_cell monitor --recording bad.plcrec --cell NAME)");
   std::string huge = *bytes_;
   huge[17] = '\x7f';  // the payload's size: far more than the packed bytes can give
   EXPECT_NE(error_of(huge).find("bad.plcrec: offset 10: payload size"), std::string::npos) << error_of(huge);

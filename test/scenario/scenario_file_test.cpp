@@ -148,7 +148,7 @@ TEST(ScenarioFile, EveryErrorOfAFileInOneReading) {
       "    steps: []\n"
       "  - steps: []\n");                               // 36
   const std::vector<std::string> expected = {
-      "/d/bad.yaml:2:1: error: key 'colour': unknown key (expected one of: cases, cell, explore, program, properties, setup)",
+      "/d/bad.yaml:2:1: error: key 'colour': unknown key (expected one of: cases, cell, explore, line, program, properties, setup)",
       "/d/bad.yaml:6:17: error: key 'cases[0].steps[0].expect': 'R0 =< 1': expected ==, !=, <, <=, > or >= after R0, got '=<'",
       "/d/bad.yaml:8:9: error: key 'cases[0].steps[1]': one action per step: 'set' and 'write'",
       "/d/bad.yaml:9:16: error: key 'cases[0].steps[2].after': bad duration '2 parsecs'",
@@ -178,7 +178,7 @@ TEST(ScenarioFile, EveryErrorOfAFileInOneReading) {
 }
 
 TEST(ScenarioFile, TheFileItself) {
-  EXPECT_EQ(errors_of("cases: []\n").at(0), "/d/bad.yaml:1:1: error: key 'cell': missing 'cell': the cell YAML this scenario runs");
+  EXPECT_EQ(errors_of("cases: []\n").at(0), "/d/bad.yaml:1:1: error: key 'cell': missing 'cell' (or 'line'): the cell YAML this scenario runs");
   EXPECT_NE(errors_of("cell: a.yaml\n").at(0).find("key 'cases': expected a list of test cases"), std::string::npos);
   EXPECT_NE(errors_of("- a\n").at(0).find("a scenario file is a mapping"), std::string::npos);
   EXPECT_NE(errors_of("cell: [a\n").at(0).find("/d/bad.yaml:2:"), std::string::npos);  // YAML syntax: its line

@@ -1,6 +1,6 @@
 #pragma once
-// A run written out as a scenario file that `plc_cell test` runs as it is: the cell, the
-// program, the properties and one case whose steps replay the run.
+// A run written out as a scenario file that `plc_cell test` runs as it is: the cell and
+// the program (or the line), the properties and one case whose steps replay the run.
 #include <string>
 
 #include "plc_cell/explore/input_run.h"

@@ -49,9 +49,24 @@ struct Options {
   int jobs = 1;       // worker processes
 };
 
-// A fresh cell for one case of sc, with program instead of the scenario's.
-using TargetFactory =
-    std::function<std::unique_ptr<scenario::CellTarget>(const scenario::Scenario& sc, const std::string& program)>;
+// What one case of a mutant runs on: a fresh target (a lone cell, or a line of cells:
+// docs/lines.md) and in it the cells that run the program under test, each with the
+// prefix under which the scenario names its memory ("" for a lone cell, "robot." in a line).
+struct Subject {
+  struct Part {
+    Cell* cell = nullptr;
+    std::string prefix;
+  };
+  scenario::Target* target = nullptr;
+  std::vector<Part> cells;
+  std::vector<std::string> programs;  // every program file the target runs, in its cells' order
+  std::shared_ptr<void> owner;        // what keeps target and cells alive
+};
+
+// A fresh target of sc for one case: program, one of the files it runs ("": its first),
+// replaced by replacement ("": none) in every cell that runs it, and those cells in cells.
+using TargetFactory = std::function<Subject(const scenario::Scenario& sc, const std::string& program,
+                                            const std::string& replacement)>;
 
 // Throws plc_cell::Error when a case fails on the original program (nothing to measure).
 std::vector<ProgramResult> run_mutation(const std::vector<scenario::Scenario>& files, const Options& options,

@@ -29,6 +29,8 @@ class Reader {
   static Reader load(const std::string& path);
   // The bytes of a file; name is how errors name it.
   static Reader parse(const std::string& bytes, const std::string& name);
+  // An unpacked payload (a cell's in a line's recording, line_recording.h).
+  static Reader parse_payload(const std::string& payload, const std::string& name);
 
   const RecordingInfo& info() const { return info_; }
   size_t scans() const { return scans_.size(); }

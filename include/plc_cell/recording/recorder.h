@@ -27,6 +27,8 @@ class Recorder {
   uint64_t scans() const { return scans_; }
   // The file's bytes, and the file itself (throws Error naming the file).
   std::string bytes() const;
+  // What the file packs (a cell's part of a line's recording, line_recording.h).
+  std::string payload() const;
   void save(const std::string& path) const;
 
  private:

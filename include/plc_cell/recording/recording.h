@@ -17,6 +17,8 @@ namespace plc_cell {
 namespace recording {
 
 constexpr uint16_t kFormatVersion = 1;
+// A line's recording: one recording of format 1 per cell, under the line (line_recording.h).
+constexpr uint16_t kLineFormatVersion = 2;
 // What `plc_cell test --record DIR` names a case's file: DIR/<case>.plcrec.
 constexpr const char* kExtension = ".plcrec";
 
@@ -39,6 +41,10 @@ class RecordingError : public Error {
 
 // A case name as a file name: letters, digits, '-', '_' and '.' kept, others '_'.
 std::string file_name_for(const std::string& case_name);
+
+// A recording's bytes from its file, and into it (each throws Error naming the file).
+std::string read_recording_file(const std::string& path);
+void write_recording_file(const std::string& path, const std::string& bytes);
 
 }  // namespace recording
 }  // namespace plc_cell

@@ -18,6 +18,9 @@ class CellTarget : public Target {
   // Throws SourceError (the cell's or the program's errors) or Error. The PLC is put in RUN.
   // run: the front end's run settings (--engine).
   CellTarget(const std::string& cell_yaml, const std::string& program, const std::vector<SettingOverride>& run = {});
+  // A cell someone else owns and scans (a cell of a line, line/line_target.h): read and
+  // driven as the owned one is; its mode is left as it is.
+  explicit CellTarget(Cell& borrowed) : cell_(&borrowed) {}
   ~CellTarget() override;
 
   Cell& cell() { return *cell_; }
@@ -42,7 +45,8 @@ class CellTarget : public Target {
   static const ProbeFacet* facet(SoftCell& cell, const Probe& p);
   // Names resolve once: a condition is read at every scan.
   const Address& address(const std::string& name);
-  std::unique_ptr<Cell> cell_;
+  std::unique_ptr<Cell> owned_;
+  Cell* cell_ = nullptr;  // owned_, or the borrowed cell
   std::map<std::string, Address> addresses_;
   std::function<void(uint64_t)> after_scan_;
 };

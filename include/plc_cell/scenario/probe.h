@@ -20,6 +20,10 @@
 namespace plc_cell {
 namespace scenario {
 
+// How a scenario file names what it reads: a lone cell's names ("R0", "counter.belt"), or a
+// line's, each after the name of its cell ("robot.R0", "robot.counter.belt"; docs/lines.md).
+enum class Naming { Cell, Line };
+
 struct Probe {
   enum class Kind { Address, Counter, AxisPosition, AxisState, AxisFrequency, Temperature, Analog,
                     PulseWidth, PulsePeriod, PulseFrequency,
@@ -31,6 +35,7 @@ struct Probe {
   ValueFormat format = ValueFormat::Default;  // Address only (:s, :u, :hex, :f32)
   std::string family;  // all but Address: "counter", "axis", "pulse", ...
   std::string field;   // "position", "width", ...; empty when the family has none
+  std::string cell;    // in a line: the cell ("robot" of "robot.R0"); empty for a lone cell
 
   ProbeRef ref() const { return ProbeRef{family, name, field, text}; }
 
@@ -39,8 +44,10 @@ struct Probe {
 };
 
 // Throws plc_cell::Error saying why ("unknown kind 'axes.x': counter., axis., temperature.
-// or analog."). Whether the name exists in the cell is the target's to say.
-Probe parse_probe(const std::string& text);
+// or analog."). Whether the name exists in the cell is the target's to say. Named as a
+// line names it, the text is CELL.NAME: the cell in `cell`, the rest read as a cell's name
+// (text stays the whole name, which every report shows).
+Probe parse_probe(const std::string& text, Naming naming = Naming::Cell);
 
 // What a target read: a number, and for the axis state also its word.
 using Reading = ProbeReading;

@@ -10,7 +10,7 @@ namespace scenario {
 
 // The text after "never:" or "always:". "A -> B" is an implication (always only); throws
 // plc_cell::Error saying what is wrong.
-Property parse_property(bool never, const std::string& text);
+Property parse_property(bool never, const std::string& text, Naming naming = Naming::Cell);
 
 // A property's state over the scans of one case: when its violation began, so that a
 // grace time (within) can pass before it counts.

@@ -1,5 +1,5 @@
 #pragma once
-// A scenario file, parsed: the cell it runs, and test cases, each a list of steps on the
+// A scenario file, parsed: the cell (or the line of cells) it runs, and test cases, each a list of steps on the
 // virtual timeline (docs/testing-your-cell.md). Parameterised cases are already expanded:
 // one Case per row, its name carrying the row ("count[n=3]").
 #include <cstdint>
@@ -117,7 +117,10 @@ struct Scenario {
   std::string file;
   std::string cell;     // the cell YAML, resolved against the scenario's folder
   std::string program;  // overrides the cell's program; empty: the cell's
-  SourceLocation cell_at, program_at;  // where the file names them
+  // Or a line of cells (docs/lines.md): its line file, resolved the same way; cell and
+  // program are then empty, and every name of the file is CELL.NAME (Naming::Line).
+  std::string line;
+  SourceLocation cell_at, program_at, line_at;  // where the file names them
   std::vector<Case> cases;
   std::vector<Property> properties;
   ExploreSpec explore;

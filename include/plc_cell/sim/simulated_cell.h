@@ -23,6 +23,14 @@ class SimulatedCell final : public ScanHook {
   // stops sampling x (drop) and mutes the unit's edges with its own overrides.
   void exact_edges(hsc::HscUnit* unit) { exact_ = unit; }
   void drop(uint32_t x);
+  // Input x played at exact instants from outside the cell's YAML (a wire of a line of
+  // cells): on X0-X15, where the counter unit plays the simulation's steps, each edge
+  // reaches the terminal (and a counter or an edge interrupt) at its instant, muted as the
+  // simulation's are by override_input. exact(x) is false elsewhere (X16 and up, a pin an
+  // analytic source drives, a cell with no counter unit): sample the input at the scans
+  // with drive() instead.
+  bool exact(uint32_t x) const;
+  void schedule_edge(uint32_t x, uint64_t t_ns, bool level);
   // Something else (a scenario's set, a ROS topic) plays input x from now on: no later
   // level or edge of the simulation reaches it, until resume(x).
   void override_input(uint32_t x);

@@ -1,0 +1,177 @@
+// Lines of cells on one virtual clock (docs/performance.md, "Lines of cells"): chains of
+// 10, 100 and 1,000 demo-like cells, each the demo conveyor's program and simulation with
+// its part sensor wired from the cell before it (a travelling part), side by side with the
+// same cells unwired and with the demo cell alone, so that the cost per cell and per wire as
+// the line grows shows, and the memory each cell takes.
+//   .build/ws/devel/lib/plc_cell/bench_line --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+#include <malloc.h>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plc_cell/line/line.h"
+#include "plc_cell/runtime/cell.h"
+
+namespace {
+
+using namespace plc_cell;
+
+const std::string kDir = "/tmp/plc_cell_bench_line";
+const std::string kDemoIl = std::string(PLC_CELL_SOURCE_DIR) + "/examples/conveyor/conveyor.il";
+
+// The demo conveyor's cell YAML; fed: its part sensor (X3) comes from a wire, not from the
+// simulation's pulse.
+std::string demo_yaml(bool fed) {
+  return "cell: {name: conveyor, program: " + kDemoIl +
+         "}\nplc: {scan_period: 0.001}\n"
+         "signals: {start_button: X0, stop_button: X1, part_present: X3, stopper_down: X4,\n"
+         "          conveyor_run: Y0, stopper_lower: Y1, pick_request: Y2, line_running: M0}\n"
+         "simulation:\n  inputs:\n    stop_button: {steps: [[0.0, 1]]}\n"
+         "    stopper_down: {follow: {source: Y1, on_delay: 0.2, off_delay: 0.2}}\n" +
+         std::string(fed ? "" : "    part_present: {pulse: {period: 5.0, width: 2.5, delay: 1.0}}\n");
+}
+
+// n cells; wired: cell i's stopper (Y1, the part let through) reaches cell i + 1's part
+// sensor 2 s later and covers it 2.5 s. Unwired, every cell plays the demo's own parts.
+std::string line_file(size_t n, bool wired) {
+  (void)std::system(("mkdir -p " + kDir).c_str());
+  std::ofstream(kDir + "/first.yaml") << demo_yaml(false);
+  std::ofstream(kDir + "/fed.yaml") << demo_yaml(true);
+  const std::string path = kDir + "/chain" + std::to_string(n) + (wired ? "" : "_unwired") + ".line.yaml";
+  std::ofstream f(path);
+  f << "cells:\n";
+  for (size_t i = 0; i < n; ++i) f << "  c" << i << ": " << (wired && i > 0 ? "fed.yaml" : "first.yaml") << "\n";
+  f << "wires:\n";
+  if (wired)
+    for (size_t i = 1; i < n; ++i)
+      f << "  - {from: c" << i - 1 << ".stopper_lower, to: c" << i << ".part_present, part: {travel: 2s, length: 2.5s}}\n";
+  return path;
+}
+
+// The process's resident memory now, in bytes (/proc/self/statm).
+double resident_bytes() {
+  std::ifstream in("/proc/self/statm");
+  double pages = 0, resident = 0;
+  in >> pages >> resident;
+  return resident * 4096.0;
+}
+
+// The heap in use (malloc's own count: what the cells' objects take, less the machine code
+// and the page tables, which only the resident size counts).
+double heap_bytes() {
+  const struct mallinfo2 m = mallinfo2();
+  return double(m.uordblks + m.hblkhd);
+}
+
+// Each iteration runs the line one virtual second further (1,000 instants of 1 ms).
+void run_line(benchmark::State& state, bool wired) {
+  const size_t n = size_t(state.range(0));
+  line::Line l(line_file(n, wired));
+  l.run();
+  uint64_t t = 0;
+  for (auto _ : state)
+    for (int k = 0; k < 1000; ++k, t += 1000) l.scan_at(t);
+  // The last cell counts the parts the chain brought it: the run is the one expected.
+  const uint64_t iterations = uint64_t(state.iterations());
+  state.counters["x_real_time"] = benchmark::Counter(double(iterations), benchmark::Counter::kIsRate);
+  state.counters["ns_per_cell_scan"] =
+      benchmark::Counter(double(iterations) * 1000.0 * double(n) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["cells"] = double(n);
+  if (!l.fault().empty()) state.SkipWithError(l.fault().c_str());
+}
+
+void BM_Chain(benchmark::State& state) { run_line(state, true); }
+void BM_Unwired(benchmark::State& state) { run_line(state, false); }
+
+// The floor: the demo cell alone, scanned by Plc::scan in a loop as plc_cell sim scans it.
+void BM_DemoAlone(benchmark::State& state) {
+  line_file(1, false);
+  Cell cell(kDir + "/first.yaml", {}, Cell::Purpose::Simulate);
+  cell.plc().set_mode(RunMode::Run);
+  uint64_t t = 0;
+  for (auto _ : state)
+    for (int k = 0; k < 1000; ++k, t += 1000) cell.plc().scan(t);
+  state.counters["x_real_time"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["ns_per_cell_scan"] = benchmark::Counter(double(state.iterations()) * 1000.0 * 1e-9,
+                                                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// The same n cells with no line: each scanned by Plc::scan in turn, instant by instant. What
+// the line adds per cell is BM_Unwired's time less this one's; what the cells cost more as
+// they grow past the caches is this one's less BM_DemoAlone's.
+void BM_Cells(benchmark::State& state) {
+  const size_t n = size_t(state.range(0));
+  line_file(1, false);
+  std::vector<std::unique_ptr<Cell>> cells;
+  for (size_t i = 0; i < n; ++i) {
+    cells.push_back(std::make_unique<Cell>(kDir + "/first.yaml", CellOverrides{}, Cell::Purpose::Simulate));
+    cells.back()->plc().set_mode(RunMode::Run);
+  }
+  uint64_t t = 0;
+  for (auto _ : state)
+    for (int k = 0; k < 1000; ++k, t += 1000)
+      for (auto& c : cells) c->plc().scan(t);
+  state.counters["x_real_time"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["ns_per_cell_scan"] =
+      benchmark::Counter(double(state.iterations()) * 1000.0 * double(n) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// The dearest a wire gets: its source changes at every scan. a inverts its Y0-Y15 at every
+// scan; w wires carry them to b's X16.. (scanned inputs), each change sampled, carried and
+// delivered. Per wire: this one's time less the time with no wire, over w.
+void BM_BusyWires(benchmark::State& state) {
+  const size_t w = size_t(state.range(0));
+  (void)std::system(("mkdir -p " + kDir).c_str());
+  std::ofstream(kDir + "/toggle.il") << "ORG M1925\nFUN 9 MOVN S=WY0 D=WY0\nEND\n";
+  std::ofstream(kDir + "/busy_a.yaml") << "cell: {name: a, program: toggle.il}\n";
+  std::ofstream(kDir + "/busy_b.yaml") << "cell: {name: b, program: toggle.il}\n";
+  const std::string path = kDir + "/busy" + std::to_string(w) + ".line.yaml";
+  {
+    std::ofstream f(path);
+    f << "cells: {a: busy_a.yaml, b: busy_b.yaml}\nwires:\n";
+    for (size_t i = 0; i < w; ++i) f << "  - {from: a.Y" << i << ", to: b.X" << 16 + i << "}\n";
+  }
+  line::Line l(path);
+  l.run();
+  uint64_t t = 0;
+  for (auto _ : state)
+    for (int k = 0; k < 1000; ++k, t += 1000) l.scan_at(t);
+  state.counters["ns_per_instant"] = benchmark::Counter(double(state.iterations()) * 1000.0 * 1e-9,
+                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+}  // namespace
+
+BENCHMARK(BM_DemoAlone)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BusyWires)->Arg(0)->Arg(16)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Cells)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Unwired)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Chain)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+// --memory N: the chain of N cells built in a fresh process, the memory it took per cell
+// (resident, and malloc's heap), one "key value" line each; otherwise the benchmarks.
+int main(int argc, char** argv) {
+  if (argc == 3 && std::strcmp(argv[1], "--memory") == 0) {
+    const size_t n = size_t(std::atol(argv[2]));
+    const std::string path = line_file(n, true);
+    const double rss = resident_bytes(), heap = heap_bytes();
+    line::Line l(path);
+    l.run();
+    for (uint64_t t = 0; t < 1000000; t += 1000) l.scan_at(t);  // one virtual second: every page touched
+    std::printf("cells %zu\nresident_bytes_per_cell %.0f\nheap_bytes_per_cell %.0f\n", n,
+                (resident_bytes() - rss) / double(n), (heap_bytes() - heap) / double(n));
+    return 0;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
