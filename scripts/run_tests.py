@@ -12,6 +12,7 @@ The last line is "N passed, N failed"; the exit status is non-zero on any failur
 test that produced no results counts as a failure (a crash)."""
 import argparse
 import glob
+import hashlib
 import json
 import os
 import re
@@ -174,6 +175,41 @@ def run_all(tests, jobs, log_dir, env, report=print):
     return done
 
 
+def tree_state(root):
+    """{path: hash of its content, or None when deleted} of every file of the package that
+    git sees as changed or new (ignored files left out); None outside a git checkout. The
+    same before and after the suite, or a test wrote into the package."""
+    try:
+        out = subprocess.run(["git", "-C", root, "status", "--porcelain=v1", "-z", "--untracked-files=all"],
+                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, timeout=60)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    if out.returncode != 0:
+        return None
+    state, entries = {}, out.stdout.split(b"\0")
+    i = 0
+    while i < len(entries):
+        entry = entries[i]
+        i += 1
+        if len(entry) < 4:
+            continue
+        if entry[:2].strip(b" ") and entry[0:1] in b"RC":  # a rename names its old path next
+            i += 1
+        path = entry[3:].decode(errors="replace")
+        try:
+            with open(os.path.join(root, path), "rb") as f:
+                state[path] = hashlib.sha1(f.read()).hexdigest()
+        except OSError:
+            state[path] = None
+    return state
+
+
+def changed_by_tests(before, after):
+    if before is None or after is None:
+        return []
+    return sorted(p for p in set(before) | set(after) if before.get(p, "unchanged") != after.get(p, "unchanged"))
+
+
 def total(results, done, expected):
     """(passed, failed, lines naming each failure)."""
     passed = failed = 0
@@ -222,6 +258,7 @@ def main():
         raise SystemExit("no tests found in %s (was it built with make build?)" % build)
     # Every node and master of the tests is on loopback: no test depends on the hostname.
     env = loopback_env(dict(os.environ, ROS_HOME=os.path.join(ws, "ros_home"), PYTHONUNBUFFERED="1"))
+    before = tree_state(ROOT)
     t0 = time.monotonic()
     print("== %d tests, %d at a time (logs in %s)" % (len(tests), args.jobs, os.path.join(results, "logs")))
     sys.stdout.flush()
@@ -234,6 +271,10 @@ def main():
     chosen = {result_file(t.name) for t in tests}
     expected = [e for e in expected_results() if not args.only or e in chosen]
     passed, failed, broken = total(results, done, expected)
+    written = changed_by_tests(before, tree_state(ROOT))
+    if written:  # a test writes in a folder of its own, never into the package
+        failed += 1
+        broken.append("the tests changed the package's own files: %s" % ", ".join(written))
     busy = sum(t.seconds for t in done)
     print("\n== the tests took %.0f s of wall time, %.0f s of test time on %d workers; the longest:"
           % (wall, busy, args.jobs))

@@ -33,8 +33,8 @@ struct GateRun {
 void run_cases(const std::vector<scenario::Scenario>& files, const std::string& program, GateRun* g) {
   for (const auto& sc : files)
     for (const auto& c : sc.cases) {
-      const auto target = fresh_target(sc, std::nullopt, program);
-      const scenario::CaseResult r = scenario::run_case(c, *target);
+      FreshTarget target(sc, std::nullopt, program);
+      const scenario::CaseResult r = scenario::run_case(c, target.target());
       g->virtual_us += r.virtual_us;
       (r.passed ? g->passed : g->failed)++;
       g->cases.push_back({{"file", sc.file},           {"name", r.name},       {"line", r.line},
@@ -50,10 +50,10 @@ void run_explore(std::vector<scenario::Scenario>& files, const std::string& prog
   for (auto& sc : files) {
     if (!sc.explore.line || sc.explore.run_us == 0) continue;
     sc.explore.budget_us = budget_us;
-    const auto period = fresh_target(sc, std::nullopt, program)->period_us();
+    const auto period = FreshTarget(sc, std::nullopt, program).target().period_us();
     const explore::Runner runner = [&](const explore::InputRun& run) {
-      const auto target = fresh_target(sc, std::nullopt, program);
-      return scenario::run_case(explore::as_case(sc, run, "gate explore"), *target);
+      FreshTarget target(sc, std::nullopt, program);
+      return scenario::run_case(explore::as_case(sc, run, "gate explore"), target.target());
     };
     const explore::Outcome o = explore::explore(sc.explore, period, runner);
     g->virtual_us += o.virtual_us;

@@ -1,6 +1,7 @@
 """scripts/run_tests.py's total: each test counted once, whatever files it wrote."""
 import importlib.util
 import os
+import subprocess
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -95,3 +96,21 @@ def test_the_longest_run_first_and_known_long_ones_before_unknown_ones():
     tests = [run_tests.Test(n, [], "/", 1) for n in ("gtest_a", "gtest_b", "gtest_fuzz_tests", "gtest_c")]
     assert [t.name for t in run_tests.order(tests, {"gtest_b": 5.0, "gtest_c": 50.0})] == \
         ["gtest_c", "gtest_b", "gtest_fuzz_tests", "gtest_a"]
+
+
+def test_a_file_of_the_package_a_test_writes_is_found():
+    d = tempfile.mkdtemp()
+    git = lambda *a: subprocess.run(["git", "-C", d] + list(a), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                    check=True, timeout=60)
+    git("init", "-q")
+    open(os.path.join(d, "kept.il"), "w").write("END\n")
+    open(os.path.join(d, "edited.il"), "w").write("END\n")
+    git("add", ".")
+    git("-c", "user.name=t", "-c", "user.email=t@t", "commit", "-q", "-m", "x")
+    open(os.path.join(d, "edited.il"), "w").write("ORG M1925\nEND\n")  # changed before the suite
+    before = run_tests.tree_state(d)
+    assert run_tests.changed_by_tests(before, run_tests.tree_state(d)) == []
+    open(os.path.join(d, "edited.il"), "w").write("ORG M1924\nEND\n")  # ... and by a test
+    open(os.path.join(d, "new.changes.jsonl"), "w").write("{}\n")
+    os.remove(os.path.join(d, "kept.il"))
+    assert run_tests.changed_by_tests(before, run_tests.tree_state(d)) == ["edited.il", "kept.il", "new.changes.jsonl"]
