@@ -421,10 +421,11 @@ Scenario parse_scenario(const std::string& text, const std::string& file, ErrorL
     errors.add(SourceError::at(file, 1, 1, "a scenario file is a mapping with 'cell' and 'cases'"));
     return sc;
   }
-  r.only(doc, "", {"cell", "program", "setup", "cases", "properties", "explore"}, &errors);
+  r.only(doc, "", {"cell", "program", "setup", "cases", "properties", "explore", "hardware"}, &errors);
   read_files(r, doc, sc, errors);
   sc.properties = read_properties(r, doc["properties"], errors);
   sc.explore = read_explore(r, doc["explore"], errors);
+  sc.hardware = read_hardware(r, doc["hardware"], errors);
   Reader rd(r, errors);
   std::vector<Step> common;
   rd.steps(doc["setup"], "setup", &common);

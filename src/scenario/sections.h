@@ -1,5 +1,5 @@
 #pragma once
-// The scenario file's sections beside its cases: properties and explore
+// The scenario file's sections beside its cases: properties, explore and hardware
 // (docs/testing-your-cell.md). Every error into errors, at file:line with its key.
 #include <vector>
 
@@ -12,6 +12,7 @@ namespace scenario {
 
 std::vector<Property> read_properties(const YamlReader& r, const YAML::Node& list, ErrorList& errors);
 ExploreSpec read_explore(const YamlReader& r, const YAML::Node& map, ErrorList& errors);
+HardwarePermission read_hardware(const YamlReader& r, const YAML::Node& n, ErrorList& errors);
 
 }  // namespace scenario
 }  // namespace plc_cell

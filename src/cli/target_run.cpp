@@ -1,0 +1,303 @@
+// plc_cell test --target: the run. Everything is checked before anything is written: the
+// files must allow the target, every step must be one the target can do, the PLC must be
+// in RUN and every time window no tighter than the resolution measured on the link; then
+// the cases run one after the other, each restored before the next (target_case.cpp).
+#include "target_run.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <tuple>
+
+#include "scenario_files.h"
+#include "target_context.h"
+#include "plc_cell/hardware/target_spec.h"
+#include "plc_cell/scenario/junit.h"
+#include "plc_cell/scenario/wall_clock.h"
+#include "plc_cell/scenario/wall_clock_target.h"
+
+namespace plc_cell {
+namespace cli {
+
+namespace {
+
+
+
+hardware::TargetOptions parse_target_options(const Args& args) {
+  hardware::TargetOptions o;
+  o.text = args.get("target");
+  if (args.has("station")) o.station = int(args.get_int("station", 1, 0, 255));
+  if (args.has("id")) o.id = int(args.get_int("id", 1, 0, 255));
+  if (args.has("timeout")) {
+    const uint64_t us = parse_duration_us(args.get("timeout"));
+    if (us < 1000 || us > 60000000) throw UsageError("--timeout " + args.get("timeout") + ": out of range [1ms, 60s]");
+    o.timeout_ms = int(us / 1000);
+  }
+  o.retries = int(args.get_int("retries", o.retries, 0, 10));
+  return o;
+}
+
+// $XDG_STATE_HOME/plc_cell (else ~/.local/state/plc_cell): one journal per target.
+std::string journal_path(const std::string& target) {
+  const char* xdg = std::getenv("XDG_STATE_HOME");
+  const char* home = std::getenv("HOME");
+  std::string dir = xdg && *xdg ? xdg : std::string(home && *home ? home : "/tmp") + "/.local/state";
+  dir += "/plc_cell";
+  for (size_t at = dir.find('/', 1); at != std::string::npos; at = dir.find('/', at + 1))
+    ::mkdir(dir.substr(0, at).c_str(), 0755);  // the folders above, as mkdir -p
+  ::mkdir(dir.c_str(), 0755);
+  std::string name = target;
+  for (char& ch : name)
+    if (!isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '.') ch = '_';
+  return dir + "/restore-" + name + ".journal";
+}
+
+Diagnostic at_file(const scenario::Scenario& sc, const std::string& message) {
+  Diagnostic d;
+  d.where.file = sc.file;
+  d.where.line = sc.hardware.line ? sc.hardware.line : 1;
+  d.message = message;
+  return d;
+}
+
+std::vector<FileRun> select_cases(const std::vector<scenario::Scenario>& files, const std::vector<std::string>& k) {
+  std::vector<FileRun> runs;
+  for (const auto& sc : files) {
+    FileRun f;
+    f.sc = &sc;
+    CellOverrides o;
+    o.program = sc.program;
+    f.cell = std::make_unique<Cell>(sc.cell, o, Cell::Purpose::Check);
+    for (const auto& c : sc.cases) {
+      bool chosen = k.empty();
+      for (const auto& name : k) chosen = chosen || c.name.find(name) != std::string::npos;
+      if (chosen) f.cases.push_back(c);
+    }
+    if (!f.cases.empty()) runs.push_back(std::move(f));
+  }
+  return runs;
+}
+
+// "plc_cell test on FATEK ... (--target ...): forces X0 (start_button), ...; writes R0"
+void print_banner(const TargetRun& run, const std::vector<FileRun>& runs) {
+  std::vector<std::string> forced, written;
+  for (const auto& f : runs)
+    for (const auto& c : f.cases)
+      for (const auto& p : scenario::touched_points(c, f.cell->config())) {
+        auto& list = p.held ? forced : written;
+        if (std::find(list.begin(), list.end(), p.label) == list.end()) list.push_back(p.label);
+      }
+  for (const auto& f : forced) written.erase(std::remove(written.begin(), written.end(), f), written.end());
+  auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? std::string("nothing") : s;
+  };
+  std::cout << "plc_cell test on " << run.plc->describe() << " (--target " << run.target << "): forces "
+            << join(forced) << "; writes " << join(written) << "\n";
+  std::cout << "between cases the PLC is not reset: each case starts where the one before left it, with what "
+               "that one forced and wrote put back (a file's setup: brings it to a known state)\n";
+  for (const auto& f : runs) {
+    std::vector<std::string> played;
+    for (const auto& s : f.cell->config().sim_inputs) played.push_back(s.name);
+    if (!played.empty())
+      std::cout << f.sc->file << ": the cell's simulation plays " << join(played)
+                << " in virtual time; on the PLC only the cases' steps drive them\n";
+  }
+}
+
+// Every refusal of every file at once: the file's permission, the names the link cannot
+// reach, and the steps and windows the target cannot do (with the resolution once known).
+std::vector<Diagnostic> check_files(TargetRun& run, std::vector<FileRun>& runs,
+                                    const scenario::WallClockRules& rules, std::vector<scenario::StepNote>* widened) {
+  std::vector<Diagnostic> errors;
+  for (auto& f : runs) {
+    const std::string why = f.sc->hardware.refuses(run.target);
+    if (!why.empty()) errors.push_back(at_file(*f.sc, "key 'hardware': " + why));
+    for (auto& c : f.cases) {
+      scenario::WallClockTarget t(*run.plc, f.cell->config(), c, {});
+      for (auto& e : scenario::check_case(c, t)) errors.push_back(e);
+      scenario::Preflight p = scenario::wall_clock_preflight(c, rules, f.cell->config());
+      errors.insert(errors.end(), p.errors.begin(), p.errors.end());
+      if (widened) widened->insert(widened->end(), p.widened.begin(), p.widened.end());
+      c = std::move(p.adjusted);
+    }
+  }
+  // A property is every case's: said once.
+  auto key = [](const Diagnostic& d) { return std::make_tuple(d.where.file, d.where.line, d.message); };
+  std::stable_sort(errors.begin(), errors.end(), [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
+  errors.erase(std::unique(errors.begin(), errors.end(), [&](const Diagnostic& a, const Diagnostic& b) {
+                 return key(a) == key(b);
+               }),
+               errors.end());
+  if (widened) {
+    auto text = [](const scenario::StepNote& n) { return std::make_tuple(n.file, n.line, n.text); };
+    std::stable_sort(widened->begin(), widened->end(), [&](const auto& a, const auto& b) { return text(a) < text(b); });
+    widened->erase(std::unique(widened->begin(), widened->end(),
+                               [&](const auto& a, const auto& b) { return text(a) == text(b); }),
+                   widened->end());
+  }
+  return errors;
+}
+
+int refused(const std::vector<Diagnostic>& errors, const char* nothing) {
+  for (const auto& e : errors) std::cerr << e.to_string() << "\n";
+  std::cerr << "plc_cell test: " << errors.size() << " refusal(s); no case ran, " << nothing << "\n";
+  return 1;
+}
+
+void print_plan(const std::vector<FileRun>& runs) {
+  for (const auto& f : runs)
+    for (const auto& c : f.cases) {
+      std::cout << "case " << f.sc->file << ": " << c.name << "\n";
+      for (const auto& a : scenario::planned_actions(c, f.cell->config())) std::cout << "  " << a.to_string() << "\n";
+      std::string back;
+      for (const auto& p : scenario::touched_points(c, f.cell->config())) back += (back.empty() ? "" : ", ") + p.label;
+      std::cout << "  then put back as found: " << (back.empty() ? std::string("nothing") : back) << "\n";
+    }
+}
+
+// The PLC's mode against what each file requires.
+std::vector<Diagnostic> check_mode(TargetRun& run, const std::vector<FileRun>& runs) {
+  const std::optional<RunMode> mode = run.plc->mode();
+  run.run_mode = mode == RunMode::Run;
+  std::vector<Diagnostic> errors;
+  for (const auto& f : runs) {
+    if (!f.sc->hardware.require_run || mode == RunMode::Run) continue;
+    errors.push_back(at_file(*f.sc, mode ? "key 'hardware': the PLC is in STOP; this file requires RUN (or says "
+                                           "hardware: {require_run: false})"
+                                         : "key 'hardware': " + run.plc->cannot_read_mode() +
+                                               ", so this file's requirement of RUN cannot be checked (say "
+                                               "hardware: {require_run: false} once you have made sure)"));
+  }
+  return errors;
+}
+
+// Once connected: a journal left behind put back, the mode, the resolution, every window.
+int connect_and_check(TargetRun& run, std::vector<FileRun>& runs, uint64_t tolerance_us) {
+  if (!restore_left_journal(run)) return 1;
+  const auto mode_errors = check_mode(run, runs);
+  if (!mode_errors.empty()) return refused(mode_errors, "nothing was written");
+  std::vector<Address> polled;
+  uint64_t scan_us = 0;
+  for (const auto& f : runs) {
+    scan_us = std::max(scan_us, f.cell->scan_period_us());
+    for (const auto& c : f.cases) {
+      const scenario::WallClockTarget t(*run.plc, f.cell->config(), c, {});
+      for (const Address& a : t.polled_addresses())
+        if (std::find(polled.begin(), polled.end(), a) == polled.end()) polled.push_back(a);
+    }
+  }
+  run.resolution = scenario::measure_resolution(*run.plc, polled, scan_us);
+  scenario::WallClockRules rules{run.plc->describe(), run.plc->cannot_force(), run.resolution.us(), tolerance_us};
+  std::vector<scenario::StepNote> widened;
+  const auto errors = check_files(run, runs, rules, &widened);
+  if (!errors.empty()) return refused(errors, "nothing was written");
+  std::cout << "connected: " << (run.run_mode ? "the PLC is in RUN" : "RUN not required") << "; resolution "
+            << run.resolution.text() << "\n";
+  for (const auto& w : widened) std::cout << w.to_string() << "\n";
+  return 0;
+}
+
+void write_target_junit(const TargetRun& run, const std::vector<scenario::CaseResult>& results, bool as_found,
+                        const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot write the JUnit file " + path);
+  scenario::JUnitRun j;
+  j.target = run.target;
+  j.properties = {{"plc", run.plc->describe()},
+                  {"resolution", run.resolution.text()},
+                  {"left as found", as_found ? "yes" : "no: see the failures"}};
+  scenario::write_junit(results, out, j);
+}
+
+// The cases one after the other; the run stops at a signal, or when a case could not be
+// put back (the next would start from a PLC not as found, and overwrite the journal).
+int run_all(TargetRun& run, std::vector<FileRun>& runs, const Args& args) {
+  std::vector<scenario::CaseResult> results;
+  size_t failed = 0, not_restored = 0;
+  uint64_t wall_us = 0;
+  bool cut = false;
+  for (auto& f : runs) {
+    for (size_t i = 0; i < f.cases.size() && !cut; ++i) {
+      CaseRun r = run_case_on_target(run, f, f.cases[i]);
+      print_case(f, r);
+      if (r.slowest_us > run.resolution.us())
+        std::cout << "    the slowest poll took " << scenario::wall_time(r.slowest_us) << ", longer than the resolution "
+                  << scenario::wall_time(run.resolution.us()) << ": an instant near a window's edge may be off by that much\n";
+      for (const auto& n : r.restore.not_restored) r.result.details += "  NOT RESTORED: " + n + "\n";
+      if (!r.restore.complete()) r.result.passed = false;
+      failed += !r.result.passed;
+      not_restored += r.restore.not_restored.size();
+      wall_us += r.result.virtual_us;
+      results.push_back(r.result);
+      cut = r.stopped || !r.restore.complete();
+    }
+  }
+  std::cout << "== " << results.size() - failed << " passed, " << failed << " failed on " << run.plc->describe()
+            << " (resolution " << scenario::wall_time(run.resolution.us()) << ", " << scenario::wall_time(wall_us)
+            << " of wall-clock time); ";
+  if (!not_restored)
+    std::cout << "the PLC is as it was found\n";
+  else
+    std::cout << "NOT as it was found: " << not_restored << " point(s) not put back (above); the next run on "
+              << run.target << " puts them back first (" << run.journal << ")\n";
+  if (run.stop->signal_number()) std::cout << "plc_cell test: " << run.why_stopped() << ": no case ran after it\n";
+  if (cut && !run.stop->signal_number()) std::cout << "plc_cell test: no case ran after it\n";
+  if (args.has("junit")) write_target_junit(run, results, !not_restored, args.get("junit"));
+  return failed || not_restored || cut ? 1 : 0;
+}
+
+}  // namespace
+
+const std::vector<std::string>& target_options() {
+  static const std::vector<std::string> o = {"target", "station", "id", "tolerance", "timeout", "retries",
+                                             "restore-timeout"};
+  return o;
+}
+
+int cmd_test_on_target(const Args& args) {
+  if (!args.has("target")) throw UsageError("--dry-run lists what a run on a PLC would write and force: give --target");
+  for (const char* o : {"coverage", "coverage-json", "coverage-html", "mutate", "engine"})
+    if (args.has(o)) throw UsageError(std::string("--") + o + " goes with a run in virtual time, not with --target");
+  TargetRun run;
+  run.stop = std::make_unique<StopSignal>();  // before any thread: a signal from here on ends the run cleanly
+  std::cout << std::unitbuf;                   // each line as it comes: the user watches a PLC
+  run.target = args.get("target");
+  try {
+    run.plc = hardware::open_target(parse_target_options(args));
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  const uint64_t tolerance_us = args.has("tolerance") ? parse_duration_us(args.get("tolerance")) : 0;
+  if (args.has("restore-timeout"))
+    run.restore_for = std::chrono::milliseconds(parse_duration_us(args.get("restore-timeout")) / 1000);
+  run.record_dir = args.get("record");
+  run.journal = journal_path(run.target);
+  std::vector<scenario::Scenario> files;
+  if (!load_scenarios(args.positional(), "plc_cell test", &files)) return 1;
+  std::vector<FileRun> runs = select_cases(files, args.all("case"));
+  if (runs.empty()) throw UsageError("no case matches -k");
+  print_banner(run, runs);
+  const auto errors = check_files(run, runs, {run.plc->describe(), run.plc->cannot_force(), std::nullopt, 0}, nullptr);
+  if (args.has("dry-run")) {
+    print_plan(runs);
+    std::cout << "dry run: nothing was sent to the PLC; time windows are checked against the resolution once "
+                 "connected\n";
+    return errors.empty() ? 0 : refused(errors, "nothing was sent");
+  }
+  if (!errors.empty()) return refused(errors, "nothing was written");
+  try {
+    if (const int rc = connect_and_check(run, runs, tolerance_us)) return rc;
+  } catch (const CommError& e) {
+    std::cerr << "plc_cell test: cannot reach " << run.plc->describe() << ": " << e.what()
+              << "; no case ran, nothing was written\n";
+    return 1;
+  }
+  return run_all(run, runs, args);
+}
+
+}  // namespace cli
+}  // namespace plc_cell
