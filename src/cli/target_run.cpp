@@ -175,11 +175,10 @@ std::vector<Diagnostic> check_mode(TargetRun& run, const std::vector<FileRun>& r
   return errors;
 }
 
-// Once connected: a journal left behind put back, the mode, the resolution, every window.
+// Connected (reading only): the resolution measured, then every refusal of every file at
+// once (its permission, the steps, the windows against the resolution, the PLC's mode);
+// only then is a journal an earlier run left behind put back.
 int connect_and_check(TargetRun& run, std::vector<FileRun>& runs, uint64_t tolerance_us) {
-  if (!restore_left_journal(run)) return 1;
-  const auto mode_errors = check_mode(run, runs);
-  if (!mode_errors.empty()) return refused(mode_errors, "nothing was written");
   std::vector<Address> polled;
   uint64_t scan_us = 0;
   for (const auto& f : runs) {
@@ -193,12 +192,14 @@ int connect_and_check(TargetRun& run, std::vector<FileRun>& runs, uint64_t toler
   run.resolution = scenario::measure_resolution(*run.plc, polled, scan_us);
   scenario::WallClockRules rules{run.plc->describe(), run.plc->cannot_force(), run.resolution.us(), tolerance_us};
   std::vector<scenario::StepNote> widened;
-  const auto errors = check_files(run, runs, rules, &widened);
-  if (!errors.empty()) return refused(errors, "nothing was written");
+  auto errors = check_files(run, runs, rules, &widened);
+  const auto mode_errors = check_mode(run, runs);
+  errors.insert(errors.end(), mode_errors.begin(), mode_errors.end());
   std::cout << "connected: " << (run.run_mode ? "the PLC is in RUN" : "RUN not required") << "; resolution "
             << run.resolution.text() << "\n";
   for (const auto& w : widened) std::cout << w.to_string() << "\n";
-  return 0;
+  if (!errors.empty()) return refused(errors, "nothing was written");
+  return restore_left_journal(run) ? 0 : 1;
 }
 
 void write_target_junit(const TargetRun& run, const std::vector<scenario::CaseResult>& results, bool as_found,
@@ -281,14 +282,13 @@ int cmd_test_on_target(const Args& args) {
   std::vector<FileRun> runs = select_cases(files, args.all("case"));
   if (runs.empty()) throw UsageError("no case matches -k");
   print_banner(run, runs);
-  const auto errors = check_files(run, runs, {run.plc->describe(), run.plc->cannot_force(), std::nullopt, 0}, nullptr);
   if (args.has("dry-run")) {
+    const auto errors = check_files(run, runs, {run.plc->describe(), run.plc->cannot_force(), std::nullopt, 0}, nullptr);
     print_plan(runs);
     std::cout << "dry run: nothing was sent to the PLC; time windows are checked against the resolution once "
                  "connected\n";
     return errors.empty() ? 0 : refused(errors, "nothing was sent");
   }
-  if (!errors.empty()) return refused(errors, "nothing was written");
   try {
     if (const int rc = connect_and_check(run, runs, tolerance_us)) return rc;
   } catch (const CommError& e) {

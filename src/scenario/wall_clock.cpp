@@ -149,6 +149,10 @@ Preflight wall_clock_preflight(const Case& c, const WallClockRules& rules, const
   Checker check(rules, config, &out);
   for (Step& s : out.adjusted.steps) check.step(s);
   for (Property& p : out.adjusted.properties) check.property(p);
+  std::stable_sort(out.errors.begin(), out.errors.end(),
+                   [](const Diagnostic& a, const Diagnostic& b) { return a.where.line < b.where.line; });
+  std::stable_sort(out.widened.begin(), out.widened.end(),
+                   [](const StepNote& a, const StepNote& b) { return a.line < b.line; });
   return out;
 }
 
