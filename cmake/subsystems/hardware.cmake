@@ -5,7 +5,7 @@
 # links for FATEK and the TRi, libmodbus on the FBs map for Modbus), and the polled recording.
 file(GLOB HARDWARE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/hardware/*.cpp)
 add_library(plc_cell_hardware STATIC ${HARDWARE_SOURCES})
-target_link_libraries(plc_cell_hardware PUBLIC plc_cell_scenario plc_cell_remote plc_cell_modbus plc_cell_recording)
+target_link_libraries(plc_cell_hardware PUBLIC plc_cell_scenario plc_cell_remote plc_cell_modbus plc_cell_recording plc_cell_monitor)
 set_target_properties(plc_cell_hardware PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/target_run.cpp ${PROJECT_SOURCE_DIR}/src/cli/target_case.cpp)
