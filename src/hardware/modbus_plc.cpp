@@ -74,7 +74,7 @@ ModbusPlc::ModbusPlc(const std::string& endpoint, bool rtu, int unit, int timeou
   if (!ctx_) throw Error(endpoint + ": " + modbus_strerror(errno));
   modbus_set_slave(ctx_, unit);
   modbus_set_response_timeout(ctx_, uint32_t(timeout_ms / 1000), uint32_t(timeout_ms % 1000) * 1000);
-  name_ = std::string("Modbus ") + (rtu ? "RTU " : "TCP ") + t_->describe() + " unit " + std::to_string(unit);
+  name_ = std::string("Modbus ") + (rtu ? "RTU " : "") + t_->describe() + " unit " + std::to_string(unit);
 }
 
 ModbusPlc::~ModbusPlc() { modbus_free(ctx_); }
