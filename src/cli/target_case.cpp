@@ -41,6 +41,15 @@ scenario::RestoreOptions restore_options(TargetRun& run, StopSignal& give_up) {
   return o;
 }
 
+void print_restore(const scenario::RestoreResult& r) {
+  if (!r.restored.empty()) {
+    std::cout << "    restored as found:";
+    for (const auto& p : r.restored) std::cout << "\n      " << p;
+    std::cout << "\n";
+  }
+  for (const auto& p : r.not_restored) std::cout << "    NOT RESTORED: " << p << "\n";
+}
+
 }  // namespace
 
 std::string TargetRun::why_stopped() const {
@@ -90,27 +99,27 @@ CaseRun run_case_on_target(TargetRun& run, const FileRun& file, const scenario::
   out.slowest_us = target.slowest_poll_us();
   out.touched = target.touched().size();
   out.stopped = run.stop->signal_number() != 0;
+  if (rec) {
+    const std::string path = save_case(rec->recorder(), out.result, run.record_dir, &run.recorded);
+    if (!out.result.passed) out.result.details += "  recorded: " + monitor_command_for(path) + "\n";
+  }
+  print_result(*file.sc, out.result,
+               scenario::wall_time(out.result.virtual_us) + ", " + std::to_string(out.polls) + " polls");
+  if (out.slowest_us > run.resolution.us())
+    std::cout << "    the slowest poll took " << scenario::wall_time(out.slowest_us) << ", longer than the resolution "
+              << scenario::wall_time(run.resolution.us()) << ": an instant near a window's edge may be off by that much\n";
   if (out.touched) {
     StopSignal again;  // a signal from here on gives up waiting for a lost link
     out.restore = scenario::restore_points(*run.plc, target.found(), target.touched(), restore_options(run, again));
   }
   if (out.restore.complete()) journal.remove();
-  if (rec) {
-    const std::string path = save_case(rec->recorder(), out.result, run.record_dir, &run.recorded);
-    if (!out.result.passed) out.result.details += "  recorded: " + monitor_command_for(path) + "\n";
+  print_restore(out.restore);
+  if (!out.restore.complete()) {
+    std::cout << "    the case counts as failed: the PLC is not as it found it\n";
+    for (const auto& n : out.restore.not_restored) out.result.details += "  NOT RESTORED: " + n + "\n";
+    out.result.passed = false;
   }
   return out;
-}
-
-void print_case(const FileRun& file, const CaseRun& c) {
-  print_result(*file.sc, c.result,
-               scenario::wall_time(c.result.virtual_us) + ", " + std::to_string(c.polls) + " polls");
-  if (!c.restore.restored.empty()) {
-    std::cout << "    restored as found:";
-    for (const auto& r : c.restore.restored) std::cout << "\n      " << r;
-    std::cout << "\n";
-  }
-  for (const auto& r : c.restore.not_restored) std::cout << "    NOT RESTORED: " << r << "\n";
 }
 
 bool restore_left_journal(TargetRun& run) {
@@ -121,8 +130,7 @@ bool restore_left_journal(TargetRun& run) {
   StopSignal again;
   const scenario::RestoreResult r = scenario::restore_points(*run.plc, left->found, left->touched,
                                                              restore_options(run, again));
-  for (const auto& s : r.restored) std::cout << "    restored as found: " << s << "\n";
-  for (const auto& s : r.not_restored) std::cout << "    NOT RESTORED: " << s << "\n";
+  print_restore(r);
   if (!r.complete()) {
     std::cout << "plc_cell test: the PLC is not as that run found it: no case runs (the journal stays)\n";
     return false;

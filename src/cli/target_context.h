@@ -49,10 +49,9 @@ struct CaseRun {
 // Waits up to d; true once SIGINT or SIGTERM has come.
 bool wait_or_stop(StopSignal& stop, std::chrono::microseconds d);
 
-// One case: what it touches read first, the case, then every point put back.
+// One case: what it touches read first, the case (its line and report printed), then every
+// point put back (printed as it goes). A case not put back whole counts as failed.
 CaseRun run_case_on_target(TargetRun& run, const FileRun& file, const scenario::Case& c);
-// Prints a case's line, its report and what was put back.
-void print_case(const FileRun& file, const CaseRun& c);
 
 // A journal an earlier run on this target left (it was killed before it restored): put back
 // first. False, with what is missing printed, when it could not be.

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "plc_cell/scenario/raw_value.h"
+#include "plc_cell/scenario/resolution.h"
 #include "plc_cell/scenario/runner.h"
 
 namespace plc_cell {
@@ -55,7 +56,7 @@ auto WallClockTarget::on_link(const char* what, F&& f) -> decltype(f()) {
     return f();
   } catch (const CommError& e) {
     throw Error(std::string("the link to ") + plc_.describe() + " failed " + what + " at " +
-                format_time(polls_ ? since_start_us() : 0) + ": " + e.what());
+                wall_time(polls_ ? since_start_us() : 0) + ": " + e.what());
   }
 }
 
@@ -84,7 +85,7 @@ void WallClockTarget::scan(uint64_t t_us) {
   const auto left = due > now ? std::chrono::duration_cast<std::chrono::microseconds>(due - now)
                               : std::chrono::microseconds(0);
   if (opt_.wait && opt_.wait(left))
-    throw Stopped(opt_.why_stopped() + " at " + format_time(since_start_us()) + ": the case did not finish");
+    throw Stopped(opt_.why_stopped() + " at " + wall_time(since_start_us()) + ": the case did not finish");
   poll();
   // To the millisecond (well within the resolution), and never before the instant it was due.
   instant_us_ = std::max((instant_us_ + 500) / 1000 * 1000, t_us);

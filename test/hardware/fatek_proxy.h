@@ -12,6 +12,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -61,6 +62,7 @@ class FatekProxy {
   // Sends sig to pid once the n-th request (counted from the proxy's start) has gone upstream.
   void signal_at(uint64_t n, pid_t pid, int sig) {
     std::lock_guard<std::mutex> lk(mu_);
+    fired_ = false;
     signal_at_ = n;
     signal_pid_ = pid;
     signal_ = sig;
@@ -73,6 +75,8 @@ class FatekProxy {
     next_late_ms_ = late_ms;
   }
   uint64_t requests() const { return requests_; }
+  // Whether the signal of signal_at() went out.
+  bool fired() const { return fired_; }
 
  private:
   struct Held {
@@ -136,7 +140,11 @@ class FatekProxy {
     for (ssize_t i = 0; i < n; ++i) {
       if (buf[i] != 0x03) continue;
       const uint64_t r = ++requests_;
-      if (r == signal_at_ && signal_pid_ > 0) ::kill(signal_pid_, signal_);
+      if (signal_at_ && r >= signal_at_ && signal_pid_ > 0) {
+        ::kill(signal_pid_, signal_);
+        signal_at_ = 0;
+        fired_ = true;
+      }
       if (r == mode_at_) {
         mode_ = next_mode_;
         late_ms_ = next_late_ms_;
@@ -231,6 +239,7 @@ class FatekProxy {
   Mode next_mode_ = Mode::Forward;
   int next_late_ms_ = 0;
   std::atomic<uint64_t> requests_{0};
+  std::atomic<bool> fired_{false};
   std::vector<Pair> pairs_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
