@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <fstream>
 #include <iostream>
-#include <tuple>
 
 #include "scenario_files.h"
 #include "target_context.h"
@@ -54,14 +53,6 @@ std::string journal_path(const std::string& target) {
   return dir + "/restore-" + name + ".journal";
 }
 
-Diagnostic at_file(const scenario::Scenario& sc, const std::string& message) {
-  Diagnostic d;
-  d.where.file = sc.file;
-  d.where.line = sc.hardware.line ? sc.hardware.line : 1;
-  d.message = message;
-  return d;
-}
-
 std::vector<FileRun> select_cases(const std::vector<scenario::Scenario>& files, const std::vector<std::string>& k) {
   std::vector<FileRun> runs;
   for (const auto& sc : files) {
@@ -82,62 +73,31 @@ std::vector<FileRun> select_cases(const std::vector<scenario::Scenario>& files, 
 
 // "plc_cell test on FATEK ... (--target ...): forces X0 (start_button), ...; writes R0"
 void print_banner(const TargetRun& run, const std::vector<FileRun>& runs) {
-  std::vector<std::string> forced, written;
-  for (const auto& f : runs)
-    for (const auto& c : f.cases)
-      for (const auto& p : scenario::touched_points(c, f.cell->config())) {
-        auto& list = p.held ? forced : written;
-        if (std::find(list.begin(), list.end(), p.label) == list.end()) list.push_back(p.label);
-      }
-  for (const auto& f : forced) written.erase(std::remove(written.begin(), written.end(), f), written.end());
-  auto join = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-    return s.empty() ? std::string("nothing") : s;
-  };
-  std::cout << "plc_cell test on " << run.plc->describe() << " (--target " << run.target << "): forces "
-            << join(forced) << "; writes " << join(written) << "\n";
+  std::vector<scenario::Case> all;
+  for (const auto& f : runs) all.insert(all.end(), f.cases.begin(), f.cases.end());
+  // The names resolve the same in every file's cell: the first one's is as good as any.
+  std::cout << "plc_cell test on " << run.plc->describe() << " (--target " << run.target << "): "
+            << scenario::forces_and_writes(all, runs.front().cell->config()) << "\n";
   std::cout << "between cases the PLC is not reset: each case starts where the one before left it, with what "
                "that one forced and wrote put back (a file's setup: brings it to a known state)\n";
   for (const auto& f : runs) {
-    std::vector<std::string> played;
-    for (const auto& s : f.cell->config().sim_inputs) played.push_back(s.name);
+    std::string played;
+    for (const auto& s : f.cell->config().sim_inputs) played += (played.empty() ? "" : ", ") + s.name;
     if (!played.empty())
-      std::cout << f.sc->file << ": the cell's simulation plays " << join(played)
+      std::cout << f.sc->file << ": the cell's simulation plays " << played
                 << " in virtual time; on the PLC only the cases' steps drive them\n";
   }
 }
 
-// Every refusal of every file at once: the file's permission, the names the link cannot
-// reach, and the steps and windows the target cannot do (with the resolution once known).
+// Every refusal of every file at once (scenario::refusals_on), file by file.
 std::vector<Diagnostic> check_files(TargetRun& run, std::vector<FileRun>& runs,
-                                    const scenario::WallClockRules& rules, std::vector<scenario::StepNote>* widened) {
+                                    const scenario::WallClockRules& rules, std::vector<scenario::StepNote>* widened,
+                                    bool connected) {
   std::vector<Diagnostic> errors;
   for (auto& f : runs) {
-    const std::string why = f.sc->hardware.refuses(run.target);
-    if (!why.empty()) errors.push_back(at_file(*f.sc, "key 'hardware': " + why));
-    for (auto& c : f.cases) {
-      scenario::WallClockTarget t(*run.plc, f.cell->config(), c, {});
-      for (auto& e : scenario::check_case(c, t)) errors.push_back(e);
-      scenario::Preflight p = scenario::wall_clock_preflight(c, rules, f.cell->config());
-      errors.insert(errors.end(), p.errors.begin(), p.errors.end());
-      if (widened) widened->insert(widened->end(), p.widened.begin(), p.widened.end());
-      c = std::move(p.adjusted);
-    }
-  }
-  // A property is every case's: said once.
-  auto key = [](const Diagnostic& d) { return std::make_tuple(d.where.file, d.where.line, d.message); };
-  std::stable_sort(errors.begin(), errors.end(), [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
-  errors.erase(std::unique(errors.begin(), errors.end(), [&](const Diagnostic& a, const Diagnostic& b) {
-                 return key(a) == key(b);
-               }),
-               errors.end());
-  if (widened) {
-    auto text = [](const scenario::StepNote& n) { return std::make_tuple(n.file, n.line, n.text); };
-    std::stable_sort(widened->begin(), widened->end(), [&](const auto& a, const auto& b) { return text(a) < text(b); });
-    widened->erase(std::unique(widened->begin(), widened->end(),
-                               [&](const auto& a, const auto& b) { return text(a) == text(b); }),
-                   widened->end());
+    const auto e = scenario::refusals_on(*run.plc, run.target, *f.sc, f.cell->config(), rules, &f.cases, widened,
+                                         connected);
+    errors.insert(errors.end(), e.begin(), e.end());
   }
   return errors;
 }
@@ -159,22 +119,6 @@ void print_plan(const std::vector<FileRun>& runs) {
     }
 }
 
-// The PLC's mode against what each file requires.
-std::vector<Diagnostic> check_mode(TargetRun& run, const std::vector<FileRun>& runs) {
-  const std::optional<RunMode> mode = run.plc->mode();
-  run.run_mode = mode == RunMode::Run;
-  std::vector<Diagnostic> errors;
-  for (const auto& f : runs) {
-    if (!f.sc->hardware.require_run || mode == RunMode::Run) continue;
-    errors.push_back(at_file(*f.sc, mode ? "key 'hardware': the PLC is in STOP; this file requires RUN (or says "
-                                           "hardware: {require_run: false})"
-                                         : "key 'hardware': " + run.plc->cannot_read_mode() +
-                                               ", so this file's requirement of RUN cannot be checked (say "
-                                               "hardware: {require_run: false} once you have made sure)"));
-  }
-  return errors;
-}
-
 // Connected (reading only): the resolution measured, then every refusal of every file at
 // once (its permission, the steps, the windows against the resolution, the PLC's mode);
 // only then is a journal an earlier run left behind put back.
@@ -192,9 +136,8 @@ int connect_and_check(TargetRun& run, std::vector<FileRun>& runs, uint64_t toler
   run.resolution = scenario::measure_resolution(*run.plc, polled, scan_us);
   scenario::WallClockRules rules{run.plc->describe(), run.plc->cannot_force(), run.resolution.us(), tolerance_us};
   std::vector<scenario::StepNote> widened;
-  auto errors = check_files(run, runs, rules, &widened);
-  const auto mode_errors = check_mode(run, runs);
-  errors.insert(errors.end(), mode_errors.begin(), mode_errors.end());
+  const auto errors = check_files(run, runs, rules, &widened, true);
+  run.run_mode = run.plc->mode() == RunMode::Run;
   std::cout << "connected: " << (run.run_mode ? "the PLC is in RUN" : "RUN not required") << "; resolution "
             << run.resolution.text() << "\n";
   for (const auto& w : widened) std::cout << w.to_string() << "\n";
@@ -277,7 +220,8 @@ int cmd_test_on_target(const Args& args) {
   if (runs.empty()) throw UsageError("no case matches -k");
   print_banner(run, runs);
   if (args.has("dry-run")) {
-    const auto errors = check_files(run, runs, {run.plc->describe(), run.plc->cannot_force(), std::nullopt, 0}, nullptr);
+    const auto errors =
+        check_files(run, runs, {run.plc->describe(), run.plc->cannot_force(), std::nullopt, 0}, nullptr, false);
     print_plan(runs);
     std::cout << "dry run: nothing was sent to the PLC; time windows are checked against the resolution once "
                  "connected\n";

@@ -22,7 +22,8 @@ std::string wall_time(uint64_t us) {
 
 std::string Resolution::text() const {
   return wall_time(us()) + ": a poll every " + wall_time(period_us) + " (the slowest of " + std::to_string(polls) +
-         " round trips: " + wall_time(round_trip_us) + ") + that round trip + the cell's scan of " + wall_time(scan_us);
+         " round trips: " + wall_time(round_trip_us) + ") + that round trip + the cell's scan of " + wall_time(scan_us) +
+         (age_us ? " + the age of the messages read, up to " + wall_time(age_us) : "");
 }
 
 Resolution measure_resolution(LinkedPlc& plc, const std::vector<Address>& addrs, uint64_t scan_us, int polls) {
@@ -39,6 +40,7 @@ Resolution measure_resolution(LinkedPlc& plc, const std::vector<Address>& addrs,
   // Whole tenths of a millisecond, rounded up: the figure is printed and compared.
   r.round_trip_us = (r.round_trip_us + 99) / 100 * 100;
   r.period_us = std::max((r.round_trip_us + 999) / 1000 * 1000, kMinPollPeriodUs);
+  r.age_us = plc.max_age_us();
   return r;
 }
 

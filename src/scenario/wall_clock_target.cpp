@@ -1,6 +1,7 @@
 #include "plc_cell/scenario/wall_clock_target.h"
 
 #include <algorithm>
+#include <tuple>
 
 #include "plc_cell/scenario/raw_value.h"
 #include "plc_cell/scenario/resolution.h"
@@ -169,6 +170,75 @@ void WallClockTarget::release(const Probe* p) {
 
 void WallClockTarget::simulate(const Probe*) {
   throw Error("a real cell has no simulation to hand inputs back to");
+}
+
+namespace {
+
+Diagnostic at_hardware_key(const Scenario& sc, const std::string& message) {
+  Diagnostic d;
+  d.where.file = sc.file;
+  d.where.line = sc.hardware.line ? sc.hardware.line : 1;
+  d.message = "key 'hardware': " + message;
+  return d;
+}
+
+std::string mode_refusal(LinkedPlc& plc, const Scenario& sc) {
+  if (!sc.hardware.require_run) return "";
+  const std::optional<RunMode> mode = plc.mode();
+  if (mode == RunMode::Run) return "";
+  if (mode) return "the PLC is in STOP; this file requires RUN (or says hardware: {require_run: false})";
+  return plc.cannot_read_mode() + ", so this file's requirement of RUN cannot be checked (say hardware: "
+                                  "{require_run: false} once you have made sure)";
+}
+
+}  // namespace
+
+std::vector<Diagnostic> refusals_on(LinkedPlc& plc, const std::string& target, const Scenario& sc,
+                                    const CellConfig& config, const WallClockRules& rules, std::vector<Case>* cases,
+                                    std::vector<StepNote>* widened, bool connected) {
+  std::vector<Diagnostic> errors;
+  const std::string why = sc.hardware.refuses(target);
+  if (!why.empty()) errors.push_back(at_hardware_key(sc, why));
+  if (connected) {
+    const std::string mode = mode_refusal(plc, sc);
+    if (!mode.empty()) errors.push_back(at_hardware_key(sc, mode));
+  }
+  for (Case& c : *cases) {
+    WallClockTarget t(plc, config, c, {});
+    for (auto& e : check_case(c, t)) errors.push_back(e);
+    Preflight p = wall_clock_preflight(c, rules, config);
+    errors.insert(errors.end(), p.errors.begin(), p.errors.end());
+    if (widened) widened->insert(widened->end(), p.widened.begin(), p.widened.end());
+    c = std::move(p.adjusted);
+  }
+  // A property is every case's: said once.
+  auto key = [](const Diagnostic& d) { return std::make_tuple(d.where.file, d.where.line, d.message); };
+  std::stable_sort(errors.begin(), errors.end(), [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
+  errors.erase(std::unique(errors.begin(), errors.end(), [&](const auto& a, const auto& b) { return key(a) == key(b); }),
+               errors.end());
+  if (widened) {
+    auto text = [](const StepNote& n) { return std::make_tuple(n.file, n.line, n.text); };
+    std::stable_sort(widened->begin(), widened->end(), [&](const auto& a, const auto& b) { return text(a) < text(b); });
+    widened->erase(std::unique(widened->begin(), widened->end(), [&](const auto& a, const auto& b) { return text(a) == text(b); }),
+                   widened->end());
+  }
+  return errors;
+}
+
+std::string forces_and_writes(const std::vector<Case>& cases, const CellConfig& config) {
+  std::vector<std::string> forced, written;
+  for (const auto& c : cases)
+    for (const auto& p : touched_points(c, config)) {
+      auto& list = p.held ? forced : written;
+      if (std::find(list.begin(), list.end(), p.label) == list.end()) list.push_back(p.label);
+    }
+  for (const auto& f : forced) written.erase(std::remove(written.begin(), written.end(), f), written.end());
+  auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? std::string("nothing") : s;
+  };
+  return "forces " + join(forced) + "; writes " + join(written);
 }
 
 }  // namespace scenario

@@ -44,6 +44,9 @@ class LinkedPlc {
   // cannot_read_mode() says why).
   virtual std::optional<RunMode> mode() = 0;
   virtual std::string cannot_read_mode() const { return ""; }
+  // How old a value read() returns may be: 0 for a link that asks the PLC at every read; the
+  // longest gap measured between a node's messages for one that reads what a node published.
+  virtual uint64_t max_age_us() const { return 0; }
 };
 
 }  // namespace scenario

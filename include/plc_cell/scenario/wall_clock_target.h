@@ -93,5 +93,16 @@ class WallClockTarget : public Target {
   uint64_t slowest_us_ = 0;
 };
 
+// Every refusal of sc's cases on plc, each at its file:line once: the file's permission for
+// target (as its hardware: key names targets), the names plc cannot reach, the steps and the
+// windows the rules refuse and, once connected, the PLC's mode. cases (sc's, or those
+// selected) come back with their windows widened; widened says which.
+std::vector<Diagnostic> refusals_on(LinkedPlc& plc, const std::string& target, const Scenario& sc,
+                                    const CellConfig& config, const WallClockRules& rules, std::vector<Case>* cases,
+                                    std::vector<StepNote>* widened, bool connected);
+
+// "forces stop_button (X1), part_present (X3); writes RC0": what cases will force and write.
+std::string forces_and_writes(const std::vector<Case>& cases, const CellConfig& config);
+
 }  // namespace scenario
 }  // namespace plc_cell
