@@ -73,9 +73,19 @@ void TopicPlc::arrived(const std::string& topic) {
 }
 
 void TopicPlc::connect(std::chrono::milliseconds window) {
-  ros::master::V_TopicInfo topics;
-  if (!ros::master::getTopics(topics)) throw Error("the ROS master cannot be reached");
   const std::string prefix = node_ + "/";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s_);
+  // The node advertises all its topics as it starts: once ~io is there, so is the rest.
+  ros::master::V_TopicInfo topics;
+  for (;;) {
+    topics.clear();
+    if (!ros::master::getTopics(topics)) throw Error("the ROS master cannot be reached");
+    if (std::any_of(topics.begin(), topics.end(), [&](const auto& t) { return t.name == prefix + "io"; })) break;
+    if (std::chrono::steady_clock::now() >= deadline)
+      throw Error(describe() + " publishes no " + prefix + "io within " + std::to_string(timeout_s_) +
+                  " s: is it running?");
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
   for (const auto& t : topics) {
     if (t.name == prefix + "io") {
       subs_.push_back(nh_.subscribe<IoState>(t.name, 100, [this, name = t.name](const IoState::ConstPtr& m) {
@@ -104,6 +114,7 @@ void TopicPlc::connect(std::chrono::milliseconds window) {
       subs_.push_back(nh_.subscribe<ForcedPoints>(t.name, 10, [this](const ForcedPoints::ConstPtr& m) {
         std::lock_guard<std::mutex> lk(mu_);
         forced_msg_ = *m;
+        forced_at_ = std::chrono::steady_clock::now();
       }));
     }
     for (size_t i = 0; i < signals_.size(); ++i)
@@ -113,7 +124,6 @@ void TopicPlc::connect(std::chrono::milliseconds window) {
           signal_values_[i].second = m->data;
         }));
   }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s_);
   for (;;) {
     {
       std::lock_guard<std::mutex> lk(mu_);
@@ -184,6 +194,16 @@ std::vector<uint32_t> TopicPlc::read(const std::vector<Address>& addrs) {
 }
 
 std::optional<std::vector<bool>> TopicPlc::forced(const std::vector<Address>& bits) {
+  // After a change, the node's next ~forced says how it went; a change that changed nothing
+  // (a point released that was not forced) brings none, and the last one still holds.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  for (;;) {
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      if (forced_at_ >= changed_ || std::chrono::steady_clock::now() >= until) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
   std::lock_guard<std::mutex> lk(mu_);
   if (!forced_msg_) return std::nullopt;
   std::vector<bool> out;
@@ -208,12 +228,16 @@ void TopicPlc::force(const Address& bit, bool on) {
   srv.request.address = format_address(bit);
   srv.request.value = on;
   call("force", srv);
+  std::lock_guard<std::mutex> lk(mu_);
+  changed_ = std::chrono::steady_clock::now();
 }
 
 void TopicPlc::unforce(const Address& bit) {
   ReleaseDiscrete srv;
   srv.request.address = format_address(bit);
   call("release", srv);
+  std::lock_guard<std::mutex> lk(mu_);
+  changed_ = std::chrono::steady_clock::now();
 }
 
 std::string TopicPlc::cannot_force() const {

@@ -47,6 +47,10 @@ class RealTimeRun {
 
   // The case of this name (as the file gives it), then every point it touched put back.
   RealTimeOutcome run(const Case& c);
+  // After the cases: each point they touch that is not forced as it was before the first
+  // ("X3 (part_present): forced, found not forced"); empty when none. Where the node does not
+  // say which points are forced, nothing can be compared: said as such.
+  std::vector<std::string> not_as_found();
 
  private:
   const Scenario& sc_;
@@ -56,6 +60,7 @@ class RealTimeRun {
   Resolution resolution_;
   std::vector<Case> cases_;  // as run: windows widened
   std::vector<StepNote> widened_;
+  std::vector<FoundPoint> before_;  // every touched point, before the first case
   const std::atomic<int>* stop_;
 };
 

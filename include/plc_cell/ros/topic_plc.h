@@ -80,6 +80,8 @@ class TopicPlc : public LinkedPlc {
   std::vector<std::pair<Address, std::optional<bool>>> signal_values_;  // per signals_ entry
   std::map<std::string, Group> groups_;                                // by topic
   std::optional<ForcedPoints> forced_msg_;
+  // A ~force or ~release since the last ~forced message: forced() waits for the next one.
+  std::chrono::steady_clock::time_point changed_, forced_at_;
   std::map<std::string, ros::WallTime> last_;  // a periodic topic's last message
   bool measuring_ = false;
   uint64_t max_gap_us_ = 0;
