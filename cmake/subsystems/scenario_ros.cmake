@@ -21,6 +21,8 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/scenario_two_cells.test DEPENDENCIES plc_node scenario_runner)
   # The hardware scenario in wall-clock time on plc_node in real time (docs/testing-on-hardware.md).
   add_rostest(test/ros/scenario_real_time.test DEPENDENCIES plc_node scenario_runner)
+  # The same through fatek_bridge in front of a soft PLC serving FATEK, as on a real PLC.
+  add_rostest(test/ros/scenario_real_time_bridge.test DEPENDENCIES fatek_bridge scenario_runner plc_cell_tool)
 endif()
 
 if(CATKIN_ENABLE_TESTING)

@@ -52,6 +52,9 @@ RealTimeRun::RealTimeRun(const Scenario& sc, const CellConfig& config, uint64_t 
   }
   resolution_ = measure_resolution(*plc_, polled, scan_us);
   std::cout << "connected: resolution " << resolution_.text() << "\n";
+  if (!plc_->says_forced())
+    std::cout << plc_->describe() << " publishes no ~forced: what the cases force is released after each, but "
+                                     "whether the PLC holds a force is not read back here\n";
   const WallClockRules rules{plc_->describe(), plc_->cannot_force(), resolution_.us(), tolerance_us};
   std::vector<TouchedPoint> all;
   for (const auto& c : cases_)
@@ -103,7 +106,7 @@ std::vector<std::string> RealTimeRun::not_as_found() {
   std::vector<std::string> out;
   if (bits.empty()) return out;
   const auto now = plc_->forced(bits);
-  if (!now) return {plc_->describe() + " does not say which points are forced: nothing to compare"};
+  if (!now) return {plc_->describe() + " stopped saying which points are forced"};
   const std::vector<uint32_t> values = plc_->read(bits);
   for (size_t i = 0; i < found.size(); ++i) {
     const bool was = *found[i]->forced, is = (*now)[i];

@@ -47,9 +47,10 @@ class RealTimeRun {
 
   // The case of this name (as the file gives it), then every point it touched put back.
   RealTimeOutcome run(const Case& c);
+  // Whether the node says which points are forced (then not_as_found() can tell).
+  bool says_forced() const { return plc_->says_forced(); }
   // After the cases: each point they touch that is not forced as it was before the first
-  // ("X3 (part_present): forced, found not forced"); empty when none. Where the node does not
-  // say which points are forced, nothing can be compared: said as such.
+  // ("X3 (part_present): forced, found not forced"); empty when none.
   std::vector<std::string> not_as_found();
 
  private:

@@ -52,6 +52,8 @@ class TopicPlc : public LinkedPlc {
   std::optional<RunMode> mode() override;
   std::string cannot_read_mode() const override { return ""; }
   uint64_t max_age_us() const override { return max_gap_us_; }
+  // Whether the node publishes ~forced (plc_node does; the bridges do not).
+  bool says_forced() const { return publishes_forced_; }
 
  private:
   struct Group {
