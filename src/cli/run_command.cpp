@@ -16,7 +16,8 @@ namespace {
 // The cell as a real one is: no input is played by its simulation:, so each stays where the
 // clients (a FATEK force, a Modbus write) leave it, as a real PLC's terminals stay where its
 // wiring holds them.
-void simulation_off(Cell& cell) {
+// Returns the log line that says so.
+std::string simulation_off(Cell& cell) {
   SimulatedCell& sim = cell.soft().simulation();
   std::string off;
   cell.plc().locked([&](ScanEngine&, Memory&) {
@@ -26,8 +27,7 @@ void simulation_off(Cell& cell) {
     }
     return 0;
   });
-  std::cerr << "plc_cell run: simulation off" << (off.empty() ? "" : ": " + off + " stay as the clients leave them")
-            << "\n";
+  return "plc_cell run: simulation off" + (off.empty() ? std::string() : ": " + off + " stay as the clients leave them");
 }
 
 }  // namespace
@@ -46,9 +46,10 @@ int cmd_run(const std::vector<std::string>& argv) {
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Serve,
             [](const std::string& l) { std::cerr << "plc_cell run: " << l << "\n"; });
   for (const auto& w : cell.soft().warnings()) std::cerr << w.to_string() << "\n";  // the PLC still runs
-  if (args.has("no-simulation")) simulation_off(cell);
+  const std::string no_simulation = args.has("no-simulation") ? simulation_off(cell) : "";
   if (!cell.plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
   cell.start_servers([](const Server& s) { std::cerr << "plc_cell run: serving " << s.describe() << "\n"; });
+  if (!no_simulation.empty()) std::cerr << no_simulation << "\n";  // after the servers: a first line says they are up
   std::cerr << "plc_cell run: engine " << cell.plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); })
             << "\n";
   cell.start_scanning();
