@@ -31,6 +31,7 @@ struct TargetRun {
   std::string journal;  // the restore journal's path
   std::chrono::milliseconds restore_for{30000};
   scenario::Resolution resolution;
+  std::vector<scenario::StepNote> widened;  // the windows --tolerance widened
   bool run_mode = false;  // the PLC was seen in RUN
   std::string record_dir;  // --record; "" = none
   std::set<std::string> recorded;

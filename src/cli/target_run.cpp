@@ -135,7 +135,7 @@ int connect_and_check(TargetRun& run, std::vector<FileRun>& runs, uint64_t toler
   }
   run.resolution = scenario::measure_resolution(*run.plc, polled, scan_us);
   scenario::WallClockRules rules{run.plc->describe(), run.plc->cannot_force(), run.resolution.us(), tolerance_us};
-  std::vector<scenario::StepNote> widened;
+  std::vector<scenario::StepNote>& widened = run.widened;
   const auto errors = check_files(run, runs, rules, &widened, true);
   run.run_mode = run.plc->mode() == RunMode::Run;
   std::cout << "connected: " << (run.run_mode ? "the PLC is in RUN" : "RUN not required") << "; resolution "
@@ -143,6 +143,12 @@ int connect_and_check(TargetRun& run, std::vector<FileRun>& runs, uint64_t toler
   for (const auto& w : widened) std::cout << w.to_string() << "\n";
   if (!errors.empty()) return refused(errors, "nothing was written");
   return restore_left_journal(run) ? 0 : 1;
+}
+
+std::string widened_text(const std::vector<scenario::StepNote>& widened) {
+  std::string s;
+  for (const auto& w : widened) s += (s.empty() ? "" : "; ") + w.to_string();
+  return s.empty() ? "none" : s;
 }
 
 void write_target_junit(const TargetRun& run, const std::vector<scenario::CaseResult>& results, bool as_found,
@@ -153,6 +159,7 @@ void write_target_junit(const TargetRun& run, const std::vector<scenario::CaseRe
   j.target = run.target;
   j.properties = {{"plc", run.plc->describe()},
                   {"resolution", run.resolution.text()},
+                  {"windows widened", widened_text(run.widened)},
                   {"left as found", as_found ? "yes" : "no: see the failures"}};
   scenario::write_junit(results, out, j);
 }

@@ -201,6 +201,8 @@ TEST_F(FatekTarget, AFailingCaseIsRecordedAsPolledAndTheJUnitNamesTheTarget) {
   x << j.rdbuf();
   EXPECT_NE(x.str().find("<testsuite name=\"wrong.scenario on " + target() + "\""), std::string::npos) << x.str();
   EXPECT_NE(x.str().find("<property name=\"resolution\" value=\""), std::string::npos) << x.str();
+  EXPECT_NE(x.str().find("<property name=\"windows widened\" value=\"none\"/>"), std::string::npos) << x.str();
+  EXPECT_NE(x.str().find("<property name=\"left as found\" value=\"yes\"/>"), std::string::npos) << x.str();
 }
 
 TEST_F(HardwareTest, OverASerialLineThroughSocat) {
@@ -214,6 +216,28 @@ TEST_F(HardwareTest, OverASerialLineThroughSocat) {
   EXPECT_NE(r.out.find("PASS  " + kConveyorScenario + ": the stop button stops the line"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("; the PLC is as it was found"), std::string::npos) << r.out;
   EXPECT_TRUE(state_of(port, kTouched) == before);
+}
+
+// The stand-in as a real cell: with --no-simulation nothing plays the inputs (the demo's
+// normally closed stop button stays OFF, a written part sensor stays ON); without it the
+// simulation plays them.
+TEST_F(HardwareTest, PlcCellRunWithNoSimulationLeavesTheInputsAsTheClientsLeaveThem) {
+  RunChild off({"--config", kConveyor, "--no-simulation", "--fatek-tcp", "127.0.0.1:0"});
+  wait_scanning(off);
+  EXPECT_NE(off.log.find("plc_cell run: simulation off: X1, X3, X4 stay as the clients leave them"), std::string::npos)
+      << off.log;
+  plc_cell::fatek::Client c(plc_cell::fatek::tcp_transport(loopback(port_of(off, "FATEK TCP"))));
+  c.write(parse_address("X3"), {1});
+  for (int i = 0; i < 200; ++i) {  // 200 reads: many scans of 1 ms
+    const auto v = c.read_mixed({parse_address("X1"), parse_address("X3"), parse_address("M0")});
+    ASSERT_EQ(v, (std::vector<uint32_t>{0, 1, 0})) << "read " << i;
+  }
+  RunChild on({"--config", kConveyor, "--fatek-tcp", "127.0.0.1:0"});
+  wait_scanning(on);
+  plc_cell::fatek::Client d(plc_cell::fatek::tcp_transport(loopback(port_of(on, "FATEK TCP"))));
+  bool played = false;
+  for (int i = 0; i < 1000 && !played; ++i) played = d.read(parse_address("X1"), 1).at(0) == 1;
+  EXPECT_TRUE(played) << "the simulation never played the stop button (X1) in 1000 reads";
 }
 
 }  // namespace

@@ -58,6 +58,12 @@ TEST_F(LinkTarget, OverTheTriHostLinkOnTcp) {
                       "TRi tcp " + loopback(port_of(*plc, "TRi TCP")) + " ID 01");
 }
 
+TEST_F(LinkTarget, OverTheTriHostLinkOnASerialLine) {
+  plc_cell::testing::PtyPair line(temp());
+  const auto plc = serve({"--tri-serial", line.b});
+  passes_and_restores(*plc, "tri-serial:" + line.a, "TRi ");
+}
+
 TEST_F(LinkTarget, OverModbusTcp) {
   const auto plc = serve({"--modbus-tcp", "127.0.0.1:0"});
   passes_and_restores(*plc, "modbus://" + loopback(port_of(*plc, "Modbus TCP")),
