@@ -86,15 +86,7 @@ CaseRun run_case_on_target(TargetRun& run, const FileRun& file, const scenario::
     };
   scenario::WallClockTarget target(*run.plc, file.cell->config(), c, o);
   CaseRun out;
-  try {
-    target.begin();
-    out.result = scenario::run_case(c, target);
-  } catch (const Error& e) {  // before the case's first step: the link, or a signal
-    out.result.name = c.name;
-    out.result.file = c.file;
-    out.result.line = c.line;
-    out.result.failure = c.file + ":" + std::to_string(c.line) + ": " + e.what();
-  }
+  out.result = scenario::begin_and_run(c, target);
   out.polls = target.polls();
   out.slowest_us = target.slowest_poll_us();
   out.touched = target.touched().size();

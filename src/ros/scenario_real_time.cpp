@@ -79,15 +79,7 @@ RealTimeOutcome RealTimeRun::run(const Case& named) {
   o.target_text = target_;
   WallClockTarget target(*plc_, config_, c, o);
   RealTimeOutcome out;
-  try {
-    target.begin();
-    out.result = run_case(c, target);
-  } catch (const Error& e) {  // before the case's first step: the node, or a signal
-    out.result.name = c.name;
-    out.result.file = c.file;
-    out.result.line = c.line;
-    out.result.failure = c.file + ":" + std::to_string(c.line) + ": " + e.what();
-  }
+  out.result = begin_and_run(c, target);
   out.polls = target.polls();
   RestoreOptions r;
   r.wait = [](std::chrono::milliseconds d) { return pause_or_stop(nullptr, d); };

@@ -172,6 +172,20 @@ void WallClockTarget::simulate(const Probe*) {
   throw Error("a real cell has no simulation to hand inputs back to");
 }
 
+CaseResult begin_and_run(const Case& c, WallClockTarget& t) {
+  try {
+    t.begin();
+    return run_case(c, t);
+  } catch (const Error& e) {
+    CaseResult r;
+    r.name = c.name;
+    r.file = c.file;
+    r.line = c.line;
+    r.failure = c.file + ":" + std::to_string(c.line) + ": " + e.what();
+    return r;
+  }
+}
+
 namespace {
 
 Diagnostic at_hardware_key(const Scenario& sc, const std::string& message) {

@@ -16,6 +16,7 @@
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/scenario/linked_plc.h"
 #include "plc_cell/scenario/restore.h"
+#include "plc_cell/scenario/runner.h"
 #include "plc_cell/scenario/target.h"
 
 namespace plc_cell {
@@ -92,6 +93,10 @@ class WallClockTarget : public Target {
   uint64_t polls_ = 0;
   uint64_t slowest_us_ = 0;
 };
+
+// begin() on t, then the case (runner.h): a failure before its first step (the link, a
+// stop) is the case's failure at its line.
+CaseResult begin_and_run(const Case& c, WallClockTarget& t);
 
 // Every refusal of sc's cases on plc, each at its file:line once: the file's permission for
 // target (as its hardware: key names targets), the names plc cannot reach, the steps and the
