@@ -75,16 +75,23 @@ void TopicPlc::arrived(const std::string& topic) {
 void TopicPlc::connect(std::chrono::milliseconds window) {
   const std::string prefix = node_ + "/";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s_);
-  // The node advertises all its topics as it starts: once ~io is there, so is the rest.
+  // The node advertises its topics one after the other as it starts: they are all there once
+  // ~io is and two lists of its topics 100 ms apart are the same.
   ros::master::V_TopicInfo topics;
+  std::vector<std::string> mine, before;
   for (;;) {
     topics.clear();
     if (!ros::master::getTopics(topics)) throw Error("the ROS master cannot be reached");
-    if (std::any_of(topics.begin(), topics.end(), [&](const auto& t) { return t.name == prefix + "io"; })) break;
+    before = mine;
+    mine.clear();
+    for (const auto& t : topics)
+      if (under(t.name, prefix)) mine.push_back(t.name);
+    std::sort(mine.begin(), mine.end());
+    if (std::find(mine.begin(), mine.end(), prefix + "io") != mine.end() && mine == before) break;
     if (std::chrono::steady_clock::now() >= deadline)
       throw Error(describe() + " publishes no " + prefix + "io within " + std::to_string(timeout_s_) +
                   " s: is it running?");
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   for (const auto& t : topics) {
     if (t.name == prefix + "io") {
@@ -114,7 +121,7 @@ void TopicPlc::connect(std::chrono::milliseconds window) {
       subs_.push_back(nh_.subscribe<ForcedPoints>(t.name, 10, [this](const ForcedPoints::ConstPtr& m) {
         std::lock_guard<std::mutex> lk(mu_);
         forced_msg_ = *m;
-        forced_at_ = std::chrono::steady_clock::now();
+        forced_stamp_ = m->header.stamp;
       }));
     }
     for (size_t i = 0; i < signals_.size(); ++i)
@@ -167,8 +174,13 @@ bool TopicPlc::from_topics(const Address& a, uint32_t* v) const {
 
 template <class Srv>
 void TopicPlc::call(const std::string& name, Srv& srv) {
-  if (!ros::service::call(node_ + "/" + name, srv))
-    throw CommError(describe() + ": ~" + name + " could not be called (is the node running?)");
+  ros::ServiceClient& client = clients_[name];
+  bool called = client.isValid() && client.call(srv);
+  if (!called) {
+    client = ros::NodeHandle().serviceClient<Srv>(node_ + "/" + name, true);
+    called = client.call(srv);
+  }
+  if (!called) throw CommError(describe() + ": ~" + name + " could not be called (is the node running?)");
   if (!srv.response.success) throw Error(describe() + ": ~" + name + ": " + srv.response.message);
 }
 
@@ -194,13 +206,13 @@ std::vector<uint32_t> TopicPlc::read(const std::vector<Address>& addrs) {
 }
 
 std::optional<std::vector<bool>> TopicPlc::forced(const std::vector<Address>& bits) {
-  // After a change, the node's next ~forced says how it went; a change that changed nothing
+  // After a change, a ~forced of a later scan says how it went; a change that changed nothing
   // (a point released that was not forced) brings none, and the last one still holds.
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
   for (;;) {
     {
       std::lock_guard<std::mutex> lk(mu_);
-      if (forced_at_ >= changed_ || std::chrono::steady_clock::now() >= until) break;
+      if (forced_stamp_ > changed_ || std::chrono::steady_clock::now() >= until) break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
@@ -229,7 +241,7 @@ void TopicPlc::force(const Address& bit, bool on) {
   srv.request.value = on;
   call("force", srv);
   std::lock_guard<std::mutex> lk(mu_);
-  changed_ = std::chrono::steady_clock::now();
+  changed_ = ros::Time::now();
 }
 
 void TopicPlc::unforce(const Address& bit) {
@@ -237,7 +249,7 @@ void TopicPlc::unforce(const Address& bit) {
   srv.request.address = format_address(bit);
   call("release", srv);
   std::lock_guard<std::mutex> lk(mu_);
-  changed_ = std::chrono::steady_clock::now();
+  changed_ = ros::Time::now();
 }
 
 std::string TopicPlc::cannot_force() const {

@@ -128,14 +128,18 @@ TEST_F(FatekTarget, TheDemosOwnScenarioShowsItsRefusalsAndWidenedWindowsAtTheirL
   const std::string f = kDemoScenario + ":";
   for (const std::string& line : std::vector<std::string>{
            f + "1: error: key 'hardware': this file does not say that it may run on a PLC",
-        f + "10: error: key 'never': the grace within 1 ms is tighter than the resolution ",
         f + "35: error: key 'expect_sequence': entry 2's within 0 ms is tighter than the resolution ",
         f + "36: error: key 'expect_sequence': entry 3's between [1.500 s, 1.501 s] is tighter than the resolution ",
         f + "37: error: key 'expect_sequence': entry 4's within 1 ms is tighter than the resolution "})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
   r = test_tool({kDemoScenario, "--target", target(), "--tolerance", "1s"});
   EXPECT_EQ(r.status, 1) << r.out;
-  for (const std::string& line : std::vector<std::string>{f + "10: the grace within 1 ms widened by ", f + "35: entry 2's within 0 ms widened by ",
+  // Its properties are checked with the resolution as their grace, and say so.
+  EXPECT_NE(r.out.find(f + "10: property never: pick_request and stopper_lower: its grace within 1 ms, checked with "
+                           "the resolution "),
+            std::string::npos)
+      << r.out;
+  for (const std::string& line : std::vector<std::string>{f + "35: entry 2's within 0 ms widened by ",
                                   f + "36: entry 3's between [1.500 s, 1.501 s] widened by ",
                                   f + "37: entry 4's within 1 ms widened by "})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;

@@ -66,7 +66,7 @@ TEST(WallClockRules, StepsATargetCannotDoAreRefusedAtTheirLine) {
 TEST(WallClockRules, WindowsTighterThanTheResolutionAreRefusedOrWidenedWithinTheTolerance) {
   const Case c = first_case(
       "properties:\n"
-      "  - never: motor and latch\n"                                // line 3: no grace, nothing to check
+      "  - never: motor and latch\n"                                // line 3: no grace
       "  - always: motor\n"                                         // line 4
       "    within: 1ms\n"
       "cases:\n"
@@ -88,8 +88,6 @@ TEST(WallClockRules, WindowsTighterThanTheResolutionAreRefusedOrWidenedWithinThe
   const Preflight refused = wall_clock_preflight(c, rules(3000), config());
   EXPECT_EQ(texts(refused.errors),
             (std::vector<std::string>{
-                "/d/s.yaml:4: error: key 'always': the grace within 1 ms is tighter than the resolution 3 ms of the "
-                "PLC: widen it in the file, or let --tolerance 2ms widen it",
                 "/d/s.yaml:9: error: key 'expect': within 0 ms is tighter than the resolution 3 ms of the PLC: widen "
                 "it in the file, or let --tolerance 3ms widen it",
                 "/d/s.yaml:11: error: key 'expect': between [1.500 s, 1.501 s] is tighter than the resolution 3 ms of "
@@ -100,10 +98,18 @@ TEST(WallClockRules, WindowsTighterThanTheResolutionAreRefusedOrWidenedWithinThe
                 "3 ms of the PLC: widen it in the file, or let --tolerance 2ms widen it"}));
   // A tolerance too small for the widest need refuses only that one, and says so.
   EXPECT_EQ(wall_clock_preflight(c, rules(3000, 2000), config()).errors.size(), 1u);
+  // Every property, whatever the tolerance, is checked with at least the resolution as its
+  // grace: said, not refused.
+  EXPECT_EQ(texts(refused.errors).size(), 4u);
+  EXPECT_EQ(refused.widened.size(), 2u);
   const Preflight widened = wall_clock_preflight(c, rules(3000, 3000), config());
   EXPECT_TRUE(widened.errors.empty());
-  ASSERT_EQ(widened.widened.size(), 5u);
+  ASSERT_EQ(widened.widened.size(), 6u);
+  EXPECT_EQ(widened.widened[0].to_string(),
+            "/d/s.yaml:3: property never: motor and latch: no grace, checked with the resolution 3 ms as its grace");
   EXPECT_EQ(widened.widened[1].to_string(),
+            "/d/s.yaml:4: property always: motor: its grace within 1 ms, checked with the resolution 3 ms as its grace");
+  EXPECT_EQ(widened.widened[2].to_string(),
             "/d/s.yaml:9: within 0 ms widened by 3 ms to the resolution 3 ms (--tolerance 3ms)");
   const Case& a = widened.adjusted;
   EXPECT_EQ(a.steps[0].window_max_us, 3000u);
@@ -114,7 +120,7 @@ TEST(WallClockRules, WindowsTighterThanTheResolutionAreRefusedOrWidenedWithinThe
   EXPECT_EQ(a.steps[4].sequence[0].max_us, 3000u);
   EXPECT_EQ(a.steps[4].sequence[1].max_us, 2000000u);
   EXPECT_EQ(a.properties[1].within_us, 3000u);
-  EXPECT_EQ(a.properties[0].within_us, 0u);
+  EXPECT_EQ(a.properties[0].within_us, 3000u);
 }
 
 TEST(WallClockRules, WhatACaseTouchesAndWritesIsListedWithItsLines) {

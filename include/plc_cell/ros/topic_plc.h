@@ -64,6 +64,7 @@ class TopicPlc : public LinkedPlc {
   void arrived(const std::string& topic);  // mu_ held
   bool from_topics(const Address& a, uint32_t* v) const;  // mu_ held
   uint32_t read_service(const Address& a);
+  // ~name on a persistent connection (a poll reads often), made again once when it broke.
   template <class Srv>
   void call(const std::string& name, Srv& srv);
 
@@ -75,6 +76,7 @@ class TopicPlc : public LinkedPlc {
   std::unique_ptr<ros::AsyncSpinner> spinner_;
   std::vector<ros::Subscriber> subs_;
   bool publishes_forced_ = false;
+  std::map<std::string, ros::ServiceClient> clients_;  // by service name; the caller's thread only
 
   mutable std::mutex mu_;
   IoState io_;
@@ -82,8 +84,9 @@ class TopicPlc : public LinkedPlc {
   std::vector<std::pair<Address, std::optional<bool>>> signal_values_;  // per signals_ entry
   std::map<std::string, Group> groups_;                                // by topic
   std::optional<ForcedPoints> forced_msg_;
-  // A ~force or ~release since the last ~forced message: forced() waits for the next one.
-  std::chrono::steady_clock::time_point changed_, forced_at_;
+  // When the last ~force or ~release returned, and the stamp of the last ~forced (its scan's):
+  // forced() waits for one stamped after the change, which shows it.
+  ros::Time changed_, forced_stamp_;
   std::map<std::string, ros::WallTime> last_;  // a periodic topic's last message
   bool measuring_ = false;
   uint64_t max_gap_us_ = 0;
