@@ -39,7 +39,7 @@ std::string signal_text(int signo) {
 RealTimeRun::RealTimeRun(const Scenario& sc, const CellConfig& config, uint64_t scan_us, const std::string& node,
                          const std::string& kind, double timeout_s, uint64_t tolerance_us,
                          const std::atomic<int>* stop)
-    : sc_(sc), config_(config), target_("ros:" + node), cases_(sc.cases), stop_(stop) {
+    : config_(config), target_("ros:" + node), cases_(sc.cases), stop_(stop) {
   plc_ = std::make_unique<TopicPlc>(node, kind, config.signals, timeout_s);
   banner_ = "scenario_runner on " + plc_->describe() + " (" + target_ + "): " + forces_and_writes(cases_, config);
   std::cout << banner_ << "\n" << std::flush;

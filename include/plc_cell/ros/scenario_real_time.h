@@ -54,7 +54,6 @@ class RealTimeRun {
   std::vector<std::string> not_as_found();
 
  private:
-  const Scenario& sc_;
   const CellConfig& config_;
   std::string target_, banner_, refusals_;
   std::unique_ptr<TopicPlc> plc_;
