@@ -38,7 +38,8 @@ set(PLC_CELL_LAYER_RULES
   "line core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor online"
   "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario explore ladder monitor online"
   "recording core io config timeline coverage ladder monitor"
-  "remote core io config coverage ladder monitor fatek tri")
+  "remote core io config coverage ladder monitor fatek tri"
+  "hardware core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor remote recording")
 
 set(PLC_CELL_LAYER_ROOTS ${CMAKE_CURRENT_BINARY_DIR}/layer_includes)
 set(plc_cell_layer_libraries)

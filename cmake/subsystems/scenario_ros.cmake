@@ -5,7 +5,7 @@
 if(CATKIN_ENABLE_TESTING)
   add_executable(scenario_runner src/ros/scenario_runner_main.cpp src/ros/scenario_runner_target.cpp src/ros/scenario_node_link.cpp
     src/ros/topic_probes.cpp src/ros/counter_topic_probes.cpp src/ros/axis_topic_probes.cpp src/ros/temperature_topic_probes.cpp
-    src/ros/server_params.cpp)
+    src/ros/server_params.cpp src/ros/topic_plc.cpp src/ros/scenario_real_time.cpp)
   target_include_directories(scenario_runner PRIVATE ${catkin_INCLUDE_DIRS} ${GTEST_INCLUDE_DIRS})
   target_link_libraries(scenario_runner plc_cell_scenario plc_cell_runtime ${catkin_LIBRARIES} ${GTEST_LIBRARIES})
   add_dependencies(scenario_runner ${PROJECT_NAME}_generate_messages_cpp)
@@ -19,6 +19,10 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/scenario_oven.test DEPENDENCIES plc_node scenario_runner)
   add_rostest(test/ros/scenario_pulses.test DEPENDENCIES plc_node scenario_runner)
   add_rostest(test/ros/scenario_two_cells.test DEPENDENCIES plc_node scenario_runner)
+  # The hardware scenario in wall-clock time on plc_node in real time (docs/testing-on-hardware.md).
+  add_rostest(test/ros/scenario_real_time.test DEPENDENCIES plc_node scenario_runner)
+  # The same through fatek_bridge in front of a soft PLC serving FATEK, as on a real PLC.
+  add_rostest(test/ros/scenario_real_time_bridge.test DEPENDENCIES fatek_bridge scenario_runner plc_cell_tool)
 endif()
 
 if(CATKIN_ENABLE_TESTING)

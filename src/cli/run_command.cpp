@@ -12,6 +12,27 @@
 namespace plc_cell {
 namespace cli {
 
+namespace {
+
+// The cell as a real one is: no input is played by its simulation:, so each stays where the
+// clients (a FATEK force, a Modbus write) leave it, as a real PLC's terminals stay where its
+// wiring holds them.
+// Returns the log line that says so.
+std::string simulation_off(Cell& cell) {
+  SimulatedCell& sim = cell.soft().simulation();
+  std::string off;
+  cell.plc().locked([&](ScanEngine&, Memory&) {
+    for (uint32_t x : sim.simulated_inputs()) {
+      sim.override_input(x);
+      off += (off.empty() ? "X" : ", X") + std::to_string(x);
+    }
+    return 0;
+  });
+  return "plc_cell run: simulation off" + (off.empty() ? std::string() : ": " + off + " stay as the clients leave them");
+}
+
+}  // namespace
+
 int cmd_run(const std::vector<std::string>& argv) {
   // Before the store, the servers and every thread: a SIGTERM at any moment from here on
   // waits until start-up is done and then stops cleanly, with the store flushed.
@@ -20,14 +41,16 @@ int cmd_run(const std::vector<std::string>& argv) {
                                       "persist-interval", "engine"};
   const auto servers = server_options();
   options.insert(options.end(), servers.begin(), servers.end());
-  Args args(argv, options, {"watch-program"});
+  Args args(argv, options, {"watch-program", "no-simulation"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Serve,
             [](const std::string& l) { std::cerr << "plc_cell run: " << l << "\n"; });
   for (const auto& w : cell.soft().warnings()) std::cerr << w.to_string() << "\n";  // the PLC still runs
+  const std::string no_simulation = args.has("no-simulation") ? simulation_off(cell) : "";
   if (!cell.plc().set_mode(RunMode::Run)) throw Error("cannot RUN: no program loaded");
   cell.start_servers([](const Server& s) { std::cerr << "plc_cell run: serving " << s.describe() << "\n"; });
+  if (!no_simulation.empty()) std::cerr << no_simulation << "\n";  // after the servers: a first line says they are up
   std::cerr << "plc_cell run: engine " << cell.plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); })
             << "\n";
   cell.start_scanning();
@@ -65,11 +88,13 @@ Command run_command() {
   return {"run",
           "--program FILE [--config FILE] [--scan 1ms] [--duration T] [--rt-priority N]\n"
           "         [--persist FILE] [--persist-interval DURATION] [--engine E] [--watch-program]\n"
+          "         [--no-simulation]\n"
           "         [--SERVER-SETTING VALUE ...]\n"
           "         run the soft PLC in real time until interrupted; keep the retentive ranges in\n"
           "         FILE across restarts and crashes (default 100ms); serve the cell's protocols\n"
           "         (below), each option overriding the cell YAML's servers.SERVER.SETTING;\n"
-          "         --watch-program: a saved program goes live in RUN, gated (docs/online-change.md)\n",
+          "         --watch-program: a saved program goes live in RUN, gated (docs/online-change.md)\n"
+          "         --no-simulation: the cell's simulation plays no input (as on a real cell)\n",
           cmd_run};
 }
 

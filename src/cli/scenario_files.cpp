@@ -1,6 +1,7 @@
 #include "scenario_files.h"
 
 #include <iostream>
+#include <sstream>
 
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/scenario/runner.h"
@@ -68,6 +69,14 @@ bool load_scenarios(const std::vector<std::string>& paths, const std::string& to
   }
   std::cerr << tool << ": " << errors.size() << " error(s) in the scenario files; no case ran\n";
   return false;
+}
+
+void print_result(const scenario::Scenario& sc, const scenario::CaseResult& r, const std::string& time) {
+  std::cout << (r.passed ? "PASS  " : "FAIL  ") << sc.file << ": " << r.name << "  (" << time << ")\n";
+  if (r.passed) return;
+  std::cout << "    " << r.failure << "\n";
+  std::istringstream details(r.details);
+  for (std::string line; std::getline(details, line);) std::cout << "    " << line << "\n";
 }
 
 std::optional<EngineChoice> engine_option(const Args& args) {

@@ -9,6 +9,8 @@
 #include "args.h"
 #include "plc_cell/core/scan_engine.h"
 #include "fresh_target.h"
+#include "plc_cell/scenario/cell_target.h"
+#include "plc_cell/scenario/runner.h"
 #include "plc_cell/scenario/scenario.h"
 
 namespace plc_cell {
@@ -18,6 +20,9 @@ namespace cli {
 // fresh cell; false (with every error printed, sorted, and "TOOL: N error(s)...") if any.
 bool load_scenarios(const std::vector<std::string>& paths, const std::string& tool,
                     std::vector<scenario::Scenario>* files);
+
+// One line per case, "PASS  FILE: NAME  (TIME)", and a failure's report below it.
+void print_result(const scenario::Scenario& sc, const scenario::CaseResult& r, const std::string& time);
 
 // --engine, if given (UsageError when it names no engine).
 std::optional<EngineChoice> engine_option(const Args& args);

@@ -13,6 +13,7 @@
 #include "mutate_option.h"
 #include "record_option.h"
 #include "scenario_files.h"
+#include "target_run.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/coverage/recorders.h"
@@ -31,16 +32,6 @@ bool selected(const std::vector<std::string>& filters, const std::string& name) 
   for (const auto& f : filters)
     if (name.find(f) != std::string::npos) return true;
   return false;
-}
-
-// One line per case, and a failure's report below it.
-void print_result(const scenario::Scenario& sc, const scenario::CaseResult& r) {
-  std::cout << (r.passed ? "PASS  " : "FAIL  ") << sc.file << ": " << r.name << "  ("
-            << scenario::format_time(r.virtual_us) << ")\n";
-  if (r.passed) return;
-  std::cout << "    " << r.failure << "\n";
-  std::istringstream details(r.details);
-  for (std::string line; std::getline(details, line);) std::cout << "    " << line << "\n";
 }
 
 void write_outputs(const Args& args, const std::vector<scenario::CaseResult>& results,
@@ -67,10 +58,12 @@ int cmd_test(const std::vector<std::string>& argv_in) {
   // -k NAME, as pytest spells it, is --case NAME.
   std::vector<std::string> argv;
   for (const auto& a : argv_in) argv.push_back(a == "-k" ? "--case" : a == "-j" ? "--jobs" : a);
-  Args args(argv, {"junit", "case", "coverage-json", "coverage-html", "engine", "mutate-budget", "mutate-json", "jobs",
-                   "record"},
-            {"coverage", "mutate"});
+  std::vector<std::string> options = {"junit", "case", "coverage-json", "coverage-html", "engine", "mutate-budget",
+                                      "mutate-json", "jobs", "record"};
+  options.insert(options.end(), target_options().begin(), target_options().end());
+  Args args(argv, options, {"coverage", "mutate", "dry-run"});
   if (args.positional().empty()) throw UsageError("no scenario file given");
+  if (args.has("target") || args.has("dry-run")) return cmd_test_on_target(args);
   const std::optional<EngineChoice> engine = engine_option(args);  // else each cell's plc.engine
   const auto filters = args.all("case");
   // Every file read and checked before any case runs: all the errors of all the files at once.
@@ -94,7 +87,7 @@ int cmd_test(const std::vector<std::string>& argv_in) {
       if (coverage)
         for (const auto& cell : target->cells()) recorders.detach(cell.second->plc());
       virtual_us += results.back().virtual_us;
-      print_result(sc, results.back());
+      print_result(sc, results.back(), scenario::format_time(results.back().virtual_us));
       if (rec) {
         const std::string path = save_case(*rec, results.back(), args.get("record"), &recorded);
         if (!results.back().passed) std::cout << "    recorded: " << monitor_command_for(path) << "\n";
@@ -135,7 +128,13 @@ Command test_command() {
           "         [--mutate [--mutate-budget N] [--mutate-json OUT.json] [-j N]] [--record DIR]\n"
           "         run the scenarios' test cases in virtual time, each on a fresh cell;\n"
           "         rung coverage summed over the cases; mutation testing of the programs;\n"
-          "         --record: each case's run in DIR/<case>.plcrec (docs/recordings.md)\n",
+          "         --record: each case's run in DIR/<case>.plcrec (docs/recordings.md)\n"
+          "         FILE.scenario.yaml... --target TARGET [--station N | --id N] [--tolerance T]\n"
+          "         [--dry-run] [--timeout T] [--retries N] [--restore-timeout T] [-k NAME]\n"
+          "         [--junit OUT.xml] [--record DIR]   the cases on a PLC over its link in wall-clock\n"
+          "         time, leaving it as found; TARGET: fatek://HOST:PORT, fatek-serial:DEV[:BAUD[:FMT]],\n"
+          "         tri://HOST:PORT, tri-serial:DEV[...], modbus://HOST:PORT, modbus-rtu:DEV[...]\n"
+          "         (docs/testing-on-hardware.md)\n",
           cmd_test};
 }
 

@@ -7,16 +7,22 @@
 // node's namespace), ~case (only the case of this name, or its rows "NAME[...]"), ~timeout
 // (s, default 10: the longest one scan may take to come back), ~read_fallback (default
 // true: an address on no topic is read with ~read; false: such a case fails its check).
+// ~real_time (default false): the cases run in wall-clock time on plc_node in real time or
+// on fatek_bridge / tri_bridge (ros/scenario_real_time.h), ~tolerance (s, default 0) the
+// most a window tighter than the resolution is widened.
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
+#include <atomic>
 #include <climits>
+#include <csignal>
 #include <cstdlib>
 #include <memory>
 #include <sstream>
 #include <string>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/ros/scenario_real_time.h"
 #include "plc_cell/ros/scenario_ros_target.h"
 #include "plc_cell/ros/server_params.h"
 #include "plc_cell/runtime/cell.h"
@@ -35,11 +41,23 @@ std::string real(const std::string& path) {
   return ::realpath(path.c_str(), buf) ? std::string(buf) : path;
 }
 
+// SIGINT or SIGTERM, once one has come: in real time the case ends there and the PLC is put
+// back before the runner goes (in virtual time, ROS shuts down as usual).
+std::atomic<int> g_stop{0};
+bool g_real_time = false;
+
+void on_signal(int signo) {
+  g_stop = signo;
+  if (!g_real_time) ros::requestShutdown();
+}
+
 // What the cases share: the scenario, and the connection to plc_node.
 struct Shared {
   std::string error;  // why nothing can run (a bad file, the wrong cell on plc_node)
   sc::Scenario scenario;
   std::unique_ptr<sc::NodeLink> link;
+  std::unique_ptr<Cell> cell;                 // real time: the scenario's cell, checked
+  std::unique_ptr<sc::RealTimeRun> real_time;  // real time: the run on the node
 };
 
 class CaseTest : public testing::Test {
@@ -48,6 +66,7 @@ class CaseTest : public testing::Test {
 
   void TestBody() override {
     if (!run_->error.empty()) FAIL() << run_->error;
+    if (run_->real_time) return real_time();
     try {
       run_->link->connect();
       sc::RosTarget target(*run_->link);
@@ -68,8 +87,46 @@ class CaseTest : public testing::Test {
   }
 
  private:
+  // The case in wall-clock time; refused whole when any case of the file is (nothing was
+  // written), and failed when the PLC could not be put back as found.
+  void real_time() {
+    sc::RealTimeRun& rt = *run_->real_time;
+    RecordProperty("target", rt.target());
+    RecordProperty("resolution", rt.resolution().text());
+    if (!rt.refusals().empty()) {
+      ADD_FAILURE_AT(case_->file.c_str(), case_->line) << "refused on " << rt.target() << ", nothing was written:\n"
+                                                       << rt.refusals();
+      return;
+    }
+    if (g_stop) {
+      ADD_FAILURE_AT(case_->file.c_str(), case_->line) << "not run: the runner was stopped";
+      return;
+    }
+    const sc::RealTimeOutcome o = rt.run(*case_);
+    RecordProperty("polls", std::to_string(o.polls));
+    if (!o.result.passed) ADD_FAILURE_AT(case_->file.c_str(), case_->line) << o.result.failure << "\n" << o.result.details;
+    for (const auto& r : o.restore.restored) std::cout << "restored as found: " << r << "\n";
+    std::string missing;
+    for (const auto& r : o.restore.not_restored) missing += "NOT RESTORED: " + r + "\n";
+    if (!missing.empty()) ADD_FAILURE_AT(case_->file.c_str(), case_->line) << "the PLC is not as it was found:\n" << missing;
+  }
+
   Shared* run_;
   const sc::Case* case_;
+};
+
+// In real time, after every case: the points the cases touch forced as before the first.
+class LeftAsFound : public testing::Test {
+ public:
+  explicit LeftAsFound(Shared* run) : run_(run) {}
+  void TestBody() override {
+    std::string wrong;
+    for (const auto& w : run_->real_time->not_as_found()) wrong += w + "\n";
+    EXPECT_TRUE(wrong.empty()) << "after the cases, on " << run_->real_time->target() << ":\n" << wrong;
+  }
+
+ private:
+  Shared* run_;
 };
 
 std::string suite_name(const std::string& file) {
@@ -116,15 +173,50 @@ void prepare(Shared* run, const std::string& file, const std::string& node, doub
                                              timeout_s, read_fallback);
 }
 
+// What runs at ~node: plc_node (its ~cell), fatek_bridge (~station) or tri_bridge (~id).
+std::string node_kind(const std::string& node) {
+  if (ros::param::has(node + "/cell")) return "plc_node";
+  if (ros::param::has(node + "/station")) return "fatek_bridge";
+  if (ros::param::has(node + "/id")) return "tri_bridge";
+  throw Error("cannot tell what " + node + " is (no ~cell, ~station or ~id parameter): is ~node the name of "
+              "plc_node, fatek_bridge or tri_bridge?");
+}
+
+// Loads the scenario and connects to the node, in wall-clock time.
+void prepare_real_time(Shared* run, const std::string& file, const std::string& node, double timeout_s,
+                       double tolerance_s) {
+  if (file.empty()) throw Error("~scenario is not set: give the scenario file");
+  run->scenario = sc::load_scenario(file);
+  const std::string kind = node_kind(node);
+  if (kind == "plc_node") {
+    bool virtual_time = false;
+    ros::param::get(node + "/virtual_time", virtual_time);
+    if (virtual_time) throw Error(node + " runs in virtual time: ~real_time needs it in real time");
+    std::string node_cell;
+    ros::param::get(node + "/cell", node_cell);
+    if (real(node_cell) != real(run->scenario.cell))
+      throw Error(node + " runs the cell " + node_cell + ", the scenario names " + run->scenario.cell);
+  }
+  CellOverrides mine;
+  mine.program = run->scenario.program;
+  run->cell = std::make_unique<Cell>(run->scenario.cell, mine, Cell::Purpose::Check);
+  run->real_time = std::make_unique<sc::RealTimeRun>(run->scenario, run->cell->config(), run->cell->scan_period_us(),
+                                                      node, kind, timeout_s, uint64_t(tolerance_s * 1e6), &g_stop);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "scenario_runner", ros::init_options::AnonymousName);
+  ros::init(argc, argv, "scenario_runner", ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   ros::NodeHandle pnh("~");
   std::string file, node = "plc_node", only;
-  double timeout_s = 10;
+  double timeout_s = 10, tolerance_s = 0;
   bool read_fallback = true;
+  pnh.param("real_time", g_real_time, g_real_time);
+  pnh.param("tolerance", tolerance_s, tolerance_s);
   pnh.param<std::string>("scenario", file, file);
   pnh.param<std::string>("node", node, node);
   pnh.param<std::string>("case", only, only);
@@ -134,11 +226,18 @@ int main(int argc, char** argv) {
 
   static Shared run;
   try {
-    prepare(&run, file, node, timeout_s, read_fallback);
+    if (g_real_time)
+      prepare_real_time(&run, file, node, timeout_s, tolerance_s);
+    else
+      prepare(&run, file, node, timeout_s, read_fallback);
   } catch (const std::exception& e) {
     run.error = e.what();
   }
-  const std::string suite = suite_name(file);
+  // In real time the suite names its target: "conveyor_hardware_on_ros_scenario_plc_node".
+  std::string suite = suite_name(file);
+  if (g_real_time) suite += "_on_ros" + node;
+  for (char& ch : suite)
+    if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
   if (!run.error.empty()) {  // one failing test that says why
     testing::RegisterTest(suite.c_str(), "setup", nullptr, nullptr, __FILE__, __LINE__,
                           []() -> testing::Test* { return new CaseTest(&run, nullptr); });
@@ -157,7 +256,12 @@ int main(int argc, char** argv) {
     testing::RegisterTest(suite.c_str(), "setup", nullptr, nullptr, __FILE__, __LINE__,
                           []() -> testing::Test* { return new CaseTest(&run, nullptr); });
   }
+  // Last: the whole run left no force behind, where the node says which points are forced.
+  if (g_real_time && run.error.empty() && registered && run.real_time->says_forced())
+    testing::RegisterTest(suite.c_str(), "the PLC is as it was found", nullptr, nullptr, __FILE__, __LINE__,
+                          []() -> testing::Test* { return new LeftAsFound(&run); });
   const int rc = RUN_ALL_TESTS();
+  run.real_time.reset();
   run.link.reset();
   ros::shutdown();
   return rc;

@@ -6,31 +6,10 @@
 #include <cstring>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/scenario/raw_value.h"
 
 namespace plc_cell {
 namespace scenario {
-
-namespace {
-
-// The raw bits of a value for an address: a bit 0/1, a register's two's complement for a
-// negative value, a float's bits for :f32. Throws Error with the address's range.
-uint32_t raw(const Address& a, ValueFormat f, const Value& v, const std::string& text) {
-  const int bits = value_bits(a);
-  if (f == ValueFormat::F32) {
-    const float x = float(v.number);
-    uint32_t r;
-    std::memcpy(&r, &x, sizeof r);
-    return r;
-  }
-  if (v.number != std::floor(v.number)) throw Error(text + ": " + v.text + " is not a whole number");
-  const double lo = bits == 1 ? 0 : -std::ldexp(1.0, bits - 1), hi = std::ldexp(1.0, bits) - 1;
-  if (v.number < lo || v.number > hi)
-    throw Error(text + ": value " + v.text + " out of range " + probe_number_text(lo) + ".." + probe_number_text(hi));
-  const int64_t n = int64_t(v.number);
-  return uint32_t(n < 0 ? n & (bits == 16 ? 0xFFFF : 0xFFFFFFFFLL) : n);
-}
-
-}  // namespace
 
 CellTarget::CellTarget(const std::string& cell_yaml, const std::string& program,
                        const std::vector<SettingOverride>& run) {
@@ -99,7 +78,7 @@ void CellTarget::set(const Probe& p, const Value& v) {
   SoftCell& s = cell_->soft();
   if (p.kind == Probe::Kind::Address) {
     const Address a = address(p.name);
-    const uint32_t x = raw(a, p.format, v, p.text);
+    const uint32_t x = raw_value(a, p.format, v, p.text);
     if (a.area == Area::X && a.width == Width::Bit) {
       // An input terminal: the scenario plays this sensor from now on, not the simulation.
       plc().locked([&](ScanEngine& e, Memory&) {
@@ -123,7 +102,7 @@ void CellTarget::set(const Probe& p, const Value& v) {
 void CellTarget::write(const Probe& p, const Value& v) {
   if (p.kind != Probe::Kind::Address) throw Error(p.text + ": only an address or signal is written");
   const Address a = address(p.name);
-  plc().write(a, {raw(a, p.format, v, p.text)});
+  plc().write(a, {raw_value(a, p.format, v, p.text)});
 }
 
 void CellTarget::force(const Probe& p, bool on) {

@@ -69,7 +69,8 @@ std::string suite_name(const std::string& file) {
 
 }  // namespace
 
-void write_junit(const std::vector<CaseResult>& results, std::ostream& out) {
+void write_junit(const std::vector<CaseResult>& results, std::ostream& out, const JUnitRun& run) {
+  const std::string& target = run.target;
   std::vector<std::string> files;
   std::map<std::string, std::vector<const CaseResult*>> by_file;
   for (const auto& r : results) {
@@ -80,17 +81,25 @@ void write_junit(const std::vector<CaseResult>& results, std::ostream& out) {
   uint64_t total = 0;
   for (const auto& r : results) failures += !r.passed, total += r.virtual_us;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out << "<testsuites name=\"plc_cell test\" tests=\"" << results.size() << "\" failures=\"" << failures
+  const std::string on = target.empty() ? "" : " on " + target;
+  out << "<testsuites name=\"" << attr("plc_cell test" + (target.empty() ? "" : " --target " + target))
+      << "\" tests=\"" << results.size() << "\" failures=\"" << failures
       << "\" errors=\"0\" time=\"" << seconds(total) << "\">\n";
   for (const auto& f : files) {
     const auto& rs = by_file[f];
     size_t fail = 0;
     uint64_t t = 0;
     for (const auto* r : rs) fail += !r->passed, t += r->virtual_us;
-    out << "  <testsuite name=\"" << attr(suite_name(f)) << "\" file=\"" << attr(f) << "\" tests=\""
+    out << "  <testsuite name=\"" << attr(suite_name(f) + on) << "\" file=\"" << attr(f) << "\" tests=\""
         << rs.size() << "\" failures=\"" << fail << "\" errors=\"0\" skipped=\"0\" time=\"" << seconds(t) << "\">\n";
+    if (!run.properties.empty()) {
+      out << "    <properties>\n";
+      for (const auto& p : run.properties)
+        out << "      <property name=\"" << attr(p.first) << "\" value=\"" << attr(p.second) << "\"/>\n";
+      out << "    </properties>\n";
+    }
     for (const auto* r : rs) {
-      out << "    <testcase classname=\"" << attr(suite_name(f)) << "\" name=\"" << attr(r->name) << "\" file=\""
+      out << "    <testcase classname=\"" << attr(suite_name(f) + on) << "\" name=\"" << attr(r->name) << "\" file=\""
           << attr(f) << "\" line=\"" << r->line << "\" time=\"" << seconds(r->virtual_us) << "\"";
       if (r->passed) {
         out << "/>\n";

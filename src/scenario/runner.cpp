@@ -153,8 +153,10 @@ class CaseRun {
     background(t);
     t_.scan(t);
     ++scans_;
-    now_ = t;
+    now_ = std::max(t, t_.scanned_at(t));
+    // A wall-clock target whose poll came late goes on from where it is, not with a burst.
     next_scan_ += period_;
+    while (next_scan_ <= now_) next_scan_ += period_;
     record();
     const std::string fault = t_.fault();
     if (!fault.empty()) throw Failure{"the PLC stopped on a fault: " + fault, now_, {}, {}};
@@ -330,6 +332,10 @@ class CaseRun {
             fail(w + ": held already at " + format_time(now_) + " (" + format_time(now_ - t0) +
                      " in, before the window): " + actual(s.cond),
                  {&s.cond});
+          if (now_ - t0 > s.window_max_us)  // seen only by a scan that came late
+            fail(w + ": held only at " + format_time(now_) + " (" + format_time(now_ - t0) +
+                     " in, after the window): " + actual(s.cond),
+                 {&s.cond});
           return;
         }
         if (next_scan_ > t0 + s.window_max_us) break;
@@ -408,6 +414,10 @@ class CaseRun {
         if (now_ - last_match < m.min_us)
           fail("expect_sequence: " + label(next) + " happened " + format_time(now_ - last_match) + " after " +
                    since(next) + ", before the earliest " + format_time(m.min_us) + ": " + actual(m.cond),
+               involved);
+        if (m.max_us != UINT64_MAX && now_ - last_match > m.max_us)  // seen only by a scan that came late
+          fail("expect_sequence: " + label(next) + " happened " + format_time(now_ - last_match) + " after " +
+                   since(next) + ", after the latest " + format_time(m.max_us) + ": " + actual(m.cond),
                involved);
         last_match = now_;
         ++next;

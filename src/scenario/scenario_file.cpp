@@ -431,11 +431,12 @@ Scenario parse_scenario(const std::string& text, const std::string& file, ErrorL
     errors.add(SourceError::at(file, 1, 1, "a scenario file is a mapping with 'cell' and 'cases'"));
     return sc;
   }
-  r.only(doc, "", {"cell", "line", "program", "setup", "cases", "properties", "explore"}, &errors);
+  r.only(doc, "", {"cell", "line", "program", "setup", "cases", "properties", "explore", "hardware"}, &errors);
   read_files(r, doc, sc, errors);
   const Naming naming = doc["line"] ? Naming::Line : Naming::Cell;
   sc.properties = read_properties(r, doc["properties"], errors, naming);
   sc.explore = read_explore(r, doc["explore"], errors, naming);
+  sc.hardware = read_hardware(r, doc["hardware"], errors);
   Reader rd(r, errors, naming);
   std::vector<Step> common;
   rd.steps(doc["setup"], "setup", &common);

@@ -91,3 +91,26 @@ TEST(JUnit, BytesXmlCannotHoldAreShownAsEscapes) {
   size_t i = 0;
   while (i < x.size()) ASSERT_NE(utf8::next(x, &i), utf8::kInvalid) << x;
 }
+
+TEST(JUnit, ARunOnATargetNamesItInEverySuiteAndListsItsProperties) {
+  CaseResult r;
+  r.name = "a";
+  r.file = "dir/c.scenario.yaml";
+  r.line = 3;
+  r.passed = true;
+  r.virtual_us = 1500000;
+  JUnitRun run;
+  run.target = "fatek://10.0.0.5:500";
+  run.properties = {{"resolution", "3.1 ms: a poll every 2 ms"}, {"left as found", "yes"}};
+  std::ostringstream out;
+  write_junit({r}, out, run);
+  const std::string x = out.str();
+  EXPECT_NE(x.find("<testsuites name=\"plc_cell test --target fatek://10.0.0.5:500\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<testsuite name=\"c.scenario on fatek://10.0.0.5:500\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<testcase classname=\"c.scenario on fatek://10.0.0.5:500\" name=\"a\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<property name=\"resolution\" value=\"3.1 ms: a poll every 2 ms\"/>"), std::string::npos) << x;
+  std::ostringstream plain;
+  write_junit({r}, plain);
+  EXPECT_EQ(plain.str().find("<properties>"), std::string::npos);
+  EXPECT_NE(plain.str().find("<testsuite name=\"c.scenario\""), std::string::npos);
+}

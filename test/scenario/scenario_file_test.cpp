@@ -148,7 +148,7 @@ TEST(ScenarioFile, EveryErrorOfAFileInOneReading) {
       "    steps: []\n"
       "  - steps: []\n");                               // 36
   const std::vector<std::string> expected = {
-      "/d/bad.yaml:2:1: error: key 'colour': unknown key (expected one of: cases, cell, explore, line, program, properties, setup)",
+      "/d/bad.yaml:2:1: error: key 'colour': unknown key (expected one of: cases, cell, explore, hardware, line, program, properties, setup)",
       "/d/bad.yaml:6:17: error: key 'cases[0].steps[0].expect': 'R0 =< 1': expected ==, !=, <, <=, > or >= after R0, got '=<'",
       "/d/bad.yaml:8:9: error: key 'cases[0].steps[1]': one action per step: 'set' and 'write'",
       "/d/bad.yaml:9:16: error: key 'cases[0].steps[2].after': bad duration '2 parsecs'",

@@ -113,6 +113,18 @@ struct Case {
   std::vector<Property> properties;  // the file's
 };
 
+// Whether the file may run on a real PLC (`plc_cell test --target`, the wall-clock ROS
+// target; docs/testing-on-hardware.md): `hardware: true`, a list of the targets allowed,
+// or {targets: [...], require_run: false}. A file without it runs in virtual time only.
+struct HardwarePermission {
+  bool allowed = false;
+  std::vector<std::string> targets;  // empty: any; else patterns, '*' matching any text
+  bool require_run = true;           // the PLC must be in RUN
+  int line = 0;                      // the key's line; 0: the file has none
+  // Why the file does not allow target (as --target gives it), or "".
+  std::string refuses(const std::string& target) const;
+};
+
 struct Scenario {
   std::string file;
   std::string cell;     // the cell YAML, resolved against the scenario's folder
@@ -124,6 +136,7 @@ struct Scenario {
   std::vector<Case> cases;
   std::vector<Property> properties;
   ExploreSpec explore;
+  HardwarePermission hardware;
 };
 
 constexpr uint64_t kDefaultTimeoutUs = 10000000;  // wait_until and expect_sequence: 10 s

@@ -1,9 +1,10 @@
 #pragma once
 // What a scenario runs against: a cell in virtual time, advanced one scan at a time. The
 // runner (runner.h) holds the timeline and the checks; a target only scans, reads and
-// drives. Two exist: the cell in process (cell_target.h, for `plc_cell test`) and plc_node
-// through its topics and services (the scenario_runner rostest node), so one scenario file
-// checks the same expectations on both.
+// drives. Two exist in virtual time: the cell in process (cell_target.h, for `plc_cell
+// test`) and plc_node through its topics and services (the scenario_runner rostest node),
+// so one scenario file checks the same expectations on both; and a PLC over a link in
+// wall-clock time (wall_clock_target.h), where a "scan" is one poll.
 #include <cstdint>
 #include <string>
 
@@ -19,6 +20,10 @@ class Target {
   // Runs the scan at time t_us (0, then one period after the previous). What was applied
   // since the previous scan takes effect in it.
   virtual void scan(uint64_t t_us) = 0;
+  // The instant, from the case's start, that the last scan's state belongs to: t_us in
+  // virtual time; on a wall clock (wall_clock_target.h) when its poll went out, which may be
+  // later than t_us when the link fell behind. The runner's time follows it.
+  virtual uint64_t scanned_at(uint64_t t_us) const { return t_us; }
   // Why the target cannot read (writing false) or drive (writing true) p, or "" if it can:
   // an unknown signal, counter, axis or channel, a probe this target has no way to see.
   virtual std::string check(const Probe& p, bool writing) = 0;
