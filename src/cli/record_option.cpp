@@ -70,18 +70,38 @@ std::unique_ptr<CaseRecording> record_case(FreshTarget& target, const std::strin
   return rec;
 }
 
-std::string save_case(CaseRecording& rec, const scenario::CaseResult& result, const std::string& dir,
-                      std::set<std::string>* used) {
+namespace {
+
+// dir/NAME.rec for the case, made unique among those saved in this run (*used).
+std::string case_path(const std::string& case_name, const std::string& dir, std::set<std::string>* used) {
   if (::mkdir(dir.c_str(), 0777) != 0 && errno != EEXIST)
     throw Error("cannot make the recording folder " + dir + ": " + std::strerror(errno));
-  if (!result.passed && rec.cell) rec.cell->set_failure(result.virtual_us, result.failure);
-  if (!result.passed && rec.line) rec.line->set_failure(result.virtual_us, result.failure);
-  std::string name = recording::file_name_for(result.name);
+  std::string name = recording::file_name_for(case_name);
   const std::string stem = name.substr(0, name.size() - std::strlen(recording::kExtension));
   for (int n = 2; !used->insert(name).second; ++n) name = stem + "-" + std::to_string(n) + recording::kExtension;
-  const std::string path = dir + "/" + name;
-  if (rec.cell) rec.cell->save(path);
-  if (rec.line) rec.line->save(path);
+  return dir + "/" + name;
+}
+
+template <typename Recording>
+void finish(Recording& rec, const scenario::CaseResult& result, const std::string& path) {
+  if (!result.passed) rec.set_failure(result.virtual_us, result.failure);
+  rec.save(path);
+}
+
+}  // namespace
+
+std::string save_case(CaseRecording& rec, const scenario::CaseResult& result, const std::string& dir,
+                      std::set<std::string>* used) {
+  const std::string path = case_path(result.name, dir, used);
+  if (rec.cell) finish(*rec.cell, result, path);
+  if (rec.line) finish(*rec.line, result, path);
+  return path;
+}
+
+std::string save_case(recording::Recorder& rec, const scenario::CaseResult& result, const std::string& dir,
+                      std::set<std::string>* used) {
+  const std::string path = case_path(result.name, dir, used);
+  finish(rec, result, path);
   return path;
 }
 

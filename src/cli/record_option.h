@@ -34,6 +34,9 @@ std::unique_ptr<CaseRecording> record_case(FreshTarget& target, const std::strin
 // name already in *used (two cases of one name in different files) gets "-2", "-3"...
 std::string save_case(CaseRecording& rec, const scenario::CaseResult& result, const std::string& dir,
                       std::set<std::string>* used);
+// The same for one recorder of its own (a case on a PLC, its polled values).
+std::string save_case(recording::Recorder& rec, const scenario::CaseResult& result, const std::string& dir,
+                      std::set<std::string>* used);
 
 // The command that opens a recording in the monitor at its failure.
 std::string monitor_command_for(const std::string& path);
