@@ -39,7 +39,7 @@ set(PLC_CELL_LAYER_RULES
   "mutation core io config timeline coverage hsc temp motion sim persist fatek modbus tri comm runtime scenario explore ladder monitor online"
   "recording core io config timeline coverage ladder monitor"
   "remote core io config coverage ladder monitor fatek tri"
-  "hardware core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor remote recording")
+  "hardware core io config timeline hsc temp motion sim persist fatek modbus tri comm runtime scenario coverage ladder monitor online remote recording")
 
 set(PLC_CELL_LAYER_ROOTS ${CMAKE_CURRENT_BINARY_DIR}/layer_includes)
 set(plc_cell_layer_libraries)

@@ -16,6 +16,9 @@ if(CATKIN_ENABLE_TESTING)
     PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     PLC_CELL_TOOL="$<TARGET_FILE:plc_cell_tool>")
   add_dependencies(online_tests plc_cell_tool)
+  # plc_cell run --watch-program as a user runs it, through the monitor's API.
+  include(${PROJECT_SOURCE_DIR}/cmake/pytest.cmake)
+  plc_cell_add_pytest(online FILES test/online/test_watch_program.py DEPENDENCIES plc_cell_tool)
 endif()
 
 # The scan's wake latency with gates running beside it, against none (docs/performance.md).

@@ -51,6 +51,8 @@ void TerminalEdges::add_train(int x, uint64_t period_ns, uint64_t width_ns, uint
     delay_ns += w;
   }
   trains_.push_back({x, period_ns, width_ns, delay_ns});
+  // A train on at its first instant (delay 0) has no edge after it that switches it on.
+  if (trains_.back().level_at(ctx_.now())) schedule(x, ctx_.now(), true);
 }
 
 uint64_t TerminalEdges::next_event_ns() {

@@ -316,10 +316,6 @@ class Reader {
   const std::map<std::string, std::string>* params_ = nullptr;
 };
 
-}  // namespace
-
-namespace {
-
 // The files the scenario names, resolved against its folder: the cell and its program, or
 // the line (docs/lines.md), whose file names each cell's.
 void read_files(const YamlReader& r, const YAML::Node& doc, Scenario& sc, ErrorList& errors) {

@@ -113,6 +113,33 @@ TEST(Control, CellYamlPulseSignalsAreExactEdges) {
   EXPECT_EQ(cell.plc().locked([&](ScanEngine&, Memory&) { return cell.get<hsc::HscUnit>()->count(4); }), 100);
 }
 
+TEST(Control, APulseSignalFromTheFirstInstantIsOnAtTheFirstScan) {
+  // delay 0 (the default): on for the first width already, as X20 (no counter input) is.
+  // The rising edge at 0 is no edge "after" the start, and was lost: X4 read 0 at the
+  // first scan and HSC4 missed the first pulse.
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/pulse0_cell.il") << "ORG M1925\nOUT M0\nEND\n";
+  std::ofstream(dir + "/pulse0_cell.yaml")
+      << "cell: {program: pulse0_cell.il}\n"
+         "simulation:\n  inputs:\n    X4: {pulse: {period: 0.01, width: 0.005}}\n"
+         "    X20: {pulse: {period: 0.01, width: 0.005}}\n"
+         "counters:\n  hsc4: {mode: MD0, a: X4}\n";
+  SoftCell cell(dir + "/pulse0_cell.yaml", "");
+  ASSERT_TRUE(cell.plc().set_mode(RunMode::Run));
+  const auto x = [&](int n) { return cell.plc().locked([&](ScanEngine&, Memory& m) { return m.bit(Area::X, n); }); };
+  const auto count = [&] { return cell.plc().locked([&](ScanEngine&, Memory&) { return cell.get<hsc::HscUnit>()->count(4); }); };
+  cell.plc().scan(0);
+  EXPECT_EQ(x(4), 1) << "on from 0 to 5 ms";
+  EXPECT_EQ(x(20), 1);
+  EXPECT_EQ(count(), 1) << "the pulse from 0 ms";
+  cell.plc().scan(5000);
+  EXPECT_EQ(x(4), 0);
+  EXPECT_EQ(x(20), 0);
+  for (uint64_t t = 6000; t <= 100000; t += 1000) cell.plc().scan(t);
+  // Rising edges at 10k ms <= 100 ms: k = 0..10.
+  EXPECT_EQ(count(), 11);
+}
+
 TEST(Control, DoubleEdgeModesAndCountingInputInversion) {
   // MD1 (U/D x2) and MD3 (P/R x2, R = relay M1942 on: down) on a 1 kHz generator.
   for (int mode : {1, 3}) {

@@ -128,12 +128,14 @@ TEST_F(Fun150, ResultCodes) {
 }
 
 // FUN150 on an RTU port whose slave answers late but in order (the soft PLC's RTU slave
-// behind a proxy that holds each reply back 60 ms; R4147 = 5: 50 ms). The two
+// behind a proxy that holds each reply back 240 ms; R4147 = 20: 200 ms). The two
 // transactions read one register each: their replies are alike but for the value, and a
-// late one must never land in the other's master register.
+// late one must never land in the other's master register. After a timeout the port is
+// drained until quiet for the timeout, so a reply up to 400 ms late is never taken; the
+// 160 ms beyond the proxy's delay are for a loaded machine's threads.
 TEST(Fun150Late, ALateReplyIsNeverTakenForTheNextTransaction) {
   {
-    LateDeviceLine proxy(60);
+    LateDeviceLine proxy(240);
     Plc slave;
     slave.locked([](ScanEngine&, Memory& m) {
       m.set_reg(Area::R, 0, 111);
@@ -150,7 +152,7 @@ TEST(Fun150Late, ALateReplyIsNeverTakenForTheNextTransaction) {
     master.load_program_text(kProgram, "fun150.il");
     ASSERT_TRUE(master.set_mode(RunMode::Run));
     master.locked([](ScanEngine&, Memory& m) {
-      m.set_reg(Area::R, 4147, 5);  // 50 ms
+      m.set_reg(Area::R, 4147, 20);  // 200 ms
       const uint16_t table[] = {0xA550, 0x0702, 1, 1, 1, 12, 10, 4, 1, 1, 1, 1, 12, 11, 4, 2};
       for (uint32_t i = 0; i < 16; ++i) m.set_reg(Area::R, 100 + i, table[i]);
       m.set_bit(Area::M, 100, true);
