@@ -2,18 +2,24 @@
 // 10, 100 and 1,000 demo-like cells, each the demo conveyor's program and simulation with
 // its part sensor wired from the cell before it (a travelling part), side by side with the
 // same cells unwired and with the demo cell alone, so that the cost per cell and per wire as
-// the line grows shows, and the memory each cell takes.
+// the line grows shows, and the memory each cell takes; and, with --real-time, the chain in
+// real time on shared scan threads.
 //   .build/ws/devel/lib/plc_cell/bench_line --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <malloc.h>
+#include <sys/resource.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "plc_cell/core/plc.h"
 #include "plc_cell/line/line.h"
 #include "plc_cell/runtime/cell.h"
 
@@ -155,9 +161,50 @@ BENCHMARK(BM_Cells)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_Unwired)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Chain)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 
+// --real-time N THREADS SECONDS: the chain of N cells in real time on THREADS shared scan
+// threads for SECONDS; what the cells' scans missed (the overruns, and of those the ones
+// lost while a thread was off the CPU: the machine's, not the cells'), the wake latency and
+// the CPU the process took, one "key value" line each.
+int real_time(size_t n, unsigned threads, double seconds) {
+  line::Line l(line_file(n, true));
+  rusage before{}, after{};
+  getrusage(RUSAGE_SELF, &before);
+  const auto t0 = std::chrono::steady_clock::now();
+  l.start_real_time(threads);
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  l.stop();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  getrusage(RUSAGE_SELF, &after);
+  const auto cpu_s = [](const rusage& r) {
+    return double(r.ru_utime.tv_sec + r.ru_stime.tv_sec) + double(r.ru_utime.tv_usec + r.ru_stime.tv_usec) * 1e-6;
+  };
+  uint64_t scans = 0, overruns = 0, off_cpu = 0, cells_overrun = 0, wake_max_ns = 0;
+  double wake_sum_ns = 0;
+  for (size_t i = 0; i < l.size(); ++i) {
+    const ScanStats st = l.cell(i)->plc().locked([](ScanEngine& e, Memory&) { return e.stats(); });
+    scans += st.scans;
+    overruns += st.overruns;
+    off_cpu += st.overruns_off_cpu;
+    cells_overrun += st.overruns > st.overruns_off_cpu;
+    wake_max_ns = std::max(wake_max_ns, st.wake_latency.max_ns);
+    wake_sum_ns += st.wake_latency.sum_ns;
+  }
+  std::printf("cells %zu\nthreads %u\nwall_s %.2f\nscans %llu\nscans_expected %.0f\n", n, threads, wall,
+              static_cast<unsigned long long>(scans), double(n) * wall * 1000.0);
+  std::printf("overruns %llu\noverruns_off_cpu %llu\noverruns_from_the_cells %llu\ncells_with_their_own_overruns %llu\n",
+              static_cast<unsigned long long>(overruns), static_cast<unsigned long long>(off_cpu),
+              static_cast<unsigned long long>(overruns - off_cpu), static_cast<unsigned long long>(cells_overrun));
+  std::printf("wake_latency_mean_us %.1f\nwake_latency_max_us %.1f\ncpu_cores_used %.3f\n",
+              scans ? wake_sum_ns / double(scans) / 1000.0 : 0.0, double(wake_max_ns) / 1000.0,
+              (cpu_s(after) - cpu_s(before)) / wall);
+  return 0;
+}
+
 // --memory N: the chain of N cells built in a fresh process, the memory it took per cell
 // (resident, and malloc's heap), one "key value" line each; otherwise the benchmarks.
 int main(int argc, char** argv) {
+  if (argc == 5 && std::strcmp(argv[1], "--real-time") == 0)
+    return real_time(size_t(std::atol(argv[2])), unsigned(std::atoi(argv[3])), std::atof(argv[4]));
   if (argc == 3 && std::strcmp(argv[1], "--memory") == 0) {
     const size_t n = size_t(std::atol(argv[2]));
     const std::string path = line_file(n, true);

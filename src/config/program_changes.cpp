@@ -12,8 +12,10 @@ const char* source_text(ChangeSource s) {
 }
 
 nlohmann::json to_json(const GateResult& g) {
-  return {{"configured", g.configured}, {"passed", g.passed}, {"summary", g.summary},
-          {"report", g.report},         {"seconds", g.seconds}, {"hash", g.hash}};
+  nlohmann::json j{{"configured", g.configured}, {"passed", g.passed}, {"summary", g.summary},
+                   {"report", g.report},         {"seconds", g.seconds}, {"hash", g.hash}};
+  if (!g.since.empty()) j["since"] = g.since;
+  return j;
 }
 
 nlohmann::json to_json(const ChangeOutcome& o) {

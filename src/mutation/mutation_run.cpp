@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -253,7 +254,10 @@ std::vector<ProgramResult> run_mutation(const std::vector<scenario::Scenario>& f
     r.cases = p.cases.size();
     baseline(p, make, &r);
     const std::vector<std::string> lines = lines_of(p.file);
-    const std::vector<Mutant> all = mutants(lines, p.parsed, p.functions);
+    std::vector<Mutant> all = mutants(lines, p.parsed, p.functions);
+    if (!options.lines.empty())
+      all.erase(std::remove_if(all.begin(), all.end(), [&](const Mutant& m) { return !options.lines.count(m.line); }),
+                all.end());
     r.generated = all.size();
     const size_t n = options.budget && options.budget < all.size() ? options.budget : all.size();
     for (size_t i = 0; i < n; ++i) r.results.push_back({all[i * all.size() / n], Verdict::Survived, "", false, "", ""});

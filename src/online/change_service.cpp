@@ -79,6 +79,11 @@ std::string ChangeService::text() const {
   return text_;
 }
 
+std::pair<std::string, std::string> ChangeService::running_text() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return {text_, hash_};
+}
+
 std::string ChangeService::hash() const {
   std::lock_guard<std::mutex> lk(mu_);
   return hash_;
@@ -117,7 +122,7 @@ ChangeOutcome ChangeService::check(const std::string& text) {
   bool parsed = false;
   ChangeOutcome o = examine(text, &p, &parsed);
   std::lock_guard<std::mutex> lk(gate_mu_);
-  if (last_gate_.hash == o.new_hash) o.gate = last_gate_;
+  if (last_gate_.hash == o.new_hash && (!setup_.gate.mutate || last_gate_.since == o.old_hash)) o.gate = last_gate_;
   return o;
 }
 
@@ -146,7 +151,17 @@ GateResult ChangeService::test(const std::string& text) {
     r.failure = "the plc_cell tool is neither beside this program nor at $PLC_CELL_TOOL";
   } else {
     const ScratchProgram scratch(base_name(setup_.program_path), text);
-    r = run_child({tool, "gate", setup_.cell_file, "--program", scratch.path(), "--json"}, setup_.gate.timeout_us);
+    std::vector<std::string> argv = {tool, "gate", setup_.cell_file, "--program", scratch.path(), "--json"};
+    // Mutation testing mutates the lines written since the running program: the verdict is
+    // of this pair of texts.
+    std::unique_ptr<ScratchProgram> since;
+    if (setup_.gate.mutate) {
+      const auto running = running_text();
+      g.since = running.second;
+      since = std::make_unique<ScratchProgram>(base_name(setup_.program_path), running.first);
+      argv.insert(argv.end(), {"--since", since->path()});
+    }
+    r = run_child(argv, setup_.gate.timeout_us);
   }
   g.seconds = ms_since(t0) / 1000.0;
   g.report = nlohmann::json::parse(r.out, nullptr, false);
@@ -172,8 +187,11 @@ GateResult ChangeService::test(const std::string& text) {
 
 GateResult ChangeService::gate_for(const std::string& text, const std::string& hash) {
   {
+    const std::string running = running_text().second;
     std::lock_guard<std::mutex> lk(gate_mu_);
-    if (last_gate_.hash == hash && last_gate_.configured == has_gate()) return last_gate_;
+    if (last_gate_.hash == hash && last_gate_.configured == has_gate() &&
+        (!setup_.gate.mutate || last_gate_.since == running))
+      return last_gate_;
   }
   return test(text);
 }

@@ -99,6 +99,13 @@ std::string unified_diff(const std::string& old_text, const std::string& next_te
   return out.str();
 }
 
+std::vector<int> changed_lines(const std::string& old_text, const std::string& next_text) {
+  std::vector<int> out;
+  for (const Edit& e : edits(lines_of(old_text), lines_of(next_text)))
+    if (e.kind == '+') out.push_back(int(e.b) + 1);
+  return out;
+}
+
 std::string text_hash(const std::string& text) {
   uint64_t h = 1469598103934665603ull;
   for (unsigned char c : text) {

@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -180,6 +181,62 @@ TEST_F(DemoCell, ASavedFileGoesLiveThroughTheSamePathAndIsNeverRewritten) {
   const auto log = cell->changes().log(10);
   ASSERT_EQ(log.size(), 2u);
   EXPECT_EQ(log[0]["source"], "file");
+}
+
+TEST(ChangedLines, TheLinesOfTheNewTextNotInTheOld) {
+  const std::string old = "ORG X0\nOUT Y0\nORG X1\nOUT Y1\nEND\n";
+  EXPECT_TRUE(online::changed_lines(old, old).empty());
+  EXPECT_EQ(online::changed_lines(old, "ORG X0\nOUT Y0\nORG X2\nOUT Y1\nEND\n"), std::vector<int>{3});
+  EXPECT_EQ(online::changed_lines(old, "ORG X0\nOUT Y0\nORG X5\nOUT M5\nORG X1\nOUT Y1\nEND\n"),
+            (std::vector<int>{3, 4}));
+  EXPECT_TRUE(online::changed_lines(old, "ORG X0\nOUT Y0\nEND\n").empty()) << "a deletion writes no line";
+  EXPECT_EQ(online::changed_lines("", "ORG X0\nEND\n"), (std::vector<int>{1, 2}));
+}
+
+// gate.mutate: true on the demo: the mutants of the lines a change wrote must be killed by
+// the cases (or be equivalent-suspect: no case and no input search tells them apart).
+class DemoCellMutating : public DemoCell {
+ protected:
+  void SetUp() override {
+    DemoCell::SetUp();
+    const std::string yaml = slurp(dir + "/conveyor.yaml");
+    spit(dir + "/conveyor.yaml", replace(yaml, "  explore: 20s\n", "  explore: 20s\n  mutate: true\n"));
+  }
+};
+
+TEST_F(DemoCellMutating, AChangeNoCaseChecksIsRefusedNamingItsSurvivingMutants) {
+  serve();
+  // A new network: nothing breaks, and no case looks at M500.
+  const std::string untested = replace(original, "END", "ORG     X3\nOUT     M500\nEND");
+  const int first = int(std::count(original.begin(), original.begin() + original.find("END"), '\n')) + 1;
+  const ChangeOutcome o = apply(untested);
+  EXPECT_EQ(o.result, "refused") << o.gate.summary;
+  ASSERT_TRUE(o.gate.configured);
+  EXPECT_FALSE(o.gate.passed);
+  EXPECT_NE(o.gate.summary.find("mutant(s) of the changed lines survived"), std::string::npos) << o.gate.summary;
+  const auto& m = o.gate.report.at("mutation");
+  EXPECT_EQ(m.at("lines"), (std::vector<int>{first, first + 1}));
+  ASSERT_FALSE(m.at("survived").empty()) << m.dump();
+  for (const auto& s : m.at("survived")) {
+    const int line = s.at("line").get<int>();
+    EXPECT_TRUE(line == first || line == first + 1) << s.dump();
+  }
+  EXPECT_EQ(cell->changes().hash(), online::text_hash(original)) << "the running program is kept";
+  EXPECT_EQ(o.gate.since, online::text_hash(original));
+}
+
+TEST_F(DemoCellMutating, AChangeWhoseMutantsNothingTellsApartPasses) {
+  serve();
+  // The counter's preset: its mutants (+1, -1, x2, /2) are not reached in any case or search.
+  const std::string harmless = replace(original, "CTR     C0 9999", "CTR     C0 5000");
+  const GateResult g = cell->changes().test(harmless);
+  ASSERT_TRUE(g.passed) << g.summary << " " << g.report.dump();
+  const auto& m = g.report.at("mutation");
+  const int line = int(std::count(original.begin(), original.begin() + original.find("CTR     C0"), '\n')) + 1;
+  EXPECT_EQ(m.at("lines"), std::vector<int>{line});
+  EXPECT_EQ(m.at("mutants"), 4);
+  EXPECT_EQ(m.at("equivalent"), 4);
+  EXPECT_TRUE(m.at("survived").empty());
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 //   gate:
 //     scenarios: [conveyor.scenario.yaml]   # every case and property, on the new program
 //     explore: 20s                          # plus this much virtual time of plc_cell explore
-//     mutate: false
+//     mutate: true                          # the cases must kill the mutants of the lines changed
 //     timeout: 60s                          # wall time the gate's process may take
 #include <cstdint>
 #include <memory>
@@ -22,6 +22,8 @@ struct GateConfig {
   // cell: a cell copied without its tests still runs, and every change to it fails its gate.
   std::vector<std::string> scenarios;
   uint64_t explore_us = 0;             // 0: no exploration
+  // Every mutant of a line the change wrote must be killed by the cases (or found
+  // equivalent-suspect): the change is tested, not only not broken.
   bool mutate = false;
   uint64_t timeout_us = 60'000'000;
 };

@@ -38,6 +38,7 @@ struct GateResult {
   nlohmann::json report;    // plc_cell gate --json's report as it gave it (null: no gate)
   double seconds = 0;       // wall time the gate took
   std::string hash;         // of the program text it ran on
+  std::string since;        // with gate.mutate: of the running program it was compared with
 };
 
 struct ChangeOutcome {

@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,9 @@ struct ProgramResult {
 
 struct Options {
   size_t budget = 0;  // at most this many mutants per program (0: all), evenly spaced
+  // Only the mutants of these lines of the program (empty: every line), before the budget:
+  // the lines a change wrote, when a gate asks whether the cases test the change.
+  std::set<int> lines;
   int jobs = 1;       // worker processes
 };
 

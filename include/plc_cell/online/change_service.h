@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "plc_cell/config/cell_extension.h"
@@ -32,6 +33,8 @@ class ChangeService : public ProgramChanges {
 
   std::string text() const override;
   std::string hash() const override;
+  // The running program's text and hash, read together.
+  std::pair<std::string, std::string> running_text() const;
   std::string file() const override { return setup_.program_path; }
   bool has_gate() const override { return setup_.gate.line != 0; }
   ChangeOutcome check(const std::string& text) override;

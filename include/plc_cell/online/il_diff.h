@@ -11,6 +11,10 @@ namespace online {
 std::string unified_diff(const std::string& old_text, const std::string& next_text, const std::string& old_name,
                          const std::string& next_name);
 
+// The lines of next (1, 2, ...) that are not in old: added or changed, by the same line
+// matching as unified_diff. What a gate's mutation testing mutates (docs/online-change.md).
+std::vector<int> changed_lines(const std::string& old_text, const std::string& next_text);
+
 // FNV-1a 64 of text, as 16 hex digits: a program's identity in the audit trail.
 std::string text_hash(const std::string& text);
 
