@@ -23,13 +23,17 @@ HARMLESS = ORIGINAL.replace("CTR     C0 9999", "CTR     C0 5000")
 assert BROKEN != ORIGINAL and HARMLESS != ORIGINAL
 
 
-def serve(folder, name, edit):
-    """The demo's files in folder, served with the monitor; its base URL and process."""
+def serve(folder, name, edit, mutate=False):
+    """The demo's files in folder, served with the monitor; its base URL and process. mutate:
+    the gate runs mutation testing of the lines a change writes."""
     os.makedirs(folder, exist_ok=True)
     for f in ("conveyor.il", "conveyor.scenario.yaml"):
         shutil.copy(os.path.join(SRC, f), folder)
     http = free_port()
     text = open(os.path.join(SRC, "conveyor.yaml")).read()
+    if mutate:
+        assert "  explore: 20s\n" in text
+        text = text.replace("  explore: 20s\n", "  explore: 20s\n  mutate: true\n")
     text += "servers:\n  http:\n    tcp: 127.0.0.1:%d\n    writable: all\n    edit: %s\n" % (http, edit)
     path = os.path.join(folder, "conveyor.yaml")
     with open(path, "w") as f:
@@ -182,5 +186,27 @@ def test_without_edit_the_server_offers_no_apply(scratch, browser):
         with pytest.raises(urllib.error.HTTPError) as refused:
             post(base, "/api/edit/apply", {"text": HARMLESS})
         assert refused.value.code == 409
+    finally:
+        stop(proc)
+
+
+def test_a_change_no_case_checks_is_refused_with_its_surviving_mutants(scratch, browser):
+    """gate.mutate: a new network nothing checks passes every case, and its mutants survive."""
+    base, proc = serve(os.path.join(scratch, "mutate"), "mutate", "true", mutate=True)
+    try:
+        untested = ORIGINAL.replace("\nEND", "\nORG     X3\nOUT     M500\nEND")
+        line = ORIGINAL[:ORIGINAL.index("\nEND")].count("\n") + 2
+        open_edit(browser, base)
+        set_text(browser, untested)
+        wait(browser, "the new network drawn", lambda d: diff_rows(d) == 1)
+        test = browser.find_element("id", "edit-test")
+        wait(browser, "Test enabled", lambda d: test.is_enabled())
+        test.click()
+        wait(browser, "the gate's verdict", lambda d: gate_shown(d) == "false")
+        report = browser.find_element("id", "edit-report").text
+        assert "mutant(s) of the changed lines survived" in report, report
+        assert "FAIL mutant line %d: ORG X3 \u2192 ORG NOT X3" % line in report, report
+        assert "FAIL mutant line %d: OUT M500 \u2192 (deleted)" % (line + 1) in report, report
+        assert not browser.find_element("id", "edit-apply").is_enabled()
     finally:
         stop(proc)

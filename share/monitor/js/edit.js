@@ -232,7 +232,8 @@ export class EditTab {
   }
 
   // The gate's report: its summary, then each failing case and exploration as plc_cell test
-  // gives it (the failing check, then the values and their last changes).
+  // gives it (the failing check, then the values and their last changes), and each mutant of
+  // the changed lines that survived.
   showReport(gate) {
     this.report.textContent = "";
     const head = html("p", {class: gate.passed ? "gate-pass" : "gate-fail", id: "edit-gate"}, this.report,
@@ -250,6 +251,11 @@ export class EditTab {
       const d = html("div", {class: "gate-failure"}, this.report);
       html("strong", {}, d, `FAIL explore ${e.file} (seed ${e.seed}, ${e.runs} run(s))`);
       html("pre", {}, d, e.failure);
+    }
+    for (const m of (report.mutation && report.mutation.survived) || []) {
+      const d = html("div", {class: "gate-failure"}, this.report);
+      html("strong", {}, d, `FAIL mutant line ${m.line}: ${m.change}`);
+      html("pre", {}, d, `survived (${m.why})${m.told_apart ? `\n${m.told_apart}` : ""}`);
     }
   }
 
