@@ -123,6 +123,25 @@ std::vector<Address> Bridge::release(const Address* bit) {
   });
 }
 
+std::vector<bool> Bridge::forced(const std::vector<Address>& bits) {
+  for (const Address& b : bits)
+    if (b.width != Width::Bit || !is_discrete(b.area)) throw Error(format_address(b) + " is not a discrete");
+  return transaction([&] {
+    std::vector<bool> out(bits.size());
+    for (size_t i = 0; i < bits.size();) {
+      // bits[i..j) of one area, each the next of the one before
+      size_t j = i + 1;
+      while (j < bits.size() && bits[j].area == bits[i].area && bits[j].index == bits[j - 1].index + 1 &&
+             j - i < kMaxDiscretes)
+        ++j;
+      const std::vector<bool> run = client_->read_disabled(bits[i], uint32_t(j - i));
+      for (size_t k = i; k < j; ++k) out[k] = run[k - i];
+      i = j;
+    }
+    return out;
+  });
+}
+
 void Bridge::set_run(bool run) {
   transaction([&] { client_->set_run(run); });
 }

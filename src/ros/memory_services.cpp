@@ -1,8 +1,10 @@
 #include "plc_cell/ros/memory_services.h"
 
+#include <algorithm>
 #include <exception>
 
 #include "plc_cell/ForceDiscrete.h"
+#include "plc_cell/ReadForced.h"
 #include "plc_cell/ReadMemory.h"
 #include "plc_cell/ReleaseDiscrete.h"
 #include "plc_cell/WriteMemory.h"
@@ -31,6 +33,10 @@ Address one_discrete(const MemoryAccess& access, const std::string& what, const 
 }
 
 }  // namespace
+
+std::vector<bool> MemoryAccess::forced(const std::vector<Address>&) {
+  throw Error("this node does not read which points are forced");
+}
 
 std::vector<ros::ServiceServer> advertise_memory_services(ros::NodeHandle& pnh, MemoryAccess& access) {
   MemoryAccess* m = &access;
@@ -79,6 +85,21 @@ std::vector<ros::ServiceServer> advertise_memory_services(ros::NodeHandle& pnh, 
           }
           for (const Address& a : freed) res.released.push_back(format_address(a));
           res.message = freed.empty() ? "nothing was forced" : std::to_string(freed.size()) + " released";
+        });
+      }));
+  if (!access.reads_forced()) return out;
+  out.push_back(pnh.advertiseService<ReadForced::Request, ReadForced::Response>(
+      "read_forced", [m](ReadForced::Request& req, ReadForced::Response& res) {
+        return reply(res, [&] {
+          std::vector<Address> bits;  // every name checked before the PLC is asked
+          for (const std::string& text : req.addresses) {
+            const Address a = m->resolve(text);
+            if (a.width != Width::Bit) throw Error("read_forced " + text + ": only a single discrete can be forced");
+            bits.push_back(a);
+          }
+          for (bool f : m->forced(bits)) res.forced.push_back(f);
+          res.message = std::to_string(std::count(res.forced.begin(), res.forced.end(), true)) + " of " +
+                        std::to_string(bits.size()) + " forced";
         });
       }));
   return out;

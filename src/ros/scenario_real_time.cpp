@@ -53,7 +53,8 @@ RealTimeRun::RealTimeRun(const Scenario& sc, const CellConfig& config, uint64_t 
   resolution_ = measure_resolution(*plc_, polled, scan_us);
   std::cout << "connected: resolution " << resolution_.text() << "\n";
   if (!plc_->says_forced())
-    std::cout << plc_->describe() << " publishes no ~forced: what the cases force is released after each, but "
+    std::cout << plc_->describe() << " says not which points are forced (no ~forced, no ~read_forced): what "
+                                     "the cases force is released after each, a point found forced included, and "
                                      "whether the PLC holds a force is not read back here\n";
   const WallClockRules rules{plc_->describe(), plc_->cannot_force(), resolution_.us(), tolerance_us};
   std::vector<TouchedPoint> all;

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "plc_cell/ForceDiscrete.h"
+#include "plc_cell/ReadForced.h"
 #include "plc_cell/ReadMemory.h"
 #include "plc_cell/RegisterBlock.h"
 #include "plc_cell/ReleaseDiscrete.h"
@@ -131,6 +132,8 @@ void TopicPlc::connect(std::chrono::milliseconds window) {
           signal_values_[i].second = m->data;
         }));
   }
+  // A node that cannot publish ~forced may read it from the PLC on request (fatek_bridge).
+  reads_forced_ = !publishes_forced_ && ros::service::exists(prefix + "read_forced", false);
   for (;;) {
     {
       std::lock_guard<std::mutex> lk(mu_);
@@ -206,6 +209,15 @@ std::vector<uint32_t> TopicPlc::read(const std::vector<Address>& addrs) {
 }
 
 std::optional<std::vector<bool>> TopicPlc::forced(const std::vector<Address>& bits) {
+  if (reads_forced_) {
+    ReadForced srv;
+    for (const Address& b : bits) srv.request.addresses.push_back(format_address(b));
+    call("read_forced", srv);
+    if (srv.response.forced.size() != bits.size())
+      throw Error(describe() + ": ~read_forced answered " + std::to_string(srv.response.forced.size()) + " of " +
+                  std::to_string(bits.size()) + " points");
+    return std::vector<bool>(srv.response.forced.begin(), srv.response.forced.end());
+  }
   // After a change, a ~forced of a later scan says how it went; a change that changed nothing
   // (a point released that was not forced) brings none, and the last one still holds.
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);

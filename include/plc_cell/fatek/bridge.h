@@ -52,6 +52,8 @@ class Bridge : public PolledLink {
   // Frees bit, or every locked discrete when bit is null (43 finds them, 42 ENABLE frees
   // each); returns those that were locked.
   std::vector<Address> release(const Address* bit);
+  // Which of bits are forced (disabled) now: command 43, one frame per run of neighbours.
+  std::vector<bool> forced(const std::vector<Address>& bits);
   void set_run(bool run);  // 41
 
  private:

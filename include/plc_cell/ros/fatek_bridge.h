@@ -31,6 +31,8 @@ class FatekBridge : private MemoryAccess {
   void write(const Address& start, const std::vector<uint32_t>& raw) override;
   void force(const Address& bit, bool value) override;
   std::vector<Address> release(const Address* bit) override;
+  bool reads_forced() const override { return true; }
+  std::vector<bool> forced(const std::vector<Address>& bits) override;
 
   std::unique_ptr<BridgeTopics> topics_;  // before the bridge whose sinks reach it
   std::unique_ptr<fatek::Bridge> bridge_;

@@ -1,5 +1,6 @@
 #pragma once
-// ~read, ~write, ~force and ~release: the same names, types, checks and replies on every
+// ~read, ~write, ~force and ~release (and ~read_forced where the node reads which points are
+// forced from the PLC): the same names, types, checks and replies on every
 // node that fronts a PLC (plc_node over its own cell, fatek_bridge over a FATEK link), so a
 // robot stack switches between the simulated cell and the real one by a launch argument.
 // The node says what its PLC can do (MemoryAccess); the handlers resolve names, check and
@@ -26,9 +27,13 @@ class MemoryAccess {
   virtual void force(const Address& bit, bool value) = 0;
   // Frees bit, or every forced discrete when bit is null; returns those that were forced.
   virtual std::vector<Address> release(const Address* bit) = 0;
+  // Whether the node reads from the PLC which discretes are forced (then ~read_forced is
+  // offered), and which of bits are. plc_node publishes ~forced instead.
+  virtual bool reads_forced() const { return false; }
+  virtual std::vector<bool> forced(const std::vector<Address>& bits);
 };
 
-// Advertises the four services on pnh; access must outlive the returned servers.
+// Advertises the services on pnh; access must outlive the returned servers.
 std::vector<ros::ServiceServer> advertise_memory_services(ros::NodeHandle& pnh, MemoryAccess& access);
 
 }  // namespace plc_cell

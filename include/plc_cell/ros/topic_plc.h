@@ -6,7 +6,7 @@
 // and Y0-Y255, ~signals_stamped/<name> the cell's named points, ~registers/<group> the
 // groups' elements; an address on no topic is read with ~read. Writes go through ~write,
 // forces through ~force and ~release; which points are forced is read on ~forced where the
-// node publishes it (plc_node). A value is as old as the node's last message: the longest
+// node publishes it (plc_node), or asked of the PLC by ~read_forced (fatek_bridge). A value is as old as the node's last message: the longest
 // gap measured between its periodic messages is the link's max_age_us().
 #include <chrono>
 #include <map>
@@ -52,8 +52,9 @@ class TopicPlc : public LinkedPlc {
   std::optional<RunMode> mode() override;
   std::string cannot_read_mode() const override { return ""; }
   uint64_t max_age_us() const override { return max_gap_us_; }
-  // Whether the node publishes ~forced (plc_node does; the bridges do not).
-  bool says_forced() const { return publishes_forced_; }
+  // Whether the node says which points are forced: on ~forced (plc_node), or read from the PLC
+  // on request by ~read_forced (fatek_bridge); tri_bridge and modbus_bridge do not.
+  bool says_forced() const { return publishes_forced_ || reads_forced_; }
 
  private:
   struct Group {
@@ -75,7 +76,7 @@ class TopicPlc : public LinkedPlc {
   ros::CallbackQueue queue_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;
   std::vector<ros::Subscriber> subs_;
-  bool publishes_forced_ = false;
+  bool publishes_forced_ = false, reads_forced_ = false;
   std::map<std::string, ros::ServiceClient> clients_;  // by service name; the caller's thread only
 
   mutable std::mutex mu_;
