@@ -128,14 +128,15 @@ TEST_F(Fun150, ResultCodes) {
 }
 
 // FUN150 on an RTU port whose slave answers late but in order (the soft PLC's RTU slave
-// behind a proxy that holds each reply back 240 ms; R4147 = 20: 200 ms). The two
+// behind a proxy that holds each reply back 300 ms; R4147 = 20: 200 ms). The two
 // transactions read one register each: their replies are alike but for the value, and a
 // late one must never land in the other's master register. After a timeout the port is
-// drained until quiet for the timeout, so a reply up to 400 ms late is never taken; the
-// 160 ms beyond the proxy's delay are for a loaded machine's threads.
+// drained until quiet for the timeout, so the replies come between the timeout and twice
+// it, 100 ms from either: a loaded machine's late threads do not make a reply in time, nor
+// one later than the drain.
 TEST(Fun150Late, ALateReplyIsNeverTakenForTheNextTransaction) {
   {
-    LateDeviceLine proxy(240);
+    LateDeviceLine proxy(300);
     Plc slave;
     slave.locked([](ScanEngine&, Memory& m) {
       m.set_reg(Area::R, 0, 111);
