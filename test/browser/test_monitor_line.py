@@ -19,16 +19,24 @@ LINE = os.path.join(ROOT, "examples", "line", "line.line.yaml")
 CELLS = ["infeed", "robot", "test"]
 
 
+def serve(scratch, name, cmd):
+    """cmd with --http-tcp on a free port added, once its monitor answers: (process, base, session)."""
+    http = free_port()
+    log_path = os.path.join(scratch, name + ".log")
+    with open(log_path, "w") as log:
+        proc = shell("%s --http-tcp 127.0.0.1:%d" % (cmd, http), stdout=log, stderr=subprocess.STDOUT)
+    base = "http://127.0.0.1:%d" % http
+    try:
+        return proc, base, wait_for_server(base, proc, log_path)
+    except BaseException:
+        stop(proc)
+        raise
+
+
 @pytest.fixture(scope="module")
 def line(scratch):
-    http = free_port()
-    log_path = os.path.join(scratch, "run_line.log")
-    with open(log_path, "w") as log:
-        proc = shell("plc_cell run --line %s --http-tcp 127.0.0.1:%d --http-writable all" % (LINE, http),
-                     stdout=log, stderr=subprocess.STDOUT)
+    proc, base, session = serve(scratch, "run_line", "plc_cell run --line %s --http-writable all" % LINE)
     try:
-        base = "http://127.0.0.1:%d" % http
-        session = wait_for_server(base, proc, log_path)
         yield {"base": base, "token": session["token"]}
     finally:
         stop(proc)
@@ -119,14 +127,8 @@ def test_a_lines_recording_is_one_overview_on_one_cursor(scratch):
     path = os.path.join(scratch, "line.plcrec")
     code, out = run("plc_cell sim --line %s --duration 4s --record %s" % (LINE, path))
     assert code == 0 and os.path.exists(path), out
-    http = free_port()
-    log_path = os.path.join(scratch, "monitor_line.log")
-    with open(log_path, "w") as log:
-        proc = shell("plc_cell monitor --recording %s --http-tcp 127.0.0.1:%d" % (path, http),
-                     stdout=log, stderr=subprocess.STDOUT)
+    proc, base, session = serve(scratch, "monitor_line", "plc_cell monitor --recording %s" % path)
     try:
-        base = "http://127.0.0.1:%d" % http
-        session = wait_for_server(base, proc, log_path)
         assert session["cells"] == CELLS and session["kind"] == "replay"
         req = urllib.request.Request(base + "/cell/robot/api/replay", data=json.dumps({"seek_us": 2500000}).encode(),
                                      method="POST", headers={"X-Plc-Token": session["token"]})
