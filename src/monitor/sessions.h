@@ -36,10 +36,10 @@ class Closable {
   virtual void evict() = 0;
 };
 
-// What every session shares: each cell's API and the overview, the limits, the counters, the open pages and the
-// connections' table (io/connections.h: when every slot is taken, a new client takes the
-// slot of the connection that has gone longest without completing a request). Only the io
-// thread touches pages and the table.
+// What every session shares: each cell's API and the overview, the limits, the counters,
+// the open pages and the connections' table (io/connections.h: when every slot is taken, a
+// new client takes the slot of the connection that has gone longest without completing a
+// request). Only the io thread touches pages and the table.
 struct Hub {
   explicit Hub(const HttpSettings& s);
   const HttpSettings& settings;
