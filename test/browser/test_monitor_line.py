@@ -123,6 +123,23 @@ def test_a_watch_reads_a_qualified_name_of_another_cell(line, browser):
         post(line, "/cell/robot/api/force", {"address": "ready", "action": "release"})
 
 
+def test_the_overview_of_a_line_that_is_gone_is_marked_stale(scratch, browser):
+    proc, base, _ = serve(scratch, "run_line_gone", "plc_cell run --line %s" % LINE)
+    try:
+        open_overview(browser, base)
+        wait(browser, "every cell in RUN", lambda d: [cell_text(d, c, "mode") for c in CELLS] == ["RUN"] * 3)
+        assert not js(browser, "return document.body.classList.contains('stale')")
+    finally:
+        stop(proc)
+    # The last values stay, each marked stale, and the banner says why and how old they are.
+    banner = browser.find_element("id", "banner")
+    wait(browser, "the banner saying the monitor does not answer",
+         lambda d: banner.is_displayed() and "does not answer" in banner.text and " s old" in banner.text)
+    assert js(browser, "return document.body.classList.contains('stale')")
+    assert js(browser, "return getComputedStyle(document.querySelector(\"#cells td.mode\"), '::after').content") \
+        == '" (stale)"'
+
+
 def test_a_lines_recording_is_one_overview_on_one_cursor(scratch):
     path = os.path.join(scratch, "line.plcrec")
     code, out = run("plc_cell sim --line %s --duration 4s --record %s" % (LINE, path))
