@@ -205,7 +205,7 @@ ApiReply Api::get(const std::string& path, const std::string& query) {
 }
 
 bool Api::foreign(const std::string& name, Located* at) const {
-  return set_ && set_->size() > 1 && set_->locate(name, at) && at->cell != self_;
+  return set_ && !set_->alone() && set_->locate(name, at) && at->cell != self_;
 }
 
 // Another cell's name is read from that cell, at its own instant (cells scan apart).

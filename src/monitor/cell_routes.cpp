@@ -21,12 +21,12 @@ Route route(const std::string& target, const SourceSet& set, const std::vector<s
   }
   const std::string path = target.substr(0, target.find('?'));
   const bool page = path == "/" || path == "/index.html";
-  if (path == "/api/overview" || (set.size() > 1 && (page || path == "/api/session"))) {
+  if (path == "/api/overview" || (!set.alone() && (page || path == "/api/session"))) {
     r.overview = true;
     r.target = target;
     return r;
   }
-  if (set.size() > 1 && path.rfind("/api/", 0) == 0) {
+  if (!set.alone() && path.rfind("/api/", 0) == 0) {
     r.error = path + ": this monitor serves " + std::to_string(set.size()) + " cells (" + set.names() +
               "): a cell's API is /cell/NAME" + path;
     return r;

@@ -1,8 +1,8 @@
 #pragma once
 // Which cell a request is for (docs/monitor-api.md, "A line's cells"): /cell/NAME/... is cell
 // NAME's, its rest the target its Api sees, so a cell's page and API under /cell/NAME/ are
-// the lone cell's ones under /. Without /cell/, a set of one is its cell; a set of several
-// is its overview (overview.h).
+// the lone cell's ones under /. Without /cell/, a lone cell's set (SourceSet::alone) is its
+// cell; any other set is its overview (overview.h).
 #include <memory>
 #include <string>
 #include <vector>

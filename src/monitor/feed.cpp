@@ -17,7 +17,7 @@ Address resolve(const std::string& text, const ProgramView& program) {
 }
 
 std::string own_name(const std::string& text, const SourceSet* set, size_t self) {
-  if (!set || set->size() < 2) return text;
+  if (!set || set->alone()) return text;
   const std::string prefix = set->name(self) + ".";
   return text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
 }
@@ -49,7 +49,7 @@ Subscription parse_subscription(const nlohmann::json& m, const LadderView& ladde
       if (!w.is_string()) throw Error("subscribe.watch: " + dump(w) + " is not a string");
       const std::string name = w.get<std::string>();
       Located at;
-      if (set && set->size() > 1 && set->locate(name, &at) && at.cell != self) {
+      if (set && !set->alone() && set->locate(name, &at) && at.cell != self) {
         out.elsewhere.emplace_back(name, at);
         continue;
       }

@@ -25,7 +25,7 @@ constexpr int kDefaultRateHz = 10;
 // A signal name of the program view or an address; throws Error naming text and why.
 Address resolve(const std::string& text, const ProgramView& program);
 
-// "infeed.X3" on cell infeed's page (of a set of several) is its X3; any other text as it is.
+// "infeed.X3" on cell infeed's page (of a line's set) is its X3; any other text as it is.
 std::string own_name(const std::string& text, const SourceSet* set, size_t self);
 
 struct Subscription {

@@ -188,6 +188,7 @@ namespace {
 SourceSet lone(Source& source) {
   SourceSet set;
   set.add("cell", source);
+  set.serve_alone();
   return set;
 }
 }  // namespace

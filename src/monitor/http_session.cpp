@@ -164,7 +164,7 @@ void HttpSession::on_read(beast::error_code ec, size_t) {
     if (!why.empty() || !live) {
       ++hub_.rejected;
       const std::string where = !to.error.empty() ? to.error : std::string(req.target()) + ": the WebSocket is " +
-                                    (hub_.set->size() > 1 ? "/cell/NAME/api/live" : "/api/live");
+                                    (hub_.set->alone() ? "/api/live" : "/cell/NAME/api/live");
       reply(why.empty() ? 404 : 403, "application/json", error_body(why.empty() ? where : why), false);
       return;
     }

@@ -206,6 +206,30 @@ TEST_F(CellSetTest, HostileCellTargetsAreRefusedAndChangeNothing) {
   EXPECT_EQ(state(), before);
 }
 
+// A line of one cell (or one nodelet left in a process) still opens on its overview; only
+// a lone cell's server (HttpServer of one Source) serves its page at /.
+TEST(SourceSet, ASetOfOneOpensOnItsOverviewALoneCellOnItsPage) {
+  Plc p;
+  p.load_program_text(kProgram, "belt.il");
+  monitor::HttpSettings s;
+  s.endpoint = "127.0.0.1:0";
+  monitor::SourceSet set;
+  set.add("only", std::make_unique<monitor::LiveSource>(ServerContext(p), "cell only"));
+  monitor::HttpServer line(std::move(set), s);
+  line.start();
+  EXPECT_EQ(http_get(line.port(), "/api/session").json()["cells"], nlohmann::json::array({"only"}));
+  EXPECT_EQ(http_get(line.port(), "/api/read?a=X0").status, 404);
+  EXPECT_EQ(http_get(line.port(), "/cell/only/api/read?a=X0").status, 200);
+  line.stop();
+  monitor::LiveSource source(ServerContext(p), "cell lone");
+  monitor::HttpServer lone(source, s);
+  lone.start();
+  EXPECT_EQ(http_get(lone.port(), "/api/session").json()["source"], "cell lone");
+  EXPECT_EQ(http_get(lone.port(), "/api/read?a=X0").status, 200);
+  EXPECT_EQ(http_get(lone.port(), "/api/overview").json()["cells"].size(), 1u);
+  lone.stop();
+}
+
 TEST(SourceSet, RefusesNamesAPathOrAQualifiedNameCouldNotCarry) {
   Plc p;
   monitor::SourceSet set;

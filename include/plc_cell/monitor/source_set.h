@@ -33,6 +33,11 @@ class SourceSet {
   void add(const std::string& name, std::unique_ptr<Source> source);
   void add_wire(SetWire w) { wires_.push_back(std::move(w)); }
   void set_title(std::string t) { title_ = std::move(t); }
+  // A lone cell's monitor, as it was before sets: its page at /, no overview page (the
+  // server of one Source). A set of one cell otherwise still opens on the overview (a line
+  // of one, the one nodelet of a process).
+  void serve_alone() { alone_ = true; }
+  bool alone() const { return alone_; }
 
   size_t size() const { return cells_.size(); }
   const std::string& name(size_t i) const { return cells_[i].name; }
@@ -57,6 +62,7 @@ class SourceSet {
   std::vector<Entry> cells_;
   std::vector<SetWire> wires_;
   std::string title_;
+  bool alone_ = false;
 };
 
 }  // namespace monitor
