@@ -4,6 +4,8 @@
 // serves the process's cell directory: when a cell comes or goes (a nodelet loaded,
 // unloaded, ~reset), the server starts again with the cells there are, on the same port,
 // and the open pages reconnect by themselves.
+#include <algorithm>
+#include <cctype>
 #include <memory>
 #include <mutex>
 
@@ -18,6 +20,33 @@
 #include "plc_cell/ros/server_params.h"
 
 namespace plc_cell {
+namespace {
+
+// cell_2 before cell_10: the overview lists the cells by name, numbers as numbers, whatever
+// order the nodelets were loaded in.
+bool name_before(const std::string& a, const std::string& b) {
+  size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
+      size_t ei = i, ej = j;
+      while (ei < a.size() && std::isdigit(static_cast<unsigned char>(a[ei]))) ++ei;
+      while (ej < b.size() && std::isdigit(static_cast<unsigned char>(b[ej]))) ++ej;
+      const std::string x = a.substr(i, ei - i), y = b.substr(j, ej - j);
+      if (x.size() != y.size()) return x.size() < y.size();
+      if (x != y) return x < y;
+      i = ei;
+      j = ej;
+    } else if (a[i] != b[j]) {
+      return a[i] < b[j];
+    } else {
+      ++i;
+      ++j;
+    }
+  }
+  return a.size() - i < b.size() - j;
+}
+
+}  // namespace
 
 class MonitorNodelet : public nodelet::Nodelet {
  public:
@@ -44,13 +73,14 @@ class MonitorNodelet : public nodelet::Nodelet {
   }
 
   // With the directory's lock held: no cell goes while this runs.
-  void serve(const std::vector<CellDirectory::Entry>& cells) {
+  void serve(std::vector<CellDirectory::Entry> cells) {
     std::lock_guard<std::mutex> lk(mu_);
     if (server_) {
       server_->stop();  // nothing reads a cell that is going, from here on
       server_.reset();
     }
     if (cells.empty()) return;
+    std::sort(cells.begin(), cells.end(), [](const auto& x, const auto& y) { return name_before(x.name, y.name); });
     monitor::SourceSet set;
     set.set_title("nodelet manager " + ros::this_node::getName());
     for (const auto& e : cells) {
