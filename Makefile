@@ -1,5 +1,6 @@
 # plc_cell: two commands on a fresh Debian 12 machine.
 #   make demo   install and build what the demo runs, launch the simulated demo cell
+#               (LINE=1: the example line of three cells with one monitor)
 #   make test   install, build, run every test; ends with "N passed, N failed"
 #   make build  install and build only;  make bench  run the benchmarks
 SHELL := /bin/bash
@@ -134,6 +135,15 @@ MONITOR_WRITABLE ?= all
 # Its pages may change the running program through the cell's gate (the Edit tab,
 # docs/online-change.md): true with writable all; `make demo MONITOR_EDIT=false` turns it off.
 MONITOR_EDIT ?= true
+# `make demo LINE=1`: the example line of three cells (examples/line/) in real time instead,
+# with one monitor for all of them on MONITOR (docs/lines.md, "One monitor"); no ROS.
+LINE ?=
+ifneq ($(LINE),)
+demo: deps-demo $(DEMO_BUILT)
+	@echo "== starting the example line (examples/line/line.line.yaml). Its monitor: http://$(MONITOR)/ (open it in a browser)" && \
+	echo "   Ctrl-C stops it." && \
+	source $(WS)/devel/setup.bash && plc_cell run --line examples/line/line.line.yaml --http-tcp $(MONITOR) --http-writable $(MONITOR_WRITABLE)
+else
 demo: deps-demo $(DEMO_BUILT)
 	@ros_env=$$($(PY) scripts/ros_loopback.py) && eval "$$ros_env" && \
 	echo "== starting the demo cell. The monitor: http://$(MONITOR)/ (open it in a browser)" && \
@@ -146,6 +156,7 @@ demo: deps-demo $(DEMO_BUILT)
 	echo "     rosservice call /plc_node/read R0 1" && \
 	echo "   Ctrl-C stops it." && \
 	source $(WS)/devel/setup.bash && roslaunch plc_cell cell_sim.launch http_tcp:=$(MONITOR) http_writable:=$(MONITOR_WRITABLE) http_edit:=$(MONITOR_EDIT)
+endif
 
 # The whole suite in a throwaway Debian 12 root: proves `make test` on a machine with nothing
 # installed by hand (scripts/test_fresh.sh; root only). CI runs this.

@@ -11,7 +11,7 @@ find_package(pluginlib REQUIRED)
 set_target_properties(plc_cell_runtime plc_cell_comm ${PLC_CELL_SUBSYSTEM_LIBS} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 add_library(plc_cell_nodelets SHARED src/ros/nodelets.cpp
   src/ros/fatek_bridge.cpp src/ros/fatek_bridge_services.cpp src/ros/bridge_topics.cpp src/ros/tri_bridge.cpp
-  src/ros/modbus_bridge_node.cpp)
+  src/ros/modbus_bridge_node.cpp src/ros/monitor_nodelet.cpp)
 target_include_directories(plc_cell_nodelets PRIVATE ${catkin_INCLUDE_DIRS} ${nodelet_INCLUDE_DIRS} ${pluginlib_INCLUDE_DIRS})
 target_link_libraries(plc_cell_nodelets plc_cell_plc_node plc_cell_fatek plc_cell_tri plc_cell_modbus
   ${nodelet_LIBRARIES} ${pluginlib_LIBRARIES} ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES})

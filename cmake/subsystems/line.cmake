@@ -6,7 +6,8 @@ file(GLOB LINE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/line/*.cpp)
 add_library(plc_cell_line STATIC ${LINE_SOURCES})
 target_link_libraries(plc_cell_line PUBLIC plc_cell_scenario)
 
-list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/fresh_target.cpp ${PROJECT_SOURCE_DIR}/src/cli/sim_line.cpp)
+list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/fresh_target.cpp ${PROJECT_SOURCE_DIR}/src/cli/sim_line.cpp
+  ${PROJECT_SOURCE_DIR}/src/cli/run_line.cpp ${PROJECT_SOURCE_DIR}/src/cli/monitor_cells.cpp)
 list(APPEND PLC_CELL_TOOL_LIBS plc_cell_line)
 
 if(CATKIN_ENABLE_TESTING)

@@ -9,8 +9,10 @@ if(CATKIN_ENABLE_TESTING)
   include(${PROJECT_SOURCE_DIR}/cmake/pytest.cmake)
   # The page in headless chromium (chromium-driver, python3-selenium) against plc_node and the
   # plc_cell tool serving the demo cell, a cell switched to STOP, a recording, and a real PLC
-  # (plc_cell monitor --fatek on a plc_cell run) that goes away and comes back.
+  # (plc_cell monitor --fatek on a plc_cell run) that goes away and comes back; one monitor for
+  # a line of cells (plc_cell run --line) and for the nodelets of one process.
   plc_cell_add_pytest(monitor_page FILES test/browser/test_monitor_page.py test/browser/test_monitor_stop.py
     test/browser/test_monitor_replay.py test/browser/test_monitor_remote.py test/browser/test_monitor_edit.py
-    DEPENDENCIES plc_node plc_cell_tool)
+    test/browser/test_monitor_line.py test/browser/test_monitor_nodelets.py
+    DEPENDENCIES plc_node plc_cell_tool plc_cell_nodelets)
 endif()

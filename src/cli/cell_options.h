@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "args.h"
+#include "plc_cell/io/stop_signal.h"
 #include "plc_cell/runtime/cell.h"
 
 namespace plc_cell {
@@ -22,6 +23,8 @@ void apply_set(Cell& cell, const std::string& set, const std::string& shown);
 std::string seconds(uint64_t us);
 // plc_cell sim --line (sim_line.cpp).
 int sim_line(const Args& args);
+// plc_cell run --line (run_line.cpp), until stop or --duration.
+int run_line(const Args& args, StopSignal& stop);
 
 }  // namespace cli
 }  // namespace plc_cell

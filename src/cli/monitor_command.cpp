@@ -7,6 +7,7 @@
 #include "args.h"
 #include "cell_options.h"
 #include "commands.h"
+#include "monitor_cells.h"
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/io/stop_signal.h"
@@ -38,26 +39,45 @@ recording::Reader load_recording(const Args& args) {
   throw UsageError("--cell " + args.get("cell") + ": line " + line.info().line + " has no such cell (" + cells + ")");
 }
 
+// --open-at: the cursor of src (and, through the server, of the cells it is shown with).
+void open_at(const Args& args, recording::ReplaySource& src) {
+  if (!args.has("open-at")) return;
+  const std::string at = args.get("open-at");
+  if (at == "failure") {
+    if (!src.failure_us())
+      throw Error(args.get("recording") + " has no failure: its case passed, or it is not a test case's");
+    src.seek(*src.failure_us());
+    return;
+  }
+  uint64_t t;
+  try {
+    t = parse_duration_us(at);
+  } catch (const Error& e) {
+    throw UsageError("--open-at " + at + ": failure or a time such as 2.5s (" + e.what() + ")");
+  }
+  src.seek(t);
+}
+
 std::unique_ptr<monitor::Source> replay_source(const Args& args) {
   const std::string path = args.get("recording");
   const std::string name = args.has("cell") ? path + " (cell " + args.get("cell") + ")" : path;
   auto src = std::make_unique<recording::ReplaySource>(load_recording(args), name, SoftCell::functions());
-  if (args.has("open-at")) {
-    const std::string at = args.get("open-at");
-    if (at == "failure") {
-      if (!src->failure_us()) throw Error(path + " has no failure: its case passed, or it is not a test case's");
-      src->seek(*src->failure_us());
-    } else {
-      uint64_t t;
-      try {
-        t = parse_duration_us(at);
-      } catch (const Error& e) {
-        throw UsageError("--open-at " + at + ": failure or a time such as 2.5s (" + e.what() + ")");
-      }
-      src->seek(t);
-    }
-  }
+  open_at(args, *src);
   return src;
+}
+
+// A line's recording without --cell: every cell, one cursor (docs/monitor.md).
+bool is_line_recording(const Args& args) {
+  return args.has("recording") && !args.has("cell") &&
+         recording::format_version(recording::read_recording_file(args.get("recording"))) == recording::kLineFormatVersion;
+}
+
+monitor::SourceSet line_replay(const Args& args) {
+  const std::string path = args.get("recording");
+  monitor::SourceSet set = recorded_cells(recording::LineReader::load(path), path);
+  // Every cell's cursor at the instant asked for: the line's failure is one instant of all.
+  for (size_t i = 0; i < set.size(); ++i) open_at(args, static_cast<recording::ReplaySource&>(set.source(i)));
+  return set;
 }
 
 // The user's IL copy: --program, or the program and signals of the cell --config names.
@@ -94,15 +114,6 @@ std::unique_ptr<monitor::Source> remote_source(const Args& args) {
   return std::make_unique<remote::RemoteSource>(std::move(link), program_view(args));
 }
 
-// The http kind's settings from --http-*, served on 127.0.0.1:8080 unless --http-tcp says.
-monitor::HttpSettings http_options(const Args& args) {
-  std::vector<SettingOverride> overrides = cell_overrides(args).servers;
-  if (!args.has("http-tcp")) overrides.push_back({"http", "tcp", {kDefaultEndpoint}, "the default"});
-  const ServerKind kind = monitor::server_kind();
-  const auto merged = merge_server_settings({kind}, CellConfig{}, overrides);
-  return monitor::http_settings(merged.at("http"));
-}
-
 std::vector<std::string> options() {
   std::vector<std::string> out = {"recording", "cell", "open-at", "fatek", "tri", "program", "config",
                                   "station", "id", "timeout", "duration"};
@@ -122,12 +133,22 @@ int cmd_monitor(const std::vector<std::string>& argv) {
   if (args.has("open-at") && !args.has("recording")) throw UsageError("--open-at goes with --recording");
   if (args.has("cell") && !args.has("recording")) throw UsageError("--cell goes with --recording (a line's)");
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
-  const monitor::HttpSettings settings = http_options(args);
-  std::unique_ptr<monitor::Source> source = args.has("recording") ? replay_source(args) : remote_source(args);
-  monitor::HttpServer server(*source, settings);
+  const monitor::HttpSettings settings = http_options(args, kDefaultEndpoint);
+  std::unique_ptr<monitor::Source> source;
+  std::unique_ptr<monitor::HttpServer> served;
+  std::string what;
+  if (is_line_recording(args)) {
+    monitor::SourceSet cells = line_replay(args);
+    what = cells.title() + ": cells " + cells.names();
+    served = std::make_unique<monitor::HttpServer>(std::move(cells), settings);
+  } else {
+    source = args.has("recording") ? replay_source(args) : remote_source(args);
+    what = source->describe();
+    served = std::make_unique<monitor::HttpServer>(*source, settings);
+  }
+  monitor::HttpServer& server = *served;
   server.start();
-  std::cerr << "plc_cell monitor: serving " << server.describe() << " for " << source->describe()
-            << "; Ctrl-C to stop" << std::endl;
+  std::cerr << "plc_cell monitor: serving " << server.describe() << " for " << what << "; Ctrl-C to stop" << std::endl;
   stop.wait_until_stopped(duration);
   server.stop();
   return 0;
@@ -139,8 +160,8 @@ Command monitor_command() {
           "         --fatek HOST:PORT|DEV [--station N] (--program FILE.il | --config CELL.yaml)\n"
           "         --tri HOST:PORT|DEV [--id N] (--program FILE.il | --config CELL.yaml)\n"
           "         [--timeout 1s] [--duration T]\n"
-          "         the browser monitor on a recorded run (docs/recordings.md; --cell: one cell of a\n"
-          "         line's recording) or on a real PLC\n"
+          "         the browser monitor on a recorded run (docs/recordings.md; a line's recording:\n"
+          "         every cell, or with --cell one of them) or on a real PLC\n"
           "         through its host link (docs/monitor-remote.md); 127.0.0.1:8080 by default\n",
           cmd_monitor};
 }

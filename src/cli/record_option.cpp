@@ -27,9 +27,6 @@ recording::RecordingInfo recording_info(const Cell& cell, const std::string& sou
   return info;
 }
 
-namespace {
-
-// "infeed.part_out -> robot.part_in (delay 2.000 s, inverted)": a wire as a recording lists it.
 std::string wire_text(const line::WireEntry& w) {
   std::string s = w.from + " -> " + w.to, how;
   if (w.part) how = "a part: travel " + scenario::format_time(w.travel_us) + ", length " + scenario::format_time(w.length_us);
@@ -37,8 +34,6 @@ std::string wire_text(const line::WireEntry& w) {
   if (w.invert) how += (how.empty() ? "" : ", ") + std::string("inverted");
   return how.empty() ? s : s + " (" + how + ")";
 }
-
-}  // namespace
 
 std::unique_ptr<recording::LineRecorder> record_line(line::Line& l, const std::string& source) {
   recording::LineRecordingInfo info;

@@ -19,6 +19,10 @@ namespace cli {
 // What a recording of cell's run says about it: the program, the signals, the scan period.
 recording::RecordingInfo recording_info(const Cell& cell, const std::string& source);
 
+// "infeed.release -> robot.nest_sensor (delay 20 ms)": a wire as a line's recording and the
+// monitor's overview name it.
+std::string wire_text(const line::WireEntry& w);
+
 // A line's recording, its cells' recorders started (before the line's first scan) and each
 // fed after its cell's scans.
 std::unique_ptr<recording::LineRecorder> record_line(line::Line& l, const std::string& source);

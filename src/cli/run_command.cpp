@@ -38,11 +38,12 @@ int cmd_run(const std::vector<std::string>& argv) {
   // waits until start-up is done and then stops cleanly, with the store flushed.
   StopSignal stop;
   std::vector<std::string> options = {"program", "config", "scan", "duration", "rt-priority", "persist",
-                                      "persist-interval", "engine"};
+                                      "persist-interval", "engine", "line"};
   const auto servers = server_options();
   options.insert(options.end(), servers.begin(), servers.end());
   Args args(argv, options, {"watch-program", "no-simulation"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
+  if (args.has("line")) return run_line(args, stop);
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Serve,
             [](const std::string& l) { std::cerr << "plc_cell run: " << l << "\n"; });
@@ -94,7 +95,9 @@ Command run_command() {
           "         FILE across restarts and crashes (default 100ms); serve the cell's protocols\n"
           "         (below), each option overriding the cell YAML's servers.SERVER.SETTING;\n"
           "         --watch-program: a saved program goes live in RUN, gated (docs/online-change.md)\n"
-          "         --no-simulation: the cell's simulation plays no input (as on a real cell)\n",
+          "         --no-simulation: the cell's simulation plays no input (as on a real cell)\n"
+          "     run --line LINE.yaml [--duration T] [--engine E] [--http-tcp HOST:PORT] [--http-...]\n"
+          "         a line of cells in real time (docs/lines.md), with one monitor for all of them\n",
           cmd_run};
 }
 

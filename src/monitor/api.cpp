@@ -64,20 +64,6 @@ std::vector<std::string> split_names(const std::string& s) {
   return out;
 }
 
-// The addresses of a=... (names or addresses), and the names as given.
-std::vector<Address> resolve_all(const std::string& what, const std::string& query, const ProgramView& program,
-                                 std::vector<std::string>* names) {
-  std::string list;
-  if (!query_value(query, "a", &list)) throw Error(what + ": no a= (a=D0,X1,start_pb)");
-  *names = split_names(list);
-  if (names->empty()) throw Error(what + ": a= names nothing");
-  if (names->size() > kMaxWatch)
-    throw Error(what + ": " + std::to_string(names->size()) + " names, the limit is " + std::to_string(kMaxWatch));
-  std::vector<Address> addrs;
-  for (const auto& n : *names) addrs.push_back(resolve(n, program));
-  return addrs;
-}
-
 std::string signal_name(const Address& a, const ProgramView& program) {
   for (const auto& [name, at] : program.signals)
     if (at == a) return name;
@@ -218,21 +204,60 @@ ApiReply Api::get(const std::string& path, const std::string& query) {
   return {file.status, file.type, file.body};
 }
 
+bool Api::foreign(const std::string& name, Located* at) const {
+  return set_ && !set_->alone() && set_->locate(name, at) && at->cell != self_;
+}
+
+// Another cell's name is read from that cell, at its own instant (cells scan apart).
 ApiReply Api::read(const std::string& query) {
   std::vector<std::string> names;
-  const std::vector<Address> addrs = resolve_all("/api/read", query, *source_.program(), &names);
+  std::string list;
+  if (!query_value(query, "a", &list)) throw Error("/api/read: no a= (a=D0,X1,start_pb)");
+  const auto program = source_.program();
+  std::vector<Address> addrs;
+  std::vector<std::pair<size_t, Located>> others;  // index in names, where
+  for (const auto& n : split_names(list)) {
+    Located at;
+    if (foreign(n, &at)) others.emplace_back(names.size(), at);
+    else addrs.push_back(resolve(own_name(n, set_, self_), *program));
+    names.push_back(n);
+  }
+  if (names.empty()) throw Error("/api/read: a= names nothing");
+  if (names.size() > kMaxWatch)
+    throw Error("/api/read: " + std::to_string(names.size()) + " names, the limit is " + std::to_string(kMaxWatch));
   const Frame f = source_.read(addrs);
   nlohmann::json values = nlohmann::json::object();
-  for (size_t i = 0; i < names.size(); ++i) values[names[i]] = f.values.at(i);
+  size_t own = 0, other = 0;
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (other < others.size() && others[other].first == i) {
+      const Located& at = others[other++].second;
+      values[names[i]] = set_->source(at.cell).read({at.address}).values.at(0);
+    } else {
+      values[names[i]] = f.values.at(own++);
+    }
+  }
   return json_reply({{"scan", f.scan}, {"t_us", f.t_us}, {"mode", mode_text(f.mode, f.mode_known)}, {"values", values}});
 }
 
 ApiReply Api::access(const std::string& query) {
-  std::vector<std::string> names;
-  const std::vector<Address> addrs = resolve_all("/api/access", query, *source_.program(), &names);
+  std::string list;
+  if (!query_value(query, "a", &list)) throw Error("/api/access: no a= (a=D0,X1,start_pb)");
+  const auto names = split_names(list);
+  if (names.empty() || names.size() > kMaxWatch)
+    throw Error("/api/access: a= names 1 to " + std::to_string(kMaxWatch) + " names");
+  const auto program = source_.program();
   nlohmann::json out = nlohmann::json::object();
-  for (size_t i = 0; i < names.size(); ++i)
-    out[names[i]] = {{"write", cannot_write(addrs[i], 1)}, {"force", cannot_force(addrs[i])}};
+  for (const auto& n : names) {
+    Located at;
+    if (foreign(n, &at)) {
+      // A page changes its own cell only: every write is checked and logged where it lands.
+      const std::string why = n + " is cell " + set_->name(at.cell) + "'s: change it on that cell's page";
+      out[n] = {{"write", why}, {"force", why}};
+      continue;
+    }
+    const Address a = resolve(own_name(n, set_, self_), *program);
+    out[n] = {{"write", cannot_write(a, 1)}, {"force", cannot_force(a)}};
+  }
   return json_reply(out);
 }
 

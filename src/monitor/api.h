@@ -14,6 +14,7 @@
 #include "edit_desk.h"
 #include "ladder_view.h"
 #include "plc_cell/monitor/http_server.h"
+#include "plc_cell/monitor/source_set.h"
 #include "request_guard.h"
 
 namespace plc_cell {
@@ -55,9 +56,18 @@ class Api {
   // The layout of the source's current program (rebuilt when its version changes).
   std::shared_ptr<const LadderView> ladder();
   nlohmann::json status_message();  // {"type":"status", ...}
+  nlohmann::json status_now() { return status_json_now(); }  // GET /api/status's, gathered now
   // A page's read of the source went ("" ) or failed (why): a change is logged once.
   void note_read(const std::string& failure);
   Source& source() { return source_; }
+  // The cells this Api's cell is served with (a line's): their qualified names (robot.X3)
+  // are read from them. nullptr or a set of one: the cell alone.
+  void serve_in(const SourceSet* set, size_t self) {
+    set_ = set;
+    self_ = self;
+  }
+  const SourceSet* set() const { return set_; }
+  size_t self() const { return self_; }
   const std::string& token() const { return token_; }
 
  private:
@@ -73,6 +83,8 @@ class Api {
   ApiReply replay_history(const std::string& query);
   ApiReply replay_post(const nlohmann::json& body);
   ApiReply refuse_write(const std::string& what, const std::string& why);
+  // A name qualified by another cell of the set: true with where it is.
+  bool foreign(const std::string& name, Located* at) const;
   ApiReply edit_get(const std::string& path, const std::string& query);
   ApiReply edit_post(const std::string& path, const nlohmann::json& body);
   // "" when the elements from a may be written, else why not.
@@ -88,6 +100,8 @@ class Api {
   void log(const std::string& text);
 
   Source& source_;
+  const SourceSet* set_ = nullptr;
+  size_t self_ = 0;
   const HttpSettings& settings_;
   RequestGuard guard_;
   std::string token_;

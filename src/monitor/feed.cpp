@@ -16,7 +16,13 @@ Address resolve(const std::string& text, const ProgramView& program) {
   return a;
 }
 
-Subscription parse_subscription(const nlohmann::json& m, const LadderView& ladder) {
+std::string own_name(const std::string& text, const SourceSet* set, size_t self) {
+  if (!set || set->alone()) return text;
+  const std::string prefix = set->name(self) + ".";
+  return text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
+}
+
+Subscription parse_subscription(const nlohmann::json& m, const LadderView& ladder, const SourceSet* set, size_t self) {
   if (!m.is_object() || !m.contains("subscribe") || !m["subscribe"].is_object())
     throw Error("expected {\"subscribe\": {...}}");
   const auto& s = m["subscribe"];
@@ -41,8 +47,14 @@ Subscription parse_subscription(const nlohmann::json& m, const LadderView& ladde
                   std::to_string(kMaxWatch));
     for (const auto& w : s["watch"]) {
       if (!w.is_string()) throw Error("subscribe.watch: " + dump(w) + " is not a string");
-      out.watch.push_back(w.get<std::string>());
-      out.watched.push_back(resolve(out.watch.back(), ladder.program()));
+      const std::string name = w.get<std::string>();
+      Located at;
+      if (set && !set->alone() && set->locate(name, &at) && at.cell != self) {
+        out.elsewhere.emplace_back(name, at);
+        continue;
+      }
+      out.watch.push_back(name);
+      out.watched.push_back(resolve(own_name(name, set, self), ladder.program()));
     }
   }
   if (s.contains("rate_hz")) {
@@ -50,6 +62,7 @@ Subscription parse_subscription(const nlohmann::json& m, const LadderView& ladde
       throw Error("subscribe.rate_hz: " + dump(s["rate_hz"]) + " is not an integer in 1..50");
     out.rate_hz = s["rate_hz"].get<int>();
   }
+  out.set = set;
   return out;
 }
 
@@ -89,6 +102,18 @@ void Feed::add_values(nlohmann::json& j, const std::vector<uint32_t>& values, co
   for (size_t i = 0; i < sub_.watch.size(); ++i) put(sub_.watch[i], slot_.at(key(sub_.watched[i])));
 }
 
+// The other cells' names: each read from its cell now; one that cannot be read is left out
+// and "elsewhere_errors" says why (never a value that was not read).
+void Feed::add_elsewhere(nlohmann::json& j) const {
+  for (const auto& [name, at] : sub_.elsewhere) {
+    try {
+      j["values"][name] = sub_.set->source(at.cell).read({at.address}).values.at(0);
+    } catch (const std::exception& e) {
+      j["elsewhere_errors"][name] = e.what();
+    }
+  }
+}
+
 nlohmann::json Feed::frame(Source& source) {
   Frame f;
   try {
@@ -103,6 +128,7 @@ nlohmann::json Feed::frame(Source& source) {
   nlohmann::json j = {{"type", "frame"}, {"scan", f.scan}, {"t_us", f.t_us},
                       {"mode", mode_text(f.mode, f.mode_known)}};
   add_values(j, f.values, f.forced);
+  add_elsewhere(j);
   auto lookup = [this](const std::vector<uint32_t>& v) {
     return [this, &v](const Address& a) {
       auto it = slot_.find(key(a));
@@ -141,6 +167,7 @@ nlohmann::json Feed::stale_frame(const std::string& why) {
   }
   nlohmann::json j = {{"type", "frame"}, {"scan", known_scan_}, {"t_us", known_t_us_}, {"mode", "unknown"}};
   add_values(j, values, forced);
+  add_elsewhere(j);
   for (size_t i : missing) j["values"].erase(format_address(reads_[i]));
   for (size_t i = 0; i < sub_.watch.size(); ++i)
     if (!known_.count(key(sub_.watched[i]))) j["values"].erase(sub_.watch[i]);

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ladder_view.h"
+#include "plc_cell/monitor/source_set.h"
 
 namespace plc_cell {
 namespace monitor {
@@ -24,16 +25,24 @@ constexpr int kDefaultRateHz = 10;
 // A signal name of the program view or an address; throws Error naming text and why.
 Address resolve(const std::string& text, const ProgramView& program);
 
+// "infeed.X3" on cell infeed's page (of a line's set) is its X3; any other text as it is.
+std::string own_name(const std::string& text, const SourceSet* set, size_t self);
+
 struct Subscription {
   std::vector<size_t> networks;
   std::vector<std::string> watch;  // as the page wrote them (the frame's keys)
   std::vector<Address> watched;    // resolved, one per watch entry
+  // Watch entries qualified by another cell of the set (robot.X3): read from that cell.
+  std::vector<std::pair<std::string, Located>> elsewhere;
+  const SourceSet* set = nullptr;
   int rate_hz = kDefaultRateHz;
 };
 
 // {"subscribe": {"networks": [...], "watch": [...], "rate_hz": N}}; throws Error naming the
-// field at fault and why.
-Subscription parse_subscription(const nlohmann::json& message, const LadderView& ladder);
+// field at fault and why. set, self: the cells the page's cell is served with, and which
+// one it is (qualified names of the others are theirs).
+Subscription parse_subscription(const nlohmann::json& message, const LadderView& ladder,
+                                const SourceSet* set = nullptr, size_t self = 0);
 
 class Feed {
  public:
@@ -54,6 +63,7 @@ class Feed {
   static uint64_t key(const Address& a);
   nlohmann::json stale_frame(const std::string& why);
   void add_values(nlohmann::json& j, const std::vector<uint32_t>& values, const std::vector<uint8_t>& forced) const;
+  void add_elsewhere(nlohmann::json& j) const;
   Subscription sub_;
   std::shared_ptr<const LadderView> ladder_;
   std::vector<Address> reads_;           // every distinct address, read in one frame

@@ -54,7 +54,9 @@ HttpSettings http_settings(const Settings& v) {
 
 class HttpServer::Impl {
  public:
-  Impl(Source& source, HttpSettings settings) : source_(source), settings_(std::move(settings)), hub_(settings_) {
+  Impl(SourceSet set, HttpSettings settings) : set_(std::move(set)), settings_(std::move(settings)), hub_(settings_) {
+    if (set_.size() == 0) throw Error("monitor " + settings_.endpoint + ": no cell to serve");
+    hub_.set = &set_;
     parse_host_port(settings_.endpoint, &host_, &port_);
     if (host_.empty()) host_ = "127.0.0.1";
   }
@@ -79,7 +81,15 @@ class HttpServer::Impl {
     return s;
   }
 
-  Source& source_;
+  // Every cell of a recording shows one instant: a move of one cursor moves the others to it.
+  void follow_cursor(size_t moved) {
+    Replay* r = set_.source(moved).replay();
+    if (!r) return;
+    for (size_t i = 0; i < set_.size(); ++i)
+      if (Replay* o = set_.source(i).replay(); i != moved && o) o->seek(r->cursor_us());
+  }
+
+  SourceSet set_;
   HttpSettings settings_;
   std::string host_;
   int port_ = 0;
@@ -98,11 +108,19 @@ void HttpServer::Impl::start() {
   if (running_) return;
   ioc_ = std::make_unique<net::io_context>(1);
   acceptor_ = std::make_unique<tcp::acceptor>(*ioc_);
-  hub_.api = std::make_unique<Api>(source_, settings_, host_, token_,
-                                   Api::Events{[this](const std::string& m) {
-                                                 net::post(*ioc_, [this, m] { hub_.broadcast(m); });
-                                               },
-                                               [this] { net::post(*ioc_, [this] { hub_.frames_now(); }); }});
+  hub_.apis.clear();
+  for (size_t i = 0; i < set_.size(); ++i) {
+    Api::Events events{[this, i](const std::string& m) {
+                         net::post(*ioc_, [this, i, m] { hub_.broadcast(hub_.apis[i].get(), m); });
+                       },
+                       [this, i] {
+                         follow_cursor(i);
+                         net::post(*ioc_, [this] { hub_.frames_now(); });
+                       }};
+    hub_.apis.push_back(std::make_unique<Api>(set_.source(i), settings_, host_, token_, std::move(events)));
+    hub_.apis.back()->serve_in(&set_, i);
+  }
+  hub_.overview = std::make_unique<Overview>(set_, hub_.apis, settings_);
   try {
     tcp::resolver resolver(*ioc_);
     const auto found = *resolver.resolve(host_, std::to_string(port_)).begin();
@@ -165,11 +183,24 @@ void HttpServer::Impl::stop() {
   running_ = false;
 }
 
+namespace {
+// A lone cell is the set of one; its page stays at / (cell_routes.h).
+SourceSet lone(Source& source) {
+  SourceSet set;
+  set.add("cell", source);
+  set.serve_alone();
+  return set;
+}
+}  // namespace
+
 HttpServer::HttpServer(Source& source, HttpSettings settings)
-    : impl_(std::make_unique<Impl>(source, std::move(settings))) {}
+    : impl_(std::make_unique<Impl>(lone(source), std::move(settings))) {}
 
 HttpServer::HttpServer(std::unique_ptr<Source> source, HttpSettings settings)
-    : owned_(std::move(source)), impl_(std::make_unique<Impl>(*owned_, std::move(settings))) {}
+    : owned_(std::move(source)), impl_(std::make_unique<Impl>(lone(*owned_), std::move(settings))) {}
+
+HttpServer::HttpServer(SourceSet set, HttpSettings settings)
+    : impl_(std::make_unique<Impl>(std::move(set), std::move(settings))) {}
 
 HttpServer::~HttpServer() { impl_.reset(); }
 

@@ -6,10 +6,10 @@
 namespace plc_cell {
 namespace monitor {
 
-void Hub::broadcast(const std::string& message) {
+void Hub::broadcast(const Api* cell, const std::string& message) {
   for (auto it = pages.begin(); it != pages.end();) {
     if (auto p = it->lock()) {
-      p->send(message);
+      if (p->api() == cell) p->send(message);
       ++it;
     } else {
       it = pages.erase(it);
@@ -20,6 +20,16 @@ void Hub::broadcast(const std::string& message) {
 void Hub::frames_now() {
   for (auto& w : pages)
     if (auto p = w.lock()) p->send_frame();
+}
+
+// The Host and Origin rules first, for every request: a refused page learns nothing more.
+ApiReply Hub::answer(const Route& to, const ApiRequest& r) {
+  if (to.api) return to.api->handle(r);
+  if (const std::string why = apis.front()->refusal(r); !why.empty()) return {403, "application/json", error_body(why)};
+  if (!to.error.empty()) return {404, "application/json", error_body(to.error)};
+  const std::string path = r.target.substr(0, r.target.find('?'));
+  if (r.method != "GET") return {405, "application/json", error_body(r.method + " " + path + ": the overview answers GET only")};
+  return overview->get(path);
 }
 
 Hub::Hub(const HttpSettings& s)
@@ -146,28 +156,32 @@ void HttpSession::on_read(beast::error_code ec, size_t) {
     return;
   }
   auto req = parser_->release();
+  const Route to = route(std::string(req.target()), *hub_.set, hub_.apis);
   if (websocket::is_upgrade(req)) {
-    const std::string why = hub_.api->refusal({"GET", "", header(req, http::field::host), header(req, http::field::origin), "", ""});
-    if (!why.empty() || req.target() != "/api/live") {
+    const std::string why =
+        hub_.apis.front()->refusal({"GET", "", header(req, http::field::host), header(req, http::field::origin), "", ""});
+    const bool live = to.api && to.target == "/api/live";
+    if (!why.empty() || !live) {
       ++hub_.rejected;
-      reply(why.empty() ? 404 : 403, "application/json",
-            error_body(why.empty() ? std::string(req.target()) + ": the WebSocket is /api/live" : why), false);
+      const std::string where = !to.error.empty() ? to.error : std::string(req.target()) + ": the WebSocket is " +
+                                    (hub_.set->alone() ? "/api/live" : "/cell/NAME/api/live");
+      reply(why.empty() ? 404 : 403, "application/json", error_body(why.empty() ? where : why), false);
       return;
     }
     ++hub_.requests;
     stream_.expires_never();
-    std::make_shared<PageSession>(stream_.release_socket(), hub_, std::move(slot_))->run(std::move(req));
+    std::make_shared<PageSession>(stream_.release_socket(), hub_, *to.api, std::move(slot_))->run(std::move(req));
     return;
   }
   ApiRequest r;
   r.method = std::string(req.method_string());
-  r.target = std::string(req.target());
+  r.target = to.target;
   r.host = header(req, http::field::host);
   r.origin = header(req, http::field::origin);
   const auto token = req.find("X-Plc-Token");
   r.token = token == req.end() ? "" : std::string(token->value());
   r.body = std::move(req.body());
-  const ApiReply out = hub_.api->handle(r);
+  const ApiReply out = hub_.answer(to, r);
   if (out.status >= 400) {
     ++hub_.rejected;
     if (out.status != 404) hub_.note_error(r.method + " " + r.target.substr(0, 200) + ": " + std::to_string(out.status));

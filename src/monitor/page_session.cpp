@@ -9,9 +9,10 @@ namespace {
 constexpr size_t kMaxQueued = 256;
 }  // namespace
 
-PageSession::PageSession(tcp::socket socket, Hub& hub, std::unique_ptr<Slot> slot)
+PageSession::PageSession(tcp::socket socket, Hub& hub, Api& api, std::unique_ptr<Slot> slot)
     : ws_(std::move(socket)),
       hub_(hub),
+      api_(api),
       slot_(std::move(slot)),
       last_heard_(std::chrono::steady_clock::now()),
       frame_timer_(ws_.get_executor()),
@@ -31,7 +32,7 @@ void PageSession::on_accept(beast::error_code ec) {
   slot_->owner(weak_from_this());
   slot_->waiting(false);
   try {
-    program_version_ = hub_.api->ladder()->program().version;
+    program_version_ = api_.ladder()->program().version;
   } catch (const std::exception& e) {
     send(dump({{"type", "error"}, {"error", e.what()}}));
   }
@@ -58,7 +59,7 @@ void PageSession::on_message(beast::error_code ec, size_t) {
   try {
     if (j.is_discarded()) throw Error("the message is not JSON");
     const bool first = !feed_;
-    feed_ = std::make_unique<Feed>(parse_subscription(j, *hub_.api->ladder()), hub_.api->ladder(), feed_.get());
+    feed_ = std::make_unique<Feed>(parse_subscription(j, *api_.ladder(), api_.set(), api_.self()), api_.ladder(), feed_.get());
     slot_->waiting(true);  // it receives frames: it keeps its slot
     ++hub_.requests;
     if (first) tick_frames();
@@ -80,8 +81,8 @@ void PageSession::send(std::string message) {
 void PageSession::send_frame() {
   if (!feed_ || closed_ || !out_.empty()) return;  // a slow page gets fewer frames, not a backlog
   try {
-    send(dump(feed_->frame(hub_.api->source())));
-    hub_.api->note_read(feed_->failure());
+    send(dump(feed_->frame(api_.source())));
+    api_.note_read(feed_->failure());
   } catch (const std::exception& e) {
     send(dump({{"type", "error"}, {"error", e.what()}}));
   }
@@ -113,8 +114,8 @@ void PageSession::tick_frames() {
 void PageSession::tick_status() {
   if (closed_) return;
   try {
-    send(dump(hub_.api->status_message()));
-    const uint64_t v = hub_.api->ladder()->program().version;
+    send(dump(api_.status_message()));
+    const uint64_t v = api_.ladder()->program().version;
     if (v != program_version_) {
       program_version_ = v;
       send(dump({{"type", "program"}, {"version", v}}));

@@ -13,7 +13,9 @@
 #include <boost/beast.hpp>
 
 #include "api.h"
+#include "cell_routes.h"
 #include "feed.h"
+#include "overview.h"
 #include "plc_cell/io/connections.h"
 
 namespace plc_cell {
@@ -34,14 +36,16 @@ class Closable {
   virtual void evict() = 0;
 };
 
-// What every session shares: the API, the limits, the counters, the open pages and the
-// connections' table (io/connections.h: when every slot is taken, a new client takes the
-// slot of the connection that has gone longest without completing a request). Only the io
-// thread touches pages and the table.
+// What every session shares: each cell's API and the overview, the limits, the counters,
+// the open pages and the connections' table (io/connections.h: when every slot is taken, a
+// new client takes the slot of the connection that has gone longest without completing a
+// request). Only the io thread touches pages and the table.
 struct Hub {
   explicit Hub(const HttpSettings& s);
   const HttpSettings& settings;
-  std::unique_ptr<Api> api;
+  const SourceSet* set = nullptr;
+  std::vector<std::unique_ptr<Api>> apis;  // one per cell of the set, in its order
+  std::unique_ptr<Overview> overview;
   std::atomic<uint64_t> requests{0}, rejected{0}, connections{0};
   mutable std::mutex error_mu;
   std::string last_error;
@@ -56,8 +60,11 @@ struct Hub {
     std::lock_guard<std::mutex> lk(error_mu);
     last_error = e;
   }
-  void broadcast(const std::string& message);  // to every open page
+  void broadcast(const Api* cell, const std::string& message);  // to every open page of the cell
   void frames_now();                           // every subscribed page sends a frame
+  // A request not upgraded to a WebSocket, routed: its cell's Api's answer, the overview's,
+  // or 404 saying why.
+  ApiReply answer(const Route& to, const ApiRequest& r);
   // The table's entry of a connection (nullptr once it is out of the table).
   Connections<std::weak_ptr<Closable>>::Conn* conn(uint64_t id);
 };
@@ -82,7 +89,8 @@ class Slot {
 
 class PageSession : public Closable, public std::enable_shared_from_this<PageSession> {
  public:
-  PageSession(tcp::socket socket, Hub& hub, std::unique_ptr<Slot> slot);
+  PageSession(tcp::socket socket, Hub& hub, Api& api, std::unique_ptr<Slot> slot);
+  const Api* api() const { return &api_; }
   void evict() override { close(); }
   void run(http::request<http::string_body> upgrade);
   void send(std::string message);  // queued; dropped and closed when the page reads nothing
@@ -100,6 +108,7 @@ class PageSession : public Closable, public std::enable_shared_from_this<PageSes
 
   websocket::stream<beast::tcp_stream> ws_;
   Hub& hub_;
+  Api& api_;  // the page's cell
   std::unique_ptr<Slot> slot_;
   beast::flat_buffer in_;
   std::deque<std::string> out_;

@@ -52,6 +52,8 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
   const std::string engine = cell_->plc().locked([](ScanEngine& e, Memory&) { return e.engine_status(); });
   ROS_INFO("plc_node: engine %s", engine.c_str());
   driver_->start();
+  listed_as_ = directory_name(nh.getNamespace(), pnh.getNamespace());
+  listing_ = CellDirectory::process().list(listed_as_, *cell_);
   // Last: as a nodelet, the timer's callback runs on the manager's workers at once, and every
   // check it calls reads what the lines above made (the forced set is made by make_topics).
   diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
@@ -61,6 +63,7 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
 }
 
 PlcNode::~PlcNode() {
+  listing_.reset();  // the process's monitor lets go of the cell first
   diag_timer_.stop();  // no check reads a stopping cell
   services_.clear();  // no request writes into a stopping cell
   driver_->stop();

@@ -56,8 +56,10 @@ bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
   std::string problem;
   driver_->reset([&] {
     for (const auto& name : extension_diagnostics_) updater_.removeByName(name);
+    listing_.reset();
     cell_->stop();
     cell_ = std::move(fresh);  // the old cell goes here; nothing holds it any more
+    listing_ = CellDirectory::process().list(listed_as_, *cell_);
     topic_groups_.restart(cell_->soft());
     extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());
     {

@@ -45,7 +45,8 @@ ERRORS = re.compile(r"Traceback|ERROR|Cannot load message|Unable to load type|co
 COMMAND_LIMIT = 300.0
 GRACE = 1.0  # s: a streaming command keeps running this long after it is up, to show an error
 # What a streaming command (STREAMING) prints once it works: it is stopped GRACE seconds later.
-UP = [(re.compile(r"^(make demo|roslaunch )"), re.compile(r"process\[plc_node[^\]]*\]: started with pid")),
+UP = [(re.compile(r"^make demo LINE="), re.compile(r"serving monitor http")),
+      (re.compile(r"^(make demo|roslaunch )"), re.compile(r"process\[plc_node[^\]]*\]: started with pid")),
       (re.compile(r"^rostopic echo"), re.compile(r"^---$", re.M)),
       (re.compile(r"^rostopic hz"), re.compile(r"average rate")),
       (re.compile(r"^rosbag record"), re.compile(r"Recording to")),

@@ -163,17 +163,32 @@ TEST(LineCli, SimOfALineRefusesACellsOptionsAndUnknownNames) {
   EXPECT_TRUE(has(r.out, "infeed.R0 = 5\n")) << r.out;
 }
 
-TEST(LineCli, TheMonitorOpensOneCellOfALinesRecording) {
+TEST(LineCli, TheMonitorOpensALinesRecordingOrOneOfItsCells) {
   const std::string dir = ::testing::TempDir();
   ASSERT_EQ(run_tool("sim --line " + kExample + "line.line.yaml --duration 10ms --record " + dir + "/m.plcrec").status, 0);
+  // Without --cell: every cell, with the overview (docs/monitor.md).
   ToolResult r = run_tool("monitor --recording " + dir + "/m.plcrec --duration 1ms --http-tcp 127.0.0.1:0");
-  EXPECT_TRUE(has(r.out, "a recording of a line of cells: open one of its cells (plc_cell monitor --recording " + dir +
-                         "/m.plcrec --cell NAME)")) << r.out;
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(has(r.out, "for line example_line (recording " + dir + "/m.plcrec): cells infeed, robot, test")) << r.out;
   r = run_tool("monitor --recording " + dir + "/m.plcrec --cell robbot --duration 1ms --http-tcp 127.0.0.1:0");
   EXPECT_TRUE(has(r.out, "--cell robbot: line example_line has no such cell (infeed, robot, test)")) << r.out;
   r = run_tool("monitor --recording " + dir + "/m.plcrec --cell robot --duration 1ms --http-tcp 127.0.0.1:0");
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_TRUE(has(r.out, "for recording " + dir + "/m.plcrec (cell robot)")) << r.out;
+}
+
+TEST(LineCli, RunServesOneMonitorForTheLinesCells) {
+  ToolResult r = run_tool("run --line " + kExample + "line.line.yaml --duration 300ms --http-tcp 127.0.0.1:0");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(has(r.out, "plc_cell run: serving monitor http://127.0.0.1:")) << r.out;
+  EXPECT_TRUE(has(r.out, " for line example_line (infeed, robot, test)")) << r.out;
+  // What goes with one cell is refused, naming the option, and nothing runs.
+  r = run_tool("run --line " + kExample + "line.line.yaml --config x.yaml --duration 1ms");
+  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(has(r.out, "--config goes with a cell, not --line")) << r.out;
+  r = run_tool("run --line " + kExample + "line.line.yaml --fatek-tcp 127.0.0.1:0 --duration 1ms");
+  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(has(r.out, "--http-* serves the line's monitor")) << r.out;
 }
 
 }  // namespace

@@ -138,7 +138,8 @@ struct WsClient::Impl {
   bool unusable = false;  // a read was cancelled (timeout)
 };
 
-WsClient::WsClient(uint16_t port, const std::string& host, const std::string& origin) : impl_(std::make_unique<Impl>()) {
+WsClient::WsClient(uint16_t port, const std::string& host, const std::string& origin, const std::string& target)
+    : impl_(std::make_unique<Impl>()) {
   beast::get_lowest_layer(impl_->ws).expires_after(kWait);
   beast::get_lowest_layer(impl_->ws).connect(at(port));
   const std::string h = host.empty() ? default_host(port) : host;
@@ -147,7 +148,7 @@ WsClient::WsClient(uint16_t port, const std::string& host, const std::string& or
     r.set(http::field::origin, o);
   }));
   beast::get_lowest_layer(impl_->ws).expires_never();
-  impl_->ws.handshake(h, "/api/live");
+  impl_->ws.handshake(h, target);
 }
 
 WsClient::~WsClient() = default;

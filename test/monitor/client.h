@@ -63,7 +63,8 @@ class Stallers {
 class WsClient {
  public:
   // Throws when the upgrade is refused; *status (if given) gets the refusal's status.
-  WsClient(uint16_t port, const std::string& host = "", const std::string& origin = "");
+  WsClient(uint16_t port, const std::string& host = "", const std::string& origin = "",
+           const std::string& target = "/api/live");
   ~WsClient();
   void send(const std::string& text);
   // The next message whose "type" is type (others are skipped); null when none came

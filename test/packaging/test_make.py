@@ -8,8 +8,8 @@ import subprocess
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 
 
-def dry_run(target):
-    return subprocess.run(["make", "-n", target], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+def dry_run(target, *settings):
+    return subprocess.run(["make", "-n", target] + list(settings), cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           universal_newlines=True, check=True).stdout
 
 
@@ -22,6 +22,12 @@ def test_demo_on_a_built_tree_skips_catkin():
     out = dry_run("demo")
     assert "roslaunch plc_cell cell_sim.launch" in out
     assert "catkin_make" not in out, "make demo would run catkin on a built tree:\n" + out
+
+
+def test_demo_line_runs_the_example_line_with_its_monitor():
+    out = dry_run("demo", "LINE=1", "MONITOR=127.0.0.1:9091")
+    assert "plc_cell run --line examples/line/line.line.yaml --http-tcp 127.0.0.1:9091 --http-writable all" in out, out
+    assert "roslaunch plc_cell" not in out, out
 
 
 def test_a_changed_source_rebuilds_the_demo_only_first():

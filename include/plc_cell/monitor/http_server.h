@@ -12,6 +12,7 @@
 #include "plc_cell/core/writable_ranges.h"
 #include "plc_cell/io/server.h"
 #include "plc_cell/monitor/source.h"
+#include "plc_cell/monitor/source_set.h"
 
 namespace plc_cell {
 namespace monitor {
@@ -44,6 +45,9 @@ class HttpServer : public Server {
   HttpServer(Source& source, HttpSettings settings);
   // Owns its source (the `http` server kind of a cell owns the cell's LiveSource).
   HttpServer(std::unique_ptr<Source> source, HttpSettings settings);
+  // Several cells (a line's): an overview at /, each cell's page at /cell/NAME/
+  // (docs/monitor-api.md, "A line's cells"). Throws Error for an empty set.
+  HttpServer(SourceSet cells, HttpSettings settings);
   ~HttpServer() override;
 
   // Binds; throws plc_cell::Error naming the endpoint. After a stop() it serves again, on

@@ -15,6 +15,7 @@
 
 #include "plc_cell/LoadProgram.h"
 #include "plc_cell/SimulateInputs.h"
+#include "plc_cell/ros/cell_directory.h"
 #include "plc_cell/ros/extension_ros.h"
 #include "plc_cell/ros/memory_services.h"
 #include "plc_cell/ros/scan_driver.h"
@@ -90,6 +91,9 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   bool on_simulate(SimulateInputs::Request& req, SimulateInputs::Response& res);
 
   std::unique_ptr<Cell> cell_;  // the PLC, its servers, store and scan loop
+  // cell_ in the process's cell directory (its monitor); ends before cell_ does.
+  std::unique_ptr<CellDirectory::Listing> listing_;
+  std::string listed_as_;
   std::string cell_path_;       // ~cell and the overrides it was built with: ~reset builds
   CellOverrides overrides_;     // the same cell again
   bool autostart_ = true;

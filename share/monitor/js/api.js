@@ -3,6 +3,10 @@
 
 let token = "";
 
+// The page's cell: "" for a lone cell's page at /, "/cell/NAME" for a cell of several
+// (a line's), whose API is under that path (docs/monitor-api.md).
+export const base = (location.pathname.match(/^\/cell\/[^/]+/) || [""])[0];
+
 export function setToken(t) {
   token = t || "";
 }
@@ -13,7 +17,7 @@ async function call(method, path, body) {
   if (method !== "GET") headers["X-Plc-Token"] = token;
   let response;
   try {
-    response = await fetch(path, {method, headers, cache: "no-store",
+    response = await fetch(base + path, {method, headers, cache: "no-store",
                                   body: body === undefined ? undefined : JSON.stringify(body)});
   } catch (e) {
     throw new Error(`${method} ${path}: the server did not answer (${e.message})`);

@@ -2,6 +2,8 @@
 // It reconnects by itself after a drop (a cell restart, a network hiccup), with a growing
 // pause between attempts, and sends the current subscription again on every connection.
 
+import {base} from "./api.js";
+
 export class Live {
   constructor(handlers) {
     this.handlers = handlers;  // {frame, status, log, program, open, close}
@@ -13,7 +15,7 @@ export class Live {
 
   url() {
     const scheme = location.protocol === "https:" ? "wss:" : "ws:";
-    return `${scheme}//${location.host}/api/live`;
+    return `${scheme}//${location.host}${base}/api/live`;
   }
 
   connect() {

@@ -23,6 +23,8 @@ const page = {session: null, ladderData: null, status: null, visible: new Set(),
               t_us: null, lost: "", stale: "", frames: 0};
 
 const log = new Log($("log"));
+// A cell of several (a line's) links back to the overview of all of them.
+$("overview-link").hidden = !api.base;
 
 // The address of a signal name of the program (the ladder's signals map address -> name).
 function signalAddress(name) {

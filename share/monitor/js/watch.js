@@ -9,7 +9,8 @@ import * as api from "./api.js";
 import {FORMATS, isBit, parse, readAddress, show} from "./format.js";
 import {addForm, download, html} from "./dom.js";
 
-const STORE = "plc_cell.monitor.watch";
+// Each cell of a line keeps its own tables: its unqualified names are its own.
+const STORE = "plc_cell.monitor.watch" + api.base;
 
 function validTables(data) {
   if (!data || !Array.isArray(data.tables)) throw new Error('a watch file holds {"tables": [...]}');
