@@ -231,11 +231,13 @@ TEST(FatekBridge, PollsAStationOnASerialLine) {
 }
 
 // A station that answers late but in order (the soft PLC's serial server behind a proxy
-// that holds each reply back 60 ms; ~timeout 50 ms, ~retries 1). Two one-register groups
+// that holds each reply back 300 ms; ~timeout 200 ms, ~retries 1). Two one-register groups
 // have replies alike but for their value: a late reply must never pass for the other
 // group's, and once the station answers in time the same link delivers the true values.
+// The line is drained until quiet for the timeout, so the replies come between the timeout
+// and twice it, 100 ms from either, for a loaded machine's late threads.
 TEST(FatekBridge, ALateReplyIsNeverTakenForTheNextRequest) {
-  LateDeviceLine proxy(60);
+  LateDeviceLine proxy(300);
   Plc plc;
   plc.write(parse_address("R0"), {111});
   plc.write(parse_address("R1000"), {222});
@@ -246,7 +248,7 @@ TEST(FatekBridge, ALateReplyIsNeverTakenForTheNextRequest) {
   server.start();
   BridgeConfig cfg = yaml("groups: [{name: a, rate: 20, points: [R0]}, {name: b, rate: 20, points: [R1000]}]");
   cfg.serial = proxy.client_link() + ":115200:7E1";
-  cfg.timeout_s = 0.05;
+  cfg.timeout_s = 0.2;
   cfg.retries = 1;
   cfg.io_rate_hz = 20;
   cfg.backoff_min_s = 0.01;
@@ -258,7 +260,7 @@ TEST(FatekBridge, ALateReplyIsNeverTakenForTheNextRequest) {
     for (const auto& g : c.groups)
       if (g.ok) EXPECT_EQ(g.values, (std::vector<uint32_t>{g.group == 0 ? 111u : 222u})) << "group " << g.group;
   };
-  ASSERT_TRUE(c.wait([&] { return c.errors.size() >= 10; }, 30));
+  ASSERT_TRUE(c.wait([&] { return c.errors.size() >= 4; }, 30));
   only_true_values();
   for (const auto& g : c.groups) EXPECT_FALSE(g.ok);
   proxy.set_delay_ms(0);

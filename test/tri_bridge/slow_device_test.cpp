@@ -148,16 +148,18 @@ TEST(TriSlowDevice, ALateReplyIsNeverTakenForTheNextRequestOverTcp) {
 }
 
 // The same over a serial line: the slow device is the soft PLC's serial server behind a
-// proxy that delays each reply; a line cannot be reconnected, it is drained until quiet.
+// proxy that delays each reply (300 ms; timeout 200 ms); a line cannot be reconnected, it is
+// drained until quiet for the timeout, so the replies come between the timeout and twice it,
+// 100 ms from either, for a loaded machine's late threads.
 TEST(TriSlowDevice, ALateReplyIsNeverTakenForTheNextRequestOverASerialLine) {
-  LateDeviceLine proxy(60);
+  LateDeviceLine proxy(300);
   Plc plc;
   plc.write(parse_address("D0"), {111, 222, 333});
   SerialServer server(plc, parse_serial_settings(proxy.device_link() + ":38400:8N1", "8N1"), ServerOptions{});
   server.start();
   BridgeConfig cfg = three_dms();
   cfg.serial = proxy.client_link();
-  cfg.timeout_s = 0.05;
+  cfg.timeout_s = 0.2;
   cfg.retries = 1;
   cfg.io_rate_hz = 20;
   cfg.backoff_min_s = 0.01;
@@ -165,7 +167,7 @@ TEST(TriSlowDevice, ALateReplyIsNeverTakenForTheNextRequestOverASerialLine) {
   Collector c;
   Bridge b(cfg, c.sinks());
   b.start();
-  ASSERT_TRUE(c.wait([&] { return c.errors.size() >= 10; }, 30));
+  ASSERT_TRUE(c.wait([&] { return c.errors.size() >= 4; }, 30));
   expect_only_true_values(c);
   for (const auto& g : c.groups) EXPECT_FALSE(g.ok);
   // In time again: the same link delivers the true values.
