@@ -57,7 +57,8 @@ bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
   driver_->reset([&] {
     for (const auto& name : extension_diagnostics_) updater_.removeByName(name);
     cell_->stop();
-    cell_ = std::move(fresh);  // the old cell goes here; nothing holds it any more
+    own_cell_ = std::move(fresh);  // the old cell goes here; nothing holds it any more
+    cell_ = own_cell_.get();
     topic_groups_.restart(cell_->soft());
     extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());
     {

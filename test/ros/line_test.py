@@ -1,0 +1,140 @@
+#!/usr/bin/python3
+"""The example line on ROS: each cell a plc_node under /example_line/<cell>/plc_node/, and a
+part carried by the wires from the infeed through the robot to the test station, in one
+nodelet manager (~split false: no wire on a topic) or split over two (~split true: the
+robot's zone handshake with the test station crosses on /example_line/wires/<index>).
+Bad input: a line nodelet with an unknown cell or a broken line file is refused with the
+error where it lies."""
+import os
+import tempfile
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from nodelet.srv import NodeletLoad
+from rosgraph_msgs.msg import Log
+from std_msgs.msg import Bool
+from std_srvs.srv import Trigger
+
+from plc_cell.msg import WireSample
+from plc_cell.srv import ReadMemory
+
+LINE = "/example_line/"
+CELLS = ("infeed", "robot", "test")
+# The first part enters at 1 s of the line's time and is on the test station's table at
+# 4.342 s (docs/lines.md, "The example line"); the rest is the processes' start.
+TIMEOUT = 60.0
+# The wires of examples/line/line.line.yaml between the robot and the test station.
+CROSSING = {4: "robot.zone_request -> test.robot_request", 5: "robot.in_zone -> test.robot_in_zone",
+            6: "test.robot_grant -> robot.zone_grant", 7: "robot.part_placed -> test.part_placed"}
+
+
+def node(cell):
+    return LINE + cell + "/plc_node/"
+
+
+class Seen(object):
+    """Every value a topic carried, in order (a pulse shorter than a test's wait is kept)."""
+
+    def __init__(self, topic, msg_type, value=lambda m: m.data):
+        self.values = []
+        self.cond = threading.Condition()
+        self.value = value
+        self.sub = rospy.Subscriber(topic, msg_type, self._cb)
+        self.topic = topic
+
+    def _cb(self, msg):
+        with self.cond:
+            self.values.append(self.value(msg))
+            self.cond.notify_all()
+
+    def wait_for(self, pred, what, timeout=TIMEOUT):
+        deadline = time.monotonic() + timeout
+        with self.cond:
+            while not any(pred(v) for v in self.values):
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    raise AssertionError("%s: no %s within %.0f s (seen %s)" % (self.topic, what, timeout, self.values[-5:]))
+                self.cond.wait(left)
+
+
+class LineTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("line_test", anonymous=True)
+        cls.split = rospy.get_param("~split", False)
+        for cell in CELLS:
+            rospy.wait_for_service(node(cell) + "read", timeout=TIMEOUT)
+
+    def read(self, cell, address):
+        return list(rospy.ServiceProxy(node(cell) + "read", ReadMemory)(address, 1).values)[0]
+
+    def test_a_part_goes_through_the_line(self):
+        """Each wired input of the chain sees its source: through the process or across."""
+        line_on = Seen(node("robot") + "signals/line_on", Bool)
+        nest = Seen(node("robot") + "signals/nest_sensor", Bool)
+        placed = Seen(node("test") + "signals/part_placed", Bool)
+        granted = Seen(node("robot") + "signals/zone_grant", Bool)
+        line_on.wait_for(lambda v: v, "line_on ON (infeed.line_running's wire)")
+        nest.wait_for(lambda v: v, "nest_sensor ON (the part released by the infeed)")
+        granted.wait_for(lambda v: v, "zone_grant ON (the test station's grant)")
+        placed.wait_for(lambda v: v, "part_placed ON (the robot's placed signal)")
+        deadline = time.monotonic() + TIMEOUT
+        while self.read("test", "R0") < 1:  # parts the station received (its program's count)
+            self.assertLess(time.monotonic(), deadline, "test.R0: no part received within %.0f s" % TIMEOUT)
+            rospy.sleep(0.05)
+        self.assertGreaterEqual(self.read("robot", "R1"), 1, "robot.R1: the robot placed no part")
+
+    def test_wires_on_topics_only_across_processes(self):
+        topics = dict(rospy.get_published_topics())
+        wires = sorted(t for t in topics if t.startswith(LINE + "wires/"))
+        if not self.split:
+            self.assertEqual(wires, [], "one process carries its wires itself")
+            return
+        self.assertEqual(wires, sorted(LINE + "wires/%d" % w for w in CROSSING))
+        for w, text in CROSSING.items():
+            m = rospy.wait_for_message(LINE + "wires/%d" % w, WireSample, timeout=TIMEOUT)  # latched
+            self.assertEqual(m.wire, text)
+
+    def test_a_cell_of_a_line_refuses_reset(self):
+        r = rospy.ServiceProxy(node("robot") + "reset", Trigger)()
+        self.assertFalse(r.success)
+        self.assertIn("part of a line", r.message)
+
+    def refused(self, name, params, expected):
+        """A line nodelet loaded with params fails to load, saying expected on /rosout."""
+        said = Seen("/rosout", Log, value=lambda m: (m.level, m.msg))
+        for k, v in params.items():
+            rospy.set_param("/%s/%s" % (name, k), v)
+        manager = rospy.get_param("~manager")
+        load = rospy.ServiceProxy("/%s/load_nodelet" % manager, NodeletLoad)
+        load.wait_for_service(timeout=TIMEOUT)
+        try:  # the manager answers a nodelet that threw with a failed call
+            loaded = load(name="/" + name, type="plc_cell/LineNodelet", remap_source_args=[], remap_target_args=[],
+                          my_argv=[], bond_id="").success
+        except rospy.ServiceException:
+            loaded = False
+        self.assertFalse(loaded, "the manager loaded a line nodelet with %s" % params)
+        said.wait_for(lambda v: v[0] == Log.FATAL and expected in v[1], "FATAL '%s'" % expected, timeout=10)
+        self.read("robot", "R1")  # the manager and its line go on: a ServiceException if not
+
+    def test_an_unknown_cell_is_refused(self):
+        line = rospy.get_param("~line")
+        self.refused("bad_cells", {"line": line, "cells": "robot,press"},
+                     "~cells: line example_line has no cell 'press' to build here (infeed, robot, test)")
+
+    def test_a_broken_line_file_is_refused_at_its_line(self):
+        d = tempfile.mkdtemp()
+        path = os.path.join(d, "broken.line.yaml")
+        example = os.path.dirname(rospy.get_param("~line"))
+        wire = "  - {from: robot.ready, to: press.X20}"
+        with open(path, "w") as f:
+            f.write("cells:\n  robot: %s/robot.yaml\nwires:\n%s\n" % (example, wire))
+        self.refused("bad_file", {"line": path},
+                     "%s:4:%d: error: 'press.X20': no cell 'press' in the line" % (path, wire.index("press") + 1))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("plc_cell", "line_test", LineTest)
