@@ -29,7 +29,7 @@ std::set<std::string> LineNode::cells_param(ros::NodeHandle& pnh) {
   return cells;
 }
 
-LineNode::LineNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+LineNode::LineNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : updater_(nh, pnh, pnh.getNamespace()) {
   const std::string path = pnh.param<std::string>("line", "");
   if (path.empty()) throw Error("~line is not set: give the line file (docs/lines.md)");
   const std::string problem = relative_param_path_problem("the line nodelet", "line", path);
@@ -65,6 +65,9 @@ LineNode::LineNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
     line_->stop();  // before the nodes and the wires' topics its scans call go
     throw;
   }
+  updater_.setHardwareID("plc_cell/line/" + line_->name());
+  updater_.add("wires", wires_.get(), &LineWireTopics::diagnose);
+  diag_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
   std::string here;
   for (size_t i = 0; i < line_->size(); ++i)
     if (line_->cell(i)) here += (here.empty() ? "" : ", ") + line_->entry(i).name;
@@ -88,6 +91,7 @@ void LineNode::add_cell(ros::NodeHandle& nh, size_t i) {
 }
 
 LineNode::~LineNode() {
+  diag_timer_.stop();
   if (line_) line_->stop();  // no scan calls a node or a wire's topic after this
   nodes_.clear();
   wires_.reset();

@@ -7,7 +7,7 @@ std::string LineWireTopics::topic(const std::string& line_name, size_t wire) {
 }
 
 LineWireTopics::LineWireTopics(ros::NodeHandle& nh, line::Line& line)
-    : line_(line), nh_(nh), pubs_(line.wires().size()), sent_(line.wires().size(), 0),
+    : line_(line), nh_(nh), pubs_(line.wires().size()), subs_(line.wires().size()), sent_(line.wires().size(), 0),
       refused_(line.wires().size(), 0) {
   for (size_t w = 0; w < line.wires().size(); ++w) {
     const line::Wire& wire = line.wires()[w];
@@ -45,8 +45,8 @@ void LineWireTopics::start() {
       std::lock_guard<std::mutex> lk(mu_);
       if (!sent_[w]) pubs_[w].publish(m);
     } else if (line_.cell(wire.to_cell) && !line_.cell(wire.from_cell)) {
-      subs_.push_back(nh_.subscribe<WireSample>(topic(line_.name(), w), 100,
-                                                [this, w](const WireSample::ConstPtr& m) { arrived(w, *m); }));
+      subs_[w] = nh_.subscribe<WireSample>(topic(line_.name(), w), 100,
+                                           [this, w](const WireSample::ConstPtr& m) { arrived(w, *m); });
     }
   }
 }
@@ -65,6 +65,42 @@ void LineWireTopics::arrived(size_t wire, const WireSample& m) {
     return;
   }
   line_.receive(wire, m.value);
+}
+
+void LineWireTopics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  std::vector<std::string> errors, warnings;
+  size_t leaving = 0, arriving = 0;
+  for (size_t w = 0; w < pubs_.size(); ++w) {
+    const std::string name = "wire " + std::to_string(w) + " (" + text(w) + ")";
+    if (pubs_[w]) {
+      ++leaving;
+      if (pubs_[w].getNumSubscribers() == 0)
+        warnings.push_back(name + ": no process takes " + pubs_[w].getTopic());
+    } else if (subs_[w]) {
+      ++arriving;
+      bool refused;
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        refused = refused_[w];
+      }
+      if (refused)
+        errors.push_back(name + ": " + subs_[w].getTopic() + " carries another wire (another line file)");
+      else if (subs_[w].getNumPublishers() == 0)
+        errors.push_back(name + ": no process publishes " + subs_[w].getTopic() + ": " + line_.wires()[w].entry.to +
+                         " holds the last value it got");
+    }
+    stat.add(name, pubs_[w] ? "leaves on " + pubs_[w].getTopic()
+                   : subs_[w] ? "arrives on " + subs_[w].getTopic() : std::string("in this process or none"));
+  }
+  const std::string counts = std::to_string(leaving) + " leaving, " + std::to_string(arriving) + " arriving";
+  auto joined = [](const std::vector<std::string>& v) {
+    std::string out;
+    for (const auto& s : v) out += (out.empty() ? "" : "; ") + s;
+    return out;
+  };
+  if (!errors.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, joined(errors));
+  else if (!warnings.empty()) stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, joined(warnings));
+  else stat.summary(diagnostic_msgs::DiagnosticStatus::OK, counts);
 }
 
 }  // namespace plc_cell

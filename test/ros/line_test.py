@@ -13,7 +13,8 @@ import unittest
 
 import rospy
 import rostest
-from nodelet.srv import NodeletLoad
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from nodelet.srv import NodeletLoad, NodeletUnload
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
 from std_srvs.srv import Trigger
@@ -103,9 +104,50 @@ class LineTest(unittest.TestCase):
         self.assertFalse(r.success)
         self.assertIn("part of a line", r.message)
 
+    def wires_status(self, name_end, pred, what):
+        """The first /diagnostics status whose name ends with name_end and for which pred holds."""
+        diag = Seen("/diagnostics", DiagnosticArray, value=lambda m: [s for s in m.status if s.name.endswith(name_end)])
+        diag.wait_for(lambda statuses: any(pred(s) for s in statuses), what, timeout=TIMEOUT)
+        return next(s for v in diag.values for s in v if pred(s))
+
+    def test_wires_on_diagnostics(self):
+        """Each process says how many of its wires cross, and that each has its other end."""
+        # Split: the robot's zone request, in-zone and placed signals leave, its grant arrives.
+        counts = ["3 leaving, 1 arriving", "1 leaving, 3 arriving"] if self.split else ["0 leaving, 0 arriving"]
+        for c in counts:
+            s = self.wires_status(": wires", lambda s: s.message == c, "wires status '%s'" % c)
+            self.assertEqual(s.level, DiagnosticStatus.OK)
+            self.assertEqual(s.hardware_id, "plc_cell/line/example_line")
+
+    def test_a_wire_whose_source_runs_nowhere_is_an_error(self):
+        """The test station alone, in a namespace where no process runs the robot."""
+        manager = rospy.get_param("~manager")
+        rospy.set_param("/elsewhere/lonely/line", rospy.get_param("~line"))
+        rospy.set_param("/elsewhere/lonely/cells", "test")
+        load = rospy.ServiceProxy("/%s/load_nodelet" % manager, NodeletLoad)
+        load.wait_for_service(timeout=TIMEOUT)
+        self.assertTrue(load(name="/elsewhere/lonely", type="plc_cell/LineNodelet", remap_source_args=[],
+                             remap_target_args=[], my_argv=[], bond_id="").success)
+        try:
+            expected = ("wire 7 (robot.part_placed -> test.part_placed): no process publishes "
+                        "/elsewhere/example_line/wires/7: test.part_placed holds the last value it got")
+            s = self.wires_status("lonely: wires", lambda s: s.level == DiagnosticStatus.ERROR, "an ERROR")
+            self.assertIn(expected, s.message)
+        finally:
+            rospy.ServiceProxy("/%s/unload_nodelet" % manager, NodeletUnload)(name="/elsewhere/lonely")
+
     def refused(self, name, params, expected):
         """A line nodelet loaded with params fails to load, saying expected on /rosout."""
+        # Connected to every node that logs (the manager among them) before the load: rostest
+        # runs no rosout node, and a message published before a connection is lost.
         said = Seen("/rosout", Log, value=lambda m: (m.level, m.msg))
+        deadline = time.monotonic() + TIMEOUT
+        while True:
+            pubs = [p for t, p in rospy.get_master().getSystemState()[2][0] if t == "/rosout"]
+            if pubs and said.sub.get_num_connections() >= len(pubs[0]):
+                break
+            self.assertLess(time.monotonic(), deadline, "/rosout: not connected to %s within %.0f s" % (pubs, TIMEOUT))
+            rospy.sleep(0.01)
         for k, v in params.items():
             rospy.set_param("/%s/%s" % (name, k), v)
         manager = rospy.get_param("~manager")

@@ -39,6 +39,8 @@ class LineNode {
   std::vector<std::unique_ptr<PlcNode>> nodes_;  // per cell of the line; none: elsewhere
   std::vector<LineCellDriver*> drivers_;         // each node's driver, for the line's scans
   std::unique_ptr<LineWireTopics> wires_;
+  diagnostic_updater::Updater updater_;  // "<nodelet>: wires" on /diagnostics
+  ros::Timer diag_timer_;
 };
 
 }  // namespace plc_cell

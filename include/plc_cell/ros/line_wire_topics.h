@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
 #include "plc_cell/WireSample.h"
@@ -26,6 +27,10 @@ class LineWireTopics {
   void start();
   // "/example_line/wires/3"
   static std::string topic(const std::string& line_name, size_t wire);
+  // On /diagnostics: an ERROR for each wire arriving that no process publishes (its source's
+  // process is not running: the sink holds the last value it got) or that carries another
+  // wire; a WARN for each leaving that no process takes. OK with how many cross.
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
  private:
   void sampled(size_t wire, uint64_t t_us, uint32_t value);  // a source's scan thread
@@ -35,7 +40,7 @@ class LineWireTopics {
   line::Line& line_;
   ros::NodeHandle nh_;
   std::vector<ros::Publisher> pubs_;  // per wire: valid when its source is here, its sink not
-  std::vector<ros::Subscriber> subs_;
+  std::vector<ros::Subscriber> subs_;  // per wire: valid when its sink is here, its source not
   std::mutex mu_;            // one publish per wire at a time, so the latched value is the last
   std::vector<char> sent_;   // per wire: a scan's sample went out
   std::vector<char> refused_;  // per wire: a sample of another wire came, said once
