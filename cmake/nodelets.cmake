@@ -18,6 +18,10 @@ target_link_libraries(plc_cell_nodelets plc_cell_plc_node plc_cell_fatek plc_cel
   ${nodelet_LIBRARIES} ${pluginlib_LIBRARIES} ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES})
 add_dependencies(plc_cell_nodelets ${PROJECT_NAME}_generate_messages_cpp)
 install(TARGETS plc_cell_nodelets LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+# The line nodelet's class in a process of its own, as plc_node is plc_cell/PlcNodelet's.
+add_executable(line_node src/ros/line_node_main.cpp src/ros/line_node.cpp src/ros/line_wire_topics.cpp)
+target_link_libraries(line_node plc_cell_plc_node plc_cell_line)
+install(TARGETS line_node RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 # The workspace's copy of the package links its files (Makefile, ws-src): install the file the link names.
 get_filename_component(PLC_CELL_NODELET_XML ${PROJECT_SOURCE_DIR}/nodelet_plugins.xml REALPATH)
 install(FILES ${PLC_CELL_NODELET_XML} DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
@@ -26,5 +30,5 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/nodelets.test DEPENDENCIES plc_cell_nodelets)
   # A line of cells (docs/lines.md, "On ROS"): in one manager, and split over two.
   add_rostest(test/ros/line.test DEPENDENCIES plc_cell_nodelets)
-  add_rostest(test/ros/line_split.test DEPENDENCIES plc_cell_nodelets)
+  add_rostest(test/ros/line_split.test DEPENDENCIES plc_cell_nodelets line_node)
 endif()

@@ -131,7 +131,7 @@ class LineTest(unittest.TestCase):
         try:
             expected = ("wire 7 (robot.part_placed -> test.part_placed): no process publishes "
                         "/elsewhere/example_line/wires/7: test.part_placed holds the last value it got")
-            s = self.wires_status("lonely: wires", lambda s: s.level == DiagnosticStatus.ERROR, "an ERROR")
+            s = self.wires_status("lonely: wires", lambda s: s.level == DiagnosticStatus.ERROR, "ERROR status")
             self.assertIn(expected, s.message)
         finally:
             rospy.ServiceProxy("/%s/unload_nodelet" % manager, NodeletUnload)(name="/elsewhere/lonely")
