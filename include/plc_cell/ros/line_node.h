@@ -29,10 +29,9 @@ class LineNode {
   LineNode(const LineNode&) = delete;
   LineNode& operator=(const LineNode&) = delete;
 
+ private:
   // The cells named by ~cells (checked by the line against its file).
   static std::set<std::string> cells_param(ros::NodeHandle& pnh);
-
- private:
   void add_cell(ros::NodeHandle& nh, size_t i);
 
   std::unique_ptr<line::Line> line_;

@@ -35,7 +35,6 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   using DriverFactory = std::function<std::unique_ptr<ScanDriver>(ScanDriver::Host&)>;
   PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Cell& cell, const DriverFactory& make_driver);
   ~PlcNode() override;
-  ScanDriver& driver() { return *driver_; }
 
  private:
   struct Snapshot {
