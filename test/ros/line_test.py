@@ -6,6 +6,7 @@ robot's zone handshake with the test station crosses on /example_line/wires/<ind
 Bad input: a line nodelet with an unknown cell or a broken line file is refused with the
 error where it lies."""
 import os
+import random
 import tempfile
 import threading
 import time
@@ -119,22 +120,54 @@ class LineTest(unittest.TestCase):
             self.assertEqual(s.level, DiagnosticStatus.OK)
             self.assertEqual(s.hardware_id, "plc_cell/line/example_line")
 
-    def test_a_wire_whose_source_runs_nowhere_is_an_error(self):
-        """The test station alone, in a namespace where no process runs the robot."""
+    def load_station_alone(self, name):
+        """The test station alone, as the line nodelet /NAME (in a namespace where no process
+        runs the robot); unloaded by the caller."""
         manager = rospy.get_param("~manager")
-        rospy.set_param("/elsewhere/lonely/line", rospy.get_param("~line"))
-        rospy.set_param("/elsewhere/lonely/cells", "test")
+        rospy.set_param("%s/line" % name, rospy.get_param("~line"))
+        rospy.set_param("%s/cells" % name, "test")
         load = rospy.ServiceProxy("/%s/load_nodelet" % manager, NodeletLoad)
         load.wait_for_service(timeout=TIMEOUT)
-        self.assertTrue(load(name="/elsewhere/lonely", type="plc_cell/LineNodelet", remap_source_args=[],
-                             remap_target_args=[], my_argv=[], bond_id="").success)
+        self.assertTrue(load(name=name, type="plc_cell/LineNodelet", remap_source_args=[], remap_target_args=[],
+                             my_argv=[], bond_id="").success)
+        return lambda: rospy.ServiceProxy("/%s/unload_nodelet" % manager, NodeletUnload)(name=name)
+
+    def test_a_wire_whose_source_runs_nowhere_is_an_error(self):
+        unload = self.load_station_alone("/elsewhere/lonely")
         try:
             expected = ("wire 7 (robot.part_placed -> test.part_placed): no process publishes "
                         "/elsewhere/example_line/wires/7: test.part_placed holds the last value it got")
             s = self.wires_status("lonely: wires", lambda s: s.level == DiagnosticStatus.ERROR, "ERROR status")
             self.assertIn(expected, s.message)
         finally:
-            rospy.ServiceProxy("/%s/unload_nodelet" % manager, NodeletUnload)(name="/elsewhere/lonely")
+            unload()
+
+    def test_a_wire_of_another_line_file_is_refused(self):
+        """A process whose wire 7 is another wire: none of its values is taken, and it is said."""
+        unload = self.load_station_alone("/other/station")
+        try:
+            read = rospy.ServiceProxy("/other/example_line/test/plc_node/read", ReadMemory)
+            read.wait_for_service(timeout=TIMEOUT)
+            pub = rospy.Publisher("/other/example_line/wires/7", WireSample, queue_size=10, latch=True)
+            random.seed(7)  # hostile samples: other wires' texts, any value
+            for _ in range(20):
+                pub.publish(WireSample(wire=random.choice(["robot.in_zone -> test.part_placed", "",
+                                                          "robot.part_placed -> test.robot_request",
+                                                          "robot.part_placed->test.part_placed"]),
+                                       source_us=random.getrandbits(64), value=random.getrandbits(32) | 1))
+            s = self.wires_status("station: wires", lambda s: s.level == DiagnosticStatus.ERROR and
+                                  "carries another wire" in s.message, "ERROR 'carries another wire'")
+            self.assertIn("wire 7 (robot.part_placed -> test.part_placed): /other/example_line/wires/7 carries "
+                          "another wire (another line file)", s.message)
+            self.assertEqual(list(read("part_placed", 1).values), [0], "a refused sample drove the input")
+            # The wire's own samples still arrive.
+            pub.publish(WireSample(wire=CROSSING[7], source_us=0, value=1))
+            deadline = time.monotonic() + TIMEOUT
+            while list(read("part_placed", 1).values) != [1]:
+                self.assertLess(time.monotonic(), deadline, "test.part_placed: the wire's sample not taken")
+                rospy.sleep(0.01)
+        finally:
+            unload()
 
     def refused(self, name, params, expected):
         """A line nodelet loaded with params fails to load, saying expected on /rosout."""
