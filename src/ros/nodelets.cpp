@@ -1,4 +1,4 @@
-// plc_node, fatek_bridge, tri_bridge and modbus_bridge as nodelets, and a line of cells, (nodelet_plugins.xml):
+// plc_node, fatek_bridge, tri_bridge, modbus_bridge and line_node as nodelets (nodelet_plugins.xml):
 // many cells and bridges in one process (a nodelet manager), each with its own private
 // namespace, parameters, topics and /diagnostics entries, as the executables have. The
 // executables build the same classes in a process of their own.
