@@ -1,4 +1,4 @@
-// plc_node, fatek_bridge, tri_bridge and modbus_bridge as nodelets (nodelet_plugins.xml):
+// plc_node, fatek_bridge, tri_bridge, modbus_bridge and line_node as nodelets (nodelet_plugins.xml):
 // many cells and bridges in one process (a nodelet manager), each with its own private
 // namespace, parameters, topics and /diagnostics entries, as the executables have. The
 // executables build the same classes in a process of their own.
@@ -8,6 +8,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "plc_cell/ros/fatek_bridge.h"
+#include "plc_cell/ros/line_node.h"
 #include "plc_cell/ros/modbus_bridge_node.h"
 #include "plc_cell/ros/plc_node.h"
 #include "plc_cell/ros/tri_bridge.h"
@@ -49,6 +50,7 @@ using PlcNodelet = NodeNodelet<PlcNode>;
 using FatekBridgeNodelet = NodeNodelet<FatekBridge>;
 using TriBridgeNodelet = NodeNodelet<TriBridge>;
 using ModbusBridgeNodelet = NodeNodelet<ModbusBridgeNode>;
+using LineNodelet = NodeNodelet<LineNode>;  // a line's cells, each a plc_node (ros/line_node.h)
 
 }  // namespace plc_cell
 
@@ -56,3 +58,4 @@ PLUGINLIB_EXPORT_CLASS(plc_cell::PlcNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(plc_cell::FatekBridgeNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(plc_cell::TriBridgeNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(plc_cell::ModbusBridgeNodelet, nodelet::Nodelet)
+PLUGINLIB_EXPORT_CLASS(plc_cell::LineNodelet, nodelet::Nodelet)

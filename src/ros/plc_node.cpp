@@ -32,13 +32,25 @@ PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
   overrides_ = cell_overrides(pnh);
   for (const auto& name : unknown_parameters(pnh, plc_node_parameters()))
     ROS_WARN("plc_node: ~%s is not a parameter of plc_node: ignored (docs/plc-node.md lists them)", name.c_str());
-  cell_ = std::make_unique<Cell>(cell_path_, overrides_, Cell::Purpose::Serve,
-                                 [](const std::string& l) { ROS_INFO("plc_node: %s", l.c_str()); });
+  own_cell_ = std::make_unique<Cell>(cell_path_, overrides_, Cell::Purpose::Serve,
+                                     [](const std::string& l) { ROS_INFO("plc_node: %s", l.c_str()); });
+  cell_ = own_cell_.get();
+  attach(nh, pnh, [&](ScanDriver::Host&) { return make_driver(nh, pnh); });
+}
+
+PlcNode::PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Cell& cell, const DriverFactory& make_driver)
+    : cell_(&cell), node_name_(pnh.getNamespace()), started_(ros::WallTime::now()),
+      updater_(nh, pnh, pnh.getNamespace()) {
+  cell_path_ = cell.config().file;
+  attach(nh, pnh, make_driver);
+}
+
+void PlcNode::attach(ros::NodeHandle& nh, ros::NodeHandle& pnh, const DriverFactory& make_driver) {
   program_path_ = cell_->program_path();
   make_diagnostics();
   frame_id_ = frame_id_param(pnh);
   // Before any subscription or service: a nodelet's callbacks may run before this returns.
-  driver_ = make_driver(nh, pnh);
+  driver_ = make_driver(*this);
   make_topics(pnh);
   RosSideContext sides{nh, pnh, cell_->soft(), updater_, *this};  // each extension's topics and status
   extension_diagnostics_ = add_extension_sides(sides, &topic_groups_);
@@ -67,7 +79,7 @@ PlcNode::~PlcNode() {
   diag_timer_.stop();  // no check reads a stopping cell
   services_.clear();  // no request writes into a stopping cell
   driver_->stop();
-  cell_->stop();      // servers, scans, then the store's last image
+  if (own_cell_) cell_->stop();  // servers, scans, then the store's last image (a line stops its own)
   driver_.reset();    // and what it had still to publish
 }
 

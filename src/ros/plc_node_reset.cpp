@@ -58,7 +58,8 @@ bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
     for (const auto& name : extension_diagnostics_) updater_.removeByName(name);
     listing_.reset();
     cell_->stop();
-    cell_ = std::move(fresh);  // the old cell goes here; nothing holds it any more
+    own_cell_ = std::move(fresh);  // the old cell goes here; nothing holds it any more
+    cell_ = own_cell_.get();
     listing_ = CellDirectory::process().list(listed_as_, *cell_);
     topic_groups_.restart(cell_->soft());
     extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());

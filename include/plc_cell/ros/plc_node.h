@@ -2,6 +2,8 @@
 // plc_node: the soft PLC on ROS. A thin layer: the Cell (runtime/cell.h) does the work,
 // this class maps it to topics, services and /diagnostics. One set of topics and services,
 // whichever driver scans the cell (ros/scan_driver.h: the real-time loop or virtual time).
+// It builds its own cell from ~cell, or gives a cell someone else owns (a line's: ros/line_node.h)
+// the same ROS side.
 #include <memory>
 #include <mutex>
 #include <string>
@@ -29,6 +31,10 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   // Reads ~cell, the cell's overrides (ros/server_params.h), ~io_rate, ~autostart, ~virtual_time
   // and the topics' parameters; throws on bad input.
   PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+  // The ROS side of a cell built by its owner, who keeps it (and stops it) after this node
+  // goes; make_driver(host) makes the driver that scans it. Throws on bad input.
+  using DriverFactory = std::function<std::unique_ptr<ScanDriver>(ScanDriver::Host&)>;
+  PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Cell& cell, const DriverFactory& make_driver);
   ~PlcNode() override;
 
  private:
@@ -52,6 +58,8 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
     std::vector<std::pair<std::string, bool>> forced;  // as last published
   };
 
+  // Everything but the cell: topics, services, diagnostics, the driver; then the scans start.
+  void attach(ros::NodeHandle& nh, ros::NodeHandle& pnh, const DriverFactory& make_driver);
   void make_topics(ros::NodeHandle& pnh);
   void make_diagnostics();
   std::unique_ptr<ScanDriver> make_driver(ros::NodeHandle& nh, ros::NodeHandle& pnh);
@@ -90,8 +98,9 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   // ~simulate (simulated_inputs.cpp): inputs back to the cell's simulation.
   bool on_simulate(SimulateInputs::Request& req, SimulateInputs::Response& res);
 
-  std::unique_ptr<Cell> cell_;  // the PLC, its servers, store and scan loop
-  // cell_ in the process's cell directory (its monitor); ends before cell_ does.
+  std::unique_ptr<Cell> own_cell_;  // the cell built from ~cell; none for a cell of a line
+  Cell* cell_ = nullptr;           // the PLC, its servers, store and scan loop
+  // cell_ in the process's cell directory (its monitor); ends before the cell does.
   std::unique_ptr<CellDirectory::Listing> listing_;
   std::string listed_as_;
   std::string cell_path_;       // ~cell and the overrides it was built with: ~reset builds

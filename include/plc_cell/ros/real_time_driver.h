@@ -34,8 +34,10 @@ class RealTimeDriver : public ScanDriver {
   std::string reset_refusal() const override;
   void reset(const std::function<void()>& swap) override { swap(); }
 
- private:
+ protected:
   void after_scan();  // the scan thread
+
+ private:
   void publish_clock(uint64_t cell_us);
 
   Host& host_;
