@@ -5,9 +5,9 @@
 if(CATKIN_ENABLE_TESTING)
   add_executable(scenario_runner src/ros/scenario_runner_main.cpp src/ros/scenario_runner_target.cpp src/ros/scenario_node_link.cpp
     src/ros/topic_probes.cpp src/ros/counter_topic_probes.cpp src/ros/axis_topic_probes.cpp src/ros/temperature_topic_probes.cpp
-    src/ros/server_params.cpp src/ros/topic_plc.cpp src/ros/scenario_real_time.cpp)
+    src/ros/server_params.cpp src/ros/topic_plc.cpp src/ros/scenario_real_time.cpp src/ros/scenario_line_real_time.cpp)
   target_include_directories(scenario_runner PRIVATE ${catkin_INCLUDE_DIRS} ${GTEST_INCLUDE_DIRS})
-  target_link_libraries(scenario_runner plc_cell_scenario plc_cell_runtime ${catkin_LIBRARIES} ${GTEST_LIBRARIES})
+  target_link_libraries(scenario_runner plc_cell_scenario plc_cell_line plc_cell_runtime ${catkin_LIBRARIES} ${GTEST_LIBRARIES})
   add_dependencies(scenario_runner ${PROJECT_NAME}_generate_messages_cpp)
   install(TARGETS scenario_runner RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
   find_package(rostest REQUIRED)

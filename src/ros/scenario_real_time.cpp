@@ -15,8 +15,6 @@
 namespace plc_cell {
 namespace scenario {
 
-namespace {
-
 // Waits up to d; true once the run must stop.
 bool pause_or_stop(const std::atomic<int>* stop, std::chrono::microseconds d) {
   const auto end = std::chrono::steady_clock::now() + d;
@@ -34,7 +32,14 @@ std::string signal_text(int signo) {
   return signo == SIGINT ? "SIGINT" : signo == SIGTERM ? "SIGTERM" : "signal " + std::to_string(signo);
 }
 
-}  // namespace
+RestoreOptions restore_retrying(const std::string& what) {
+  RestoreOptions r;
+  r.wait = [](std::chrono::milliseconds d) { return pause_or_stop(nullptr, d); };
+  r.waiting = [what](const std::string& why) {
+    std::cout << "restore: " << what << " is not answering (" << why << "); trying again\n" << std::flush;
+  };
+  return r;
+}
 
 RealTimeRun::RealTimeRun(const Scenario& sc, const CellConfig& config, uint64_t scan_us, const std::string& node,
                          const std::string& kind, double timeout_s, uint64_t tolerance_us,
@@ -82,25 +87,21 @@ RealTimeOutcome RealTimeRun::run(const Case& named) {
   RealTimeOutcome out;
   out.result = begin_and_run(c, target);
   out.polls = target.polls();
-  RestoreOptions r;
-  r.wait = [](std::chrono::milliseconds d) { return pause_or_stop(nullptr, d); };
-  r.waiting = [this](const std::string& why) {
-    std::cout << "restore: " << plc_->describe() << " is not answering (" << why << "); trying again\n" << std::flush;
-  };
-  if (!target.touched().empty()) out.restore = restore_points(*plc_, target.found(), target.touched(), r);
+  if (!target.touched().empty())
+    out.restore = restore_points(*plc_, target.found(), target.touched(), restore_retrying(plc_->describe()));
   return out;
 }
 
-std::vector<std::string> RealTimeRun::not_as_found() {
+std::vector<std::string> not_forced_as_found(LinkedPlc& plc, const std::vector<FoundPoint>& before) {
   std::vector<Address> bits;
   std::vector<const FoundPoint*> found;
-  for (const auto& f : before_)
+  for (const auto& f : before)
     if (f.forced) bits.push_back(f.point.address), found.push_back(&f);
   std::vector<std::string> out;
   if (bits.empty()) return out;
-  const auto now = plc_->forced(bits);
-  if (!now) return {plc_->describe() + " stopped saying which points are forced"};
-  const std::vector<uint32_t> values = plc_->read(bits);
+  const auto now = plc.forced(bits);
+  if (!now) return {plc.describe() + " stopped saying which points are forced"};
+  const std::vector<uint32_t> values = plc.read(bits);
   for (size_t i = 0; i < found.size(); ++i) {
     const bool was = *found[i]->forced, is = (*now)[i];
     if (was != is)

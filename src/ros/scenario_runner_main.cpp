@@ -9,7 +9,9 @@
 // true: an address on no topic is read with ~read; false: such a case fails its check).
 // ~real_time (default false): the cases run in wall-clock time on plc_node in real time or
 // on fatek_bridge / tri_bridge (ros/scenario_real_time.h), ~tolerance (s, default 0) the
-// most a window tighter than the resolution is widened.
+// most a window tighter than the resolution is widened. A scenario file that names a line
+// runs in real time only, on the line's cells at ~line_ns/<cell>/plc_node (~line_ns default:
+// /<the line's name>; ros/scenario_line_real_time.h).
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
@@ -22,6 +24,8 @@
 #include <string>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/line/line_file.h"
+#include "plc_cell/ros/scenario_line_real_time.h"
 #include "plc_cell/ros/scenario_real_time.h"
 #include "plc_cell/ros/scenario_ros_target.h"
 #include "plc_cell/ros/server_params.h"
@@ -57,7 +61,7 @@ struct Shared {
   sc::Scenario scenario;
   std::unique_ptr<sc::NodeLink> link;
   std::unique_ptr<Cell> cell;                 // real time: the scenario's cell, checked
-  std::unique_ptr<sc::RealTimeRun> real_time;  // real time: the run on the node
+  std::unique_ptr<sc::RealTimeCases> real_time;  // real time: the run on the node or the line
 };
 
 class CaseTest : public testing::Test {
@@ -90,7 +94,7 @@ class CaseTest : public testing::Test {
   // The case in wall-clock time; refused whole when any case of the file is (nothing was
   // written), and failed when the PLC could not be put back as found.
   void real_time() {
-    sc::RealTimeRun& rt = *run_->real_time;
+    sc::RealTimeCases& rt = *run_->real_time;
     RecordProperty("target", rt.target());
     RecordProperty("resolution", rt.resolution().text());
     if (!rt.refusals().empty()) {
@@ -149,7 +153,8 @@ void prepare(Shared* run, const std::string& file, const std::string& node, doub
   run->scenario = sc::load_scenario(file);
   if (!run->scenario.line.empty())
     throw Error(file + " names a line of cells (" + run->scenario.line +
-                "): this runner drives one plc_node; plc_cell test runs a line's scenarios (docs/lines.md)");
+                "): a line runs on ROS only in real time (its nodelet refuses ~virtual_time): give the runner "
+                "~real_time: true (docs/lines.md, \"On ROS\"); plc_cell test runs it in virtual time");
   std::string node_cell;
   if (!ros::param::get(node + "/cell", node_cell))
     throw Error("no parameter " + node + "/cell: is ~node (" + node + ") plc_node's name?");
@@ -182,11 +187,22 @@ std::string node_kind(const std::string& node) {
               "plc_node, fatek_bridge or tri_bridge?");
 }
 
-// Loads the scenario and connects to the node, in wall-clock time.
-void prepare_real_time(Shared* run, const std::string& file, const std::string& node, double timeout_s,
-                       double tolerance_s) {
+// Where the scenario's line runs: ~line_ns, else /<the line file's name>.
+std::string line_namespace(const sc::Scenario& scenario, const std::string& line_ns) {
+  if (!line_ns.empty()) return ros::names::resolve(line_ns);
+  return "/" + plc_cell::line::load_line_file(scenario.line).name;
+}
+
+// Loads the scenario and connects to the node (or the line's nodes), in wall-clock time.
+void prepare_real_time(Shared* run, const std::string& file, const std::string& node, const std::string& line_ns,
+                       double timeout_s, double tolerance_s) {
   if (file.empty()) throw Error("~scenario is not set: give the scenario file");
   run->scenario = sc::load_scenario(file);
+  if (!run->scenario.line.empty()) {
+    run->real_time = std::make_unique<sc::LineRealTimeRun>(run->scenario, line_namespace(run->scenario, line_ns),
+                                                            timeout_s, uint64_t(tolerance_s * 1e6), &g_stop);
+    return;
+  }
   const std::string kind = node_kind(node);
   if (kind == "plc_node") {
     bool virtual_time = false;
@@ -212,7 +228,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   ros::NodeHandle pnh("~");
-  std::string file, node = "plc_node", only;
+  std::string file, node = "plc_node", only, line_ns;
   double timeout_s = 10, tolerance_s = 0;
   bool read_fallback = true;
   pnh.param("real_time", g_real_time, g_real_time);
@@ -220,6 +236,7 @@ int main(int argc, char** argv) {
   pnh.param<std::string>("scenario", file, file);
   pnh.param<std::string>("node", node, node);
   pnh.param<std::string>("case", only, only);
+  pnh.param<std::string>("line_ns", line_ns, line_ns);
   pnh.param("timeout", timeout_s, timeout_s);
   pnh.param("read_fallback", read_fallback, read_fallback);
   node = ros::names::resolve(node);
@@ -227,7 +244,7 @@ int main(int argc, char** argv) {
   static Shared run;
   try {
     if (g_real_time)
-      prepare_real_time(&run, file, node, timeout_s, tolerance_s);
+      prepare_real_time(&run, file, node, line_ns, timeout_s, tolerance_s);
     else
       prepare(&run, file, node, timeout_s, read_fallback);
   } catch (const std::exception& e) {
@@ -235,7 +252,8 @@ int main(int argc, char** argv) {
   }
   // In real time the suite names its target: "conveyor_hardware_on_ros_scenario_plc_node".
   std::string suite = suite_name(file);
-  if (g_real_time) suite += "_on_ros" + node;
+  // (the target is "ros:" and the node's name, or the line's namespace).
+  if (g_real_time) suite += "_on_ros" + (run.real_time ? run.real_time->target().substr(4) : node);
   for (char& ch : suite)
     if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
   if (!run.error.empty()) {  // one failing test that says why

@@ -20,6 +20,18 @@ bool resolves(const CellConfig& config, const Probe& p, Address* a) {
   }
 }
 
+// p resolved in its cell's config (config_of); false when there is none or it does not resolve.
+bool resolves_in(const ConfigOf& config_of, const Probe& p, Address* a, const CellConfig** config) {
+  *config = config_of(p.cell);
+  return *config && resolves(**config, p, a);
+}
+
+// As reports name p: a line's "robot.part_in (X3)", a lone cell's "part_in (X3)".
+std::string qualified_label(const Probe& p, const CellConfig& config) {
+  const std::string l = probe_label(p, config);
+  return p.cell.empty() || l == p.text ? l : p.cell + "." + l;
+}
+
 // A duration as --tolerance takes it: "3.1ms".
 std::string option_value(uint64_t us) {
   std::string s = wall_time(us);
@@ -32,8 +44,8 @@ bool drives_terminal(Step::Kind k) { return k == Step::Kind::Set || k == Step::K
 // The checks of one case, collecting into out.
 class Checker {
  public:
-  Checker(const WallClockRules& rules, const CellConfig& config, Preflight* out)
-      : rules_(rules), config_(config), out_(out) {}
+  Checker(const WallClockRules& rules, const ConfigOf& config_of, Preflight* out)
+      : rules_(rules), config_of_(config_of), out_(out) {}
 
   void refuse(const std::string& file, int line, const std::string& key, const std::string& why) {
     Diagnostic d;
@@ -115,11 +127,12 @@ class Checker {
       return;
     }
     Address addr;
-    if (!resolves(config_, a.target, &addr)) return;
+    const CellConfig* config = nullptr;
+    if (!resolves_in(config_of_, a.target, &addr, &config)) return;
     const bool holds = s.kind == Step::Kind::Force || (drives_terminal(s.kind) && is_input(addr));
     if (holds && !rules_.cannot_force.empty())
       refuse(s.file, a.line, s.key,
-             probe_label(a.target, config_) + ": " + rules_.target + " cannot hold it: " + rules_.cannot_force);
+             qualified_label(a.target, *config) + ": " + rules_.target + " cannot hold it: " + rules_.cannot_force);
     if (s.kind == Step::Kind::Pulse)
       window(s.file, a.line, s.key, "a pulse of " + wall_time(a.duration_us) + " on " + a.target.text, 0,
              &a.duration_us);
@@ -139,7 +152,7 @@ class Checker {
 
  private:
   const WallClockRules& rules_;
-  const CellConfig& config_;
+  const ConfigOf& config_of_;
   Preflight* out_;
 };
 
@@ -150,9 +163,14 @@ std::string on_off(const Value& v) { return v.number != 0 ? "ON" : "OFF"; }
 bool is_input(const Address& a) { return a.area == Area::X && a.width == Width::Bit; }
 
 Preflight wall_clock_preflight(const Case& c, const WallClockRules& rules, const CellConfig& config) {
+  const ConfigOf lone = [&config](const std::string& cell) { return cell.empty() ? &config : nullptr; };
+  return wall_clock_preflight(c, rules, lone);
+}
+
+Preflight wall_clock_preflight(const Case& c, const WallClockRules& rules, const ConfigOf& config_of) {
   Preflight out;
   out.adjusted = c;
-  Checker check(rules, config, &out);
+  Checker check(rules, config_of, &out);
   for (Step& s : out.adjusted.steps) check.step(s);
   for (Property& p : out.adjusted.properties) check.property(p);
   std::stable_sort(out.errors.begin(), out.errors.end(),
@@ -163,15 +181,19 @@ Preflight wall_clock_preflight(const Case& c, const WallClockRules& rules, const
 }
 
 std::vector<TouchedPoint> touched_points(const Case& c, const CellConfig& config) {
+  return touched_points(c, config, "");
+}
+
+std::vector<TouchedPoint> touched_points(const Case& c, const CellConfig& config, const std::string& cell) {
   std::vector<TouchedPoint> out;
   for (const Step& s : c.steps) {
     if (s.kind == Step::Kind::Simulate) continue;
     for (const Assignment& a : s.assignments) {
       Address addr;
-      if (!resolves(config, a.target, &addr)) continue;
+      if (a.target.cell != cell || !resolves(config, a.target, &addr)) continue;
       const bool held = s.kind == Step::Kind::Force || (drives_terminal(s.kind) && is_input(addr));
       auto it = std::find_if(out.begin(), out.end(), [&](const TouchedPoint& t) { return t.address == addr; });
-      if (it == out.end()) it = out.insert(out.end(), {addr, probe_label(a.target, config), false});
+      if (it == out.end()) it = out.insert(out.end(), {addr, qualified_label(a.target, config), false});
       it->held = it->held || held;
     }
   }

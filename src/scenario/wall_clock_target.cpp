@@ -21,10 +21,10 @@ void add_unique(std::vector<Address>* v, const Address& a) {
 }  // namespace
 
 WallClockTarget::WallClockTarget(LinkedPlc& plc, const CellConfig& config, const Case& c, WallClockOptions opt)
-    : plc_(plc), config_(config), opt_(std::move(opt)), case_name_(c.name), points_(touched_points(c, config)) {
+    : plc_(plc), config_(config), opt_(std::move(opt)), case_name_(c.name), points_(touched_points(c, config, opt_.cell)) {
   auto read = [&](const Condition& cond) {
     for (const auto& cmp : cond.all) {
-      if (cmp.probe.kind != Probe::Kind::Address) continue;
+      if (cmp.probe.kind != Probe::Kind::Address || cmp.probe.cell != opt_.cell) continue;
       try {
         add_unique(&poll_, address(cmp.probe));
       } catch (const Error&) {  // check_case reports it
@@ -173,8 +173,12 @@ void WallClockTarget::simulate(const Probe*) {
 }
 
 CaseResult begin_and_run(const Case& c, WallClockTarget& t) {
+  return begin_and_run(c, t, [&t] { t.begin(); });
+}
+
+CaseResult begin_and_run(const Case& c, Target& t, const std::function<void()>& begin) {
   try {
-    t.begin();
+    begin();
     return run_case(c, t);
   } catch (const Error& e) {
     CaseResult r;
@@ -185,8 +189,6 @@ CaseResult begin_and_run(const Case& c, WallClockTarget& t) {
     return r;
   }
 }
-
-namespace {
 
 Diagnostic at_hardware_key(const Scenario& sc, const std::string& message) {
   Diagnostic d;
@@ -205,7 +207,18 @@ std::string mode_refusal(LinkedPlc& plc, const Scenario& sc) {
                                   "{require_run: false} once you have made sure)";
 }
 
-}  // namespace
+void said_once(std::vector<Diagnostic>* errors, std::vector<StepNote>* widened) {
+  // A property is every case's: said once.
+  auto key = [](const Diagnostic& d) { return std::make_tuple(d.where.file, d.where.line, d.message); };
+  std::stable_sort(errors->begin(), errors->end(), [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
+  errors->erase(std::unique(errors->begin(), errors->end(), [&](const auto& a, const auto& b) { return key(a) == key(b); }),
+                errors->end());
+  if (!widened) return;
+  auto text = [](const StepNote& n) { return std::make_tuple(n.file, n.line, n.text); };
+  std::stable_sort(widened->begin(), widened->end(), [&](const auto& a, const auto& b) { return text(a) < text(b); });
+  widened->erase(std::unique(widened->begin(), widened->end(), [&](const auto& a, const auto& b) { return text(a) == text(b); }),
+                 widened->end());
+}
 
 std::vector<Diagnostic> refusals_on(LinkedPlc& plc, const std::string& target, const Scenario& sc,
                                     const CellConfig& config, const WallClockRules& rules, std::vector<Case>* cases,
@@ -225,27 +238,23 @@ std::vector<Diagnostic> refusals_on(LinkedPlc& plc, const std::string& target, c
     if (widened) widened->insert(widened->end(), p.widened.begin(), p.widened.end());
     c = std::move(p.adjusted);
   }
-  // A property is every case's: said once.
-  auto key = [](const Diagnostic& d) { return std::make_tuple(d.where.file, d.where.line, d.message); };
-  std::stable_sort(errors.begin(), errors.end(), [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
-  errors.erase(std::unique(errors.begin(), errors.end(), [&](const auto& a, const auto& b) { return key(a) == key(b); }),
-               errors.end());
-  if (widened) {
-    auto text = [](const StepNote& n) { return std::make_tuple(n.file, n.line, n.text); };
-    std::stable_sort(widened->begin(), widened->end(), [&](const auto& a, const auto& b) { return text(a) < text(b); });
-    widened->erase(std::unique(widened->begin(), widened->end(), [&](const auto& a, const auto& b) { return text(a) == text(b); }),
-                   widened->end());
-  }
+  said_once(&errors, widened);
   return errors;
 }
 
 std::string forces_and_writes(const std::vector<Case>& cases, const CellConfig& config) {
-  std::vector<std::string> forced, written;
+  std::vector<TouchedPoint> points;
   for (const auto& c : cases)
-    for (const auto& p : touched_points(c, config)) {
-      auto& list = p.held ? forced : written;
-      if (std::find(list.begin(), list.end(), p.label) == list.end()) list.push_back(p.label);
-    }
+    for (const auto& p : touched_points(c, config)) points.push_back(p);
+  return forces_and_writes(points);
+}
+
+std::string forces_and_writes(const std::vector<TouchedPoint>& points) {
+  std::vector<std::string> forced, written;
+  for (const auto& p : points) {
+    auto& list = p.held ? forced : written;
+    if (std::find(list.begin(), list.end(), p.label) == list.end()) list.push_back(p.label);
+  }
   for (const auto& f : forced) written.erase(std::remove(written.begin(), written.end(), f), written.end());
   auto join = [](const std::vector<std::string>& v) {
     std::string s;

@@ -7,6 +7,7 @@
 // resolution is measured and windows tighter than it refused or widened within the
 // tolerance, and every case leaves the PLC as it found it.
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -28,7 +29,36 @@ struct RealTimeOutcome {
   uint64_t polls = 0;
 };
 
-class RealTimeRun {
+// A scenario's cases in wall-clock time on what the runner reaches: one node
+// (RealTimeRun) or a line of them (scenario_line_real_time.h).
+class RealTimeCases {
+ public:
+  virtual ~RealTimeCases() = default;
+  virtual const std::string& target() const = 0;  // "ros:/cell/plc_node"
+  virtual const Resolution& resolution() const = 0;
+  // Every refusal of the file, one per line ("" when every case can run).
+  virtual const std::string& refusals() const = 0;
+  // The case of this name (as the file gives it), then every point it touched put back.
+  virtual RealTimeOutcome run(const Case& c) = 0;
+  // Whether the nodes say which points are forced (then not_as_found() can tell).
+  virtual bool says_forced() const = 0;
+  // After the cases: each point they touch that is not forced as it was before the first
+  // ("X3 (part_present): forced, found not forced"); empty when none.
+  virtual std::vector<std::string> not_as_found() = 0;
+};
+
+// Waits up to d; true once stop is set (at once, without waiting the rest of d).
+bool pause_or_stop(const std::atomic<int>* stop, std::chrono::microseconds d);
+// "SIGINT", "SIGTERM", "signal 1".
+std::string signal_text(int signo);
+// Restore options that retry while what ("plc_node /cell/plc_node") is not answering, and say so.
+RestoreOptions restore_retrying(const std::string& what);
+
+// Each point of before found forced that plc no longer has as found, or the words for a
+// plc that stopped saying which points are forced.
+std::vector<std::string> not_forced_as_found(LinkedPlc& plc, const std::vector<FoundPoint>& before);
+
+class RealTimeRun : public RealTimeCases {
  public:
   // node: resolved; kind: what runs there ("plc_node", "fatek_bridge", "tri_bridge"). stop:
   // set (by a signal handler) when the run must end; the case ends there and is restored.
@@ -37,21 +67,16 @@ class RealTimeRun {
   RealTimeRun(const Scenario& sc, const CellConfig& config, uint64_t scan_us, const std::string& node,
               const std::string& kind, double timeout_s, uint64_t tolerance_us, const std::atomic<int>* stop);
 
-  const std::string& target() const { return target_; }  // "ros:/cell/plc_node"
+  const std::string& target() const override { return target_; }  // "ros:/cell/plc_node"
   // "scenario_runner on plc_node /cell/plc_node (ros:/cell/plc_node): forces ...; writes ..."
   const std::string& banner() const { return banner_; }
-  const Resolution& resolution() const { return resolution_; }
-  // Every refusal of the file, one per line ("" when every case can run); what was widened.
-  const std::string& refusals() const { return refusals_; }
+  const Resolution& resolution() const override { return resolution_; }
+  const std::string& refusals() const override { return refusals_; }
   const std::vector<StepNote>& widened() const { return widened_; }
 
-  // The case of this name (as the file gives it), then every point it touched put back.
-  RealTimeOutcome run(const Case& c);
-  // Whether the node says which points are forced (then not_as_found() can tell).
-  bool says_forced() const { return plc_->says_forced(); }
-  // After the cases: each point they touch that is not forced as it was before the first
-  // ("X3 (part_present): forced, found not forced"); empty when none.
-  std::vector<std::string> not_as_found();
+  RealTimeOutcome run(const Case& c) override;
+  bool says_forced() const override { return plc_->says_forced(); }
+  std::vector<std::string> not_as_found() override { return not_forced_as_found(*plc_, before_); }
 
  private:
   const CellConfig& config_;

@@ -5,6 +5,7 @@
 // within --tolerance, widened, and what a case will write and force is listed before it
 // runs (the first line of a run, --dry-run) and read before it starts (restore.h).
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +43,13 @@ struct Preflight {
 // unknown name is check_case's to report).
 Preflight wall_clock_preflight(const Case& c, const WallClockRules& rules, const CellConfig& config);
 
+// The config a probe's cell resolves names in: a lone cell's for every probe, or in a line
+// (docs/lines.md) the config of the cell a name starts with; nullptr for no such cell (the
+// target's check reports it).
+using ConfigOf = std::function<const CellConfig*(const std::string& cell)>;
+// The same on a line: each name resolved in its cell, each label CELL.LABEL.
+Preflight wall_clock_preflight(const Case& c, const WallClockRules& rules, const ConfigOf& config_of);
+
 // A point a case writes or forces: what is read before it starts and put back after.
 struct TouchedPoint {
   Address address;
@@ -52,6 +60,9 @@ struct TouchedPoint {
 // In the order the case first touches them. Throws nothing: a name that does not resolve
 // is left out (check_case reports it).
 std::vector<TouchedPoint> touched_points(const Case& c, const CellConfig& config);
+// In a line: only the points of the cell named cell ("robot" of "robot.X3"), resolved in its
+// config and labelled as the cell labels them; "" is a lone cell's (its names have no cell).
+std::vector<TouchedPoint> touched_points(const Case& c, const CellConfig& config, const std::string& cell);
 
 // Every write and force of c, one line each at its step ("force part_present (X3) ON
 // (held)", "write R100 = 5"), for --dry-run.

@@ -38,6 +38,9 @@ struct WallClockOptions {
   std::function<void(uint64_t t_us, const std::vector<Address>&, const std::vector<uint32_t>&)> polled;
   RestoreJournal* journal = nullptr;
   std::string target_text;  // as the journal names the target
+  // In a line (line_wall_clock_target.h): the cell this target is ("robot"); it plans and
+  // polls only the names of the case that start with it. "": a lone cell's target.
+  std::string cell;
 };
 
 class WallClockTarget : public Target {
@@ -97,6 +100,8 @@ class WallClockTarget : public Target {
 // begin() on t, then the case (runner.h): a failure before its first step (the link, a
 // stop) is the case's failure at its line.
 CaseResult begin_and_run(const Case& c, WallClockTarget& t);
+// The same for any wall-clock target t whose begin is `begin`.
+CaseResult begin_and_run(const Case& c, Target& t, const std::function<void()>& begin);
 
 // Every refusal of sc's cases on plc, each at its file:line once: the file's permission for
 // target (as its hardware: key names targets), the names plc cannot reach, the steps and the
@@ -108,6 +113,16 @@ std::vector<Diagnostic> refusals_on(LinkedPlc& plc, const std::string& target, c
 
 // "forces stop_button (X1), part_present (X3); writes RC0": what cases will force and write.
 std::string forces_and_writes(const std::vector<Case>& cases, const CellConfig& config);
+// The same of the points the cases touch, as a line gathers them from its cells.
+std::string forces_and_writes(const std::vector<TouchedPoint>& points);
+
+// A refusal at the file's hardware: key (its first line when it has none).
+Diagnostic at_hardware_key(const Scenario& sc, const std::string& message);
+// Why plc cannot run sc's cases in its mode ("the PLC is in STOP; ..."), or "".
+std::string mode_refusal(LinkedPlc& plc, const Scenario& sc);
+
+// The refusals, each said once, in file:line order; the same of what was widened.
+void said_once(std::vector<Diagnostic>* errors, std::vector<StepNote>* widened);
 
 }  // namespace scenario
 }  // namespace plc_cell

@@ -1,0 +1,64 @@
+#pragma once
+// A line of cells, each a PLC over a link, as one wall-clock scenario target (docs/lines.md,
+// "On ROS"): a wall-clock target per cell (wall_clock_target.h), each planning and polling
+// the names of the case that start with its cell, and every name CELL.NAME routed to its
+// cell's. One scan of the line polls every cell the case reads, one after the other; its
+// instant is the latest of theirs. A name of a cell the line has not, or of one out of
+// reach (not running where the runner looks), is refused by check() with the reason.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plc_cell/scenario/wall_clock_target.h"
+
+namespace plc_cell {
+namespace scenario {
+
+// One cell of the line as the runner reaches it.
+struct LineCellLink {
+  std::string name;                  // "robot": the first part of its names
+  LinkedPlc* plc = nullptr;          // nullptr: out of reach (then `absent` says why)
+  const CellConfig* config = nullptr;
+  std::string absent;
+};
+
+class LineWallClockTarget : public Target {
+ public:
+  // opt: as every cell's target takes them (each gets its own cell).
+  LineWallClockTarget(const std::vector<LineCellLink>& cells, const Case& c, const WallClockOptions& opt);
+
+  // begin() of each cell's target, in the line's order.
+  void begin();
+  // The targets of the cells in reach, in the line's order, and the links they poll.
+  size_t size() const { return targets_.size(); }
+  WallClockTarget& cell(size_t i) { return *targets_[i]; }
+  LinkedPlc& plc(size_t i) { return *links_[i]->plc; }
+  uint64_t polls() const;
+
+  uint64_t period_us() const override { return period_us_; }
+  void scan(uint64_t t_us) override;
+  uint64_t scanned_at(uint64_t t_us) const override;
+  std::string check(const Probe& p, bool writing) override;
+  Reading read(const Probe& p) override { return cell_or_throw(p).read(p); }
+  void set(const Probe& p, const Value& v) override { cell_or_throw(p).set(p, v); }
+  void write(const Probe& p, const Value& v) override { cell_or_throw(p).write(p, v); }
+  void force(const Probe& p, bool on) override { cell_or_throw(p).force(p, on); }
+  void release(const Probe* p) override;
+  void simulate(const Probe* p) override;
+  std::string label(const Probe& p) override;
+  std::string fault() override { return ""; }
+
+ private:
+  // The target of p's cell, or why there is none.
+  WallClockTarget* cell_of(const Probe& p, std::string* why);
+  WallClockTarget& cell_or_throw(const Probe& p);
+
+  const std::vector<LineCellLink>& cells_;
+  std::string names_;  // "infeed, robot, test"
+  uint64_t period_us_ = 0;
+  std::vector<const LineCellLink*> links_;                 // the cells in reach
+  std::vector<std::unique_ptr<WallClockTarget>> targets_;  // theirs, in the same order
+};
+
+}  // namespace scenario
+}  // namespace plc_cell
