@@ -29,8 +29,8 @@ if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   add_rostest(test/ros/nodelets.test DEPENDENCIES plc_cell_nodelets)
   # A line of cells (docs/lines.md, "On ROS"): in one manager, and split over two.
-  add_rostest(test/ros/line.test DEPENDENCIES plc_cell_nodelets)
-  add_rostest(test/ros/line_split.test DEPENDENCIES plc_cell_nodelets line_node)
+  add_rostest(test/ros/line.test DEPENDENCIES plc_cell_nodelets scenario_runner)
+  add_rostest(test/ros/line_split.test DEPENDENCIES plc_cell_nodelets line_node scenario_runner)
   # The line's hardware scenario through the scenario_runner, in one manager and split.
   add_rostest(test/ros/scenario_line.test DEPENDENCIES plc_cell_nodelets scenario_runner)
   add_rostest(test/ros/scenario_line_split.test DEPENDENCIES plc_cell_nodelets line_node scenario_runner)

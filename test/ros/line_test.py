@@ -4,9 +4,11 @@ part carried by the wires from the infeed through the robot to the test station,
 nodelet manager (~split false: no wire on a topic) or split over two (~split true: the
 robot's zone handshake with the test station crosses on /example_line/wires/<index>).
 Bad input: a line nodelet with an unknown cell or a broken line file is refused with the
-error where it lies."""
+error where it lies; the scenario_runner refuses a line's scenario naming a cell the line has
+not, or one not running on ROS, at its file:line, and a line in virtual time."""
 import os
 import random
+import subprocess
 import tempfile
 import threading
 import time
@@ -209,6 +211,37 @@ class LineTest(unittest.TestCase):
             f.write("cells:\n  robot: %s/robot.yaml\nwires:\n%s\n" % (example, wire))
         self.refused("bad_file", {"line": path},
                      "%s:4:%d: error: 'press.X20': no cell 'press' in the line" % (path, wire.index("press") + 1))
+
+    def run_runner(self, scenario, **params):
+        """The scenario_runner on scenario with params, to its end: its exit status and output."""
+        args = ["rosrun", "plc_cell", "scenario_runner", "_scenario:=" + scenario]
+        args += ["_%s:=%s" % kv for kv in sorted(params.items())]
+        p = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                           timeout=60)
+        return p.returncode, p.stdout
+
+    def test_the_scenario_runner_refuses_names_it_cannot_reach_at_their_line(self):
+        d = tempfile.mkdtemp()
+        path = os.path.join(d, "names.scenario.yaml")
+        with open(path, "w") as f:
+            f.write("line: %s\nhardware: true\ncases:\n  - name: a\n    steps:\n"
+                    "      - expect: press.X0\n"           # line 6: no such cell
+                    "      - force: {robot.ready: on}\n"   # line 7: on ROS here, nowhere under /elsewhere
+                    % rospy.get_param("~line"))
+        rc, out = self.run_runner(path, real_time="true", timeout="2")
+        self.assertNotEqual(rc, 0, out)
+        self.assertIn("refused on ros:/example_line, nothing was written", out)
+        self.assertIn(path + ":6: error: key 'expect': 'press.X0': no cell 'press' in the line (infeed, robot, test)",
+                      out)
+        self.assertNotIn(path + ":7:", out)
+        rc, out = self.run_runner(path, real_time="true", timeout="1", line_ns="/elsewhere")
+        self.assertNotEqual(rc, 0, out)
+        self.assertIn(path + ":7: error: key 'force': 'robot.ready': the cell 'robot' of the line is not running on "
+                      "ROS (no parameter /elsewhere/robot/plc_node/cell", out)
+        rc, out = self.run_runner(path)  # in virtual time
+        self.assertNotEqual(rc, 0, out)
+        self.assertIn("a line runs on ROS only in real time", out)
+        self.assertIn("~real_time: true", out)
 
 
 if __name__ == "__main__":
