@@ -101,15 +101,8 @@ LineRealTimeRun::LineRealTimeRun(const Scenario& sc, const std::string& ns, doub
 }
 
 RealTimeOutcome LineRealTimeRun::run(const Case& named_case) {
-  const auto it = std::find_if(cases_.begin(), cases_.end(), [&](const Case& c) { return c.name == named_case.name; });
-  if (it == cases_.end()) throw Error("no case named '" + named_case.name + "'");
-  const Case& c = *it;
-  WallClockOptions o;
-  o.period_us = resolution_.period_us;
-  o.wait = [this](std::chrono::microseconds d) { return pause_or_stop(stop_, d); };
-  o.why_stopped = [this] { return "stopped by " + signal_text(stop_ ? stop_->load() : 0); };
-  o.target_text = target_;
-  LineWallClockTarget target(cells_, c, o);
+  const Case& c = case_named(cases_, named_case.name);
+  LineWallClockTarget target(cells_, c, run_options(resolution_, target_, stop_));
   RealTimeOutcome out;
   out.result = begin_and_run(c, target, [&target] { target.begin(); });
   out.polls = target.polls();

@@ -74,16 +74,24 @@ RealTimeRun::RealTimeRun(const Scenario& sc, const CellConfig& config, uint64_t 
   std::cout << std::flush;
 }
 
-RealTimeOutcome RealTimeRun::run(const Case& named) {
-  const auto it = std::find_if(cases_.begin(), cases_.end(), [&](const Case& c) { return c.name == named.name; });
-  if (it == cases_.end()) throw Error("no case named '" + named.name + "'");
-  const Case& c = *it;
+const Case& case_named(const std::vector<Case>& cases, const std::string& name) {
+  const auto it = std::find_if(cases.begin(), cases.end(), [&](const Case& c) { return c.name == name; });
+  if (it == cases.end()) throw Error("no case named '" + name + "'");
+  return *it;
+}
+
+WallClockOptions run_options(const Resolution& resolution, const std::string& target, const std::atomic<int>* stop) {
   WallClockOptions o;
-  o.period_us = resolution_.period_us;
-  o.wait = [this](std::chrono::microseconds d) { return pause_or_stop(stop_, d); };
-  o.why_stopped = [this] { return "stopped by " + signal_text(stop_ ? stop_->load() : 0); };
-  o.target_text = target_;
-  WallClockTarget target(*plc_, config_, c, o);
+  o.period_us = resolution.period_us;
+  o.wait = [stop](std::chrono::microseconds d) { return pause_or_stop(stop, d); };
+  o.why_stopped = [stop] { return "stopped by " + signal_text(stop ? stop->load() : 0); };
+  o.target_text = target;
+  return o;
+}
+
+RealTimeOutcome RealTimeRun::run(const Case& named) {
+  const Case& c = case_named(cases_, named.name);
+  WallClockTarget target(*plc_, config_, c, run_options(resolution_, target_, stop_));
   RealTimeOutcome out;
   out.result = begin_and_run(c, target);
   out.polls = target.polls();

@@ -18,8 +18,12 @@ LineWallClockTarget::LineWallClockTarget(const std::vector<LineCellLink>& cells,
   }
 }
 
+// Every cell's points read first (a link may take a while to say which are forced), then one
+// time 0 for all: the cells' polls of one scan are instants of the same case clock.
 void LineWallClockTarget::begin() {
-  for (auto& t : targets_) t->begin();
+  for (auto& t : targets_) t->find();
+  const auto zero = std::chrono::steady_clock::now();
+  for (auto& t : targets_) t->start(zero);
 }
 
 uint64_t LineWallClockTarget::polls() const {

@@ -61,11 +61,14 @@ auto WallClockTarget::on_link(const char* what, F&& f) -> decltype(f()) {
   }
 }
 
-void WallClockTarget::begin() {
+void WallClockTarget::find() {
   if (opt_.wait && opt_.wait(std::chrono::microseconds(0))) throw Stopped(opt_.why_stopped() + " before the case started");
   found_ = read_found(plc_, points_);
   if (opt_.journal) opt_.journal->begin(opt_.target_text, case_name_, found_);
-  start_ = Clock::now();
+}
+
+void WallClockTarget::start(Clock::time_point zero) {
+  start_ = zero;
   poll();
 }
 

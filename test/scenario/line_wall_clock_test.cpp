@@ -3,6 +3,9 @@
 // cell or of a cell out of reach at file:line, the rules per cell and the worst resolution.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "memory_plc.h"
 #include "plc_cell/runtime/cell.h"
 #include "plc_cell/scenario/line_wall_clock.h"
@@ -117,4 +120,37 @@ TEST(LineWallClockTarget, TheLineSeesTimeAsFinelyAsItsCoarsestCell) {
   slow.period_us = 2000, slow.scan_us = 2000, slow.age_us = 100000, slow.polls = 20;
   EXPECT_EQ(worst_resolution({fast, slow}).us(), slow.us());
   EXPECT_EQ(worst_resolution({slow, fast}).us(), slow.us());
+}
+
+namespace {
+
+// A link that takes a while to say which points are forced (plc_node waits for its next
+// ~forced): the cell whose points are read last starts its case late.
+class SlowToTellForced : public MemoryPlc {
+ public:
+  std::optional<std::vector<bool>> forced(const std::vector<Address>& bits) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    return MemoryPlc::forced(bits);
+  }
+};
+
+}  // namespace
+
+TEST(LineWallClockTarget, EveryCellCountsTheCaseFromOneTimeZero) {
+  MemoryPlc a_plc;
+  SlowToTellForced b_plc;
+  const CellConfig a = line_cell("a", "start: X0"), b = line_cell("b", "part: X3");
+  const std::vector<LineCellLink> links{{"a", &a_plc, &a, ""}, {"b", &b_plc, &b, ""}};
+  const Scenario sc = line_scenario(
+      "cases:\n"
+      "  - name: a\n"
+      "    steps:\n"
+      "      - set: {b.part: on}\n"
+      "      - expect: a.start and b.part\n");
+  LineWallClockTarget t(links, sc.cases.at(0), {});  // no wait: each scan polls at once
+  t.begin();
+  t.scan(2000);
+  // a's points were read before b's 300 ms answer: a case clock of its own would put this
+  // scan 300 ms late.
+  EXPECT_LT(t.scanned_at(2000), 150000u);
 }

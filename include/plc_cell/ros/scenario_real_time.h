@@ -19,6 +19,7 @@
 #include "plc_cell/scenario/restore.h"
 #include "plc_cell/scenario/runner.h"
 #include "plc_cell/scenario/wall_clock.h"
+#include "plc_cell/scenario/wall_clock_target.h"
 
 namespace plc_cell {
 namespace scenario {
@@ -53,6 +54,11 @@ bool pause_or_stop(const std::atomic<int>* stop, std::chrono::microseconds d);
 std::string signal_text(int signo);
 // Restore options that retry while what ("plc_node /cell/plc_node") is not answering, and say so.
 RestoreOptions restore_retrying(const std::string& what);
+
+// The case of cases with this name; throws Error when there is none.
+const Case& case_named(const std::vector<Case>& cases, const std::string& name);
+// How a run's wall-clock targets poll (every resolution.period_us) and stop (when stop is set).
+WallClockOptions run_options(const Resolution& resolution, const std::string& target, const std::atomic<int>* stop);
 
 // Each point of before found forced that plc no longer has as found, or the words for a
 // plc that stopped saying which points are forced.

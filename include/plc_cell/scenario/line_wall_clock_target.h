@@ -27,7 +27,8 @@ class LineWallClockTarget : public Target {
   // opt: as every cell's target takes them (each gets its own cell).
   LineWallClockTarget(const std::vector<LineCellLink>& cells, const Case& c, const WallClockOptions& opt);
 
-  // begin() of each cell's target, in the line's order.
+  // What each cell's target will touch read, in the line's order, then their first polls,
+  // all with one time 0.
   void begin();
   // The targets of the cells in reach, in the line's order, and the links they poll.
   size_t size() const { return targets_.size(); }

@@ -49,7 +49,14 @@ class WallClockTarget : public Target {
 
   // Reads what the case will touch (and journals it), then the first poll: the case's time
   // 0. Throws CommError when the link is down, Stopped when asked to stop.
-  void begin();
+  void begin() {
+    find();
+    start(std::chrono::steady_clock::now());
+  }
+  // begin() in its two halves, for targets that share one time 0 (a line's cells, each
+  // found first): what the case will touch read, then the first poll with time 0 at `zero`.
+  void find();
+  void start(std::chrono::steady_clock::time_point zero);
   const std::vector<FoundPoint>& found() const { return found_; }
   // The points the case has written, forced or released so far (what restore_points puts back).
   const std::vector<Address>& touched() const { return touched_; }
