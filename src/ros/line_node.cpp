@@ -19,7 +19,10 @@ std::set<std::string> LineNode::cells_param(ros::NodeHandle& pnh) {
     return cells;
   }
   if (v.getType() != XmlRpc::XmlRpcValue::TypeString)
-    throw Error("~cells: the cells' names, \"infeed,robot\" or a list; empty: every cell");
+    throw Error("~cells: the cells' names, \"infeed,robot\" or a list; all or empty: every cell");
+  // "all": what line.launch passes by default (an empty default would make roslaunch list
+  // the argument as required).
+  if (static_cast<std::string>(v) == "all") return cells;
   std::istringstream in(static_cast<std::string>(v));
   for (std::string name; std::getline(in, name, ',');) {
     name.erase(0, name.find_first_not_of(" \t"));

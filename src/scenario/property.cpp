@@ -1,5 +1,7 @@
 #include "plc_cell/scenario/property.h"
 
+#include <algorithm>
+
 #include "plc_cell/core/error.h"
 
 namespace plc_cell {
@@ -41,7 +43,7 @@ bool Property::violated(const std::function<bool(const Condition&)>& holds) cons
   return (when.empty() || holds(when)) && !holds(cond);
 }
 
-bool PropertyWatch::failed(bool violated_now, uint64_t now_us) {
+bool PropertyWatch::failed(bool violated_now, uint64_t now_us, uint64_t min_grace_us) {
   if (!violated_now) {
     violated_ = false;
     return false;
@@ -50,7 +52,8 @@ bool PropertyWatch::failed(bool violated_now, uint64_t now_us) {
     violated_ = true;
     since_us_ = now_us;
   }
-  return p_->within_us == 0 || now_us - since_us_ > p_->within_us;
+  const uint64_t grace = std::max(p_->within_us, min_grace_us);
+  return grace == 0 || now_us - since_us_ > grace;
 }
 
 }  // namespace scenario

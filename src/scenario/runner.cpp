@@ -165,12 +165,17 @@ class CaseRun {
 
   // Every property after every scan; a violation longer than its grace fails the case.
   void check_properties() {
+    const uint64_t spread = watches_.empty() ? 0 : t_.spread_us();
     for (auto& w : watches_) {
       const Property& p = w.property();
       const bool violated = p.violated([&](const Condition& c) { return holds(c); });
-      if (!w.failed(violated, now_)) continue;
+      if (!w.failed(violated, now_, spread)) continue;
       std::string what = "property " + p.text + " violated";
-      if (p.within_us) what += " for longer than " + format_time(p.within_us) + " (since " + format_time(w.since_us()) + ")";
+      const uint64_t grace = std::max(p.within_us, spread);
+      if (grace)
+        what += " for longer than " + format_time(grace) +
+                (grace > p.within_us ? ", the spread of the values read so far in the run," : "") + " (since " +
+                format_time(w.since_us()) + ")";
       what += ": " + actual(p.when.empty() ? p.cond : p.when);
       if (!p.when.empty()) what += "; " + actual(p.cond);
       std::vector<const Condition*> involved{&p.cond};

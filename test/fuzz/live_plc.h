@@ -2,7 +2,7 @@
 // A Plc in RUN with its real-time loop scanning every millisecond, for fuzzers that drive
 // the servers' request handlers in place. After each input, check_scan() turns a stall into
 // a finding: a scan (lock wait included, as RealTimeLoop measures it) longer than the
-// budget, or any fault (the watchdog's included). Budget: 50 ms, or
+// budget, or any fault (the watchdog's included). Budget: 100 ms, or
 // PLC_CELL_FUZZ_SCAN_BUDGET_MS. The Plc and the loop are never destroyed: libFuzzer exits
 // from its own thread while the loop runs.
 #include <chrono>
@@ -51,7 +51,9 @@ struct Live {
   plc_cell::Plc plc;
   plc_cell::RealTimeLoop loop{plc, std::chrono::milliseconds(1)};
   plc_cell::WritableRanges writable = plc_cell::WritableRanges::parse(kWritable);
-  uint64_t budget_ns = 50000000;
+  // A scan preempted on a loaded machine under ASan took 68 ms: the budget tells a stall
+  // (a sleep under the PLC lock) from that, not from a fast scan.
+  uint64_t budget_ns = 100000000;
   uint64_t inputs = 0;
 };
 

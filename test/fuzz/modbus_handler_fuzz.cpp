@@ -18,9 +18,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     modbus_t* c = modbus_new_tcp("127.0.0.1", 502);
     modbus_set_indication_timeout(c, 0, 1000);  // the input is all there: do not wait for more
     // libmodbus sleeps this long before some exception replies (its "flush" after a bad
-    // request). 60 ms instead of the default 500 ms keeps each input fast, and still longer
-    // than the scan budget: a sleep under the PLC lock remains a finding.
-    modbus_set_response_timeout(c, 0, 60000);
+    // request). 120 ms instead of the default 500 ms keeps each input fast, and still longer
+    // than the scan budget (100 ms): a sleep under the PLC lock remains a finding.
+    modbus_set_response_timeout(c, 0, 120000);
     return c;
   }();
   int sv[2];

@@ -298,3 +298,54 @@ TEST(RunnerOnAWallClock, TimeFollowsTheTargetAndASightAfterTheWindowFailsIt) {
             std::string::npos)
       << r.failure;
 }
+
+namespace {
+
+// M0 goes off at 10 ms; Y0, read from an older message, is seen off only at 35 ms: "Y0 and
+// not M0" holds for 25 ms of readings without ever holding in the PLC. spread: what the
+// target says of its readings' spread.
+class SkewedTarget : public Target {
+ public:
+  explicit SkewedTarget(uint64_t spread) : spread_(spread) {}
+  uint64_t period_us() const override { return 5000; }
+  void scan(uint64_t t_us) override { at_ = t_us; }
+  std::string check(const Probe&, bool) override { return ""; }
+  Reading read(const Probe& p) override {
+    const bool on = p.name == "M0" ? at_ < 10000 : at_ < 35000;
+    return address_reading(parse_address(p.name), on, p.format);
+  }
+  void set(const Probe&, const Value&) override {}
+  void write(const Probe&, const Value&) override {}
+  void force(const Probe&, bool) override {}
+  void release(const Probe*) override {}
+  void simulate(const Probe*) override {}
+  std::string fault() override { return ""; }
+  uint64_t spread_us() override { return spread_; }
+
+ private:
+  uint64_t spread_, at_ = 0;
+};
+
+}  // namespace
+
+TEST(RunnerOnAWallClock, AViolationNoLongerThanTheReadingsSpreadIsNotProof) {
+  const std::string file =
+      "properties:\n  - {never: Y0 and not M0, within: 5ms}\n"
+      "cases: [{name: a, steps: [{after: 60ms}]}]\n";
+  const Scenario sc = parse_scenario("cell: t.yaml\n" + file, "/d/s.yaml");
+  const Case& c = sc.cases.at(0);
+  SkewedTarget wide(30000);  // the run has seen messages 30 ms apart
+  CaseResult ok = run_case(c, wide);
+  EXPECT_TRUE(ok.passed) << ok.failure;
+  SkewedTarget narrow(10000);
+  CaseResult r = run_case(c, narrow);
+  ASSERT_FALSE(r.passed);
+  EXPECT_NE(r.failure.find("property never: Y0 and not M0 violated for longer than 0.010 s, the spread of the values "
+                           "read so far in the run, (since 0.010 s)"),
+            std::string::npos)
+      << r.failure;
+  SkewedTarget none(0);  // one instant: the property's own grace
+  r = run_case(c, none);
+  ASSERT_FALSE(r.passed);
+  EXPECT_NE(r.failure.find("violated for longer than 0.005 s (since 0.010 s)"), std::string::npos) << r.failure;
+}

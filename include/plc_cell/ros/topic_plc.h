@@ -6,8 +6,9 @@
 // and Y0-Y255, ~signals_stamped/<name> the cell's named points, ~registers/<group> the
 // groups' elements; an address on no topic is read with ~read. Writes go through ~write,
 // forces through ~force and ~release; which points are forced is read on ~forced where the
-// node publishes it (plc_node), or asked of the PLC by ~read_forced (fatek_bridge). A value is as old as the node's last message: the longest
-// gap measured between its periodic messages is the link's max_age_us().
+// node publishes it (plc_node), or asked of the PLC by ~read_forced (fatek_bridge). A value
+// is as old as the node's last message: the longest gap between its periodic messages,
+// measured from the connection on through the whole run, is the link's max_age_us().
 #include <chrono>
 #include <map>
 #include <memory>
@@ -51,7 +52,10 @@ class TopicPlc : public LinkedPlc {
   std::string cannot_force() const override;
   std::optional<RunMode> mode() override;
   std::string cannot_read_mode() const override { return ""; }
-  uint64_t max_age_us() const override { return max_gap_us_; }
+  uint64_t max_age_us() const override {
+    std::lock_guard<std::mutex> lk(mu_);
+    return max_gap_us_;
+  }
   // Whether the node says which points are forced: on ~forced (plc_node), or read from the PLC
   // on request by ~read_forced (fatek_bridge); tri_bridge and modbus_bridge do not.
   bool says_forced() const { return publishes_forced_ || reads_forced_; }

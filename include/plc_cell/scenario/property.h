@@ -17,8 +17,9 @@ Property parse_property(bool never, const std::string& text, Naming naming = Nam
 class PropertyWatch {
  public:
   explicit PropertyWatch(const Property& p) : p_(&p) {}
-  // After the scan at now_us: true when the violation has lasted longer than its grace.
-  bool failed(bool violated_now, uint64_t now_us);
+  // After the scan at now_us: true when the violation has lasted longer than its grace, or
+  // than min_grace_us if that is longer (the spread of the values read: Target::spread_us).
+  bool failed(bool violated_now, uint64_t now_us, uint64_t min_grace_us = 0);
   uint64_t since_us() const { return since_us_; }
   const Property& property() const { return *p_; }
 

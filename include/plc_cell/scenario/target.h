@@ -42,6 +42,11 @@ class Target {
   virtual std::string label(const Probe& p) { return p.text; }
   // Non-empty once the PLC stopped on a fault: the case ends there.
   virtual std::string fault() = 0;
+  // How far apart in time the values of one reading may be, as seen so far in the run (read
+  // over a round trip, from messages of different ages): a property's violation no longer
+  // than this cannot be told from that spread, whatever its grace. 0: one instant (virtual
+  // time).
+  virtual uint64_t spread_us() { return 0; }
 };
 
 }  // namespace scenario

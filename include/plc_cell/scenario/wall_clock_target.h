@@ -77,6 +77,8 @@ class WallClockTarget : public Target {
   void simulate(const Probe* p) override;
   std::string label(const Probe& p) override { return probe_label(p, config_); }
   std::string fault() override { return ""; }
+  // A poll period, the slowest round trip and the oldest message seen so far.
+  uint64_t spread_us() override { return opt_.period_us + slowest_us_ + plc_.max_age_us(); }
 
  private:
   Address address(const Probe& p) const;

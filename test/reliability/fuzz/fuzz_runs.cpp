@@ -150,7 +150,7 @@ TEST(Fuzz, CellConfigLoader) {
 TEST(Fuzz, MotionTableParserAndDecoder) { expect_clean("motion_table", "motion", 20000); }
 
 // The servers' request handlers on a live Plc whose real-time loop scans (test/fuzz/live_plc.h):
-// besides crashes and sanitizer reports, a scan longer than 50 ms or any fault is a finding.
+// besides crashes and sanitizer reports, a scan longer than 100 ms or any fault is a finding.
 // The _tsan builds run the same targets under ThreadSanitizer (handler thread vs scan thread).
 TEST(Fuzz, ModbusHandlerOnLivePlc) { expect_clean("modbus_handler", "modbus", 3000); }
 TEST(Fuzz, FatekSlaveOnLivePlc) { expect_clean("fatek_slave_live", "fatek", 50000); }
