@@ -42,6 +42,15 @@ uint64_t LineWallClockTarget::scanned_at(uint64_t t_us) const {
   return at;
 }
 
+uint64_t LineWallClockTarget::spread_us() {
+  uint64_t widest = 0, polls = 0;
+  for (auto& t : targets_) {
+    widest = std::max(widest, t->spread_us());
+    polls += t->slowest_poll_us();
+  }
+  return widest + polls;
+}
+
 WallClockTarget* LineWallClockTarget::cell_of(const Probe& p, std::string* why) {
   if (p.cell.empty()) {
     *why = "'" + p.text + "': a line's names start with their cell: CELL." + p.text + " (cells: " + names_ + ")";

@@ -124,21 +124,28 @@ TEST(LineWallClockTarget, TheLineSeesTimeAsFinelyAsItsCoarsestCell) {
 
 namespace {
 
-// A link that takes a while to say which points are forced (plc_node waits for its next
-// ~forced): the cell whose points are read last starts its case late.
-class SlowToTellForced : public MemoryPlc {
+// A slow link: reads take read_ms, and saying which points are forced forced_ms (plc_node
+// waits for its next ~forced): the cell whose points are read last starts its case late.
+class SlowLink : public MemoryPlc {
  public:
+  SlowLink(int read_ms, int forced_ms) : read_ms_(read_ms), forced_ms_(forced_ms) {}
+  std::vector<uint32_t> read(const std::vector<Address>& addrs) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(read_ms_));
+    return MemoryPlc::read(addrs);
+  }
   std::optional<std::vector<bool>> forced(const std::vector<Address>& bits) override {
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    std::this_thread::sleep_for(std::chrono::milliseconds(forced_ms_));
     return MemoryPlc::forced(bits);
   }
+
+ private:
+  int read_ms_, forced_ms_;
 };
 
 }  // namespace
 
 TEST(LineWallClockTarget, EveryCellCountsTheCaseFromOneTimeZero) {
-  MemoryPlc a_plc;
-  SlowToTellForced b_plc;
+  SlowLink a_plc(10, 0), b_plc(20, 300);
   const CellConfig a = line_cell("a", "start: X0"), b = line_cell("b", "part: X3");
   const std::vector<LineCellLink> links{{"a", &a_plc, &a, ""}, {"b", &b_plc, &b, ""}};
   const Scenario sc = line_scenario(
@@ -146,11 +153,14 @@ TEST(LineWallClockTarget, EveryCellCountsTheCaseFromOneTimeZero) {
       "  - name: a\n"
       "    steps:\n"
       "      - set: {b.part: on}\n"
-      "      - expect: a.start and b.part\n");
+      "      - expect: a.start == 0 and b.part\n");
   LineWallClockTarget t(links, sc.cases.at(0), {});  // no wait: each scan polls at once
   t.begin();
   t.scan(2000);
   // a's points were read before b's 300 ms answer: a case clock of its own would put this
   // scan 300 ms late.
   EXPECT_LT(t.scanned_at(2000), 150000u);
+  // A reading of the line is as spread as its widest cell's, and more: its polls in turn.
+  EXPECT_GE(t.spread_us(), t.cell(0).spread_us() + t.cell(1).slowest_poll_us());
+  EXPECT_GE(t.spread_us(), t.cell(1).spread_us() + t.cell(0).slowest_poll_us());
 }

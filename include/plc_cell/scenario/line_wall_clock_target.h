@@ -48,6 +48,9 @@ class LineWallClockTarget : public Target {
   void simulate(const Probe* p) override;
   std::string label(const Probe& p) override;
   std::string fault() override { return ""; }
+  // The widest of the cells' spreads, plus the round trips of the polls one after the other
+  // that one reading of the line takes.
+  uint64_t spread_us() override;
 
  private:
   // The target of p's cell, or why there is none.
