@@ -5,6 +5,7 @@
 // behind a proxy that counts the requests and misbehaves on demand (fatek_proxy.h).
 #include <sys/stat.h>
 
+#include <cstdio>
 #include <random>
 
 #include "fatek_proxy.h"
@@ -55,6 +56,7 @@ TEST_F(Killed, AtRandomRequestsOfACaseThePlcIsAsFoundEveryTime) {
   ASSERT_TRUE(state_of(port(), kPoints) == before) << describe(state_of(port(), kPoints), kPoints);
   std::mt19937 rng(41);
   const int signals[] = {SIGINT, SIGTERM, SIGKILL};
+  int stopped = 0;  // runs a SIGINT or SIGTERM stopped
   for (int round = 0; round < 15; ++round) {
     const int sig = signals[round % 3];
     const uint64_t at = proxy.requests() + std::uniform_int_distribution<uint64_t>(1, total)(rng);
@@ -72,15 +74,28 @@ TEST_F(Killed, AtRandomRequestsOfACaseThePlcIsAsFoundEveryTime) {
       EXPECT_EQ(next.status, 0) << where << "\nthe next run:\n" << next.out;
       EXPECT_EQ(next.out.find("putting it back first") != std::string::npos, left) << where << "\n" << next.out;
     } else if (proxy.fired()) {
-      EXPECT_EQ(WEXITSTATUS(status), 1) << where;
-      EXPECT_NE(run.output().find(sig == SIGINT ? "stopped by SIGINT" : "stopped by SIGTERM"), std::string::npos)
-          << where;
+      // A signal at a request of the case stops it; one at a request of its restore (the
+      // run's last requests: how many polls a case takes varies) finds nothing left to stop:
+      // the run ends as a whole one, the PLC put back.
+      const bool whole = WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
+                         run.output().find("== 1 passed, 0 failed") != std::string::npos &&
+                         run.output().find("the PLC is as it was found") != std::string::npos;
+      if (!whole) {
+        ++stopped;
+        EXPECT_EQ(WEXITSTATUS(status), 1) << where;
+        EXPECT_NE(run.output().find(sig == SIGINT ? "stopped by SIGINT" : "stopped by SIGTERM"), std::string::npos)
+            << where;
+      }
       EXPECT_EQ(run.output().find("NOT RESTORED"), std::string::npos) << where;
     }
     const PlcState after = state_of(port(), kPoints);
     EXPECT_TRUE(after == before) << where << "\nfound: " << describe(before, kPoints)
                                  << "\nleft:  " << describe(after, kPoints);
   }
+  // Of the ten SIGINT and SIGTERM rounds, most land in the case (its restore is a tenth of
+  // a run's requests): a runner that let signals pass would stop none.
+  std::printf("[ figures  ] %d of the 10 SIGINT and SIGTERM rounds stopped a case\n", stopped);
+  EXPECT_GE(stopped, 5);
 }
 
 struct Fault {
