@@ -291,11 +291,13 @@ devices:
            std::ref(c));
   b.start();
   GroupResult r = c.wait([](const GroupResult& x) { return x.ok; });
+  ASSERT_EQ(r.values.size(), 5u) << "no poll of the server succeeded (is 127.0.0.1:1502 another's?)";
   EXPECT_EQ(r.values[0].raw, 10u);  // UT_INPUT_REGISTERS_TAB
   EXPECT_EQ(r.values[1].raw, 0u);   // UT_INPUT_BITS_TAB[0] = 0xAC: bit 0 off, bit 2 on
   EXPECT_EQ(r.values[2].raw, 1u);
   b.write("hr", 0x12345678);
   r = c.wait([](const GroupResult& x) { return x.ok && x.values[3].raw == 0x12345678u; });
+  ASSERT_FALSE(r.blocks.empty());
   EXPECT_EQ(r.blocks.back()[0], 0x1234);  // ABCD: high word first
   b.stop();
 }

@@ -1,6 +1,7 @@
 // Real third-party masters against our slave: mbpoll, and the libmodbus reference
 // programs compiled here from /usr/share/doc/libmodbus-dev/examples. Tests on the
-// fixed port 1502 live in this one binary and run one after the other.
+// fixed port 1502 live in this one binary and run one after the other; no other test of the
+// suite (which runs four at a time) may listen there, the docs' commands included.
 #include <chrono>
 #include <thread>
 
