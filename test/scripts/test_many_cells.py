@@ -56,6 +56,18 @@ def finish(p):
     return out.decode(errors="replace")
 
 
+def described(pids):
+    """Each pid with its command line: which process was left behind."""
+    out = []
+    for pid in pids:
+        try:
+            with open("/proc/%s/cmdline" % pid, "rb") as f:
+                out.append("%s: %s" % (pid, f.read().replace(b"\0", b" ").decode(errors="replace").strip()))
+        except OSError:
+            out.append("%s: (gone)" % pid)
+    return "\n".join(out)
+
+
 def test_a_cell_that_does_not_load_fails_with_its_reason_and_leaves_nothing():
     marker = uuid.uuid4().hex
     p = start(marker, "--cells", "1", "--ways", "nodelets", "--settle", "0", "--seconds", "1",
@@ -64,7 +76,8 @@ def test_a_cell_that_does_not_load_fails_with_its_reason_and_leaves_nothing():
     assert p.returncode != 0, out
     assert "the manager did not load /cell_0/plc_node" in out, out
     assert "cannot open the cell config" in out, out  # the manager's own log says why
-    assert marked(marker) == [], out
+    left = marked(marker)
+    assert left == [], "left behind:\n%s\n%s" % (described(left), out)
 
 
 def test_a_sigterm_during_the_measurement_leaves_nothing():
@@ -78,4 +91,5 @@ def test_a_sigterm_during_the_measurement_leaves_nothing():
     deadline = time.monotonic() + 10  # SIGKILLed processes may still be ending
     while marked(marker) and time.monotonic() < deadline:
         time.sleep(0.1)
-    assert marked(marker) == [], out
+    left = marked(marker)
+    assert left == [], "left behind:\n%s\n%s" % (described(left), out)
