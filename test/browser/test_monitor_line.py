@@ -98,7 +98,11 @@ def test_a_wire_follows_its_source(line, browser):
 
 def test_one_click_opens_a_cells_ladder(line, browser):
     open_overview(browser, line["base"])
-    browser.find_element("css selector", "#cells tr[data-cell='test'] a.cell-link").click()
+    link = browser.find_element("css selector", "#cells tr[data-cell='test'] a.cell-link")
+    # The overview redraws at every poll; the link the user points at is still the one clicked.
+    clock = cell_text(browser, "test", "clock")
+    wait(browser, "the overview redrawn with a later clock", lambda d: cell_text(d, "test", "clock") != clock)
+    link.click()
     wait(browser, "the test cell's page", lambda d: d.current_url == line["base"] + "/cell/test/")
     wait(browser, "its ladder's networks", lambda d: d.find_elements("css selector", "#ladder .net"))
     wait(browser, "the page naming cell test", lambda d: d.find_element("id", "source").text.startswith("cell test"))

@@ -43,3 +43,28 @@ export function addForm(parent, prefix, placeholder, onAdd) {
     for (const a of names) await onAdd(a);  // in the order given
   });
 }
+
+// Brings a table body's rows in line with items, one row per key, in the items' order. A row
+// whose key stays is kept and only its cells' text changes: a link or a selection under the
+// user's pointer survives a redraw (a body rebuilt at every poll loses the click that lands
+// between two polls). build(item) makes a new row's cells; fill(tr, item) sets every value.
+export function keyedRows(body, items, keyOf, build, fill) {
+  const old = new Map([...body.children].map((tr) => [tr.dataset.key, tr]));
+  items.forEach((item, i) => {
+    const key = keyOf(item);
+    let tr = old.get(key);
+    old.delete(key);
+    if (!tr) {
+      tr = html("tr", {"data-key": key});
+      build(tr, item);
+    }
+    if (body.children[i] !== tr) body.insertBefore(tr, body.children[i] || null);
+    fill(tr, item);
+  });
+  for (const tr of old.values()) tr.remove();
+}
+
+// Sets a node's text only when it differs, so an unchanged value is not redrawn.
+export function setText(node, text) {
+  if (node.textContent !== text) node.textContent = text;
+}

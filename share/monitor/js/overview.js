@@ -4,7 +4,7 @@
 // value on the page is marked stale with its age; a cell the server could not read is shown
 // without a mode, with the reason.
 
-import {html} from "./dom.js";
+import {html, keyedRows, setText} from "./dom.js";
 
 const $ = (id) => document.getElementById(id);
 const POLL_MS = 500;
@@ -32,35 +32,45 @@ function forcedText(c) {
   }).join(", ");
 }
 
+const CELL_COLUMNS = ["name", "mode", "scans", "cycle", "overruns", "clock", "faults", "forced"];
+
 function renderCells(cells) {
-  const body = $("cells").querySelector("tbody");
-  body.textContent = "";
-  for (const c of cells) {
-    const tr = html("tr", {"data-cell": c.name}, body);
-    const name = html("td", {}, tr);
-    html("a", {href: c.page, class: "cell-link", title: `${c.source}: its ladder, watch tables and trends`}, name, c.name);
-    html("td", {class: "mode", "data-mode": c.mode}, tr, modeText(c.mode));
+  keyedRows($("cells").querySelector("tbody"), cells, (c) => c.name, (tr, c) => {
+    tr.dataset.cell = c.name;
+    for (const column of CELL_COLUMNS) html("td", {class: column}, tr);
+    html("a", {class: "cell-link"}, tr.querySelector("td.name"), c.name);
+  }, (tr, c) => {
+    const td = (column) => tr.querySelector(`td.${column}`);
+    const link = tr.querySelector("a.cell-link");
+    if (link.getAttribute("href") !== c.page) link.setAttribute("href", c.page);
+    link.title = `${c.source}: its ladder, watch tables and trends`;
     const scan = c.scan || null;
-    html("td", {class: "scans"}, tr, scan ? String(scan.scans) : "–");
-    html("td", {class: "cycle", title: c.scan_note || ""}, tr, scan ? `${us(scan.cycle_avg_ns)} / ${us(scan.cycle_max_ns)}` : "–");
-    html("td", {class: "overruns"}, tr, scan ? String(scan.overruns) : "–");
-    html("td", {class: "clock"}, tr, seconds(c.t_us));
-    html("td", {class: "faults"}, tr, faultsText(c));
-    html("td", {class: "forced"}, tr, forcedText(c));
-  }
+    td("mode").dataset.mode = c.mode;
+    setText(td("mode"), modeText(c.mode));
+    setText(td("scans"), scan ? String(scan.scans) : "–");
+    td("cycle").title = c.scan_note || "";
+    setText(td("cycle"), scan ? `${us(scan.cycle_avg_ns)} / ${us(scan.cycle_max_ns)}` : "–");
+    setText(td("overruns"), scan ? String(scan.overruns) : "–");
+    setText(td("clock"), seconds(c.t_us));
+    setText(td("faults"), faultsText(c));
+    setText(td("forced"), forcedText(c));
+  });
 }
 
+const WIRE_COLUMNS = ["from", "from-value", "to", "to-value", "wire-text"];
+
 function renderWires(wires) {
-  const body = $("wires").querySelector("tbody");
-  body.textContent = "";
-  wires.forEach((w, i) => {
-    const tr = html("tr", {"data-wire": String(i)}, body);
-    const value = (v) => (v === null || v === undefined ? "–" : String(v));
-    html("td", {class: "from"}, tr, w.from);
-    html("td", {class: "from-value"}, tr, value(w.from_value));
-    html("td", {class: "to"}, tr, w.to);
-    html("td", {class: "to-value"}, tr, value(w.to_value));
-    html("td", {class: "wire-text"}, tr, w.error ? `${w.text} — not read: ${w.error}` : w.text);
+  const value = (v) => (v === null || v === undefined ? "–" : String(v));
+  keyedRows($("wires").querySelector("tbody"), wires.map((w, i) => ({w, i})), ({i}) => String(i), (tr, {i}) => {
+    tr.dataset.wire = String(i);
+    for (const column of WIRE_COLUMNS) html("td", {class: column}, tr);
+  }, (tr, {w}) => {
+    const td = (column) => tr.querySelector(`td.${column}`);
+    setText(td("from"), w.from);
+    setText(td("from-value"), value(w.from_value));
+    setText(td("to"), w.to);
+    setText(td("to-value"), value(w.to_value));
+    setText(td("wire-text"), w.error ? `${w.text} — not read: ${w.error}` : w.text);
   });
 }
 
