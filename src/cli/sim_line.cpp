@@ -82,6 +82,8 @@ int sim_line(const Args& args) {
   for (size_t k = 0; k < watches.size(); ++k) by_cell[watches[k].cell].push_back(k);
   const auto rec = args.has("record") ? record_line(l, "plc_cell sim --line " + args.get("line")) : nullptr;
   recording::LineRecorder* r = rec.get();
+  // The trace's rows come in the line's order, instant by instant, so a trace needs the whole
+  // line at each instant; the watched names' last values and a recording are each cell's own.
   l.after_scan([&](size_t i, uint64_t t) {
     if (r) r->cell(i).scanned(l.cell(i)->plc(), t);
     if (by_cell[i].empty()) return;
@@ -96,9 +98,9 @@ int sim_line(const Args& args) {
       }
       return 0;
     });
-  });
-  uint64_t instants = 0;
-  for (uint64_t t = 0; t < duration; t += l.tick_us(), ++instants) l.scan_at(t);
+  }, trace.is_open() ? line::Line::Observer::Line : line::Line::Observer::PerCell);
+  const uint64_t instants = (duration + l.tick_us() - 1) / l.tick_us();
+  l.advance(0, instants * l.tick_us());
   if (rec) rec->save(args.get("record"));
 
   std::cout << "# plc_cell sim: line " << l.name() << ", " << l.size() << " cells, " << instants << " instants of "
