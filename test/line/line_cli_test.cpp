@@ -43,6 +43,13 @@ TEST(LineCli, TheExampleLineRunsTheSameEveryTime) {
   EXPECT_EQ(outs[1], outs[0]);
   EXPECT_EQ(slurp(dir + "/lt0.csv"), slurp(dir + "/lt1.csv"));
   EXPECT_EQ(slurp(dir + "/lr0.plcrec"), slurp(dir + "/lr1.plcrec"));
+  // Without a trace the line runs cell by cell over windows of instants: the same run, to
+  // the byte of its recording.
+  const ToolResult windows = run_tool("sim --line " + kExample + "line.line.yaml --duration 60s --watch "
+                                      "infeed.R0,test.R1,test.R3,test.R2,robot.in_zone --record " + dir + "/lr2.plcrec");
+  ASSERT_EQ(windows.status, 0) << windows.out;
+  EXPECT_EQ(windows.out, outs[0]);
+  EXPECT_EQ(slurp(dir + "/lr2.plcrec"), slurp(dir + "/lr0.plcrec"));
   // The robot enters the zone at 3.54 s with the first part (docs/lines.md walks through it).
   EXPECT_TRUE(has(slurp(dir + "/lt0.csv"), "\n3.540000,robot.in_zone,1\n"));
   const auto rec = recording::LineReader::load(dir + "/lr0.plcrec");
