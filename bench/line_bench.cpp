@@ -211,7 +211,20 @@ int real_time(size_t n, unsigned threads, double seconds) {
 
 // --memory N: the chain of N cells built in a fresh process, the memory it took per cell
 // (resident, and malloc's heap), one "key value" line each; otherwise the benchmarks.
+int first_scans(size_t n) {
+  line::Line l(line_file(n, true));
+  l.run();
+  for (int k = 0; k < 4; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    l.scan_at(uint64_t(k) * 1000);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("scan %d: %.1f us per cell\n", k, us / double(n));
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc == 3 && std::strcmp(argv[1], "--first-scans") == 0) return first_scans(size_t(std::atol(argv[2])));
   if (argc == 5 && std::strcmp(argv[1], "--real-time") == 0)
     return real_time(size_t(std::atol(argv[2])), unsigned(std::atoi(argv[3])), std::atof(argv[4]));
   if (argc == 3 && std::strcmp(argv[1], "--memory") == 0) {
