@@ -7,7 +7,8 @@ add_library(plc_cell_line STATIC ${LINE_SOURCES})
 target_link_libraries(plc_cell_line PUBLIC plc_cell_scenario)
 
 list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/fresh_target.cpp ${PROJECT_SOURCE_DIR}/src/cli/sim_line.cpp
-  ${PROJECT_SOURCE_DIR}/src/cli/run_line.cpp ${PROJECT_SOURCE_DIR}/src/cli/monitor_cells.cpp)
+  ${PROJECT_SOURCE_DIR}/src/cli/run_line.cpp ${PROJECT_SOURCE_DIR}/src/cli/monitor_cells.cpp
+  ${PROJECT_SOURCE_DIR}/src/cli/watched_properties.cpp)
 list(APPEND PLC_CELL_TOOL_LIBS plc_cell_line)
 
 if(CATKIN_ENABLE_TESTING)
