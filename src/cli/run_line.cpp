@@ -46,7 +46,7 @@ int run_line(const Args& args, StopSignal& stop) {
   l.stop();
   if (watched) {
     watched->flush();
-    std::cerr << "plc_cell run: " << property_summary(watched->report());
+    std::cerr << property_summary(watched->report(), "plc_cell run: ");
   }
   const std::string fault = l.fault();
   if (!fault.empty()) std::cerr << "fault: " << fault << "\n";

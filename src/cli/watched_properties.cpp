@@ -117,10 +117,10 @@ std::shared_ptr<scenario::PropertyWatcher> watch_recording(const std::string& pa
   return w;
 }
 
-std::string property_summary(const monitor::PropertyReport& r) {
+std::string property_summary(const monitor::PropertyReport& r, const std::string& prefix) {
   std::string out;
   for (const auto& p : r.properties) {
-    out += "property " + p.text + ": violations: " + std::to_string(p.violations);
+    out += prefix + "property " + p.text + ": violations: " + std::to_string(p.violations);
     if (p.violations)
       out += ", last at " + scenario::format_time(p.last_begin_us) + " for " +
              scenario::format_time(p.last_duration_us) + (p.last_ongoing ? " (going on)" : "");

@@ -22,8 +22,8 @@ std::shared_ptr<scenario::PropertyWatcher> watch_line(const std::string& path, l
 // line: must be a line of the recording's name.
 std::shared_ptr<scenario::PropertyWatcher> watch_recording(const std::string& path, const recording::LineReader& r,
                                                            const monitor::SourceSet& set);
-// One line per property: how often it was violated and when last (at the end of a run).
-std::string property_summary(const monitor::PropertyReport& r);
+// One line per property, each after prefix: how often it was violated and when last.
+std::string property_summary(const monitor::PropertyReport& r, const std::string& prefix);
 
 }  // namespace cli
 }  // namespace plc_cell
