@@ -28,3 +28,8 @@ if(benchmark_FOUND)
   target_link_libraries(bench_line plc_cell_line benchmark::benchmark)
   target_compile_definitions(bench_line PRIVATE PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endif()
+
+# ---- benchmark: the cost of watching a line's properties (docs/performance.md, "Lines")
+add_executable(bench_line_properties bench/line_properties_bench.cpp)
+target_link_libraries(bench_line_properties plc_cell_line)
+target_compile_definitions(bench_line_properties PRIVATE PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
