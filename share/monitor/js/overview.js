@@ -1,8 +1,8 @@
 // The overview of a line's cells (docs/monitor.md, "One monitor for a line"): polls
 // GET /api/overview and shows each cell's RUN/STOP, scan figures, faults and forced points,
-// each wire's two ends, and the properties watched with the last one violated. When the server stops answering, a banner says so and every
-// value on the page is marked stale with its age; a cell the server could not read is shown
-// without a mode, with the reason.
+// each wire's two ends, and the properties watched with the last one violated. When the
+// server stops answering, a banner says so and every value on the page is marked stale
+// with its age; a cell the server could not read is shown without a mode, with the reason.
 
 import {html, keyedRows, setText} from "./dom.js";
 
