@@ -1,13 +1,12 @@
 #include "plc_cell/monitor/live_source.h"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/cell_extension.h"
 #include "plc_cell/config/program_changes.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
 
 namespace plc_cell {
 namespace monitor {
@@ -25,13 +24,6 @@ std::vector<uint64_t> fingerprint_of(const ScanEngine& se) {
     mix(uint64_t(uint32_t(i.line)) | uint64_t(i.operands.size()) << 32);
   }
   return {h, p.code.size(), std::hash<std::string>()(p.file), se.program_loads()};
-}
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  if (in) s << in.rdbuf();
-  return s.str();
 }
 
 }  // namespace
@@ -66,7 +58,7 @@ std::shared_ptr<const ProgramView> LiveSource::program() const {
     return 0;
   });
   v->file = v->program.file;
-  v->text = changes_ ? changes_->text() : file_text(v->program.file);
+  v->text = changes_ ? changes_->text() : file_text(v->program.file).value_or("");
   if (config_) v->signals = config_->signals;
   v->version = view_ ? view_->version + 1 : 1;
   view_ = v;

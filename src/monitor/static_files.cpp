@@ -1,10 +1,9 @@
 #include "static_files.h"
 
-#include <fstream>
-#include <sstream>
 #include <sys/stat.h>
 
 #include "json_views.h"
+#include "plc_cell/core/file_text.h"
 
 namespace plc_cell {
 namespace monitor {
@@ -47,11 +46,9 @@ StaticReply serve(const std::string& root, const std::string& rel, const std::st
   if (root.empty() || ::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
     return error(404, shown + ": no such file");
   if (size_t(st.st_size) > kMaxStaticFile) return error(404, shown + ": too large to serve");
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (!in) return error(404, shown + ": cannot be read");
-  return {200, content_type(file), s.str()};
+  std::optional<std::string> text = file_text(file);
+  if (!text) return error(404, shown + ": cannot be read");
+  return {200, content_type(file), std::move(*text)};
 }
 
 }  // namespace
