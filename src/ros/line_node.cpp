@@ -20,7 +20,6 @@ bool line_flag(ros::NodeHandle& pnh, const std::string& name) {
   if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) given = "the number " + std::to_string(int(v));
   if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) given = "the number " + std::to_string(double(v));
   throw Error("~" + name + ": true or false, not " + given + " (docs/lines.md, \"On ROS\")");
-  return bool(v);
 }
 
 }  // namespace
