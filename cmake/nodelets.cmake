@@ -34,4 +34,8 @@ if(CATKIN_ENABLE_TESTING)
   # The line's hardware scenario through the scenario_runner, in one manager and split.
   add_rostest(test/ros/scenario_line.test DEPENDENCIES plc_cell_nodelets scenario_runner)
   add_rostest(test/ros/scenario_line_split.test DEPENDENCIES plc_cell_nodelets line_node scenario_runner)
+  # The line in virtual time: its cells' topics against plc_cell sim of the same line file, and
+  # the line's scenario through the scenario_runner on its one clock.
+  add_rostest(test/ros/line_virtual_time.test DEPENDENCIES plc_cell_nodelets plc_cell_tool)
+  add_rostest(test/ros/scenario_line_virtual_time.test DEPENDENCIES plc_cell_nodelets scenario_runner)
 endif()
