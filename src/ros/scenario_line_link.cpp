@@ -1,10 +1,7 @@
 // The scenario_runner's link to a line in virtual time (ros/scenario_line_link.h).
 #include "plc_cell/ros/scenario_line_link.h"
 
-#include <stdlib.h>
-
 #include <algorithm>
-#include <climits>
 
 #include <rosgraph_msgs/Clock.h>
 #include <std_srvs/Trigger.h>
@@ -14,15 +11,6 @@
 
 namespace plc_cell {
 namespace scenario {
-
-namespace {
-
-std::string real_file(const std::string& path) {
-  char buf[PATH_MAX];
-  return ::realpath(path.c_str(), buf) ? std::string(buf) : path;
-}
-
-}  // namespace
 
 LineLink::LineLink(const line::Line& line, const std::string& ns, double timeout_s, bool read_fallback)
     : ns_(ns), timeout_s_(timeout_s), tick_us_(line.tick_us()) {
@@ -36,11 +24,11 @@ LineLink::LineLink(const line::Line& line, const std::string& ns, double timeout
       throw Error("the cell '" + cell + "' of the line is not running on ROS (no parameter " + node +
                   "/cell within ~timeout): in virtual time one line nodelet or line_node runs every cell of the line");
     ros::param::get(node + "/line", node_line);
-    if (real_file(node_line) != real_file(line.file()))
+    if (real_path(node_line) != real_path(line.file()))
       throw Error(node + " runs a cell of the line " + (node_line.empty() ? "(none)" : node_line) +
                   ", the scenario names " + line.file());
     const CellConfig& config = const_cast<line::Line&>(line).cell(i)->config();
-    if (real_file(node_cell) != real_file(config.file))
+    if (real_path(node_cell) != real_path(config.file))
       throw Error(node + " runs the cell " + node_cell + ", the line file names " + config.file);
     ros::param::get(node + "/virtual_time", virtual_time);
     if (!virtual_time)

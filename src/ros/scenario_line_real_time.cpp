@@ -15,16 +15,16 @@ namespace scenario {
 
 namespace {
 
-std::string real_path(const std::string& path) {
-  char buf[PATH_MAX];
-  return ::realpath(path.c_str(), buf) ? std::string(buf) : path;
-}
-
 bool named(const LineCellLink& cell, const std::vector<Case>& cases) {
   return !polled_in(cell, cases).empty() || !touched_in(cell, cases).empty();
 }
 
 }  // namespace
+
+std::string real_path(const std::string& path) {
+  char buf[PATH_MAX];
+  return ::realpath(path.c_str(), buf) ? std::string(buf) : path;
+}
 
 std::string node_of(const std::string& ns, const std::string& cell) { return ns + "/" + cell + "/plc_node"; }
 

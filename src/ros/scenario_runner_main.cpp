@@ -12,8 +12,7 @@
 // most a window tighter than the resolution is widened. A scenario file that names a line
 // runs on the line's cells at ~line_ns/<cell>/plc_node (~line_ns default: /<the line's
 // name>): in virtual time on the line nodelet's one clock (ros/scenario_line_link.h), or in
-// real time (ros/scenario_line_real_time.h). ~skip: a case (or its rows) reported as skipped,
-// not run: a .test file says which cases it leaves to `plc_cell test`.
+// real time (ros/scenario_line_real_time.h).
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
@@ -67,12 +66,6 @@ struct Shared {
   std::unique_ptr<sc::LineLink> line_link;     // virtual time: the run on the line's nodes
   std::unique_ptr<Cell> cell;                 // real time: the scenario's cell, checked
   std::unique_ptr<sc::RealTimeCases> real_time;  // real time: the run on the node or the line
-};
-
-// A case ~skip names: said, not run.
-class SkippedCase : public testing::Test {
- public:
-  void TestBody() override { GTEST_SKIP() << "not run here: ~skip names it (plc_cell test runs it)"; }
 };
 
 class CaseTest : public testing::Test {
@@ -252,7 +245,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   ros::NodeHandle pnh("~");
-  std::string file, node = "plc_node", only, skip, line_ns;
+  std::string file, node = "plc_node", only, line_ns;
   double timeout_s = 10, tolerance_s = 0;
   bool read_fallback = true;
   pnh.param("real_time", g_real_time, g_real_time);
@@ -260,7 +253,6 @@ int main(int argc, char** argv) {
   pnh.param<std::string>("scenario", file, file);
   pnh.param<std::string>("node", node, node);
   pnh.param<std::string>("case", only, only);
-  pnh.param<std::string>("skip", skip, skip);
   pnh.param<std::string>("line_ns", line_ns, line_ns);
   pnh.param("timeout", timeout_s, timeout_s);
   pnh.param("read_fallback", read_fallback, read_fallback);
@@ -288,13 +280,7 @@ int main(int argc, char** argv) {
   }
   size_t registered = 0;
   for (const sc::Case& c : run.scenario.cases) {
-    const auto named = [&c](const std::string& n) { return c.name == n || c.name.compare(0, n.size() + 1, n + "[") == 0; };
-    if (!only.empty() && !named(only)) continue;
-    if (!skip.empty() && named(skip)) {
-      testing::RegisterTest(suite.c_str(), c.name.c_str(), nullptr, nullptr, c.file.c_str(), c.line,
-                            []() -> testing::Test* { return new SkippedCase; });
-      continue;
-    }
+    if (!only.empty() && c.name != only && c.name.compare(0, only.size() + 1, only + "[") != 0) continue;
     const sc::Case* cp = &c;
     testing::RegisterTest(suite.c_str(), c.name.c_str(), nullptr, nullptr, c.file.c_str(), c.line,
                           [cp]() -> testing::Test* { return new CaseTest(&run, cp); });

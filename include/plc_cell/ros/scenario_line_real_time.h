@@ -16,6 +16,9 @@
 namespace plc_cell {
 namespace scenario {
 
+// The file's path with its links resolved (as given when it does not exist): two names of
+// one file compare equal.
+std::string real_path(const std::string& path);
 // "/example_line/robot/plc_node": where the line nodelet runs the cell of the line at ns.
 std::string node_of(const std::string& ns, const std::string& cell);
 // The line's nodes say which cell they run (~cell) as they start, perhaps after the runner:
