@@ -127,6 +127,7 @@ void LineNode::start_virtual_time(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
 // Every cell fresh from the same files, its first scan at the next clock message: the
 // nodes keep their topics and services (and their subscribers), as a lone node's ~reset.
 bool LineNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  std::lock_guard<std::mutex> lk(reset_mu_);
   res.success = false;
   const std::string what = "line " + line_->name() + ": reset: ";
   std::unique_ptr<line::Line> fresh;

@@ -43,15 +43,16 @@ class LineVirtualClock::CellDriver : public ScanDriver {
 LineVirtualClock::LineVirtualClock(ros::NodeHandle& pnh, const std::string& line_name,
                                    diagnostic_updater::Updater& updater)
     : pnh_(pnh) {
-  double lag = 0.1;
   pnh.param<std::string>("clock_topic", clock_topic_, "/clock");
   clock_topic_ = pnh.resolveName(clock_topic_);
-  if (!pnh.getParam("virtual_time_lag", lag)) lag = 0.1;
+  double lag = 0.1;
   XmlRpc::XmlRpcValue v;
-  if (pnh.getParam("virtual_time_lag", v) && v.getType() != XmlRpc::XmlRpcValue::TypeDouble &&
-      v.getType() != XmlRpc::XmlRpcValue::TypeInt)
-    throw Error("~virtual_time_lag: a number of seconds in [0, 60]");
-  if (!(lag >= 0 && lag <= 60)) throw Error("~virtual_time_lag must be in [0, 60] s");
+  if (pnh.getParam("virtual_time_lag", v)) {
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) lag = double(v);
+    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) lag = int(v);
+    else lag = -1;  // not a number: refused below, not read as the default
+  }
+  if (!(lag >= 0 && lag <= 60)) throw Error("~virtual_time_lag: a number of seconds in [0, 60]");
   lag_us_ = uint64_t(lag * 1e6);
   updater.add("virtual time", [this, line_name](diagnostic_updater::DiagnosticStatusWrapper& stat) {
     std::lock_guard<std::mutex> lk(mu_);

@@ -6,7 +6,8 @@ robot's zone handshake with the test station crosses on /example_line/wires/<ind
 Bad input: a line nodelet with an unknown cell or a broken line file is refused with the
 error where it lies; the scenario_runner refuses a line's scenario naming a cell the line has
 not, or one not running on ROS, at its file:line, and a line running in real time in virtual
-time; the line nodelet refuses ~virtual_time of another type than a bool, and a split line in
+time; the line nodelet refuses ~virtual_time of another type than a bool (and a lag that is not a
+number), and a split line in
 virtual time naming a wire that crosses."""
 import os
 import random
@@ -224,6 +225,8 @@ class LineTest(unittest.TestCase):
         for value, said in (("yes", "the string 'yes'"), (1, "the number 1"), ([True], "a list or a mapping")):
             self.refused("vt_type", {"line": line, "virtual_time": value},
                          "~virtual_time: true or false, not %s" % said)
+        self.refused("vt_lag", {"line": line, "virtual_time": True, "virtual_time_lag": "soon"},
+                     "~virtual_time_lag: a number of seconds in [0, 60]")
 
     def run_runner(self, scenario, **params):
         """The scenario_runner on scenario with params, to its end: its exit status and output."""

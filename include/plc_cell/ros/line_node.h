@@ -6,6 +6,7 @@
 // the process; a wire with its other end in another process, on a ROS topic
 // (ros/line_wire_topics.h). The line nodelet (plc_cell/LineNodelet) builds one.
 #include <memory>
+#include <mutex>
 #include <set>
 #include <string>
 #include <vector>
@@ -49,6 +50,7 @@ class LineNode {
   std::vector<LineCellDriver*> drivers_;         // real time: each node's driver, for the line's scans
   std::unique_ptr<LineVirtualClock> clock_;      // virtual time: the line's one clock
   ros::ServiceServer reset_srv_;
+  std::mutex reset_mu_;  // one <line>/reset at a time (a manager serves calls on several threads)
   std::unique_ptr<LineWireTopics> wires_;
   diagnostic_updater::Updater updater_;  // "<nodelet>: wires" on /diagnostics
   ros::Timer diag_timer_;
