@@ -74,26 +74,34 @@ double heap_bytes() {
   return double(m.uordblks + m.hblkhd);
 }
 
-// Each iteration runs the line one virtual second further (1,000 instants of 1 ms).
-void run_line(benchmark::State& state, bool wired) {
+// Instant by instant (scan_at: what a scenario's case runs, its properties checked at each
+// instant), each iteration runs the line one virtual second further (1,000 instants of
+// 1 ms). As plc_cell sim runs it (advance: cell by cell over windows of instants), ten.
+void run_line(benchmark::State& state, bool wired, bool as_sim = false) {
   const size_t n = size_t(state.range(0));
   line::Line l(line_file(n, wired));
   l.run();
+  const uint64_t seconds = as_sim ? 10 : 1;
   uint64_t t = 0;
-  for (auto _ : state)
-    for (int k = 0; k < 1000; ++k, t += 1000) l.scan_at(t);
-  // The last cell counts the parts the chain brought it: the run is the one expected.
-  const uint64_t iterations = uint64_t(state.iterations());
-  state.counters["x_real_time"] = benchmark::Counter(double(iterations), benchmark::Counter::kIsRate);
-  state.counters["ns_per_cell_scan"] =
-      benchmark::Counter(double(iterations) * 1000.0 * double(n) * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  for (auto _ : state) {
+    if (as_sim) {
+      l.advance(t, t + seconds * 1000000);
+      t += seconds * 1000000;
+    } else {
+      for (int k = 0; k < 1000; ++k, t += 1000) l.scan_at(t);
+    }
+  }
+  const double virtual_s = double(state.iterations()) * double(seconds);
+  state.counters["x_real_time"] = benchmark::Counter(virtual_s, benchmark::Counter::kIsRate);
+  state.counters["ns_per_cell_scan"] = benchmark::Counter(virtual_s * 1000.0 * double(n) * 1e-9,
+                                                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["cells"] = double(n);
   if (!l.fault().empty()) state.SkipWithError(l.fault().c_str());
 }
 
 void BM_Chain(benchmark::State& state) { run_line(state, true); }
 void BM_Unwired(benchmark::State& state) { run_line(state, false); }
+void BM_ChainSim(benchmark::State& state) { run_line(state, true, true); }
 
 // The floor: the demo cell alone, scanned by Plc::scan in a loop as plc_cell sim scans it.
 void BM_DemoAlone(benchmark::State& state) {
@@ -160,49 +168,87 @@ BENCHMARK(BM_BusyWires)->Arg(0)->Arg(16)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Cells)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Unwired)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Chain)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ChainSim)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+// The scans' counts of every cell, summed.
+struct RealTimeCounts {
+  uint64_t scans = 0, overruns = 0, off_cpu = 0, cells_overrun = 0, wake_max_ns = 0;
+  double wake_sum_ns = 0;
+  std::vector<uint64_t> own;  // per cell: its overruns not lost off the CPU
+
+  static RealTimeCounts of(line::Line& l) {
+    RealTimeCounts c;
+    for (size_t i = 0; i < l.size(); ++i) {
+      const ScanStats st = l.cell(i)->plc().locked([](ScanEngine& e, Memory&) { return e.stats(); });
+      c.scans += st.scans;
+      c.overruns += st.overruns;
+      c.off_cpu += st.overruns_off_cpu;
+      c.own.push_back(st.overruns - st.overruns_off_cpu);
+      c.wake_max_ns = std::max(c.wake_max_ns, st.wake_latency.max_ns);
+      c.wake_sum_ns += st.wake_latency.sum_ns;
+    }
+    return c;
+  }
+  void print(const char* prefix, const RealTimeCounts& before) const {
+    size_t cells = 0;
+    for (size_t i = 0; i < own.size(); ++i) cells += own[i] > (before.own.empty() ? 0 : before.own[i]);
+    std::printf("%sscans %llu\n%soverruns %llu\n%soverruns_off_cpu %llu\n%soverruns_from_the_cells %llu\n"
+                "%scells_with_their_own_overruns %zu\n",
+                prefix, static_cast<unsigned long long>(scans - before.scans), prefix,
+                static_cast<unsigned long long>(overruns - before.overruns), prefix,
+                static_cast<unsigned long long>(off_cpu - before.off_cpu), prefix,
+                static_cast<unsigned long long>((overruns - off_cpu) - (before.overruns - before.off_cpu)), prefix,
+                cells);
+  }
+};
 
 // --real-time N THREADS SECONDS: the chain of N cells in real time on THREADS shared scan
 // threads for SECONDS; what the cells' scans missed (the overruns, and of those the ones
 // lost while a thread was off the CPU: the machine's, not the cells'), the wake latency and
-// the CPU the process took, one "key value" line each.
+// the CPU the process took, one "key value" line each: over the whole run, and again from
+// the end of the first second on (steady_: every cell's first scans, which build its state
+// and all come at the same instant, are behind it).
 int real_time(size_t n, unsigned threads, double seconds) {
   line::Line l(line_file(n, true));
   rusage before{}, after{};
   getrusage(RUSAGE_SELF, &before);
   const auto t0 = std::chrono::steady_clock::now();
   l.start_real_time(threads);
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  std::this_thread::sleep_for(std::chrono::duration<double>(std::min(seconds, 1.0)));
+  const RealTimeCounts first = RealTimeCounts::of(l);
+  if (seconds > 1.0) std::this_thread::sleep_for(std::chrono::duration<double>(seconds - 1.0));
   l.stop();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   getrusage(RUSAGE_SELF, &after);
   const auto cpu_s = [](const rusage& r) {
     return double(r.ru_utime.tv_sec + r.ru_stime.tv_sec) + double(r.ru_utime.tv_usec + r.ru_stime.tv_usec) * 1e-6;
   };
-  uint64_t scans = 0, overruns = 0, off_cpu = 0, cells_overrun = 0, wake_max_ns = 0;
-  double wake_sum_ns = 0;
-  for (size_t i = 0; i < l.size(); ++i) {
-    const ScanStats st = l.cell(i)->plc().locked([](ScanEngine& e, Memory&) { return e.stats(); });
-    scans += st.scans;
-    overruns += st.overruns;
-    off_cpu += st.overruns_off_cpu;
-    cells_overrun += st.overruns > st.overruns_off_cpu;
-    wake_max_ns = std::max(wake_max_ns, st.wake_latency.max_ns);
-    wake_sum_ns += st.wake_latency.sum_ns;
-  }
-  std::printf("cells %zu\nthreads %u\nwall_s %.2f\nscans %llu\nscans_expected %.0f\n", n, threads, wall,
-              static_cast<unsigned long long>(scans), double(n) * wall * 1000.0);
-  std::printf("overruns %llu\noverruns_off_cpu %llu\noverruns_from_the_cells %llu\ncells_with_their_own_overruns %llu\n",
-              static_cast<unsigned long long>(overruns), static_cast<unsigned long long>(off_cpu),
-              static_cast<unsigned long long>(overruns - off_cpu), static_cast<unsigned long long>(cells_overrun));
+  const RealTimeCounts all = RealTimeCounts::of(l);
+  std::printf("cells %zu\nthreads %u\nwall_s %.2f\nscans_expected %.0f\n", n, threads, wall, double(n) * wall * 1000.0);
+  all.print("", RealTimeCounts{});
+  all.print("steady_", first);
   std::printf("wake_latency_mean_us %.1f\nwake_latency_max_us %.1f\ncpu_cores_used %.3f\n",
-              scans ? wake_sum_ns / double(scans) / 1000.0 : 0.0, double(wake_max_ns) / 1000.0,
+              all.scans ? all.wake_sum_ns / double(all.scans) / 1000.0 : 0.0, double(all.wake_max_ns) / 1000.0,
               (cpu_s(after) - cpu_s(before)) / wall);
   return 0;
 }
 
-// --memory N: the chain of N cells built in a fresh process, the memory it took per cell
-// (resident, and malloc's heap), one "key value" line each; otherwise the benchmarks.
+// --first-scans N: the chain of N cells' first four instants, each timed: what a cell's
+// first scans cost beside its later ones (a line started in real time meets them all at once).
+int first_scans(size_t n) {
+  line::Line l(line_file(n, true));
+  l.run();
+  for (int k = 0; k < 4; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    l.scan_at(uint64_t(k) * 1000);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("scan %d: %.1f us per cell\n", k, us / double(n));
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc == 3 && std::strcmp(argv[1], "--first-scans") == 0) return first_scans(size_t(std::atol(argv[2])));
   if (argc == 5 && std::strcmp(argv[1], "--real-time") == 0)
     return real_time(size_t(std::atol(argv[2])), unsigned(std::atoi(argv[3])), std::atof(argv[4]));
   if (argc == 3 && std::strcmp(argv[1], "--memory") == 0) {

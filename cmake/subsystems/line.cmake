@@ -7,7 +7,8 @@ add_library(plc_cell_line STATIC ${LINE_SOURCES})
 target_link_libraries(plc_cell_line PUBLIC plc_cell_scenario)
 
 list(APPEND PLC_CELL_TOOL_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/fresh_target.cpp ${PROJECT_SOURCE_DIR}/src/cli/sim_line.cpp
-  ${PROJECT_SOURCE_DIR}/src/cli/run_line.cpp ${PROJECT_SOURCE_DIR}/src/cli/monitor_cells.cpp)
+  ${PROJECT_SOURCE_DIR}/src/cli/run_line.cpp ${PROJECT_SOURCE_DIR}/src/cli/monitor_cells.cpp
+  ${PROJECT_SOURCE_DIR}/src/cli/watched_properties.cpp)
 list(APPEND PLC_CELL_TOOL_LIBS plc_cell_line)
 
 if(CATKIN_ENABLE_TESTING)
@@ -27,3 +28,8 @@ if(benchmark_FOUND)
   target_link_libraries(bench_line plc_cell_line benchmark::benchmark)
   target_compile_definitions(bench_line PRIVATE PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endif()
+
+# ---- benchmark: the cost of watching a line's properties (docs/performance.md, "Lines")
+add_executable(bench_line_properties bench/line_properties_bench.cpp)
+target_link_libraries(bench_line_properties plc_cell_line)
+target_compile_definitions(bench_line_properties PRIVATE PLC_CELL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -5,9 +5,7 @@
 // program). The change service runs it as a process of its own before a change goes live
 // (docs/online-change.md); --json is the report it reads.
 #include <chrono>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +14,7 @@
 #include "fresh_target.h"
 #include "scenario_files.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/explore/explorer.h"
 #include "plc_cell/config/gate_config.h"
 #include "plc_cell/mutation/mutation_report.h"
@@ -70,11 +69,9 @@ void run_explore(std::vector<scenario::Scenario>& files, const std::string& prog
 }
 
 std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot read the program " + path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  std::optional<std::string> text = file_text(path);
+  if (!text) throw Error("cannot read the program " + path);
+  return std::move(*text);
 }
 
 // gate.mutate: the mutants of the lines the change wrote (since: the running program; ""

@@ -20,6 +20,7 @@
 #include "plc_cell/remote/tri_link.h"
 #include "plc_cell/runtime/cell.h"
 #include "plc_cell/sim/soft_cell.h"
+#include "watched_properties.h"
 
 namespace plc_cell {
 namespace cli {
@@ -74,9 +75,11 @@ bool is_line_recording(const Args& args) {
 
 monitor::SourceSet line_replay(const Args& args) {
   const std::string path = args.get("recording");
-  monitor::SourceSet set = recorded_cells(recording::LineReader::load(path), path);
+  const recording::LineReader line = recording::LineReader::load(path);
+  monitor::SourceSet set = recorded_cells(line, path);
   // Every cell's cursor at the instant asked for: the line's failure is one instant of all.
   for (size_t i = 0; i < set.size(); ++i) open_at(args, static_cast<recording::ReplaySource&>(set.source(i)));
+  if (args.has("properties")) set.watch(watch_recording(args.get("properties"), line, set));
   return set;
 }
 
@@ -116,7 +119,7 @@ std::unique_ptr<monitor::Source> remote_source(const Args& args) {
 
 std::vector<std::string> options() {
   std::vector<std::string> out = {"recording", "cell", "open-at", "fatek", "tri", "program", "config",
-                                  "station", "id", "timeout", "duration"};
+                                  "station", "id", "timeout", "duration", "properties"};
   const ServerKind kind = monitor::server_kind();
   for (const auto& s : kind.settings) out.push_back(kind.option(s).substr(2));
   return out;
@@ -134,6 +137,8 @@ int cmd_monitor(const std::vector<std::string>& argv) {
   if (args.has("cell") && !args.has("recording")) throw UsageError("--cell goes with --recording (a line's)");
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
   const monitor::HttpSettings settings = http_options(args, kDefaultEndpoint);
+  if (args.has("properties") && !is_line_recording(args))
+    throw UsageError("--properties goes with a line's recording, all its cells (no --cell): its overview shows them");
   std::unique_ptr<monitor::Source> source;
   std::unique_ptr<monitor::HttpServer> served;
   std::string what;
@@ -157,6 +162,7 @@ int cmd_monitor(const std::vector<std::string>& argv) {
 Command monitor_command() {
   return {"monitor",
           "--recording FILE [--cell NAME] [--open-at failure|T] [--http-tcp HOST:PORT] [--http-...]\n"
+          "         [--properties FILE.scenario.yaml] (a line's recording: its properties at the cursor)\n"
           "         --fatek HOST:PORT|DEV [--station N] (--program FILE.il | --config CELL.yaml)\n"
           "         --tri HOST:PORT|DEV [--id N] (--program FILE.il | --config CELL.yaml)\n"
           "         [--timeout 1s] [--duration T]\n"

@@ -4,10 +4,9 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
 
 namespace plc_cell {
 namespace cli {
@@ -17,11 +16,9 @@ recording::RecordingInfo recording_info(const Cell& cell, const std::string& sou
   info.source = source;
   const std::string& path = cell.program_path();
   info.program_file = path.substr(path.find_last_of('/') + 1);
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw Error("cannot read the program " + path + " to record it");
-  info.program_text = text.str();
+  std::optional<std::string> text = file_text(path);
+  if (!text) throw Error("cannot read the program " + path + " to record it");
+  info.program_text = std::move(*text);
   info.signals = cell.config().signals;
   info.scan_period_us = cell.scan_period_us();
   return info;

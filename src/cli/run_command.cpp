@@ -38,12 +38,13 @@ int cmd_run(const std::vector<std::string>& argv) {
   // waits until start-up is done and then stops cleanly, with the store flushed.
   StopSignal stop;
   std::vector<std::string> options = {"program", "config", "scan", "duration", "rt-priority", "persist",
-                                      "persist-interval", "engine", "line"};
+                                      "persist-interval", "engine", "line", "properties"};
   const auto servers = server_options();
   options.insert(options.end(), servers.begin(), servers.end());
   Args args(argv, options, {"watch-program", "no-simulation"});
   if (!args.positional().empty()) throw UsageError("unexpected argument '" + args.positional()[0] + "'");
   if (args.has("line")) return run_line(args, stop);
+  if (args.has("properties")) throw UsageError("--properties goes with --line (a line's monitor watches them)");
   const uint64_t duration = args.has("duration") ? parse_duration_us(args.get("duration")) : 0;
   Cell cell(args.get("config"), cell_overrides(args), Cell::Purpose::Serve,
             [](const std::string& l) { std::cerr << "plc_cell run: " << l << "\n"; });
@@ -97,7 +98,9 @@ Command run_command() {
           "         --watch-program: a saved program goes live in RUN, gated (docs/online-change.md)\n"
           "         --no-simulation: the cell's simulation plays no input (as on a real cell)\n"
           "     run --line LINE.yaml [--duration T] [--engine E] [--http-tcp HOST:PORT] [--http-...]\n"
-          "         a line of cells in real time (docs/lines.md), with one monitor for all of them\n",
+          "         [--properties FILE.scenario.yaml]\n"
+          "         a line of cells in real time (docs/lines.md), with one monitor for all of them;\n"
+          "         --properties: the file's properties watched at every scan (docs/monitor.md)\n",
           cmd_run};
 }
 

@@ -6,6 +6,7 @@
 #include "monitor_cells.h"
 #include "plc_cell/core/error.h"
 #include "plc_cell/line/line.h"
+#include "watched_properties.h"
 
 namespace plc_cell {
 namespace cli {
@@ -25,8 +26,14 @@ int run_line(const Args& args, StopSignal& stop) {
   line::Line l(args.get("line"), o);
   for (size_t i = 0; i < l.size(); ++i)
     for (const auto& w : l.cell(i)->soft().warnings()) std::cerr << w.to_string() << "\n";  // the line still runs
+  monitor::SourceSet cells = line_cells(l);
+  std::shared_ptr<scenario::PropertyWatcher> watched;
+  if (args.has("properties")) {
+    watched = watch_line(args.get("properties"), l, cells);
+    cells.watch(watched);
+  }
   std::unique_ptr<monitor::HttpServer> server;
-  if (args.has("http-tcp")) server = std::make_unique<monitor::HttpServer>(line_cells(l), http_options(args, ""));
+  if (args.has("http-tcp")) server = std::make_unique<monitor::HttpServer>(std::move(cells), http_options(args, ""));
   l.start_real_time();
   if (server) {
     server->start();
@@ -37,6 +44,10 @@ int run_line(const Args& args, StopSignal& stop) {
   if (stop.wait_until_stopped(duration)) std::cerr << "plc_cell run: " << stop.signal_name() << ": stopping\n";
   if (server) server->stop();  // no page reads a cell that is stopping
   l.stop();
+  if (watched) {
+    watched->flush();
+    std::cerr << property_summary(watched->report(), "plc_cell run: ");
+  }
   const std::string fault = l.fault();
   if (!fault.empty()) std::cerr << "fault: " << fault << "\n";
   return fault.empty() ? 0 : 1;

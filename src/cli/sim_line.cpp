@@ -1,7 +1,9 @@
 // plc_cell sim --line: a line of cells on one virtual clock (docs/lines.md), with the watched
 // names of any cell printed at the end, their changes traced, the whole run recorded.
+#include <algorithm>
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 #include "cell_options.h"
 #include "record_option.h"
@@ -13,6 +15,8 @@ namespace plc_cell {
 namespace cli {
 
 namespace {
+
+constexpr uint64_t kTracePieceInstants = 65536;
 
 struct LineWatch {
   std::string name;  // as given: "robot.count:u"
@@ -54,6 +58,34 @@ std::vector<LineWatch> line_watches(const Args& args, line::Line& l) {
   return out;
 }
 
+// The trace's rows, one for each change of a watched name at the end of its cell's scan, in
+// the order of the instants and, at one instant, of the cells in the file. The line runs
+// cell by cell over windows of instants (line.h, advance): each cell's rows come in its own
+// order and are put in the line's before they are written.
+class LineTrace {
+ public:
+  explicit LineTrace(const std::string& path) : out_(path) {
+    if (!out_) throw Error("cannot write the trace file " + path);
+    out_ << "time_s,name,value\n";
+  }
+  void row(uint64_t t_us, size_t cell, std::string text) { rows_.push_back({t_us, cell, std::move(text)}); }
+  void flush() {
+    std::stable_sort(rows_.begin(), rows_.end(),
+                     [](const Row& a, const Row& b) { return a.t_us != b.t_us ? a.t_us < b.t_us : a.cell < b.cell; });
+    for (const Row& r : rows_) out_ << r.text;
+    rows_.clear();
+  }
+
+ private:
+  struct Row {
+    uint64_t t_us;
+    size_t cell;
+    std::string text;
+  };
+  std::ofstream out_;
+  std::vector<Row> rows_;
+};
+
 }  // namespace
 
 int sim_line(const Args& args) {
@@ -71,17 +103,13 @@ int sim_line(const Args& args) {
     apply_set(*l.cell(cell_of(l, "--set", s, &rest)), rest, s);
   }
   std::vector<LineWatch> watches = line_watches(args, l);
-  std::ofstream trace;
-  if (args.has("trace")) {
-    trace.open(args.get("trace"));
-    if (!trace) throw Error("cannot write the trace file " + args.get("trace"));
-    trace << "time_s,name,value\n";
-  }
+  std::unique_ptr<LineTrace> trace = args.has("trace") ? std::make_unique<LineTrace>(args.get("trace")) : nullptr;
   // The watched names of each cell, read after each of its scans; a change is a trace row.
   std::vector<std::vector<size_t>> by_cell(l.size());
   for (size_t k = 0; k < watches.size(); ++k) by_cell[watches[k].cell].push_back(k);
   const auto rec = args.has("record") ? record_line(l, "plc_cell sim --line " + args.get("line")) : nullptr;
   recording::LineRecorder* r = rec.get();
+  // A cell's own values only: the line may run cell by cell.
   l.after_scan([&](size_t i, uint64_t t) {
     if (r) r->cell(i).scanned(l.cell(i)->plc(), t);
     if (by_cell[i].empty()) return;
@@ -92,13 +120,18 @@ int sim_line(const Args& args) {
         if (w.seen && v == w.last) continue;
         w.seen = true;
         w.last = v;
-        if (trace.is_open()) trace << seconds(t) << "," << w.name << "," << format_value(w.a, v, w.format) << "\n";
+        if (trace) trace->row(t, i, seconds(t) + "," + w.name + "," + format_value(w.a, v, w.format) + "\n");
       }
       return 0;
     });
-  });
-  uint64_t instants = 0;
-  for (uint64_t t = 0; t < duration; t += l.tick_us(), ++instants) l.scan_at(t);
+  }, line::Line::Observer::PerCell);
+  const uint64_t instants = (duration + l.tick_us() - 1) / l.tick_us();
+  // In pieces, so that the trace's rows wait in memory for one piece at the most.
+  const uint64_t piece = kTracePieceInstants * l.tick_us();
+  for (uint64_t t = 0; t < instants * l.tick_us(); t += piece) {
+    l.advance(t, std::min(t + piece, instants * l.tick_us()));
+    if (trace) trace->flush();
+  }
   if (rec) rec->save(args.get("record"));
 
   std::cout << "# plc_cell sim: line " << l.name() << ", " << l.size() << " cells, " << instants << " instants of "

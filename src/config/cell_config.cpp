@@ -3,12 +3,11 @@
 #include "plc_cell/config/yaml_reader.h"
 
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <set>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/core/plc.h"
 #include "plc_cell/core/unreadable.h"
 
@@ -208,11 +207,9 @@ CellConfig parse_cell_config(const std::string& yaml_text, const std::string& fi
 CellConfig load_cell_config(const std::string& path, ErrorList* errors, const std::set<std::string>& sections) {
   const std::string why = why_unreadable(path);
   if (!why.empty()) throw SourceError::at(path, 0, 0, "cannot open the cell config: " + why);
-  std::ifstream f(path);
-  if (!f) throw SourceError::at(path, 0, 0, "cannot open the cell config");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return parse_cell_config(ss.str(), path, errors, sections);
+  const std::optional<std::string> text = file_text(path);
+  if (!text) throw SourceError::at(path, 0, 0, "cannot open the cell config");
+  return parse_cell_config(*text, path, errors, sections);
 }
 
 CellConfig load_cell_config(const std::string& path, const std::set<std::string>& sections) {

@@ -5,15 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include <yaml-cpp/depthguard.h>
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/core/utf8.h"
 #include "plc_cell/io/serial_settings.h"
 
@@ -81,11 +80,9 @@ YAML::Node YamlReader::load(const std::string& text) const {
 }
 
 YAML::Node YamlReader::load_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot read the file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return YamlReader(path).load(text.str());
+  const std::optional<std::string> text = file_text(path);
+  if (!text) throw Error(path + ": cannot read the file: " + std::strerror(errno));
+  return YamlReader(path).load(*text);
 }
 
 void YamlReader::only(const YAML::Node& map, const std::string& key, const std::set<std::string>& allowed) const {

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
-#include <fstream>
 #include <sstream>
 
 #include "il_parse.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/core/unreadable.h"
 
 namespace plc_cell {
@@ -182,11 +182,9 @@ Program parse_program(std::string_view text, const std::string& file, const Func
 Program load_program_file(const std::string& path, const FunctionTable& functions) {
   const std::string why = why_unreadable(path);
   if (!why.empty()) throw SourceError::at(path, 0, 0, "cannot open the program file: " + why);
-  std::ifstream f(path);
-  if (!f) throw SourceError::at(path, 0, 0, "cannot open the program file");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return parse_program(ss.str(), path, functions);
+  const std::optional<std::string> text = file_text(path);
+  if (!text) throw SourceError::at(path, 0, 0, "cannot open the program file");
+  return parse_program(*text, path, functions);
 }
 
 }  // namespace plc_cell

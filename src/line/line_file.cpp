@@ -1,10 +1,9 @@
 #include "plc_cell/line/line_file.h"
 
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "plc_cell/config/yaml_reader.h"
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/core/unreadable.h"
 
 namespace plc_cell {
@@ -148,16 +147,14 @@ LineFile parse_line_file(const std::string& text, const std::string& file, Error
 }
 
 LineFile read_line_file(const std::string& path, ErrorList& errors) {
-  std::ifstream in(path);
-  if (!in) {
+  const std::optional<std::string> text = file_text(path);
+  if (!text) {
     errors.add(SourceError::at(path, 0, 0, "cannot open the line file " + path + ": " + why_unreadable(path)));
     LineFile lf;
     lf.file = path;
     return lf;
   }
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse_line_file(s.str(), path, errors);
+  return parse_line_file(*text, path, errors);
 }
 
 LineFile load_line_file(const std::string& path) {

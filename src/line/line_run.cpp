@@ -1,5 +1,7 @@
 // Running a line: its cells in RUN, the wires' ends connected, and the cells scanned on
 // one virtual clock (scan_at) or in real time (start_real_time).
+#include <algorithm>
+
 #include "plc_cell/core/error.h"
 #include "plc_cell/line/line.h"
 
@@ -43,11 +45,22 @@ void Line::connect() {
 void Line::run() {
   connect();
   due_us_.assign(size(), 0);
+  inbox_.assign(size(), {});
+  group_cells();
 }
 
 void Line::carry(size_t cell) {
   auto& pending = taps_[cell].pending();
   const std::vector<size_t>& wire_of = tap_wire_[cell];
+  if (!real_time_) {
+    for (const WireTaps::Sample& p : pending) {
+      const size_t w = wire_of[p.tap];
+      if (sinks_[w]) inbox_[wires_[w].to_cell].push_back({p.t_us, cell, w, p.value});
+      else if (on_remote_) on_remote_(w, p.t_us, p.value);
+    }
+    pending.clear();
+    return;
+  }
   // The samples for one sink cell in a row are delivered under one lock (its twin's after).
   for (size_t k = 0; k < pending.size();) {
     const size_t w = wire_of[pending[k].tap];
@@ -63,7 +76,7 @@ void Line::carry(size_t cell) {
     const auto each = [&](const std::vector<std::unique_ptr<WireSink>>& sinks, Plc& plc) {
       plc.locked([&](ScanEngine& e, Memory&) {
         for (size_t j = k; j < end; ++j)
-          sinks[wire_of[pending[j].tap]]->receive(real_time_ ? e.now_us() : pending[j].t_us, pending[j].value);
+          sinks[wire_of[pending[j].tap]]->receive(e.now_us(), pending[j].value);
         return 0;
       });
     };
@@ -91,21 +104,51 @@ void Line::deliver(size_t w, uint64_t t_us, uint32_t value) {
 
 void Line::scan_at(uint64_t t_us) {
   if (due_us_.size() != cells_.size()) throw Error("line " + name() + ": scan_at before run()");
-  for (size_t i = 0; i < cells_.size(); ++i) {
-    // Due at t_us: a multiple of its period (found by stepping, not by a division a scan).
-    uint64_t& due = due_us_[i];
-    if (due < t_us) due += (t_us - due + periods_[i] - 1) / periods_[i] * periods_[i];
-    if (due != t_us || !cells_[i]) continue;
-    due += periods_[i];
-    WireTaps& taps = taps_[i];
-    cells_[i]->plc().locked([&](ScanEngine& e, Memory& m) {
-      e.scan(t_us);
-      taps.sample(m, t_us);
+  for (size_t i = 0; i < cells_.size(); ++i) scan_cell(i, t_us);
+}
+
+void Line::scan_cell(size_t i, uint64_t t_us) {
+  // Due at t_us: a multiple of its period (found by stepping, not by a division a scan).
+  uint64_t& due = due_us_[i];
+  if (due < t_us) due += (t_us - due + periods_[i] - 1) / periods_[i] * periods_[i];
+  if (due != t_us || !cells_[i]) return;
+  due += periods_[i];
+  if (!inbox_[i].empty()) take_inbox(i, t_us);
+  WireTaps& taps = taps_[i];
+  cells_[i]->plc().locked([&](ScanEngine& e, Memory& m) {
+    e.scan(t_us);
+    taps.sample(m, t_us);
+    return 0;
+  });
+  if (!taps.pending().empty()) carry(i);
+  if (after_scan_) after_scan_(i, t_us);
+}
+
+// Instant by instant, a sample reaches its sink right after its source's scan: before the
+// sink's next scan, in the order of the instants and, at one instant, of the cells. A window
+// taken cell by cell brings a source's samples before or after the sink's scans of the whole
+// window; sorted back into that order and held until the same scan, the sink's wires see
+// them exactly as they would have (the edges of an input X0-X15 share one queue with the
+// cell's own, ties in time kept in the order they came).
+void Line::take_inbox(size_t i, uint64_t t_us) {
+  std::vector<Inbound>& box = inbox_[i];
+  const auto before = [](const Inbound& a, const Inbound& b) {
+    return a.t_us != b.t_us ? a.t_us < b.t_us : a.from_cell < b.from_cell;
+  };
+  if (!std::is_sorted(box.begin(), box.end(), before)) std::stable_sort(box.begin(), box.end(), before);
+  const auto due = std::partition_point(box.begin(), box.end(), [&](const Inbound& x) {
+    return x.t_us < t_us || (x.t_us == t_us && x.from_cell < i);
+  });
+  if (due == box.begin()) return;
+  const auto each = [&](const std::vector<std::unique_ptr<WireSink>>& sinks, Plc& plc) {
+    plc.locked([&](ScanEngine&, Memory&) {
+      for (auto x = box.begin(); x != due; ++x) sinks[x->wire]->receive(x->t_us, x->value);
       return 0;
     });
-    if (!taps.pending().empty()) carry(i);
-    if (after_scan_) after_scan_(i, t_us);
-  }
+  };
+  each(sinks_, cells_[i]->plc());
+  if (SoftCell* twin = cells_[i]->twin()) each(twin_sinks_, twin->plc());
+  box.erase(box.begin(), due);
 }
 
 std::string Line::fault() {

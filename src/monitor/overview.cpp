@@ -10,6 +10,36 @@ namespace {
 
 ApiReply overview_reply(const nlohmann::json& j) { return {200, "application/json", dump(j)}; }
 
+nlohmann::json violation_json(const PropertyStatus& p) {
+  nlohmann::json values = nlohmann::json::array();
+  for (const auto& v : p.last_values) values.push_back({{"name", v.name}, {"value", v.value}});
+  return {{"text", p.text},        {"where", p.where},
+          {"begin_us", p.last_begin_us}, {"duration_us", p.last_duration_us},
+          {"ongoing", p.last_ongoing}, {"values", values}};
+}
+
+// Each property's state at the report's instant, and the one whose last violation began
+// last (the first listed of those that began at one instant).
+void add_properties(const PropertyReport& r, nlohmann::json* out) {
+  nlohmann::json list = nlohmann::json::array(), last = nullptr;
+  const PropertyStatus* latest = nullptr;
+  for (const auto& p : r.properties) {
+    nlohmann::json j = {{"text", p.text}, {"where", p.where}, {"within_us", p.within_us},
+                        {"state", !r.evaluated ? "not evaluated yet" : p.violated ? "violated" : "holding"},
+                        {"since_us", p.violated ? nlohmann::json(p.since_us) : nlohmann::json(nullptr)},
+                        {"violations", p.violations},
+                        {"last", p.violations ? violation_json(p) : nlohmann::json(nullptr)}};
+    list.push_back(j);
+    if (p.violations && (!latest || p.last_begin_us > latest->last_begin_us)) latest = &p;
+  }
+  if (latest) last = violation_json(*latest);
+  (*out)["properties"] = list;
+  (*out)["last_violated"] = last;
+  (*out)["properties_t_us"] = r.evaluated ? nlohmann::json(r.t_us) : nlohmann::json(nullptr);
+  (*out)["properties_note"] = std::to_string(r.properties.size()) + (r.properties.size() == 1 ? " property" : " properties") +
+                              " of " + r.source + ", " + r.how;
+}
+
 }  // namespace
 
 ApiReply Overview::get(const std::string& path) const {
@@ -34,13 +64,22 @@ nlohmann::json Overview::json() const {
   nlohmann::json cells = nlohmann::json::array(), wires = nlohmann::json::array();
   for (size_t i = 0; i < set_.size(); ++i) cells.push_back(cell_json(i));
   for (const auto& w : set_.wires()) wires.push_back(wire_json(w));
-  // This server watches no properties (docs/monitor.md): it claims no violation.
-  return {{"title", set_.title()},
-          {"kind", kind_text(set_.source(0).kind())},
-          {"cells", cells},
-          {"wires", wires},
-          {"properties", nullptr},
-          {"properties_note", "no properties watched"}};
+  nlohmann::json o = {{"title", set_.title()},
+                      {"kind", kind_text(set_.source(0).kind())},
+                      {"cells", cells},
+                      {"wires", wires}};
+  if (const PropertyBoard* board = set_.properties()) {
+    // A recording's at its replay cursor, which every cell of the set shares.
+    Replay* replay = set_.source(0).replay();
+    add_properties(replay ? board->report_at(replay->cursor_us()) : board->report(), &o);
+    return o;
+  }
+  // No properties given (docs/monitor.md, "Properties"): it claims no violation.
+  o["properties"] = nullptr;
+  o["last_violated"] = nullptr;
+  o["properties_t_us"] = nullptr;
+  o["properties_note"] = "no properties watched";
+  return o;
 }
 
 // The cell's own status (what its Status tab shows), read now, and the instant it is of.

@@ -7,10 +7,10 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
 
 namespace plc_cell {
 namespace online {
@@ -77,11 +77,7 @@ void AuditLog::keep_version(const std::string& hash, const std::string& text) co
 }
 
 std::optional<std::string> AuditLog::version(const std::string& hash) const {
-  std::ifstream f(versions_ + "/" + hash + ".il", std::ios::binary);
-  if (!f) return std::nullopt;
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
+  return file_text(versions_ + "/" + hash + ".il");
 }
 
 std::optional<std::string> AuditLog::undo_target() const {

@@ -7,10 +7,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 
 #include "plc_cell/config/online_check_facet.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/core/il_parser.h"
 #include "plc_cell/core/online_change.h"
 #include "plc_cell/online/child_process.h"
@@ -20,13 +20,6 @@ namespace plc_cell {
 namespace online {
 
 namespace {
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  if (in) s << in.rdbuf();
-  return s.str();
-}
 
 std::string base_name(const std::string& path) {
   const auto slash = path.rfind('/');
@@ -70,7 +63,7 @@ std::string summary_of(const nlohmann::json& report) {
 
 ChangeService::ChangeService(Plc& plc, ChangeSetup setup)
     : plc_(plc), setup_(std::move(setup)), log_(setup_.program_path) {
-  text_ = read_text(setup_.program_path);
+  text_ = file_text(setup_.program_path).value_or("");
   hash_ = text_hash(text_);
 }
 

@@ -1,9 +1,8 @@
 #include "plc_cell/online/program_watch.h"
 
 #include <chrono>
-#include <fstream>
-#include <sstream>
 
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/online/il_diff.h"
 
 namespace plc_cell {
@@ -32,11 +31,9 @@ ProgramWatch::~ProgramWatch() {
 }
 
 bool ProgramWatch::poll() {
-  std::ifstream in(changes_.file(), std::ios::binary);
-  if (!in) return false;  // an editor replacing the file: the next look sees the new one
-  std::ostringstream s;
-  s << in.rdbuf();
-  const std::string text = s.str();
+  const std::optional<std::string> read = file_text(changes_.file());
+  if (!read) return false;  // an editor replacing the file: the next look sees the new one
+  const std::string& text = *read;
   const std::string hash = text_hash(text);
   if (hash == changes_.hash() || hash == last_refused_) return false;
   ChangeRequest r;

@@ -1,8 +1,9 @@
 #include "plc_cell/recording/recording.h"
 
+#include "plc_cell/core/file_text.h"
+
 #include <cctype>
 #include <fstream>
-#include <sstream>
 
 namespace plc_cell {
 namespace recording {
@@ -15,11 +16,9 @@ std::string file_name_for(const std::string& case_name) {
 }
 
 std::string read_recording_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot open the recording " + path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  std::optional<std::string> text = file_text(path);
+  if (!text) throw Error("cannot open the recording " + path);
+  return std::move(*text);
 }
 
 void write_recording_file(const std::string& path, const std::string& bytes) {

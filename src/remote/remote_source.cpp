@@ -1,9 +1,8 @@
 #include "plc_cell/remote/remote_source.h"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/core/il_parser.h"
 #include "plc_cell/io/transport.h"
 
@@ -14,10 +13,7 @@ std::shared_ptr<const monitor::ProgramView> load_program_view(
     const std::string& path, const FunctionTable& functions, std::vector<std::pair<std::string, Address>> signals) {
   auto view = std::make_shared<monitor::ProgramView>();
   view->program = load_program_file(path, functions);  // throws SourceError with the place
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  view->text = text.str();
+  view->text = file_text(path).value_or("");
   view->file = path.substr(path.find_last_of('/') + 1);
   view->signals = std::move(signals);
   view->version = 1;

@@ -2,14 +2,13 @@
 
 #include <std_msgs/Bool.h>
 
-#include <fstream>
-#include <sstream>
-
 #include "plc_cell/ForcedPoints.h"
 #include "plc_cell/IoState.h"
 #include "plc_cell/IoWords.h"
 #include "plc_cell/Signal.h"
 #include "plc_cell/core/error.h"
+#include "plc_cell/core/file_text.h"
+#include "plc_cell/core/unreadable.h"
 #include "plc_cell/online/il_diff.h"
 #include "plc_cell/ros/extension_diagnostics.h"
 #include "plc_cell/ros/frame_id.h"
@@ -207,16 +206,14 @@ bool PlcNode::on_load(LoadProgram::Request& req, LoadProgram::Response& res) {
       std::lock_guard<std::mutex> lk(path_mu_);
       path = req.path.empty() ? program_path_ : req.path;
     }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    std::optional<std::string> text = file_text(path);
+    if (!text) {
       res.success = false;
       res.result = "refused";
-      res.message = "cannot read " + path;
+      res.message = "cannot read " + path + ": " + why_unreadable(path);
       return true;
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    r.text = text.str();
+    r.text = std::move(*text);
   }
   online::ChangeService& changes = cell_->changes();
   ChangeOutcome o;

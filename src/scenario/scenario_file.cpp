@@ -1,15 +1,14 @@
 #include "plc_cell/scenario/scenario_file.h"
 
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "plc_cell/config/cell_config.h"
 #include "plc_cell/config/error_list.h"
 #include "plc_cell/config/probe_facet.h"
 #include "plc_cell/config/yaml_reader.h"
+#include "plc_cell/core/file_text.h"
 #include "plc_cell/core/unreadable.h"
 #include "sections.h"
 
@@ -457,14 +456,12 @@ Scenario parse_scenario(const std::string& text, const std::string& file) {
 }
 
 Scenario read_scenario(const std::string& path, ErrorList& errors) {
-  std::ifstream in(path);
-  if (!in) {
+  const std::optional<std::string> text = file_text(path);
+  if (!text) {
     errors.add(SourceError::at(path, 0, 0, "cannot open the scenario file " + path + ": " + why_unreadable(path)));
     return Scenario();
   }
-  std::ostringstream s;
-  s << in.rdbuf();
-  Scenario sc = parse_scenario(s.str(), path, errors);
+  Scenario sc = parse_scenario(*text, path, errors);
   // The files it names, each checked at the line that names it, with the path it led to;
   // no cell is then built from them (its error would name neither).
   struct Named {

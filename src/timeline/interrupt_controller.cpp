@@ -1,5 +1,7 @@
 #include "plc_cell/timeline/interrupt_controller.h"
 
+#include <algorithm>
+
 #include "plc_cell/core/program.h"
 
 namespace plc_cell {
@@ -10,18 +12,21 @@ InterruptController::InterruptController() {
   enabled_.fill(true);
 }
 
+// From the program's own labels (a few), not from every source's names: a cell's first scan
+// binds, and building 53 sources' label strings there was a quarter of that scan.
 void InterruptController::bind(const Program& program) {
   present_ = 0;
-  for (int s = 0; s < kSourceCount; ++s) {
-    label_[s].clear();
-    for (const auto& l : source_labels(s)) {
-      auto it = program.labels.find(l);
-      if (it != program.labels.end() && it->second >= program.main_end) {
-        label_[s] = l;
-        present_ |= uint64_t(1) << s;
-        break;
-      }
+  for (auto& l : label_) l.clear();
+  for (const auto& [label, at] : program.labels) {
+    const int s = source_of_label(label);
+    if (s < 0 || at < program.main_end) continue;
+    // The new name before the old one(s) when a program has both.
+    if (present(s)) {
+      const std::vector<std::string> names = source_labels(s);
+      if (std::find(names.begin(), names.end(), label) > std::find(names.begin(), names.end(), label_[s])) continue;
     }
+    label_[s] = label;
+    present_ |= uint64_t(1) << s;
   }
   reset();
 }

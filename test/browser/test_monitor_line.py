@@ -2,7 +2,9 @@
 --http-tcp`): the overview lists every cell with its true RUN/STOP (a cell stopped through
 its API shows STOP, the others RUN), a wire's values follow its source, one click opens a
 cell's ladder page, and a cell's watch table reads a qualified name of another cell. Also
-the overview of a line's recording (`plc_cell monitor --recording`), one cursor for all."""
+the overview of a line's recording (`plc_cell monitor --recording`), one cursor for all.
+With --properties FILE, the overview shows each property of the file and the last one
+violated, live (a violation the test forces) and at a recording's cursor."""
 import json
 import os
 import subprocess
@@ -166,3 +168,108 @@ def test_a_lines_recording_is_one_overview_on_one_cursor(scratch):
         assert e.value.code == 404 and "no cell 'nope'" in json.loads(e.value.read().decode())["error"]
     finally:
         stop(proc)
+
+
+ZONE = "never: robot.in_zone and test.handler_in_zone"
+
+
+def properties_file(scratch, name, properties, line=LINE):
+    """A line's scenario file in scratch with these properties (and one case, as a scenario has)."""
+    path = os.path.join(scratch, name + ".scenario.yaml")
+    with open(path, "w") as f:
+        f.write("line: %s\nproperties:\n%s\ncases:\n  - name: a\n    steps:\n      - after: 1ms\n"
+                % (line, "".join("  - %s\n" % p for p in properties)))
+    return path
+
+
+def property_row(driver, i):
+    """The overview's row of property i: {text, state, violations, last} as shown."""
+    return js(driver, "const tr = document.querySelector(`#property-table tr[data-property='${arguments[0]}']`);"
+                      "return tr ? {text: tr.querySelector('td.text').textContent,"
+                      "             state: tr.querySelector('td.state').textContent,"
+                      "             violations: tr.querySelector('td.violations').textContent,"
+                      "             last: tr.querySelector('td.last').textContent} : null", i)
+
+
+def test_a_forced_violation_shows_as_the_last_property_violated(scratch, browser):
+    path = properties_file(scratch, "zone", ["never: robot.in_zone and test.handler_in_zone"])
+    proc, base, session = serve(scratch, "run_line_properties",
+                                "plc_cell run --line %s --http-writable all --properties %s" % (LINE, path))
+    live = {"base": base, "token": session["token"]}
+    try:
+        open_overview(browser, base)
+        wait(browser, "the property holding, never violated",
+             lambda d: property_row(d, 0) == {"text": ZONE, "state": "holding", "violations": "0", "last": "–"})
+        assert not browser.find_element("id", "last-violated").is_displayed()
+        assert "1 property of %s" % path in browser.find_element("id", "properties").text
+        post(live, "/cell/robot/api/force", {"address": "in_zone", "action": "on"})
+        post(live, "/cell/test/api/force", {"address": "handler_in_zone", "action": "on"})
+        try:
+            banner = browser.find_element("id", "last-violated")
+            wait(browser, "the last violated on top, going on",
+                 lambda d: banner.is_displayed() and banner.text.startswith("last violated: " + ZONE + " at ")
+                 and "so far" in banner.text and "robot.in_zone = ON, test.handler_in_zone = ON" in banner.text)
+            row = property_row(browser, 0)
+            assert row["state"].startswith("violated since ") and row["violations"] == "1", row
+            assert js(browser, "return getComputedStyle(document.getElementById('last-violated')).backgroundColor") \
+                == "rgb(197, 48, 48)"  # the page's error red
+        finally:
+            post(live, "/cell/robot/api/force", {"address": "in_zone", "action": "release"})
+            post(live, "/cell/test/api/force", {"address": "handler_in_zone", "action": "release"})
+        # Released: the property holds again, its violation ended with its length.
+        wait(browser, "the property holding again after one violation",
+             lambda d: (property_row(d, 0) or {}).get("state") == "holding")
+        o = get_json(base + "/api/overview")
+        assert o["properties"][0]["violations"] == 1 and o["last_violated"]["ongoing"] is False, o
+        assert o["last_violated"]["duration_us"] > 0
+        assert "so far" not in browser.find_element("id", "last-violated").text
+    finally:
+        stop(proc)
+
+
+def test_a_lines_recording_tells_its_properties_at_the_cursor(scratch):
+    """The example line's robot is in the shared zone from 3.54 s to 4.84 s (its scenario's
+    cases): `never: robot.in_zone` is violated there, and nowhere else in 6 s."""
+    rec = os.path.join(scratch, "line6.plcrec")
+    code, out = run("plc_cell sim --line %s --duration 6s --record %s" % (LINE, rec))
+    assert code == 0, out
+    path = properties_file(scratch, "robot_zone", ["never: robot.in_zone", "always: infeed.R0 >= 0"])
+    proc, base, session = serve(scratch, "monitor_line_properties",
+                                "plc_cell monitor --recording %s --properties %s" % (rec, path))
+    try:
+        def at(t_us):
+            req = urllib.request.Request(base + "/cell/robot/api/replay", data=json.dumps({"seek_us": t_us}).encode(),
+                                         method="POST", headers={"X-Plc-Token": session["token"]})
+            urllib.request.urlopen(req, timeout=5).read()
+            return get_json(base + "/api/overview")
+        o = at(1000000)
+        assert o["properties_t_us"] == 1000000
+        assert [p["state"] for p in o["properties"]] == ["holding", "holding"] and o["last_violated"] is None, o
+        o = at(3600000)
+        zone = o["properties"][0]
+        assert zone["state"] == "violated" and zone["since_us"] == 3540000 and zone["violations"] == 1, zone
+        assert o["last_violated"] == {"text": "never: robot.in_zone", "where": path + ":3", "begin_us": 3540000,
+                                      "duration_us": 60000, "ongoing": True,
+                                      "values": [{"name": "robot.in_zone", "value": "ON"}]}, o["last_violated"]
+        o = at(5500000)
+        assert o["properties"][0]["state"] == "holding" and o["properties"][1]["violations"] == 0
+        assert o["last_violated"]["duration_us"] == 1300000 and o["last_violated"]["ongoing"] is False
+        o = at(0)  # back before it: no violation yet
+        assert o["properties"][0]["violations"] == 0 and o["last_violated"] is None
+    finally:
+        stop(proc)
+
+
+def test_properties_of_another_line_or_a_cell_are_refused_where_they_say_so(scratch):
+    rec = os.path.join(scratch, "line1.plcrec")
+    assert run("plc_cell sim --line %s --duration 100ms --record %s" % (LINE, rec))[0] == 0
+    other = properties_file(scratch, "other", ["never: robot.in_zone"],
+                            os.path.join(ROOT, "examples", "line", "line_broken.line.yaml"))
+    code, out = run("plc_cell monitor --recording %s --properties %s --duration 1s" % (rec, other))
+    assert code == 1 and "%s:1:7: error: --properties: line: " % other in out and "is not line example_line" in out, out
+    code, out = run("plc_cell run --line %s --properties %s --duration 1s" % (LINE, other))
+    assert code == 1 and "%s:1:7: error:" % other in out and "is not the line run" in out, out
+    unknown = properties_file(scratch, "unknown", ["never: robot.no_such_signal", "never: robot.counter.belt"])
+    code, out = run("plc_cell run --line %s --properties %s --duration 1s" % (LINE, unknown))
+    assert code == 1 and "%s:3: error: property 'never: robot.no_such_signal'" % unknown in out, out
+    assert "%s:4: error: property 'never: robot.counter.belt': " % unknown in out and "addresses and signals" in out, out

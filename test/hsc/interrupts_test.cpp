@@ -119,6 +119,20 @@ TEST(Interrupts, SimultaneousEventsRunHighestFirstAndDisabledSourcesAreIgnored) 
   EXPECT_EQ(cell.isrs[1].t_ns, 1000000u);
 }
 
+TEST(Interrupts, AProgramWithBothNamesOfASourceRunsTheNewOne) {
+  // HSC0I is the new name of HST0I: a program that has both runs HSC0I when HST0 expires,
+  // whichever comes first in the text.
+  for (const bool old_first : {true, false}) {
+    const std::string routines = old_first ? routine("HST0I", -1, "R11") + routine("HSC0I", -1, "R10")
+                                           : routine("HSC0I", -1, "R10") + routine("HST0I", -1, "R11");
+    HscCell cell("counters:\n  hsc0: {type: timer}\n",
+                 "ORG M1924\nFUN 8D MOV S=10 D=DR4098\nFUN 93 CN=0 D=1\nEND\n" + routines);
+    cell.run(3000);
+    EXPECT_EQ(cell.get("R10"), 1u) << (old_first ? "HST0I first" : "HSC0I first");
+    EXPECT_EQ(cell.get("R11"), 0u) << (old_first ? "HST0I first" : "HSC0I first");
+  }
+}
+
 TEST(Interrupts, LabelsAndOldNames) {
   EXPECT_EQ(source_of_label("HSTAI"), kHstaI);
   EXPECT_EQ(source_of_label("ATMRI"), kHstaI);

@@ -3,6 +3,10 @@
 // and the example line's scenario, exploration and broken variant, run as a user runs them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <sstream>
+#include <vector>
+
 #include "../core/run_tool.h"
 #include "../core/tool_text.h"
 #include "line_fixture.h"
@@ -43,6 +47,12 @@ TEST(LineCli, TheExampleLineRunsTheSameEveryTime) {
   EXPECT_EQ(outs[1], outs[0]);
   EXPECT_EQ(slurp(dir + "/lt0.csv"), slurp(dir + "/lt1.csv"));
   EXPECT_EQ(slurp(dir + "/lr0.plcrec"), slurp(dir + "/lr1.plcrec"));
+  // Without a trace, the same run to the byte of its recording.
+  const ToolResult windows = run_tool("sim --line " + kExample + "line.line.yaml --duration 60s --watch "
+                                      "infeed.R0,test.R1,test.R3,test.R2,robot.in_zone --record " + dir + "/lr2.plcrec");
+  ASSERT_EQ(windows.status, 0) << windows.out;
+  EXPECT_EQ(windows.out, outs[0]);
+  EXPECT_EQ(slurp(dir + "/lr2.plcrec"), slurp(dir + "/lr0.plcrec"));
   // The robot enters the zone at 3.54 s with the first part (docs/lines.md walks through it).
   EXPECT_TRUE(has(slurp(dir + "/lt0.csv"), "\n3.540000,robot.in_zone,1\n"));
   const auto rec = recording::LineReader::load(dir + "/lr0.plcrec");
@@ -52,6 +62,48 @@ TEST(LineCli, TheExampleLineRunsTheSameEveryTime) {
   EXPECT_EQ(rec.cell(0).scans(), 60000u);
   EXPECT_EQ(rec.cell(2).scans(), 30000u);
   EXPECT_EQ(rec.info().wires.at(3), "infeed.release -> robot.nest_sensor (a part: travel 1.500 s, length 0.200 s)");
+}
+
+// The rows of a trace after its header, each as (instant, cell's place in cells), in order;
+// every row's name is CELL.NAME of one of cells.
+std::vector<std::pair<double, size_t>> trace_rows(const std::string& csv, const std::vector<std::string>& cells) {
+  std::istringstream rows(csv);
+  std::string row;
+  std::getline(rows, row);
+  std::vector<std::pair<double, size_t>> out;
+  while (std::getline(rows, row)) {
+    const size_t c1 = row.find(','), c2 = row.find(',', c1 + 1);
+    const std::string name = row.substr(c1 + 1, c2 - c1 - 1);
+    const auto cell = std::find(cells.begin(), cells.end(), name.substr(0, name.find('.')));
+    EXPECT_NE(cell, cells.end()) << row;
+    out.push_back({std::stod(row.substr(0, c1)), size_t(cell - cells.begin())});
+  }
+  return out;
+}
+
+TEST(LineCli, ATraceComesInTheOrderOfTheInstantsAndOfTheCells) {
+  // b and c follow a (no wire back): the line runs each a whole window ahead of the next, yet
+  // the trace lists each instant's rows in the file's order of the cells, c before a.
+  LineFolder f("trace_order", {{"blink.il", "ORG NOT M1\nTMR T0 2\nORG T0\nOUT M1\nORG M1\nFUN 9 MOVN S=WY0 D=WY0\nEND\n"},
+                               {"copy.il", "ORG X20\nOUT Y0\nEND\n"},
+                               {"a.yaml", cell_yaml("a", "blink.il")},
+                               {"b.yaml", cell_yaml("b", "copy.il")},
+                               {"c.yaml", cell_yaml("c", "copy.il", "0.002")},
+                               {"l.line.yaml", "cells:\n  c: c.yaml\n  a: a.yaml\n  b: b.yaml\nwires:\n"
+                                               "  - {from: a.Y0, to: b.X20}\n  - {from: b.Y0, to: c.X20, delay: 3ms}\n"}});
+  const ToolResult r = run_tool("sim --line " + f.path("l.line.yaml") + " --duration 20s --watch a.Y0,a.M1,b.Y0,c.Y0 "
+                                "--trace " + f.path("t.csv"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto rows = trace_rows(slurp(f.path("t.csv")), {"c", "a", "b"});
+  // a's timer (20 ms, then a scan to restart) inverts Y0 with a one-scan pulse of M1: some
+  // 900 times in 20 s, each with a row for M1 on, M1 off, a's Y0, b's Y0 and c's Y0.
+  ASSERT_GT(rows.size(), 4000u);
+  for (size_t i = 1; i < rows.size(); ++i) ASSERT_LE(rows[i - 1], rows[i]) << "row " << i + 1 << " of the trace";
+  // M1 goes off at the instant b's Y0 follows a's (the zero-delay wire: b's next scan): those
+  // instants hold a row of a before a row of b.
+  size_t shared = 0;
+  for (size_t i = 1; i < rows.size(); ++i) shared += rows[i - 1].first == rows[i].first && rows[i - 1].second != rows[i].second;
+  EXPECT_GT(shared, 800u);
 }
 
 TEST(LineCli, ExploringTheExampleFindsNothing) {

@@ -21,8 +21,9 @@ class CellSetTest : public ::testing::Test {
   void TearDown() override {
     if (server) server->stop();
   }
-  void serve() {
+  void serve(std::shared_ptr<const monitor::PropertyBoard> board = nullptr) {
     monitor::SourceSet set;
+    set.watch(board);
     set.set_title("line test");
     set.add("a", std::make_unique<monitor::LiveSource>(ServerContext(a), "cell a"));
     set.add("b", std::make_unique<monitor::LiveSource>(ServerContext(b), "cell b"));
@@ -81,6 +82,70 @@ TEST_F(CellSetTest, OverviewListsEachCellWithItsOwnMode) {
   o = overview();
   EXPECT_EQ(o["cells"][0]["mode"], "run");
   EXPECT_EQ(o["cells"][1]["mode"], "stop");
+}
+
+// A board as the watcher above the monitor fills it (scenario/property_watcher.h).
+class FixedBoard : public monitor::PropertyBoard {
+ public:
+  monitor::PropertyReport r;
+  monitor::PropertyReport report() const override { return r; }
+};
+
+monitor::PropertyStatus watched(const std::string& text, uint64_t violations, uint64_t begin_us, uint64_t duration_us,
+                                bool ongoing) {
+  monitor::PropertyStatus p;
+  p.text = text;
+  p.where = "w.scenario.yaml:3";
+  p.violations = violations;
+  p.last_begin_us = begin_us;
+  p.last_duration_us = duration_us;
+  p.last_ongoing = p.violated = ongoing;
+  p.since_us = ongoing ? begin_us : 0;
+  if (violations) p.last_values = {{"a.Y0", "ON"}, {"b.D0", "-3"}};
+  return p;
+}
+
+TEST_F(CellSetTest, OverviewShowsEachWatchedPropertyAndTheLastViolated) {
+  auto board = std::make_shared<FixedBoard>();
+  board->r.source = "w.scenario.yaml";
+  board->r.how = "evaluated after every scan";
+  board->r.properties = {watched("never: a.Y0", 0, 0, 0, false), watched("never: b.Y0", 0, 0, 0, false)};
+  serve(board);
+  // Before the first instant: listed, claiming neither a hold nor a violation.
+  auto o = overview();
+  ASSERT_EQ(o["properties"].size(), 2u) << o.dump();
+  EXPECT_EQ(o["properties"][0]["state"], "not evaluated yet");
+  EXPECT_TRUE(o["properties_t_us"].is_null());
+  EXPECT_TRUE(o["last_violated"].is_null());
+  EXPECT_EQ(o["properties_note"], "2 properties of w.scenario.yaml, evaluated after every scan");
+  board->r.evaluated = true;
+  board->r.t_us = 12000;
+  board->r.properties = {watched("never: a.Y0 and b.D0 < 0", 3, 9000, 3000, true),  // violated since 9 ms
+                         watched("always: b.Y0", 1, 10000, 2000, false),             // began later, ended
+                         watched("never: b.X0", 0, 0, 0, false)};
+  o = overview();
+  ASSERT_EQ(o["properties"].size(), 3u) << o.dump();
+  EXPECT_EQ(o["properties_t_us"], 12000);
+  const auto& p = o["properties"][0];
+  EXPECT_EQ(p["text"], "never: a.Y0 and b.D0 < 0");
+  EXPECT_EQ(p["where"], "w.scenario.yaml:3");
+  EXPECT_EQ(p["state"], "violated");
+  EXPECT_EQ(p["since_us"], 9000);
+  EXPECT_EQ(p["violations"], 3);
+  EXPECT_EQ(p["last"]["begin_us"], 9000);
+  EXPECT_EQ(p["last"]["duration_us"], 3000);
+  EXPECT_EQ(p["last"]["ongoing"], true);
+  EXPECT_EQ(p["last"]["values"][1]["name"], "b.D0");
+  EXPECT_EQ(p["last"]["values"][1]["value"], "-3");
+  EXPECT_EQ(o["properties"][1]["state"], "holding");
+  EXPECT_TRUE(o["properties"][1]["since_us"].is_null());
+  EXPECT_EQ(o["properties"][2]["violations"], 0);
+  EXPECT_TRUE(o["properties"][2]["last"].is_null());
+  // The last violated: the one whose last violation began last, ended or not.
+  EXPECT_EQ(o["last_violated"]["text"], "always: b.Y0");
+  EXPECT_EQ(o["last_violated"]["begin_us"], 10000);
+  EXPECT_EQ(o["last_violated"]["duration_us"], 2000);
+  EXPECT_EQ(o["last_violated"]["ongoing"], false);
 }
 
 TEST_F(CellSetTest, AWiresEndsAreReadFromTheirOwnCells) {

@@ -3,11 +3,12 @@
 // from its cell YAML, and the wires between them, carried in this process.
 //
 // In virtual time one clock runs every cell: scan_at(t) scans, in the order of the line
-// file, each cell whose period divides t, and then carries what each wire's source sampled
-// at the end of its scan to the wire's sink end, which delivers it at its instant. A scan
-// reads its inputs at its instant, before any cell's outputs of that instant, so the order
-// of the cells at one instant decides nothing a cell sees: the same file gives the same
-// run, scan for scan, whatever its order (docs/lines.md, "One clock").
+// file, each cell whose period divides t, and what each wire's source sampled at the end of
+// its scan reaches the wire's sink end before the sink's next scan, which delivers it at its
+// instant. A scan reads its inputs at its instant, before any cell's outputs of that
+// instant, so the order of the cells at one instant decides nothing a cell sees: the same
+// file gives the same run, scan for scan, whatever its order (docs/lines.md, "One clock").
+// advance() gives the same scans taken cell by cell over windows of instants.
 //
 // In real time each cell scans on its own thread (or cells share threads, as nodelets do),
 // and each source's thread carries its wires after its scans; a sink then counts the delay
@@ -89,10 +90,23 @@ class Line {
   // Every cell here whose period divides t_us scans at t_us, in file order, then the wires
   // carry what they sampled. t_us on the tick grid, increasing.
   void scan_at(uint64_t t_us);
+  // Every instant of [from_us, to_us) on the tick grid, from_us on it: the same scans with
+  // the same results as scan_at at each instant in turn, but taken cell by cell over a
+  // window of instants where the wires allow it (line_schedule.cpp), so that a cell stays in
+  // the caches for many scans. Instant by instant when an observer needs the whole line at
+  // each instant (after_scan with Observer::Line) or wires leave the process.
+  void advance(uint64_t from_us, uint64_t to_us);
+  // What an after_scan observer reads: the whole line (every cell at the instant of the call:
+  // the line then runs instant by instant), or only the cell it is called for (each cell's
+  // scans come in order, but one cell may be ahead of another).
+  enum class Observer { Line, PerCell };
   // Called after each scan of a cell, with its index and instant (recordings, traces), once
   // its wires are carried. In real time on the cell's scan thread, with no lock held: for
   // two cells on two threads, at the same time. Set it before the line runs.
-  void after_scan(std::function<void(size_t cell, uint64_t t_us)> f) { after_scan_ = std::move(f); }
+  void after_scan(std::function<void(size_t cell, uint64_t t_us)> f, Observer reads = Observer::Line) {
+    after_scan_ = std::move(f);
+    observer_ = reads;
+  }
   // "robot: <why>" for the first cell here (in file order) that stopped on a fault; "" if none.
   std::string fault();
 
@@ -127,6 +141,13 @@ class Line {
   Diagnostic refused_wire(const Wire& w, const CellConfig& to_cfg);
   void connect();
   void carry(size_t cell);  // the samples cell's taps took, to their sinks
+  // Virtual time: cell i scans at t_us if it is due then, its inbox delivered first.
+  void scan_cell(size_t i, uint64_t t_us);
+  // The samples for cell i that the instant-by-instant order delivers before its scan at t_us.
+  void take_inbox(size_t i, uint64_t t_us);
+  // The cells here in groups (line_schedule.cpp): cells that wires join in a cycle share one,
+  // and every wire between two groups goes from an earlier group to a later one.
+  void group_cells();
   void deliver(size_t wire, uint64_t t_us, uint32_t value);
   bool here(size_t i) const { return cells_[i] != nullptr; }
 
@@ -144,6 +165,17 @@ class Line {
   // and the same in the sink's lockstep twin (runtime/cell.h), which every value reaches too.
   std::vector<std::unique_ptr<WireSink>> sinks_, twin_sinks_;
   std::function<void(size_t, uint64_t)> after_scan_;
+  Observer observer_ = Observer::Line;
+  // Virtual time: per sink cell here, the samples of its wires not yet delivered, each with
+  // its source's instant and cell. A sink takes them just before its next scan, so the order
+  // the cells scan in changes nothing it sees.
+  struct Inbound {
+    uint64_t t_us;
+    size_t from_cell, wire;
+    uint32_t value;
+  };
+  std::vector<std::vector<Inbound>> inbox_;
+  std::vector<std::vector<size_t>> groups_;
   std::function<void(size_t, uint64_t, uint32_t)> on_remote_;
   std::vector<std::pair<SharedScanThread*, uint64_t>> shared_;  // in real time on shared threads
   bool real_time_ = false;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/monitor/property_board.h"
 #include "plc_cell/monitor/source.h"
 
 namespace plc_cell {
@@ -33,6 +34,9 @@ class SourceSet {
   void add(const std::string& name, std::unique_ptr<Source> source);
   void add_wire(SetWire w) { wires_.push_back(std::move(w)); }
   void set_title(std::string t) { title_ = std::move(t); }
+  // The properties watched over these cells, which the overview shows (nullptr: none).
+  void watch(std::shared_ptr<const PropertyBoard> board) { properties_ = std::move(board); }
+  const PropertyBoard* properties() const { return properties_.get(); }
   // A lone cell's monitor, as it was before sets: its page at /, no overview page (the
   // server of one Source). A set of one cell otherwise still opens on the overview (a line
   // of one, the one nodelet of a process).
@@ -62,6 +66,7 @@ class SourceSet {
   std::vector<Entry> cells_;
   std::vector<SetWire> wires_;
   std::string title_;
+  std::shared_ptr<const PropertyBoard> properties_;
   bool alone_ = false;
 };
 

@@ -1,8 +1,8 @@
 // The overview of a line's cells (docs/monitor.md, "One monitor for a line"): polls
 // GET /api/overview and shows each cell's RUN/STOP, scan figures, faults and forced points,
-// and each wire's two ends. When the server stops answering, a banner says so and every
-// value on the page is marked stale with its age; a cell the server could not read is shown
-// without a mode, with the reason.
+// each wire's two ends, and the properties watched with the last one violated. When the
+// server stops answering, a banner says so and every value on the page is marked stale
+// with its age; a cell the server could not read is shown without a mode, with the reason.
 
 import {html, keyedRows, setText} from "./dom.js";
 
@@ -12,6 +12,7 @@ const page = {last: null, lastAt: 0};
 
 const us = (ns) => (ns === null || ns === undefined ? "–" : `${(ns / 1000).toFixed(1)} µs`);
 const seconds = (t) => (t === null || t === undefined ? "–" : `${(t / 1e6).toFixed(3)} s`);
+const span = (d) => (d < 1e6 ? `${d / 1000} ms` : seconds(d));
 
 function modeText(mode) {
   return mode === "run" ? "RUN" : mode === "stop" ? "STOP" : "?";
@@ -74,6 +75,42 @@ function renderWires(wires) {
   });
 }
 
+// "at 12.345 s, for 3 ms" (or "for 3 ms so far" while it goes on).
+function violationText(v) {
+  return `at ${seconds(v.begin_us)}, for ${span(v.duration_us)}${v.ongoing ? " so far" : ""}`;
+}
+
+const valuesText = (v) => v.values.map((x) => `${x.name} = ${x.value}`).join(", ");
+
+const PROPERTY_COLUMNS = ["text", "state", "violations", "last", "values"];
+
+function renderProperties(o) {
+  const table = $("property-table");
+  const last = $("last-violated");
+  table.hidden = o.properties === null;
+  last.hidden = !o.last_violated;
+  $("properties").textContent = o.properties_t_us === null || o.properties_t_us === undefined
+    ? o.properties_note : `${o.properties_note}; evaluated up to ${seconds(o.properties_t_us)}`;
+  if (o.last_violated) {
+    const v = o.last_violated;
+    setText(last, `last violated: ${v.text} ${violationText(v)} — ${valuesText(v)} (${v.where})`);
+  }
+  if (o.properties === null) return;
+  keyedRows(table.querySelector("tbody"), o.properties.map((p, i) => ({p, i})), ({i}) => String(i), (tr, {i}) => {
+    tr.dataset.property = String(i);
+    for (const column of PROPERTY_COLUMNS) html("td", {class: column}, tr);
+  }, (tr, {p}) => {
+    const td = (column) => tr.querySelector(`td.${column}`);
+    td("text").title = p.within_us ? `${p.where}; a violation counts past ${span(p.within_us)}` : p.where;
+    setText(td("text"), p.text);
+    td("state").dataset.state = p.state;
+    setText(td("state"), p.state === "violated" ? `violated since ${seconds(p.since_us)}` : p.state);
+    setText(td("violations"), String(p.violations));
+    setText(td("last"), p.last ? violationText(p.last) : "–");
+    setText(td("values"), p.last ? valuesText(p.last) : "–");
+  });
+}
+
 function render(o) {
   $("kind").textContent = o.kind;
   $("kind").dataset.kind = o.kind;
@@ -81,7 +118,7 @@ function render(o) {
   document.title = `${o.title || "plc_cell"} — monitor`;
   renderCells(o.cells);
   renderWires(o.wires);
-  $("properties").textContent = o.properties === null ? o.properties_note : "";
+  renderProperties(o);
 }
 
 // The values shown are those of the last answer: past it, they are marked stale with their age.
