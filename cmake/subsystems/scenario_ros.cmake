@@ -3,7 +3,7 @@
 # virtual time through its topics; launch/scenario.test.xml starts both. The runner is
 # test tooling, built with the tests (catkin's default), as gtest is a test dependency.
 if(CATKIN_ENABLE_TESTING)
-  add_executable(scenario_runner src/ros/scenario_runner_main.cpp src/ros/scenario_runner_target.cpp src/ros/scenario_node_link.cpp
+  add_executable(scenario_runner src/ros/scenario_runner_main.cpp src/ros/scenario_runner_target.cpp src/ros/scenario_node_link.cpp src/ros/scenario_line_link.cpp
     src/ros/topic_probes.cpp src/ros/counter_topic_probes.cpp src/ros/axis_topic_probes.cpp src/ros/temperature_topic_probes.cpp
     src/ros/server_params.cpp src/ros/topic_plc.cpp src/ros/scenario_real_time.cpp src/ros/scenario_line_real_time.cpp)
   target_include_directories(scenario_runner PRIVATE ${catkin_INCLUDE_DIRS} ${GTEST_INCLUDE_DIRS})

@@ -55,32 +55,53 @@ bool PlcNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
   if (!res.message.empty()) return true;
   std::string problem;
   driver_->reset([&] {
-    for (const auto& name : extension_diagnostics_) updater_.removeByName(name);
-    listing_.reset();
-    cell_->stop();
-    own_cell_ = std::move(fresh);  // the old cell goes here; nothing holds it any more
-    cell_ = own_cell_.get();
-    listing_ = CellDirectory::process().list(listed_as_, *cell_);
-    topic_groups_.restart(cell_->soft());
-    extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());
-    {
-      std::lock_guard<std::mutex> lk(path_mu_);
-      program_path_ = cell_->program_path();
-    }
-    {
-      std::lock_guard<std::mutex> lk(shown_mu_);
-      shown_ = std::make_unique<Shown>(shown_->counts.size());
-    }
-    seen_any_ = false;  // between scans: the fresh cell's first scan is published
-    try {
-      cell_->start_servers([](const Server&) {});
-    } catch (const std::exception& e) {
-      problem = std::string("~reset: ") + e.what();
-    }
+    Cell& cell = *fresh;
+    problem = swap_cell(std::move(fresh), cell);
   });
   res.success = problem.empty();
   res.message = problem.empty() ? "a fresh cell from " + cell_path_ + "; its first scan at the next clock message" : problem;
   return true;
+}
+
+std::string PlcNode::swap_cell(std::unique_ptr<Cell> own, Cell& cell) {
+  for (const auto& name : extension_diagnostics_) updater_.removeByName(name);
+  listing_.reset();
+  cell_->stop();  // its servers, before the fresh cell's take their ports
+  own_cell_ = std::move(own);  // an old cell of its own goes here; nothing holds it any more
+  cell_ = &cell;
+  listing_ = CellDirectory::process().list(listed_as_, *cell_);
+  topic_groups_.restart(cell_->soft());
+  extension_diagnostics_ = add_extension_diagnostics(updater_, cell_->soft());
+  {
+    std::lock_guard<std::mutex> lk(path_mu_);
+    program_path_ = cell_->program_path();
+  }
+  {
+    std::lock_guard<std::mutex> lk(shown_mu_);
+    shown_ = std::make_unique<Shown>(shown_->counts.size());
+  }
+  seen_any_ = false;  // between scans: the fresh cell's first scan is published
+  try {
+    cell_->start_servers([](const Server&) {});
+  } catch (const std::exception& e) {
+    return std::string("~reset: ") + e.what();
+  }
+  return "";
+}
+
+std::string PlcNode::adoption_refusal(Cell& fresh) {
+  if (cell_->persister())
+    return "the cell keeps its retentive memory in " + cell_->persister()->status().file +
+           ", so a fresh cell would not start fresh; run the tests without a persist file";
+  if (topic_layout(fresh, topic_groups_) != topic_layout(*cell_, topic_groups_))
+    return "the cell's files now give other topics (signals, register groups, counters, axes or temperature "
+           "channels); restart the line";
+  return "";
+}
+
+void PlcNode::adopt(Cell& fresh) {
+  const std::string problem = swap_cell(nullptr, fresh);
+  if (!problem.empty()) ROS_ERROR("plc_node %s: %s", node_name_.c_str(), problem.c_str());
 }
 
 }  // namespace plc_cell

@@ -15,6 +15,12 @@ namespace scenario {
 
 namespace {
 
+bool named(const LineCellLink& cell, const std::vector<Case>& cases) {
+  return !polled_in(cell, cases).empty() || !touched_in(cell, cases).empty();
+}
+
+}  // namespace
+
 std::string real_path(const std::string& path) {
   char buf[PATH_MAX];
   return ::realpath(path.c_str(), buf) ? std::string(buf) : path;
@@ -22,8 +28,6 @@ std::string real_path(const std::string& path) {
 
 std::string node_of(const std::string& ns, const std::string& cell) { return ns + "/" + cell + "/plc_node"; }
 
-// The line's nodes say which cell they run (~cell) as they start, perhaps after the runner:
-// waits up to timeout_s for every cell of line to say it, polling.
 void wait_for_cells(const line::Line& line, const std::string& ns, double timeout_s) {
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
   for (;;) {
@@ -33,12 +37,6 @@ void wait_for_cells(const line::Line& line, const std::string& ns, double timeou
     ros::WallDuration(0.1).sleep();
   }
 }
-
-bool named(const LineCellLink& cell, const std::vector<Case>& cases) {
-  return !polled_in(cell, cases).empty() || !touched_in(cell, cases).empty();
-}
-
-}  // namespace
 
 LineCellLink LineRealTimeRun::reach(size_t i, const std::string& ns, double timeout_s) {
   LineCellLink link;

@@ -30,7 +30,7 @@ std::string seconds(double s) {
 
 NodeLink::NodeLink(const std::string& node, const CellConfig& config, uint64_t period_us, uint64_t lag_us,
                    double timeout_s, bool read_fallback)
-    : node_(node), config_(config), period_us_(period_us), lag_us_(lag_us), timeout_s_(timeout_s),
+    : node_(node), config_(config), period_us_(period_us), step_us_(period_us), lag_us_(lag_us), timeout_s_(timeout_s),
       read_fallback_(read_fallback), probes_(registered_topic_probes()), latest_(std::make_unique<Latest>()) {
   nh_.setCallbackQueue(&queue_);
   spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
@@ -92,7 +92,7 @@ void NodeLink::received(const std::string& topic, uint64_t stamp_ns, const std::
 
 ros::Time NodeLink::next_input_stamp() {
   std::lock_guard<std::mutex> lk(mu_);
-  const uint64_t next = scanned_ ? last_t_us_ + period_us_ : 0;
+  const uint64_t next = scanned_ ? last_t_us_ + step_us_ : 0;
   ++inputs_sent_;
   ros::Time t;
   t.fromNSec((t0_us_ + next) * 1000);
@@ -159,12 +159,7 @@ bool NodeLink::scan_complete(uint64_t t_us) const {
   return true;
 }
 
-void NodeLink::connect() {
-  if (connected_) return;
-  std::string clock_topic = "/clock";
-  ros::param::get(node_ + "/clock_topic", clock_topic);
-  if (clock_topic.empty() || clock_topic[0] != '/') clock_topic = node_ + "/" + clock_topic;  // plc_node's private name
-  clock_pub_ = advertise<rosgraph_msgs::Clock>(clock_topic);
+void NodeLink::advertise_inputs() {
   for (const auto& s : config_.signals)
     if (s.second.area == Area::X) input_pubs_[s.second.index] = advertise<Signal>(node_ + "/inputs_stamped/" + s.first);
   progress_sub_ = nh_.subscribe<ScanProgress>(node_ + "/virtual_time/scanned", 1000,
@@ -175,6 +170,76 @@ void NodeLink::connect() {
                                                 have_progress_ = true;
                                                 cv_.notify_all();
                                               });
+}
+
+void NodeLink::start_case(uint64_t t0_us, bool counted) {
+  std::lock_guard<std::mutex> lk(mu_);
+  t0_us_ = t0_us;
+  next_t0_us_ = std::max(next_t0_us_, t0_us_ + 1000000);
+  clear_case();
+  inputs_sent_ = 0;
+  scanned_ = false;
+  last_t_us_ = 0;
+  if (counted) ++resets_;  // the progress of this reset on
+  read_cache_.clear();
+}
+
+uint64_t NodeLink::next_t0() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return next_t0_us_;
+}
+
+// The topic list comes with the message a reset publishes: true once it is subscribed (a
+// round of reset and first scan is then needed to see every topic connected).
+bool NodeLink::take_topics(double timeout_s) {
+  if (!topics_.empty()) return false;
+  if (!wait([&] { return have_progress_; }, timeout_s)) return true;
+  std::vector<std::string> topics;
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    topics = progress_.topics;
+    if (progress_.scan_period.toNSec() != int64_t(period_us_) * 1000 || progress_.lag.toNSec() != int64_t(lag_us_) * 1000)
+      throw Error("plc_node " + node_ + " scans every " + std::to_string(progress_.scan_period.toNSec() / 1000) +
+                  " us with a lag of " + std::to_string(progress_.lag.toNSec() / 1000) + " us; expected " +
+                  std::to_string(period_us_) + " and " + std::to_string(lag_us_));
+  }
+  for (const auto& t : topics)
+    if (starts_with(t, node_ + "/")) subscribe(t);
+  for (auto& side : probes_) side->connect(*this);
+  return true;
+}
+
+bool NodeLink::await_first_scan(double timeout_s) {
+  return wait([&] { return scan_complete(0); }, timeout_s);
+}
+
+void NodeLink::mark_connected() {
+  std::lock_guard<std::mutex> lk(mu_);
+  resets_ = progress_.resets;
+  resets_known_ = true;
+  connected_ = true;
+}
+
+std::string NodeLink::missing() {
+  std::lock_guard<std::mutex> lk(mu_);
+  std::string out;
+  if (!have_progress_) out = node_ + ": no ~virtual_time/scanned message";
+  for (size_t i = 0; i < progress_.topics.size() && i < progress_.published.size(); ++i) {
+    const uint64_t got = received_[progress_.topics[i]];
+    if (std::find(topics_.begin(), topics_.end(), progress_.topics[i]) != topics_.end() && got < progress_.published[i])
+      out += (out.empty() ? "" : ", ") + progress_.topics[i] + " " + std::to_string(got) + " of " +
+             std::to_string(progress_.published[i]);
+  }
+  return out;
+}
+
+void NodeLink::connect() {
+  if (connected_) return;
+  std::string clock_topic = "/clock";
+  ros::param::get(node_ + "/clock_topic", clock_topic);
+  if (clock_topic.empty() || clock_topic[0] != '/') clock_topic = node_ + "/" + clock_topic;  // plc_node's private name
+  clock_pub_ = advertise<rosgraph_msgs::Clock>(clock_topic);
+  advertise_inputs();
   if (!ros::service::waitForService(node_ + "/reset", ros::Duration(timeout_s_)))
     throw Error("plc_node " + node_ + " has no ~reset service within " + seconds(timeout_s_) + ": is it running?");
   connect_publisher(&clock_pub_, "its ~clock_topic");
@@ -182,65 +247,21 @@ void NodeLink::connect() {
   // Subscriptions connect in the background: a message published before one is up is lost
   // to it. So: reset, scan once and see every topic's messages arrive; else again.
   const double attempt_s = std::min(timeout_s_, 3.0);
-  std::string missing = "no ~virtual_time/scanned message";
+  std::string why = "no ~virtual_time/scanned message";
   for (int attempt = 0; attempt < 10; ++attempt) {
-    {
-      std::lock_guard<std::mutex> lk(mu_);
-      t0_us_ = round_up(next_t0_us_, period_us_);
-      next_t0_us_ = t0_us_ + 1000000;
-      clear_case();
-    }
+    start_case(round_up(next_t0(), period_us_), false);
     call_reset();
-    if (topics_.empty()) {  // the topic list comes with the message ~reset publishes
-      if (!wait([&] { return have_progress_; }, attempt_s)) continue;
-      std::vector<std::string> topics;
-      {
-        std::lock_guard<std::mutex> lk(mu_);
-        topics = progress_.topics;
-        if (progress_.scan_period.toNSec() != int64_t(period_us_) * 1000 || progress_.lag.toNSec() != int64_t(lag_us_) * 1000)
-          throw Error("plc_node " + node_ + " scans every " + std::to_string(progress_.scan_period.toNSec() / 1000) +
-                      " us with a lag of " + std::to_string(progress_.lag.toNSec() / 1000) + " us; expected " +
-                      std::to_string(period_us_) + " and " + std::to_string(lag_us_));
-      }
-      for (const auto& t : topics)
-        if (starts_with(t, node_ + "/")) subscribe(t);
-      for (auto& side : probes_) side->connect(*this);
-      continue;
-    }
+    if (take_topics(attempt_s)) continue;
     publish_clock(0);
-    if (wait([&] { return scan_complete(0); }, attempt_s)) {
-      std::lock_guard<std::mutex> lk(mu_);
-      resets_ = progress_.resets;
-      resets_known_ = true;
-      connected_ = true;
-      return;
-    }
-    std::lock_guard<std::mutex> lk(mu_);
-    missing.clear();
-    if (!have_progress_) missing = "no ~virtual_time/scanned message";
-    for (size_t i = 0; i < progress_.topics.size() && i < progress_.published.size(); ++i) {
-      const uint64_t got = received_[progress_.topics[i]];
-      if (std::find(topics_.begin(), topics_.end(), progress_.topics[i]) != topics_.end() && got < progress_.published[i])
-        missing += (missing.empty() ? "" : ", ") + progress_.topics[i] + " " + std::to_string(got) + " of " +
-                   std::to_string(progress_.published[i]);
-    }
+    if (await_first_scan(attempt_s)) return mark_connected();
+    why = missing();
   }
-  throw Error("plc_node " + node_ + ": a scan's messages did not all arrive (" + missing + ")");
+  throw Error("plc_node " + node_ + ": a scan's messages did not all arrive (" + why + ")");
 }
 
 void NodeLink::begin_case() {
   connect();
-  {
-    std::lock_guard<std::mutex> lk(mu_);
-    t0_us_ = round_up(next_t0_us_, period_us_);
-    next_t0_us_ = t0_us_ + 1000000;
-    clear_case();
-    inputs_sent_ = 0;
-    scanned_ = false;
-    last_t_us_ = 0;
-    ++resets_;  // the progress of this reset on
-  }
-  read_cache_.clear();
+  start_case(round_up(next_t0(), period_us_), true);
   call_reset();
 }
 
@@ -261,7 +282,7 @@ uint32_t NodeLink::read_memory(const std::string& name) {
   return read_cache_[name] = uint32_t(srv.response.values[0]);
 }
 
-void NodeLink::scan(uint64_t t_us) {
+void NodeLink::await_inputs() {
   uint64_t sent;
   read_cache_.clear();
   {
@@ -271,7 +292,10 @@ void NodeLink::scan(uint64_t t_us) {
   if (sent && !wait([&] { return have_progress_ && progress_.inputs >= sent; }, timeout_s_))
     throw Error("plc_node " + node_ + " did not acknowledge " + std::to_string(sent) + " stamped inputs within " +
                 seconds(timeout_s_));
-  publish_clock(t_us);
+}
+
+// The node's scan at t_us (its own, at or before the runner's step) and every message of it.
+void NodeLink::await_scan(uint64_t t_us) {
   if (!wait([&] { return scan_complete(t_us); }, timeout_s_)) {
     std::lock_guard<std::mutex> lk(mu_);
     std::string why = have_progress_ ? "it reported the scan at " +
@@ -281,10 +305,20 @@ void NodeLink::scan(uint64_t t_us) {
     throw Error("plc_node " + node_ + ": the scan at " + format_time(t_us) + " did not complete within " +
                 seconds(timeout_s_) + " (" + why + ")");
   }
+}
+
+void NodeLink::stepped(uint64_t t_us) {
   std::lock_guard<std::mutex> lk(mu_);
   scanned_ = true;
   last_t_us_ = t_us;
   next_t0_us_ = std::max(next_t0_us_, t0_us_ + t_us + 1000000);
+}
+
+void NodeLink::scan(uint64_t t_us) {
+  await_inputs();
+  publish_clock(t_us);
+  await_scan(t_us);
+  stepped(t_us);
 }
 
 }  // namespace scenario

@@ -10,8 +10,9 @@
 // ~real_time (default false): the cases run in wall-clock time on plc_node in real time or
 // on fatek_bridge / tri_bridge (ros/scenario_real_time.h), ~tolerance (s, default 0) the
 // most a window tighter than the resolution is widened. A scenario file that names a line
-// runs in real time only, on the line's cells at ~line_ns/<cell>/plc_node (~line_ns default:
-// /<the line's name>; ros/scenario_line_real_time.h).
+// runs on the line's cells at ~line_ns/<cell>/plc_node (~line_ns default: /<the line's
+// name>): in virtual time on the line nodelet's one clock (ros/scenario_line_link.h), or in
+// real time (ros/scenario_line_real_time.h).
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
@@ -25,6 +26,7 @@
 
 #include "plc_cell/core/error.h"
 #include "plc_cell/line/line_file.h"
+#include "plc_cell/ros/scenario_line_link.h"
 #include "plc_cell/ros/scenario_line_real_time.h"
 #include "plc_cell/ros/scenario_real_time.h"
 #include "plc_cell/ros/scenario_ros_target.h"
@@ -60,6 +62,8 @@ struct Shared {
   std::string error;  // why nothing can run (a bad file, the wrong cell on plc_node)
   sc::Scenario scenario;
   std::unique_ptr<sc::NodeLink> link;
+  std::unique_ptr<plc_cell::line::Line> line;  // virtual time: the scenario's line, checked
+  std::unique_ptr<sc::LineLink> line_link;     // virtual time: the run on the line's nodes
   std::unique_ptr<Cell> cell;                 // real time: the scenario's cell, checked
   std::unique_ptr<sc::RealTimeCases> real_time;  // real time: the run on the node or the line
 };
@@ -72,8 +76,15 @@ class CaseTest : public testing::Test {
     if (!run_->error.empty()) FAIL() << run_->error;
     if (run_->real_time) return real_time();
     try {
-      run_->link->connect();
-      sc::RosTarget target(*run_->link);
+      std::unique_ptr<sc::Target> made;
+      if (run_->line_link) {
+        run_->line_link->connect();
+        made = std::make_unique<sc::LineRosTarget>(*run_->line_link);
+      } else {
+        run_->link->connect();
+        made = std::make_unique<sc::RosTarget>(*run_->link);
+      }
+      sc::Target& target = *made;
       const auto errors = sc::check_case(*case_, target);
       if (!errors.empty()) {
         std::string all;
@@ -147,14 +158,26 @@ std::string suite_name(const std::string& file) {
   return base.empty() ? "scenario" : base;
 }
 
-// Loads the scenario and checks that plc_node runs its cell, in virtual time.
-void prepare(Shared* run, const std::string& file, const std::string& node, double timeout_s, bool read_fallback) {
+// Where the scenario's line runs: ~line_ns, else /<the line file's name>.
+std::string line_namespace(const sc::Scenario& scenario, const std::string& line_ns) {
+  if (!line_ns.empty()) return ros::names::resolve(line_ns);
+  return "/" + plc_cell::line::load_line_file(scenario.line).name;
+}
+
+// Loads the scenario and checks that plc_node runs its cell (or the line nodelet its line), in
+// virtual time.
+void prepare(Shared* run, const std::string& file, const std::string& node, const std::string& line_ns,
+             double timeout_s, bool read_fallback) {
   if (file.empty()) throw Error("~scenario is not set: give the scenario file");
   run->scenario = sc::load_scenario(file);
-  if (!run->scenario.line.empty())
-    throw Error(file + " names a line of cells (" + run->scenario.line +
-                "): a line runs on ROS only in real time (its nodelet refuses ~virtual_time): give the runner "
-                "~real_time: true (docs/lines.md, \"On ROS\"); plc_cell test runs it in virtual time");
+  if (!run->scenario.line.empty()) {
+    plc_cell::line::LineOptions lo;
+    lo.purpose = Cell::Purpose::Check;
+    run->line = std::make_unique<plc_cell::line::Line>(run->scenario.line, lo);
+    run->line_link = std::make_unique<sc::LineLink>(*run->line, line_namespace(run->scenario, line_ns), timeout_s,
+                                                     read_fallback);
+    return;
+  }
   std::string node_cell;
   if (!ros::param::get(node + "/cell", node_cell))
     throw Error("no parameter " + node + "/cell: is ~node (" + node + ") plc_node's name?");
@@ -185,12 +208,6 @@ std::string node_kind(const std::string& node) {
   if (ros::param::has(node + "/id")) return "tri_bridge";
   throw Error("cannot tell what " + node + " is (no ~cell, ~station or ~id parameter): is ~node the name of "
               "plc_node, fatek_bridge or tri_bridge?");
-}
-
-// Where the scenario's line runs: ~line_ns, else /<the line file's name>.
-std::string line_namespace(const sc::Scenario& scenario, const std::string& line_ns) {
-  if (!line_ns.empty()) return ros::names::resolve(line_ns);
-  return "/" + plc_cell::line::load_line_file(scenario.line).name;
 }
 
 // Loads the scenario and connects to the node (or the line's nodes), in wall-clock time.
@@ -246,7 +263,7 @@ int main(int argc, char** argv) {
     if (g_real_time)
       prepare_real_time(&run, file, node, line_ns, timeout_s, tolerance_s);
     else
-      prepare(&run, file, node, timeout_s, read_fallback);
+      prepare(&run, file, node, line_ns, timeout_s, read_fallback);
   } catch (const std::exception& e) {
     run.error = e.what();
   }
@@ -281,6 +298,7 @@ int main(int argc, char** argv) {
   const int rc = RUN_ALL_TESTS();
   run.real_time.reset();
   run.link.reset();
+  run.line_link.reset();
   ros::shutdown();
   return rc;
 }

@@ -47,7 +47,9 @@ bool element_of(const RegisterGroup& g, const Address& a, size_t* idx) {
 
 // ---- RosTarget ----
 
-RosTarget::RosTarget(NodeLink& link) : link_(link) { link_.begin_case(); }
+RosTarget::RosTarget(NodeLink& link, bool begin_case) : link_(link) {
+  if (begin_case) link_.begin_case();
+}
 
 bool RosTarget::has_topic(const std::string& private_name) const {
   const std::string t = link_.node_ + "/" + private_name;

@@ -5,7 +5,10 @@ nodelet manager (~split false: no wire on a topic) or split over two (~split tru
 robot's zone handshake with the test station crosses on /example_line/wires/<index>).
 Bad input: a line nodelet with an unknown cell or a broken line file is refused with the
 error where it lies; the scenario_runner refuses a line's scenario naming a cell the line has
-not, or one not running on ROS, at its file:line, and a line in virtual time."""
+not, or one not running on ROS, at its file:line, and a line running in real time in virtual
+time; the line nodelet refuses ~virtual_time of another type than a bool (and a lag that is not a
+number), and a split line in
+virtual time naming a wire that crosses."""
 import os
 import random
 import subprocess
@@ -212,6 +215,19 @@ class LineTest(unittest.TestCase):
         self.refused("bad_file", {"line": path},
                      "%s:4:%d: error: 'press.X20': no cell 'press' in the line" % (path, wire.index("press") + 1))
 
+    def test_a_split_line_is_refused_in_virtual_time_naming_the_wire(self):
+        self.refused("vt_split", {"line": rospy.get_param("~line"), "cells": "test", "virtual_time": True},
+                     "~virtual_time: wire 4 (robot.zone_request -> test.robot_request) joins a cell here to the cell "
+                     "'robot' of another process: a line split over processes runs on ROS in real time only")
+
+    def test_virtual_time_of_another_type_is_refused(self):
+        line = rospy.get_param("~line")
+        for value, said in (("yes", "the string 'yes'"), (1, "the number 1"), ([True], "a list or a mapping")):
+            self.refused("vt_type", {"line": line, "virtual_time": value},
+                         "~virtual_time: true or false, not %s" % said)
+        self.refused("vt_lag", {"line": line, "virtual_time": True, "virtual_time_lag": "soon"},
+                     "~virtual_time_lag: a number of seconds in [0, 60]")
+
     def run_runner(self, scenario, **params):
         """The scenario_runner on scenario with params, to its end: its exit status and output."""
         args = ["rosrun", "plc_cell", "scenario_runner", "_scenario:=" + scenario]
@@ -238,10 +254,10 @@ class LineTest(unittest.TestCase):
         self.assertNotEqual(rc, 0, out)
         self.assertIn(path + ":7: error: key 'force': 'robot.ready': the cell 'robot' of the line is not running on "
                       "ROS (no parameter /elsewhere/robot/plc_node/cell", out)
-        rc, out = self.run_runner(path)  # in virtual time
+        rc, out = self.run_runner(path)  # in virtual time, on a line in real time
         self.assertNotEqual(rc, 0, out)
-        self.assertIn("a line runs on ROS only in real time", out)
-        self.assertIn("~real_time: true", out)
+        self.assertIn("/example_line/infeed/plc_node runs in real time: a line's scenario in virtual time needs the "
+                      "line nodelet's ~virtual_time: true (or give the runner ~real_time: true)", out)
 
 
 if __name__ == "__main__":

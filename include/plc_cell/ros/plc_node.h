@@ -37,6 +37,12 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   PlcNode(ros::NodeHandle& nh, ros::NodeHandle& pnh, Cell& cell, const DriverFactory& make_driver);
   ~PlcNode() override;
 
+  // A cell of a line whose owner built the line afresh (a line's reset in virtual time):
+  // why fresh cannot take the cell's place under this node's topics ("" if it can), and the
+  // swap, with no scan running; the owner stops and drops the old cell after it.
+  std::string adoption_refusal(Cell& fresh);
+  void adopt(Cell& fresh);
+
  private:
   struct Snapshot {
     uint64_t scan_us = 0;  // the cell's time of the scan it was taken after
@@ -82,6 +88,8 @@ class PlcNode : private MemoryAccess, private ScanDriver::Host, private StampedI
   void input(TimedInput in) { driver_->input(in); }
   // ~reset (plc_node_reset.cpp): a fresh cell from the same files.
   bool on_reset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  // Puts cell in place of cell_ (owned: own, else its owner's); "" or why its servers failed.
+  std::string swap_cell(std::unique_ptr<Cell> own, Cell& cell);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void diagnose_persist(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void diagnose_servers(diagnostic_updater::DiagnosticStatusWrapper& stat);

@@ -16,6 +16,15 @@
 namespace plc_cell {
 namespace scenario {
 
+// The file's path with its links resolved (as given when it does not exist): two names of
+// one file compare equal.
+std::string real_path(const std::string& path);
+// "/example_line/robot/plc_node": where the line nodelet runs the cell of the line at ns.
+std::string node_of(const std::string& ns, const std::string& cell);
+// The line's nodes say which cell they run (~cell) as they start, perhaps after the runner:
+// waits up to timeout_s for every cell of line to say it, polling.
+void wait_for_cells(const line::Line& line, const std::string& ns, double timeout_s);
+
 class LineRealTimeRun : public RealTimeCases {
  public:
   // sc names a line; ns: where it runs ("/example_line"). Connects to the cells the cases

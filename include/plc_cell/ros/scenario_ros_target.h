@@ -53,7 +53,22 @@ class NodeLink : public TopicFeed {
 
  private:
   friend class RosTarget;
+  friend class LineLink;
   struct Latest;  // the last message of each topic this case
+
+  // The pieces of connect(), begin_case() and scan() that a line's link (scenario_line_link.h)
+  // runs on each of its cells around the line's one clock and reset.
+  void advertise_inputs();  // ~inputs_stamped/<name> and the progress
+  // A case's time 0 as a stamp; counted: a reset of a connected link, whose progress follows.
+  void start_case(uint64_t t0_us, bool counted);
+  uint64_t next_t0() const;  // where the next case may start, every earlier stamp behind it
+  bool take_topics(double timeout_s);
+  bool await_first_scan(double timeout_s);  // a case's scan at 0 and all of its messages
+  void mark_connected();
+  std::string missing();  // what of a scan has not arrived
+  void await_inputs();
+  void await_scan(uint64_t t_us);
+  void stepped(uint64_t t_us);  // the runner's step t_us is done
 
   // A fresh cell (~reset) whose scans are stamped from t0 on.
   void begin_case();
@@ -76,7 +91,9 @@ class NodeLink : public TopicFeed {
 
   std::string node_;
   CellConfig config_;
-  uint64_t period_us_, lag_us_;
+  uint64_t period_us_;
+  uint64_t step_us_;  // the runner's steps: the node's period, or the line's tick for a cell of a line
+  uint64_t lag_us_;
   double timeout_s_;
   bool read_fallback_;
   ros::ServiceClient read_client_;
@@ -118,7 +135,7 @@ struct NodeLink::Latest {
 // One case: a fresh cell on plc_node (its constructor calls ~reset).
 class RosTarget : public Target {
  public:
-  explicit RosTarget(NodeLink& link);
+  explicit RosTarget(NodeLink& link, bool begin_case = true);  // false: a cell of a line's case
 
   uint64_t period_us() const override { return link_.period_us_; }
   void scan(uint64_t t_us) override { link_.scan(t_us); }
