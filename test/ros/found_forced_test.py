@@ -7,6 +7,7 @@ releasing it. Bad requests to ~read_forced are answered with the reason and chan
 import os
 import subprocess
 import sys
+import time
 import unittest
 
 import rospy
@@ -33,6 +34,12 @@ class FoundForcedTest(unittest.TestCase):
         cls.release = rospy.ServiceProxy(NODE + "release", ReleaseDiscrete)
         cls.read = rospy.ServiceProxy(NODE + "read", ReadMemory)
         cls.read_forced = rospy.ServiceProxy(NODE + "read_forced", ReadForced)
+        # The bridge may have started before the PLC listened: it connects on a later try.
+        deadline = time.monotonic() + 30
+        while not cls.read_forced([]).success:
+            if time.monotonic() > deadline:
+                raise AssertionError("fatek_bridge not connected to the PLC within 30 s: " + cls.read_forced([]).message)
+            time.sleep(0.1)  # polling the bridge's link, not waiting for a result
 
     def forced(self, *points):
         r = self.read_forced(list(points))
