@@ -67,6 +67,11 @@ uint64_t next_on_grid(uint64_t grid_ns, uint64_t now_ns, uint64_t period_ns) {
   return grid_ns + ((now_ns - grid_ns) / period_ns + 1) * period_ns;
 }
 
+uint64_t first_scan_point(const std::vector<uint64_t>& firsts, uint64_t next_ns, uint64_t period_ns, size_t per_wake) {
+  for (uint64_t at = next_ns;; at += std::max<uint64_t>(period_ns, 1))
+    if (size_t(std::count(firsts.begin(), firsts.end(), at)) < std::max<size_t>(per_wake, 1)) return at;
+}
+
 RealTimeLoop::RealTimeLoop(Plc& plc, std::chrono::nanoseconds period) : plc_(plc), period_(period) {}
 
 RealTimeLoop::~RealTimeLoop() { stop(); }
@@ -152,7 +157,10 @@ uint64_t SharedScanThread::add(Plc& plc, std::chrono::nanoseconds period, std::f
   // Cells added a few milliseconds apart (nodelets loaded one by one) would otherwise each
   // have a phase of their own: 100 cells at 1 ms woke the thread 100 times a millisecond,
   // and the kernel's sleep and wake-up took more of it than the scans.
-  const uint64_t next = next_on_grid(grid_ns_, now, p);
+  std::vector<uint64_t> firsts;
+  for (const Entry& e : entries_)
+    if (!e.scanned) firsts.push_back(e.next_ns);
+  const uint64_t next = first_scan_point(firsts, next_on_grid(grid_ns_, now, p), p, kFirstScansPerWake);
   entries_.push_back(Entry{next_id_, &plc, p, base_us, next - p, next, std::move(after_scan)});
   if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
   if (priority > priority_) {
@@ -195,6 +203,7 @@ void SharedScanThread::run() {
     for (Entry& e : entries_) {
       if (e.next_ns > now) continue;
       scan_once(*e.plc, now, e.base_us, e.epoch_ns, e.period_ns, &e.next_ns, cpu_woke);
+      e.scanned = true;
       if (e.after_scan) e.after_scan();
       now = mono_ns();
     }

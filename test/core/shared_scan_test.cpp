@@ -147,3 +147,51 @@ TEST(SharedScanThreads, PlcsOfOnePeriodAddedApartShareEachWakeUp) {
     EXPECT_LE(std::abs(d), 2) << "PLC " << i << ": " << after[i] - before[i] << " scans, the first " << scanned;
   }
 }
+
+// A PLC's first scan costs several later ones: of PLCs added at once, at most a few make it
+// at one wake-up; the rest wait for the next grid points.
+TEST(SharedScanThreads, AtMostAFewFirstScansShareAWakeUp) {
+  EXPECT_EQ(first_scan_point({}, 5000, 1000, 2), 5000u);
+  EXPECT_EQ(first_scan_point({5000}, 5000, 1000, 2), 5000u);
+  EXPECT_EQ(first_scan_point({5000, 5000}, 5000, 1000, 2), 6000u) << "the first point is full";
+  EXPECT_EQ(first_scan_point({5000, 5000, 6000, 6000, 7000}, 5000, 1000, 2), 7000u);
+  EXPECT_EQ(first_scan_point({5000, 5000, 7000, 7000}, 5000, 1000, 2), 6000u) << "a free point between full ones";
+  EXPECT_EQ(first_scan_point({4000, 4000, 4000}, 5000, 1000, 2), 5000u) << "points before next do not count";
+  EXPECT_EQ(first_scan_point({5000}, 5000, 1000, 0), 6000u) << "a budget of none is one";
+}
+
+TEST(SharedScanThreads, PlcsAddedAtOnceMakeTheirFirstScansAFewAtAWakeUp) {
+  // 70 PLCs of a 400 ms period added at once: their first scans come at three wake-ups 400 ms
+  // apart, 32, 32 and 6 (kFirstScansPerWake), each wake-up's in a burst.
+  constexpr size_t kPlcs = 70;
+  static_assert(SharedScanThread::kFirstScansPerWake == 32, "the groups below");
+  std::vector<Plc> plcs(kPlcs);
+  std::mutex mu;
+  std::condition_variable cv;
+  std::vector<std::chrono::steady_clock::time_point> firsts;
+  std::vector<bool> seen(kPlcs, false);
+  SharedScanThread t;  // after plcs: stopped before they go
+  std::vector<uint64_t> ids;
+  for (size_t i = 0; i < kPlcs; ++i)
+    ids.push_back(t.add(plcs[i], std::chrono::milliseconds(400), [&, i] {
+      std::lock_guard<std::mutex> lk(mu);
+      if (seen[i]) return;
+      seen[i] = true;
+      firsts.push_back(std::chrono::steady_clock::now());
+      cv.notify_all();
+    }));
+  bool all;
+  {
+    std::unique_lock<std::mutex> lk(mu);
+    all = cv.wait_for(lk, std::chrono::seconds(20), [&] { return firsts.size() == kPlcs; });
+  }
+  for (uint64_t id : ids) t.remove(id);
+  ASSERT_TRUE(all) << "only " << firsts.size() << " of " << kPlcs << " PLCs scanned within 20 s";
+  // Bursts: first scans less than 200 ms apart belong to one wake-up (the next is 400 ms on).
+  std::vector<size_t> bursts{1};
+  for (size_t k = 1; k < firsts.size(); ++k) {
+    if (firsts[k] - firsts[k - 1] > std::chrono::milliseconds(200)) bursts.push_back(0);
+    ++bursts.back();
+  }
+  EXPECT_EQ(bursts, (std::vector<size_t>{32, 32, 6}));
+}

@@ -62,6 +62,13 @@ class RealTimeLoop {
 // are then due at the same instants.
 uint64_t next_on_grid(uint64_t grid_ns, uint64_t now_ns, uint64_t period_ns);
 
+// A PLC's first scan builds its state (its units' first hooks, its interrupts bound: about
+// six later scans' time), so a thread given hundreds of PLCs at once would spend its first
+// wake-up past the period on them. The first grid point from next on (each period_ns
+// apart) at which fewer than per_wake of the first scans still to come (firsts, their
+// deadlines) are due.
+uint64_t first_scan_point(const std::vector<uint64_t>& firsts, uint64_t next_ns, uint64_t period_ns, size_t per_wake);
+
 // Many PLCs scanned by one thread, each at its own period, with the same accounting as
 // RealTimeLoop. Their deadlines lie on one grid (next_on_grid, from the thread's first
 // PLC): PLCs of one period are due together, so cells in one process (plc_node nodelets)
@@ -72,6 +79,9 @@ class SharedScanThread {
   // The process's threads (up to kMaxThreads, each started at its first add()): the one
   // of the first `threads` with the fewest PLCs, so that cells spread over the cores.
   static constexpr unsigned kMaxThreads = 8;
+  // At most this many PLCs make their first scan at one wake-up (first_scan_point): 500
+  // cells added at once on two threads start over 8 ms.
+  static constexpr size_t kFirstScansPerWake = 32;
   static SharedScanThread& process(unsigned threads = 1);
   ~SharedScanThread();
 
@@ -96,6 +106,7 @@ class SharedScanThread {
     Plc* plc;
     uint64_t period_ns, base_us, epoch_ns, next_ns;
     std::function<void()> after_scan;
+    bool scanned = false;  // its first scan has run
   };
   void run();
 
