@@ -63,15 +63,16 @@ TEST_F(Killed, AtRandomRequestsOfACaseThePlcIsAsFoundEveryTime) {
     ChildProcess run(runner(proxy));
     proxy.signal_at(at, run.pid(), sig);
     const int status = run.wait(std::chrono::seconds(60), "the runner's end after its signal");
-    const std::string where = "round " + std::to_string(round) + ", signal " + std::to_string(sig) + " at request " +
-                              std::to_string(at) + " of " + std::to_string(total) + "\n" + run.output();
+    std::string where = "round " + std::to_string(round) + ", signal " + std::to_string(sig) + " at request " +
+                        std::to_string(at) + " of " + std::to_string(total) + "\n" + run.output();
     if (sig == SIGKILL && proxy.fired()) {
       EXPECT_TRUE(WIFSIGNALED(status)) << where;
       struct stat st;
       const bool left = ::stat(journal(proxy).c_str(), &st) == 0;
       // The next run on the same PLC puts back what the killed one touched, then runs.
       const auto next = test_tool({kKill, "--target", target(proxy)});
-      EXPECT_EQ(next.status, 0) << where << "\nthe next run:\n" << next.out;
+      where += "\nthe next run:\n" + next.out;
+      EXPECT_EQ(next.status, 0) << where;
       EXPECT_EQ(next.out.find("putting it back first") != std::string::npos, left) << where << "\n" << next.out;
     } else if (proxy.fired()) {
       // A signal at a request of the case stops it; one at a request of its restore (the
