@@ -4,5 +4,8 @@
 #include "plc_cell/ros/line_node.h"
 
 int main(int argc, char** argv) {
-  return plc_cell::run_cell_node<plc_cell::LineNode>(argc, argv, "line_node", [](ros::NodeHandle&) { return 2; });
+  // In virtual time one thread: <line>/reset swaps every cell with no service of a cell in
+  // flight (as plc_node's ~reset).
+  return plc_cell::run_cell_node<plc_cell::LineNode>(
+      argc, argv, "line_node", [](ros::NodeHandle& pnh) { return pnh.param("virtual_time", false) ? 1 : 2; });
 }

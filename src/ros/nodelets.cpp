@@ -16,13 +16,18 @@
 namespace plc_cell {
 
 // Whether the node needs its callbacks one at a time: plc_node in virtual time, whose
-// ~reset replaces the cell with no other callback using it (its executable spins one thread).
+// ~reset replaces the cell with no other callback using it, and the line node in virtual
+// time, whose <line>/reset replaces every cell (their executables spin one thread then).
 template <class Node>
 bool one_thread(ros::NodeHandle&) {
   return false;
 }
 template <>
 bool one_thread<PlcNode>(ros::NodeHandle& pnh) {
+  return pnh.param("virtual_time", false);
+}
+template <>
+bool one_thread<LineNode>(ros::NodeHandle& pnh) {
   return pnh.param("virtual_time", false);
 }
 

@@ -18,6 +18,7 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 
 from plc_cell.msg import ScanProgress, Signal
+from plc_cell.srv import ReadMemory
 
 LINE = "/example_line"
 CELLS = ("infeed", "robot", "test")
@@ -196,6 +197,38 @@ class LineVirtualTimeTest(unittest.TestCase):
             self.assertIn(("late inputs: infeed", "1"), [(v.key, v.value) for v in s.values])
         finally:
             sub.unregister()
+
+    def test_reads_in_flight_while_the_line_resets_are_answered(self):
+        # Hostile timing: every cell's ~read called in a loop from three threads while the line
+        # is reset again and again; <line>/reset replaces every cell, and no read may reach a
+        # cell that is gone (the line node takes its callbacks one at a time in virtual time).
+        stop = threading.Event()
+        answers, errors = [], []
+
+        def hammer(cell):
+            read = rospy.ServiceProxy(node(cell) + "read", ReadMemory)
+            while not stop.is_set():
+                try:
+                    answers.append(read("R0", 1).success)
+                except (rospy.ServiceException, rospy.ROSException) as e:
+                    errors.append("%s: %s" % (cell, e))
+                    return
+
+        threads = [threading.Thread(target=hammer, args=(c,)) for c in CELLS]
+        for t in threads:
+            t.start()
+        try:
+            reset = rospy.ServiceProxy(LINE + "/reset", Trigger)
+            for k in range(8):
+                r = reset()
+                self.assertTrue(r.success, "reset %d: %s" % (k, r.message))
+        finally:
+            stop.set()
+            for t in threads:
+                t.join(TIMEOUT)
+        self.assertEqual(errors, [])
+        self.assertGreater(len(answers), 0)
+        self.assertTrue(all(answers), "a read refused")
 
     def test_a_cell_refuses_its_own_reset(self):
         r = rospy.ServiceProxy(node("robot") + "reset", Trigger)()

@@ -1,10 +1,13 @@
 #pragma once
 // A line of cells on ROS (docs/lines.md, "On ROS"): the cells of a line file named by
 // ~cells (default every cell), built and wired by the core's Line (line/line.h) and scanned
-// in real time, or with ~virtual_time on the line's one clock (ros/line_virtual_time.h), each with a lone plc_node's topics and services under
-// <namespace>/<line>/<cell>/plc_node/. The wires between two cells here are carried inside
-// the process; a wire with its other end in another process, on a ROS topic
-// (ros/line_wire_topics.h). The line nodelet (plc_cell/LineNodelet) builds one.
+// in real time, or with ~virtual_time on the line's one clock (ros/line_virtual_time.h),
+// each with a lone plc_node's topics and services under <namespace>/<line>/<cell>/plc_node/.
+// The wires between two cells here are carried inside the process; a wire with its other
+// end in another process, on a ROS topic (ros/line_wire_topics.h). The line nodelet
+// (plc_cell/LineNodelet) builds one. In virtual time its callbacks run one at a time (the
+// nodelet's single-threaded queue, line_node's one spinner thread): <line>/reset replaces
+// every cell with no service of a cell in flight.
 #include <memory>
 #include <mutex>
 #include <set>
