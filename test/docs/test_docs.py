@@ -96,10 +96,12 @@ class Shell:
                                      ROS_HOME=home, PYTHONUNBUFFERED="1"))
         self.env.pop("ROS_NAMESPACE", None)
 
-    def start(self, cmd):
+    def start(self, cmd, log=None):
+        """cmd running; its output on a pipe, or in the file log (a process that runs the
+        whole page and is never read must not fill a pipe and stall)."""
         script = "source %s/setup.bash >/dev/null 2>&1\n%s\n" % (shlex.quote(devel()), cmd)
         return subprocess.Popen(["bash", "-c", script], cwd=self.workdir, env=self.env, stdin=subprocess.DEVNULL,
-                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
+                                stdout=log or subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
 
     def run(self, cmd):
         """(exit code, output) of a command that ends by itself."""
@@ -199,9 +201,14 @@ def test_commands_work_when_pasted(path, workdir):
     failures = []
     try:
         if needs_cell(path):
-            cell = shell.start("roslaunch -p %s plc_cell cell_sim.launch"
-                               % shell.env["ROS_MASTER_URI"].rsplit(":", 1)[1])
-            assert wait_for_service(shell, "/plc_node/read"), "the demo cell did not come up"
+            cell_log = os.path.join(shell.workdir, "cell_sim.log")
+            with open(cell_log, "wb") as log:
+                cell = shell.start("roslaunch -p %s plc_cell cell_sim.launch"
+                                   % shell.env["ROS_MASTER_URI"].rsplit(":", 1)[1], log)
+            if not wait_for_service(shell, "/plc_node/read"):
+                with open(cell_log, "rb") as log:
+                    pytest.fail("the demo cell did not come up in 60 s (exit %s); its roslaunch printed:\n%s"
+                                % (cell.poll(), log.read().decode(errors="replace")[-4000:]))
         for line, kind, body in runnable:
             jobs = []
             for cmd, expected in commands(kind, body):
