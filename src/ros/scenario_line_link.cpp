@@ -133,50 +133,15 @@ LineRosTarget::LineRosTarget(LineLink& link) : link_(link) {
   for (size_t i = 0; i < link_.size(); ++i) cells_.push_back(std::make_unique<RosTarget>(link_.cell(i), false));
 }
 
-RosTarget* LineRosTarget::cell_of(const Probe& p, std::string* why) {
-  if (p.cell.empty()) {
-    *why = "'" + p.text + "': a line's names start with their cell: CELL." + p.text + " (cells: " + link_.names() + ")";
-    return nullptr;
-  }
-  const int i = link_.find(p.cell);
-  if (i < 0) {
-    *why = "'" + p.text + "': no cell '" + p.cell + "' in the line (" + link_.names() + ")";
-    return nullptr;
-  }
-  return cells_[size_t(i)].get();
+Target* LineRosTarget::target_of(const std::string& cell, std::string*) {
+  const int i = link_.find(cell);
+  return i < 0 ? nullptr : cells_[size_t(i)].get();
 }
 
-RosTarget& LineRosTarget::cell_or_throw(const Probe& p) {
-  std::string why;
-  RosTarget* t = cell_of(p, &why);
-  if (!t) throw Error(why);
-  return *t;
-}
-
-std::string LineRosTarget::check(const Probe& p, bool writing) {
-  std::string why;
-  RosTarget* t = cell_of(p, &why);
-  if (!t) return why;
-  why = t->check(p, writing);
-  return why.empty() ? why : p.cell + ": " + why;
-}
-
-void LineRosTarget::release(const Probe* p) {
-  if (p) return cell_or_throw(*p).release(p);
-  for (auto& c : cells_) c->release(nullptr);
-}
-
-void LineRosTarget::simulate(const Probe* p) {
-  if (p) return cell_or_throw(*p).simulate(p);
-  for (auto& c : cells_) c->simulate(nullptr);
-}
-
-std::string LineRosTarget::label(const Probe& p) {
-  std::string why;
-  RosTarget* t = cell_of(p, &why);
-  if (!t) return p.text;
-  const std::string l = t->label(p);
-  return l == p.text ? l : p.cell + "." + l;
+std::vector<Target*> LineRosTarget::cell_targets() {
+  std::vector<Target*> out;
+  for (auto& c : cells_) out.push_back(c.get());
+  return out;
 }
 
 std::string LineRosTarget::fault() {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "plc_cell/core/error.h"
+
 namespace plc_cell {
 namespace scenario {
 
@@ -51,52 +53,22 @@ uint64_t LineWallClockTarget::spread_us() {
   return widest + polls;
 }
 
-WallClockTarget* LineWallClockTarget::cell_of(const Probe& p, std::string* why) {
-  if (p.cell.empty()) {
-    *why = "'" + p.text + "': a line's names start with their cell: CELL." + p.text + " (cells: " + names_ + ")";
-    return nullptr;
-  }
+Target* LineWallClockTarget::target_of(const std::string& cell, std::string* absent) {
   for (size_t i = 0; i < targets_.size(); ++i)
-    if (links_[i]->name == p.cell) return targets_[i].get();
+    if (links_[i]->name == cell) return targets_[i].get();
   for (const auto& l : cells_)
-    if (l.name == p.cell) {
-      *why = "'" + p.text + "': " + l.absent;
-      return nullptr;
-    }
-  *why = "'" + p.text + "': no cell '" + p.cell + "' in the line (" + names_ + ")";
+    if (l.name == cell) *absent = l.absent;
   return nullptr;
 }
 
-WallClockTarget& LineWallClockTarget::cell_or_throw(const Probe& p) {
-  std::string why;
-  WallClockTarget* t = cell_of(p, &why);
-  if (!t) throw Error(why);
-  return *t;
-}
-
-std::string LineWallClockTarget::check(const Probe& p, bool writing) {
-  std::string why;
-  WallClockTarget* t = cell_of(p, &why);
-  if (!t) return why;
-  why = t->check(p, writing);
-  return why.empty() ? why : p.cell + ": " + why;
-}
-
-void LineWallClockTarget::release(const Probe* p) {
-  if (p) return cell_or_throw(*p).release(p);
-  for (auto& t : targets_) t->release(nullptr);
+std::vector<Target*> LineWallClockTarget::cell_targets() {
+  std::vector<Target*> out;
+  for (auto& t : targets_) out.push_back(t.get());
+  return out;
 }
 
 void LineWallClockTarget::simulate(const Probe*) {
   throw Error("a line on its PLCs has no simulation to hand inputs back to");
-}
-
-std::string LineWallClockTarget::label(const Probe& p) {
-  std::string why;
-  WallClockTarget* t = cell_of(p, &why);
-  if (!t) return p.text;
-  const std::string l = t->label(p);
-  return l == p.text ? l : p.cell + "." + l;
 }
 
 }  // namespace scenario

@@ -11,11 +11,12 @@
 
 #include "plc_cell/line/line.h"
 #include "plc_cell/scenario/cell_target.h"
+#include "plc_cell/scenario/routed_target.h"
 
 namespace plc_cell {
 namespace line {
 
-class LineTarget : public scenario::Target {
+class LineTarget : public scenario::RoutedTarget {
  public:
   // Throws SourceError (the line's, its cells' or programs' errors) or Error. Every cell is
   // put in RUN. run: the front end's run settings for every cell (--engine).
@@ -27,21 +28,12 @@ class LineTarget : public scenario::Target {
 
   uint64_t period_us() const override { return line_->tick_us(); }
   void scan(uint64_t t_us) override { line_->scan_at(t_us); }
-  std::string check(const scenario::Probe& p, bool writing) override;
-  scenario::Reading read(const scenario::Probe& p) override;
-  void set(const scenario::Probe& p, const scenario::Value& v) override;
-  void write(const scenario::Probe& p, const scenario::Value& v) override;
-  void force(const scenario::Probe& p, bool on) override;
-  void release(const scenario::Probe* p) override;
-  void simulate(const scenario::Probe* p) override;
   std::string fault() override { return line_->fault(); }
-  // "robot.stop_pb (X1)" for a signal, else as written.
-  std::string label(const scenario::Probe& p) override;
 
  private:
-  // The target of p's cell, or why there is none (p not named after a cell of the line).
-  scenario::CellTarget* cell_of(const scenario::Probe& p, std::string* why);
-  scenario::CellTarget& cell_or_throw(const scenario::Probe& p);
+  scenario::Target* target_of(const std::string& cell, std::string* absent) override;
+  std::string cell_names() const override { return line_->names(); }
+  std::vector<scenario::Target*> cell_targets() override;
 
   std::unique_ptr<Line> line_;
   std::vector<std::unique_ptr<scenario::CellTarget>> cells_;  // each borrows a cell of line_

@@ -14,6 +14,7 @@
 
 #include "plc_cell/line/line.h"
 #include "plc_cell/ros/scenario_ros_target.h"
+#include "plc_cell/scenario/routed_target.h"
 
 namespace plc_cell {
 namespace scenario {
@@ -55,25 +56,18 @@ class LineLink {
 
 // One case on the line: every name CELL.NAME, read and driven through its cell's plc_node as
 // a lone node's RosTarget does.
-class LineRosTarget : public Target {
+class LineRosTarget : public RoutedTarget {
  public:
   explicit LineRosTarget(LineLink& link);  // begins the case: a fresh line
 
   uint64_t period_us() const override { return link_.tick_us(); }
   void scan(uint64_t t_us) override { link_.scan(t_us); }
-  std::string check(const Probe& p, bool writing) override;
-  Reading read(const Probe& p) override { return cell_or_throw(p).read(p); }
-  void set(const Probe& p, const Value& v) override { cell_or_throw(p).set(p, v); }
-  void write(const Probe& p, const Value& v) override { cell_or_throw(p).write(p, v); }
-  void force(const Probe& p, bool on) override { cell_or_throw(p).force(p, on); }
-  void release(const Probe* p) override;
-  void simulate(const Probe* p) override;
-  std::string label(const Probe& p) override;
   std::string fault() override;
 
  private:
-  RosTarget* cell_of(const Probe& p, std::string* why);
-  RosTarget& cell_or_throw(const Probe& p);
+  Target* target_of(const std::string& cell, std::string* absent) override;
+  std::string cell_names() const override { return link_.names(); }
+  std::vector<Target*> cell_targets() override;
 
   LineLink& link_;
   std::vector<std::unique_ptr<RosTarget>> cells_;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "plc_cell/scenario/routed_target.h"
 #include "plc_cell/scenario/wall_clock_target.h"
 
 namespace plc_cell {
@@ -22,7 +23,7 @@ struct LineCellLink {
   std::string absent;
 };
 
-class LineWallClockTarget : public Target {
+class LineWallClockTarget : public RoutedTarget {
  public:
   // opt: as every cell's target takes them (each gets its own cell).
   LineWallClockTarget(const std::vector<LineCellLink>& cells, const Case& c, const WallClockOptions& opt);
@@ -39,23 +40,16 @@ class LineWallClockTarget : public Target {
   uint64_t period_us() const override { return period_us_; }
   void scan(uint64_t t_us) override;
   uint64_t scanned_at(uint64_t t_us) const override;
-  std::string check(const Probe& p, bool writing) override;
-  Reading read(const Probe& p) override { return cell_or_throw(p).read(p); }
-  void set(const Probe& p, const Value& v) override { cell_or_throw(p).set(p, v); }
-  void write(const Probe& p, const Value& v) override { cell_or_throw(p).write(p, v); }
-  void force(const Probe& p, bool on) override { cell_or_throw(p).force(p, on); }
-  void release(const Probe* p) override;
-  void simulate(const Probe* p) override;
-  std::string label(const Probe& p) override;
+  void simulate(const Probe* p) override;  // refused: no simulation on a PLC
   std::string fault() override { return ""; }
   // The widest of the cells' spreads, plus the round trips of the polls one after the other
   // that one reading of the line takes.
   uint64_t spread_us() override;
 
  private:
-  // The target of p's cell, or why there is none.
-  WallClockTarget* cell_of(const Probe& p, std::string* why);
-  WallClockTarget& cell_or_throw(const Probe& p);
+  Target* target_of(const std::string& cell, std::string* absent) override;
+  std::string cell_names() const override { return names_; }
+  std::vector<Target*> cell_targets() override;
 
   const std::vector<LineCellLink>& cells_;
   std::string names_;  // "infeed, robot, test"
