@@ -29,7 +29,7 @@ import time
 
 HERE = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
 sys.path.insert(0, os.path.join(HERE, "scripts"))
-from process_tree import Started, wait_until  # noqa: E402
+from process_tree import Started, stop_children, wait_until  # noqa: E402
 from ros_loopback import loopback_env  # noqa: E402
 
 TICKS = os.sysconf("SC_CLK_TCK")
@@ -200,4 +200,7 @@ def master_up(port):
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    finally:
+        stop_children()  # one a SIGTERM caught between its start and its bookkeeping

@@ -89,6 +89,38 @@ def stop(proc, grace=10.0, first=signal.SIGINT):
         return None
 
 
+def stop_children(grace=10.0):
+    """Stops every child of this process that is still alive, and its tree, as stop() does:
+    the last word of a script that starts processes. A SIGTERM turned into SystemExit between
+    a child's fork and the bookkeeping of the one who started it (Started, entered into an
+    ExitStack) would otherwise leave that child running: it is still this process's child."""
+    me = os.getpid()
+    children = [pid for pid, parent in _parents().items() if parent == me]
+    trees = {pid: signal_tree(pid, signal.SIGINT) for pid in children}
+    deadline = time.monotonic() + grace
+    while time.monotonic() < deadline and any(_alive(pid) for pid in children):
+        time.sleep(0.05)  # polling the children's end, bounded by grace
+    for pid, tree in trees.items():
+        try:
+            os.killpg(pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            pass
+        _signal(set(tree) | set(descendants(pid)), signal.SIGKILL)
+    for pid in children:
+        try:
+            os.waitpid(pid, 0)
+        except ChildProcessError:
+            pass
+
+
+def _alive(pid):
+    """pid is this process's child and has not ended (reaping it if it has)."""
+    try:
+        return os.waitpid(pid, os.WNOHANG) == (0, 0)
+    except ChildProcessError:
+        return False
+
+
 class Started:
     """`with Started([...]) as p:` runs a command in a session of its own and stops it (and
     what it started) when the block ends, by an exception, Ctrl-C or SIGTERM included: a

@@ -93,3 +93,21 @@ def test_a_sigterm_during_the_measurement_leaves_nothing():
         time.sleep(0.1)
     left = marked(marker)
     assert left == [], "left behind:\n%s\n%s" % (described(left), out)
+
+
+def test_a_child_the_bookkeeping_never_saw_is_stopped_at_the_end():
+    """A SIGTERM can land between a child's start and the bench's record of it (Started
+    entered into its ExitStack): the bench's last word, stop_children(), still finds it, as
+    its child, and stops it with its own children."""
+    marker = uuid.uuid4().hex
+    script = ("import subprocess, sys; sys.path.insert(0, %r)\n"
+              "from process_tree import stop_children\n"
+              "subprocess.Popen(['sh', '-c', 'sleep 600 & sleep 600'], start_new_session=True)\n"
+              "stop_children()\n" % os.path.join(ROOT, "scripts"))
+    env = {"PATH": "/usr/bin:/bin", "PLC_CELL_BENCH_MARK": marker}
+    p = subprocess.Popen(["/usr/bin/python3", "-c", script], env=env, stdin=subprocess.DEVNULL,
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
+    out = finish(p)
+    assert p.returncode == 0, out
+    left = marked(marker)
+    assert left == [], "left behind:\n%s\n%s" % (described(left), out)
